@@ -1,0 +1,73 @@
+"""What every command shares: the ``--db`` and ``--format`` options, opening the
+database, and turning a typed quantity (``"190 GPa"``) into a checked SI value.
+
+Kept free of heavy imports so ``granudb --help`` stays fast: SQLAlchemy, pandas and Pint
+load only when a command runs.
+"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+
+from granudb.config import ENV_VAR
+
+if TYPE_CHECKING:
+    from granudb.db.engine import Database
+
+
+class Format(StrEnum):
+    table = "table"
+    json = "json"
+    csv = "csv"
+
+
+DbOption = Annotated[
+    str | None,
+    typer.Option(
+        "--db",
+        envvar=ENV_VAR,
+        show_envvar=True,
+        help="Database: a SQLAlchemy URL or a SQLite file path "
+        "(default: granudb.sqlite in the user data directory).",
+    ),
+]
+FormatOption = Annotated[
+    Format, typer.Option("--format", "-f", help="table for people; json or csv (SI) for scripts.")
+]
+
+
+def open_db(url: str | None) -> Database:
+    """Open the database, creating, migrating and seeding it on first use."""
+    from granudb.db.engine import open_database
+
+    database = open_database(url)
+    if database.created:
+        from granudb.cli.output import note
+
+        note(f"created {database.display_url} and loaded the seed data")
+    return database
+
+
+def quantity(text: str | None, column: str, option: str) -> float | None:
+    """Parse an option's text into SI for ``column`` and check its physical rule."""
+    if text is None:
+        return None
+    from granudb.io.rules import check_value
+    from granudb.io.units import parse_quantity, unit_of_column
+
+    value = parse_quantity(text, unit_of_column(column), option)
+    check_value(column, value, field=option, shown=text)
+    return value
+
+
+def quantities(pairs: dict[str, tuple[str | None, str]]) -> dict[str, float]:
+    """``{column: (text, option)}`` → ``{column: SI value}`` for the options given."""
+    values = {}
+    for column, (text, option) in pairs.items():
+        value = quantity(text, column, option)
+        if value is not None:
+            values[column] = value
+    return values

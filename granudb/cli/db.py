@@ -1,0 +1,107 @@
+"""``granudb db upgrade|downgrade|current|history|seed``: the schema and the seed data."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from granudb.cli.common import DbOption, Format, FormatOption
+
+app = typer.Typer(
+    help="Schema migrations (Alembic) and the shipped seed data.", no_args_is_help=True
+)
+
+
+def _open(db: str | None):
+    from granudb.db.engine import open_database
+
+    return open_database(db, migrate=False)
+
+
+@app.command()
+def upgrade(
+    revision: Annotated[str, typer.Argument(help="Target revision.")] = "head",
+    db: DbOption = None,
+) -> None:
+    """Migrate the database forward (a new database is created and seeded)."""
+    from granudb.cli.output import say
+    from granudb.db import migration
+    from granudb.db.engine import open_database
+
+    if revision == "head":
+        database = _open(db)
+        with database.engine.connect() as connection:
+            before = migration.current_revision(connection)
+        database.dispose()
+        database = open_database(db)
+        after = migration.head_revision()
+    else:
+        database = _open(db)
+        before, after = migration.upgrade(database, revision)
+    say(
+        f"schema: {before or 'empty'} → {after}"
+        if before != after
+        else f"schema: already at {after}"
+    )
+
+
+@app.command()
+def downgrade(
+    revision: Annotated[str, typer.Argument(help='Target revision, or "base" to drop all.')],
+    db: DbOption = None,
+) -> None:
+    """Migrate the database back to an older revision (may drop data of newer tables)."""
+    from granudb.cli.output import say
+    from granudb.db import migration
+
+    before, after = migration.downgrade(_open(db), revision)
+    say(f"schema: {before or 'empty'} → {after or 'empty'}")
+
+
+@app.command()
+def current(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
+    """The database's schema revision and the newest this granudb knows."""
+    from granudb.cli.output import emit_one
+    from granudb.db import migration
+
+    database = _open(db)
+    with database.engine.connect() as connection:
+        revision = migration.current_revision(connection)
+    head = migration.head_revision()
+    emit_one(
+        {
+            "database": database.display_url,
+            "revision": revision,
+            "head": head,
+            "up_to_date": revision == head,
+        },
+        fmt,
+        title="Schema",
+    )
+
+
+@app.command()
+def history(fmt: FormatOption = Format.table) -> None:
+    """Every schema revision granudb ships, newest first."""
+    from granudb.cli.output import emit
+    from granudb.db import migration
+
+    emit(migration.history(), ["revision", "down_revision", "message"], fmt, title="Revisions")
+
+
+@app.command()
+def seed(db: DbOption = None) -> None:
+    """Reload the shipped seed data: adds what is missing, updates what changed, says what."""
+    from granudb.cli.common import open_db
+    from granudb.cli.output import say
+    from granudb.io.seed import load_seed
+
+    database = open_db(db)
+    if database.created:
+        lines = database.seed_report
+    else:
+        with database.session(write=True) as session:
+            lines = load_seed(session)
+    for line in lines:
+        say(line)

@@ -1,0 +1,165 @@
+"""``granudb fluids list|show|add|update|remove``."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from granudb.cli.common import DbOption, Format, FormatOption, open_db, quantities
+
+app = typer.Typer(
+    help="Fluids: density, viscosity and how it varies with temperature.", no_args_is_help=True
+)
+
+Name = Annotated[str, typer.Argument(help="Fluid name (matched case-insensitively).")]
+Viscosity = Annotated[str | None, typer.Option("--viscosity", help='e.g. "4.5 cP"')]
+Density = Annotated[str | None, typer.Option("--density", help='e.g. "1112 kg/m^3"')]
+Temperature = Annotated[
+    str | None,
+    typer.Option(
+        "--temperature", help='Temperature of the viscosity value, "20 degC" (default 20 °C).'
+    ),
+]
+Pressure = Annotated[
+    str | None,
+    typer.Option(
+        "--pressure-coefficient", help='Barus pressure-viscosity coefficient, "6e-9 1/Pa".'
+    ),
+]
+Glycerol = Annotated[
+    str | None, typer.Option("--glycerol-fraction", help='Glycerol mass fraction, "45 %" or 0.45.')
+]
+Description = Annotated[str | None, typer.Option("--description")]
+SourceKey = Annotated[str | None, typer.Option("--source", help="Key of a source (sources list).")]
+Locator = Annotated[
+    str | None, typer.Option("--source-locator", help='Where in the source, e.g. "table 2".')
+]
+
+
+def _values(viscosity, density, temperature, pressure, glycerol) -> dict[str, float]:
+    return quantities(
+        {
+            "viscosity_pa_s": (viscosity, "--viscosity"),
+            "density_kg_m3": (density, "--density"),
+            "reference_temperature_c": (temperature, "--temperature"),
+            "pressure_viscosity_pa_inv": (pressure, "--pressure-coefficient"),
+            "glycerol_mass_fraction": (glycerol, "--glycerol-fraction"),
+        }
+    )
+
+
+@app.command("list")
+def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
+    """List every fluid (``points`` counts its viscosity–temperature points)."""
+    from granudb.cli.output import emit
+    from granudb.db import catalog
+
+    database = open_db(db)
+    with database.session() as session:
+        records = [catalog.fluid_record(f) for f in catalog.list_fluids(session)]
+    emit(
+        records,
+        catalog.FLUID_TABLE_COLUMNS if fmt is Format.table else catalog.FLUID_COLUMNS,
+        fmt,
+        title="Fluids",
+    )
+
+
+@app.command()
+def show(name: Name, db: DbOption = None, fmt: FormatOption = Format.table) -> None:
+    """Show one fluid with its sources and its viscosity–temperature points."""
+    from granudb.cli.output import emit, emit_one
+    from granudb.db import catalog
+
+    database = open_db(db)
+    with database.session() as session:
+        fluid = catalog.get_fluid(session, name)
+        record = catalog.fluid_record(fluid)
+        record["citation"] = fluid.source.citation if fluid.source else None
+        points = catalog.point_records(fluid)
+    if fmt is Format.table:
+        emit_one(record, fmt, title=f"Fluid {record['name']}")
+        if points:
+            emit(points, catalog.POINT_COLUMNS, fmt, title="Viscosity–temperature points")
+    elif fmt is Format.json:
+        emit_one(record, fmt, extra={"points": points})
+    else:
+        emit(points, catalog.POINT_COLUMNS, fmt)
+
+
+@app.command()
+def add(
+    name: Name,
+    viscosity: Viscosity = None,
+    density: Density = None,
+    temperature: Temperature = None,
+    pressure_coefficient: Pressure = None,
+    glycerol_fraction: Glycerol = None,
+    description: Description = None,
+    source: SourceKey = None,
+    source_locator: Locator = None,
+    db: DbOption = None,
+) -> None:
+    """Add a fluid. Viscosity and density are required."""
+    from granudb.cli.output import say
+    from granudb.db import catalog
+    from granudb.errors import ValidationError
+
+    for option, value in {"--viscosity": viscosity, "--density": density}.items():
+        if value is None:
+            raise ValidationError(option, "(missing)", "is required to add a fluid")
+    values: dict[str, object] = _values(
+        viscosity, density, temperature or "20 degC", pressure_coefficient, glycerol_fraction
+    )
+    if description is not None:
+        values["description"] = description
+    if source_locator is not None:
+        values["source_locator"] = source_locator
+    database = open_db(db)
+    with database.session(write=True) as session:
+        catalog.add_fluid(session, name, values, source=source)
+    say(f"added fluid {name}")
+
+
+@app.command()
+def update(
+    name: Name,
+    viscosity: Viscosity = None,
+    density: Density = None,
+    temperature: Temperature = None,
+    pressure_coefficient: Pressure = None,
+    glycerol_fraction: Glycerol = None,
+    description: Description = None,
+    source: SourceKey = None,
+    source_locator: Locator = None,
+    rename: Annotated[str | None, typer.Option("--rename", help="New name.")] = None,
+    db: DbOption = None,
+) -> None:
+    """Change some properties of a fluid; prints each change (old → new)."""
+    from granudb.cli.output import say
+    from granudb.db import catalog
+
+    values: dict[str, object] = _values(
+        viscosity, density, temperature, pressure_coefficient, glycerol_fraction
+    )
+    if description is not None:
+        values["description"] = description
+    if source_locator is not None:
+        values["source_locator"] = source_locator
+    database = open_db(db)
+    with database.session(write=True) as session:
+        change = catalog.update_fluid(session, name, values, source=source, new_name=rename)
+    say(change.describe())
+
+
+@app.command()
+def remove(name: Name, db: DbOption = None) -> None:
+    """Remove a fluid (with its points) that no collision or published value uses."""
+    from granudb.cli.output import say
+    from granudb.db import catalog
+
+    database = open_db(db)
+    with database.session(write=True) as session:
+        fluid = catalog.remove_fluid(session, name)
+    say(f"removed fluid {fluid.name}")

@@ -1,0 +1,69 @@
+"""The ``granudb`` command: sub-commands are thin wrappers over the library.
+
+A ``GranudbError`` anywhere becomes one line on stderr (``Error: field: value rule``) and
+exit code 1; nothing else is printed, and the transaction it happened in was rolled back.
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Any
+
+import typer
+from typer.core import TyperGroup
+
+from granudb import __version__
+from granudb.cli import db, fluids, materials, sources
+
+
+class GranudbGroup(TyperGroup):
+    """Turns granudb's refusals into a one-line error and a non-zero exit."""
+
+    def invoke(self, ctx: typer.Context) -> Any:
+        from granudb.errors import GranudbError
+
+        try:
+            return super().invoke(ctx)
+        except GranudbError as exc:
+            message = str(exc).replace("\n", " ")
+            typer.echo(f"Error: {message}", err=True)
+            raise typer.Exit(exc.exit_code) from None
+
+
+app = typer.Typer(
+    cls=GranudbGroup,
+    name="granudb",
+    help="Materials-and-regime database for particle–wall collisions in liquids.",
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    context_settings={"help_option_names": ["-h", "--help"]},
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"granudb {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(
+        False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
+    ),
+) -> None:
+    """Materials-and-regime database for particle–wall collisions in liquids.
+
+    Values go in with units ("190 GPa", "4.5 cP") and are stored in SI.
+    """
+
+
+app.add_typer(materials.app, name="materials")
+app.add_typer(fluids.app, name="fluids")
+app.add_typer(sources.app, name="sources")
+app.add_typer(db.app, name="db")
+
+
+def main() -> None:
+    """Console-script entry point."""
+    sys.exit(app())

@@ -1,0 +1,125 @@
+"""One way to print records: a Rich table for people, JSON or CSV for scripts.
+
+JSON is a plain array of objects (or one object for ``show``) with SI values under the
+public column names; NaN becomes ``null``. CSV has the same names as headers. Tables show
+values with units in engineering notation (``60 GPa``, ``130.5 nm``).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import sys
+from collections.abc import Sequence
+from typing import Any
+
+from granudb.cli.common import Format
+
+
+def _clean(value: Any) -> Any:
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if hasattr(value, "isoformat"):
+        return value.isoformat()
+    if hasattr(value, "item"):  # numpy scalar
+        return _clean(value.item())
+    return value
+
+
+def to_json(data: Any) -> str:
+    if isinstance(data, dict):
+        data = {k: to_json_value(v) for k, v in data.items()}
+    elif isinstance(data, list):
+        data = [to_json_value(v) for v in data]
+    return json.dumps(data, indent=2, ensure_ascii=False, allow_nan=False)
+
+
+def to_json_value(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {k: to_json_value(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [to_json_value(v) for v in value]
+    return _clean(value)
+
+
+def console(stderr: bool = False) -> Any:
+    from rich.console import Console
+
+    return Console(stderr=stderr, highlight=False, soft_wrap=False)
+
+
+def note(message: str) -> None:
+    """A remark for the person at the terminal (stderr, so pipes stay clean)."""
+    from rich.markup import escape
+
+    console(stderr=True).print(f"[dim]{escape(message)}[/dim]")
+
+
+def say(message: str) -> None:
+    """A result line on stdout (escaped: names from the database are never markup)."""
+    from rich.markup import escape
+
+    console().print(escape(message))
+
+
+def label(column: str) -> str:
+    """A table header for a column: ``youngs_modulus_pa`` → ``youngs modulus``."""
+    from granudb.io.units import UNITS
+
+    for suffix in sorted((s for s in UNITS if s and s != "fraction"), key=len, reverse=True):
+        if column.endswith("_" + suffix):
+            return column[: -len(suffix) - 1].replace("_", " ")
+    return column.replace("_", " ")
+
+
+def emit(
+    records: Sequence[dict[str, Any]], columns: Sequence[str], fmt: Format, title: str | None = None
+) -> None:
+    """Print ``records`` (SI dicts) in ``fmt``, keeping ``columns`` in order."""
+    rows = [{c: r.get(c) for c in columns} for r in records]
+    if fmt is Format.json:
+        sys.stdout.write(to_json(rows) + "\n")
+    elif fmt is Format.csv:
+        writer = csv.DictWriter(sys.stdout, fieldnames=list(columns), lineterminator="\n")
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: "" if _clean(v) is None else _clean(v) for k, v in row.items()})
+    else:
+        from rich.table import Table
+        from rich.text import Text
+
+        from granudb.io.units import display
+
+        table = Table(title=Text(title) if title else None, title_justify="left")
+        for column in columns:
+            table.add_column(label(column), overflow="fold")
+        for row in rows:
+            table.add_row(*(Text(display(row[c], c)) for c in columns))
+        console().print(table)
+
+
+def emit_one(
+    record: dict[str, Any],
+    fmt: Format,
+    title: str | None = None,
+    extra: dict[str, Any] | None = None,
+) -> None:
+    """Print one record: a two-column property table, or a JSON object / one-row CSV."""
+    if fmt is Format.json:
+        sys.stdout.write(to_json({**record, **(extra or {})}) + "\n")
+        return
+    if fmt is Format.csv:
+        emit([record], list(record), fmt)
+        return
+    from rich.table import Table
+    from rich.text import Text
+
+    from granudb.io.units import display
+
+    table = Table(title=Text(title) if title else None, title_justify="left", show_header=False)
+    table.add_column("property", style="bold")
+    table.add_column("value", overflow="fold")
+    for column, value in record.items():
+        table.add_row(label(column), Text(display(value, column)))
+    console().print(table)

@@ -1,0 +1,65 @@
+"""``granudb sources list|show``: where every published number comes from."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from granudb.cli.common import DbOption, Format, FormatOption, open_db
+
+app = typer.Typer(
+    help="Sources (papers, correlations) cited by stored values.", no_args_is_help=True
+)
+
+
+@app.command("list")
+def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
+    """List every source."""
+    from granudb.cli.output import emit
+    from granudb.db import catalog
+
+    database = open_db(db)
+    with database.session() as session:
+        records = [catalog.source_record(s) for s in catalog.list_sources(session)]
+    emit(
+        records,
+        ["key", "year", "kind", "citation", "doi"]
+        if fmt is Format.table
+        else catalog.SOURCE_COLUMNS,
+        fmt,
+        title="Sources",
+    )
+
+
+@app.command()
+def show(
+    key: Annotated[str, typer.Argument(help="Source key, e.g. joseph-hunt-2004.")],
+    db: DbOption = None,
+    fmt: FormatOption = Format.table,
+) -> None:
+    """Show a source, what cites it, and the published values it holds."""
+    from granudb.cli.output import emit, emit_one
+    from granudb.db import catalog
+
+    database = open_db(db)
+    with database.session() as session:
+        source = catalog.get_source(session, key)
+        record = catalog.source_record(source)
+        usage = catalog.source_usage(session, source)
+        published = catalog.published_records(session, source)
+    if fmt is Format.json:
+        emit_one(record, fmt, extra={"cited_by": usage, "published_values": published})
+    elif fmt is Format.csv:
+        emit(published, list(published[0]) if published else ["label"], fmt)
+    else:
+        emit_one(
+            {**record, **{f"cited by {k}": v for k, v in usage.items()}}, fmt, title=f"Source {key}"
+        )
+        if published:
+            emit(
+                published,
+                ["source_locator", "label", "quantity", "value_as_printed"],
+                fmt,
+                title="Published values",
+            )

@@ -1,0 +1,466 @@
+"""Queries and changes for the catalogue: materials, fluids and sources.
+
+Every function takes a ``Session`` (the caller owns the transaction) and speaks in SI
+records keyed by the public column names, so the CLI, the reports and the Python API all
+see the same vocabulary. Lookups by name are case-insensitive; a name that is not there
+is an error listing the names that are.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from sqlalchemy import func, select
+from sqlalchemy.orm import Session
+
+from granudb.db.models import (
+    Collision,
+    Dataset,
+    Fluid,
+    FluidPoint,
+    Material,
+    PublishedValue,
+    Source,
+    name_key,
+)
+from granudb.db.upsert import Change, same_value
+from granudb.errors import ConflictError, NotFoundError, ValidationError
+from granudb.io.rules import check_record
+
+MATERIAL_COLUMNS = [
+    "name",
+    "description",
+    "density_kg_m3",
+    "youngs_modulus_pa",
+    "poisson_ratio",
+    "roughness_rms_m",
+    "correlation_length_m",
+    "shear_modulus_pa",
+    "shear_modulus_derived",
+    "source",
+    "source_locator",
+]
+MATERIAL_TABLE_COLUMNS = [
+    "name",
+    "density_kg_m3",
+    "youngs_modulus_pa",
+    "poisson_ratio",
+    "roughness_rms_m",
+    "shear_modulus_pa",
+    "source",
+]
+FLUID_COLUMNS = [
+    "name",
+    "description",
+    "glycerol_mass_fraction",
+    "density_kg_m3",
+    "viscosity_pa_s",
+    "reference_temperature_c",
+    "pressure_viscosity_pa_inv",
+    "source",
+    "source_locator",
+    "density_source",
+    "pressure_viscosity_source",
+    "points",
+]
+FLUID_TABLE_COLUMNS = [
+    "name",
+    "glycerol_mass_fraction",
+    "density_kg_m3",
+    "viscosity_pa_s",
+    "reference_temperature_c",
+    "pressure_viscosity_pa_inv",
+    "points",
+    "source",
+]
+POINT_COLUMNS = ["temperature_c", "viscosity_pa_s", "density_kg_m3", "source"]
+SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
+
+MATERIAL_FIELDS = {
+    "description",
+    "density_kg_m3",
+    "youngs_modulus_pa",
+    "poisson_ratio",
+    "roughness_rms_m",
+    "correlation_length_m",
+    "shear_modulus_pa",
+    "source_locator",
+}
+FLUID_FIELDS = {
+    "description",
+    "glycerol_mass_fraction",
+    "density_kg_m3",
+    "viscosity_pa_s",
+    "reference_temperature_c",
+    "pressure_viscosity_pa_inv",
+    "source_locator",
+}
+
+
+def _key(source: Source | None) -> str | None:
+    return source.key if source is not None else None
+
+
+# --- materials -------------------------------------------------------------------------
+
+
+def material_record(material: Material) -> dict[str, Any]:
+    """A material as an SI record; a missing shear modulus is derived, G = E / (2(1 + ν))."""
+    derived = material.shear_modulus_pa is None
+    shear = (
+        material.youngs_modulus_pa / (2.0 * (1.0 + material.poisson_ratio))
+        if derived
+        else material.shear_modulus_pa
+    )
+    return {
+        "name": material.name,
+        "description": material.description,
+        "density_kg_m3": material.density_kg_m3,
+        "youngs_modulus_pa": material.youngs_modulus_pa,
+        "poisson_ratio": material.poisson_ratio,
+        "roughness_rms_m": material.roughness_rms_m,
+        "correlation_length_m": material.correlation_length_m,
+        "shear_modulus_pa": shear,
+        "shear_modulus_derived": derived,
+        "source": _key(material.source),
+        "source_locator": material.source_locator,
+    }
+
+
+def list_materials(session: Session) -> list[Material]:
+    return list(session.scalars(select(Material).order_by(Material.name_key)))
+
+
+def get_material(session: Session, name: str) -> Material:
+    found = session.scalars(select(Material).filter_by(name_key=name_key(name))).one_or_none()
+    if found is None:
+        known = ", ".join(m.name for m in list_materials(session)) or "none yet"
+        raise NotFoundError(f"material: {name!r} is not in the database (known: {known})")
+    return found
+
+
+def get_source(session: Session, key: str) -> Source:
+    found = session.scalars(select(Source).filter_by(key=key)).one_or_none()
+    if found is None:
+        known = ", ".join(s.key for s in list_sources(session)) or "none yet"
+        raise NotFoundError(f"source: {key!r} is not in the database (known: {known})")
+    return found
+
+
+def _apply(row: Any, values: dict[str, Any], allowed: set[str], label: str) -> Change:
+    diffs = []
+    for column, new in values.items():
+        if column not in allowed:
+            raise ValidationError(column, new, "is not a field that can be set")
+        old = getattr(row, column)
+        if not same_value(old, new):
+            diffs.append((column, old, new))
+            setattr(row, column, new)
+    return Change("updated" if diffs else "unchanged", label, diffs)
+
+
+def add_material(
+    session: Session, name: str, values: dict[str, Any], source: str | None = None
+) -> Material:
+    """Add a material; refuses a name that exists (compared case-insensitively)."""
+    _check_name("material", name)
+    check_record(values)
+    existing = session.scalars(select(Material).filter_by(name_key=name_key(name)))
+    if (clash := existing.one_or_none()) is not None:
+        raise ConflictError(
+            f"material: {name!r} already exists as {clash.name!r} (use `granudb materials update`)"
+        )
+    unknown = set(values) - MATERIAL_FIELDS
+    if unknown:
+        raise ValidationError(
+            sorted(unknown)[0], values[sorted(unknown)[0]], "is not a material field"
+        )
+    material = Material(name=name, name_key=name_key(name), **values)
+    _check_shear_modulus(material)
+    if source is not None:
+        material.source = get_source(session, source)
+    session.add(material)
+    session.flush()
+    return material
+
+
+def update_material(
+    session: Session,
+    name: str,
+    values: dict[str, Any],
+    source: str | None = None,
+    new_name: str | None = None,
+) -> Change:
+    """Change the given fields of a material; returns what changed (field by field)."""
+    material = get_material(session, name)
+    check_record(values)
+    change = _apply(material, values, MATERIAL_FIELDS, f"material {material.name}")
+    change = _rename_and_source(session, Material, material, change, source, new_name)
+    _check_shear_modulus(material)
+    session.flush()
+    return change
+
+
+def _check_shear_modulus(material: Material) -> None:
+    if material.shear_modulus_pa is None:
+        return
+    # E, ν and G of an isotropic solid satisfy ν = E/(2G) − 1; an explicit G is allowed to
+    # differ (anisotropic or measured), but must still give ν inside (−1, 0.5).
+    implied = material.youngs_modulus_pa / (2.0 * material.shear_modulus_pa) - 1.0
+    if not -1.0 < implied < 0.5:
+        raise ValidationError(
+            "shear_modulus_pa",
+            material.shear_modulus_pa,
+            f"with youngs_modulus_pa {material.youngs_modulus_pa:g} implies a Poisson ratio "
+            f"of {implied:.3g}, outside (−1, 0.5)",
+        )
+
+
+def _rename_and_source(
+    session: Session,
+    model: type,
+    row: Any,
+    change: Change,
+    source: str | None,
+    new_name: str | None,
+) -> Change:
+    diffs = list(change.diffs)
+    if source is not None:
+        found = get_source(session, source)
+        if row.source_id != found.id:
+            diffs.append(("source", _key(row.source), found.key))
+            row.source = found
+    if new_name is not None and new_name != row.name:
+        kind = model.__tablename__[:-1]
+        _check_name(kind, new_name)
+        clash = session.scalars(
+            select(model).filter_by(name_key=name_key(new_name)).where(model.id != row.id)
+        ).one_or_none()
+        if clash is not None:
+            raise ConflictError(f"{kind}: {new_name!r} already exists")
+        diffs.append(("name", row.name, new_name))
+        row.name, row.name_key = new_name, name_key(new_name)
+    return Change("updated" if diffs else "unchanged", change.label, diffs)
+
+
+def _usage(session: Session, column: Any, *, role: str) -> list[str]:
+    rows = session.execute(
+        select(Dataset.name, Dataset.version, func.count())
+        .join(Collision, Collision.dataset_id == Dataset.id)
+        .where(column)
+        .group_by(Dataset.name, Dataset.version)
+        .order_by(Dataset.name, Dataset.version)
+    ).all()
+    return [f"{n} collisions in dataset {d} {v} (as {role})" for d, v, n in rows]
+
+
+def remove_material(session: Session, name: str) -> Material:
+    """Delete a material that nothing refers to; otherwise say what refers to it."""
+    material = get_material(session, name)
+    uses = _usage(session, Collision.particle_id == material.id, role="particle")
+    uses += _usage(session, Collision.wall_id == material.id, role="wall")
+    published = session.scalar(
+        select(func.count())
+        .select_from(PublishedValue)
+        .where(
+            (PublishedValue.particle_id == material.id) | (PublishedValue.wall_id == material.id)
+        )
+    )
+    if published:
+        uses.append(f"{published} published values")
+    if uses:
+        raise ConflictError(
+            f"material: {material.name!r} is still used by {'; '.join(uses)}; remove those first"
+        )
+    session.delete(material)
+    session.flush()
+    return material
+
+
+# --- fluids ----------------------------------------------------------------------------
+
+
+def fluid_record(fluid: Fluid) -> dict[str, Any]:
+    return {
+        "name": fluid.name,
+        "description": fluid.description,
+        "glycerol_mass_fraction": fluid.glycerol_mass_fraction,
+        "density_kg_m3": fluid.density_kg_m3,
+        "viscosity_pa_s": fluid.viscosity_pa_s,
+        "reference_temperature_c": fluid.reference_temperature_c,
+        "pressure_viscosity_pa_inv": fluid.pressure_viscosity_pa_inv,
+        "source": _key(fluid.source),
+        "source_locator": fluid.source_locator,
+        "density_source": _key(fluid.density_source),
+        "pressure_viscosity_source": _key(fluid.pressure_viscosity_source),
+        "points": len(fluid.points),
+    }
+
+
+def point_records(fluid: Fluid) -> list[dict[str, Any]]:
+    return [
+        {
+            "temperature_c": p.temperature_c,
+            "viscosity_pa_s": p.viscosity_pa_s,
+            "density_kg_m3": p.density_kg_m3,
+            "source": _key(p.source),
+        }
+        for p in sorted(fluid.points, key=lambda p: p.temperature_c)
+    ]
+
+
+def list_fluids(session: Session) -> list[Fluid]:
+    return list(session.scalars(select(Fluid).order_by(Fluid.name_key)))
+
+
+def get_fluid(session: Session, name: str) -> Fluid:
+    found = session.scalars(select(Fluid).filter_by(name_key=name_key(name))).one_or_none()
+    if found is None:
+        known = ", ".join(f.name for f in list_fluids(session)) or "none yet"
+        raise NotFoundError(f"fluid: {name!r} is not in the database (known: {known})")
+    return found
+
+
+def add_fluid(
+    session: Session, name: str, values: dict[str, Any], source: str | None = None
+) -> Fluid:
+    """Add a fluid; refuses a name that exists (compared case-insensitively)."""
+    _check_name("fluid", name)
+    check_record(values)
+    clash = session.scalars(select(Fluid).filter_by(name_key=name_key(name))).one_or_none()
+    if clash is not None:
+        raise ConflictError(
+            f"fluid: {name!r} already exists as {clash.name!r} (use `granudb fluids update`)"
+        )
+    unknown = set(values) - FLUID_FIELDS
+    if unknown:
+        first = sorted(unknown)[0]
+        raise ValidationError(first, values[first], "is not a fluid field")
+    fluid = Fluid(name=name, name_key=name_key(name), **values)
+    if source is not None:
+        fluid.source = get_source(session, source)
+    session.add(fluid)
+    session.flush()
+    return fluid
+
+
+def update_fluid(
+    session: Session,
+    name: str,
+    values: dict[str, Any],
+    source: str | None = None,
+    new_name: str | None = None,
+) -> Change:
+    fluid = get_fluid(session, name)
+    check_record(values)
+    change = _apply(fluid, values, FLUID_FIELDS, f"fluid {fluid.name}")
+    change = _rename_and_source(session, Fluid, fluid, change, source, new_name)
+    session.flush()
+    return change
+
+
+def remove_fluid(session: Session, name: str) -> Fluid:
+    """Delete a fluid (and its viscosity points) that no collision or published value uses."""
+    fluid = get_fluid(session, name)
+    uses = _usage(session, Collision.fluid_id == fluid.id, role="fluid")
+    published = session.scalar(
+        select(func.count()).select_from(PublishedValue).where(PublishedValue.fluid_id == fluid.id)
+    )
+    if published:
+        uses.append(f"{published} published values")
+    if uses:
+        raise ConflictError(
+            f"fluid: {fluid.name!r} is still used by {'; '.join(uses)}; remove those first"
+        )
+    session.delete(fluid)
+    session.flush()
+    return fluid
+
+
+def add_fluid_points(
+    session: Session, name: str, points: list[dict[str, Any]], source: str | None = None
+) -> int:
+    """Add or replace measured (temperature, viscosity[, density]) points of a fluid."""
+    fluid = get_fluid(session, name)
+    source_row = get_source(session, source) if source is not None else None
+    by_temperature = {p.temperature_c: p for p in fluid.points}
+    for index, point in enumerate(points, start=1):
+        check_record(point, row=index)
+        existing = by_temperature.get(point["temperature_c"])
+        if existing is None:
+            existing = FluidPoint(fluid=fluid, temperature_c=point["temperature_c"])
+            session.add(existing)
+        existing.viscosity_pa_s = point["viscosity_pa_s"]
+        existing.density_kg_m3 = point.get("density_kg_m3")
+        existing.source = source_row
+    session.flush()
+    return len(points)
+
+
+# --- sources ---------------------------------------------------------------------------
+
+
+def source_record(source: Source) -> dict[str, Any]:
+    return {column: getattr(source, column) for column in SOURCE_COLUMNS}
+
+
+def list_sources(session: Session) -> list[Source]:
+    return list(session.scalars(select(Source).order_by(Source.key)))
+
+
+def source_usage(session: Session, source: Source) -> dict[str, int]:
+    """How many rows of each kind cite ``source``."""
+    counts = {}
+    for label, model in (
+        ("materials", Material),
+        ("fluids", Fluid),
+        ("published_values", PublishedValue),
+        ("datasets", Dataset),
+    ):
+        counts[label] = (
+            session.scalar(
+                select(func.count()).select_from(model).where(model.source_id == source.id)
+            )
+            or 0
+        )
+    return counts
+
+
+def published_records(session: Session, source: Source | None = None) -> list[dict[str, Any]]:
+    query = select(PublishedValue).order_by(PublishedValue.id)
+    if source is not None:
+        query = query.where(PublishedValue.source_id == source.id)
+    return [
+        {
+            "source": pv.source.key,
+            "source_locator": pv.source_locator,
+            "label": pv.label,
+            "quantity": pv.quantity,
+            "value": pv.value,
+            "uncertainty": pv.uncertainty,
+            "value_as_printed": pv.value_as_printed,
+            "particle": pv.particle.name if pv.particle else None,
+            "wall": pv.wall.name if pv.wall else None,
+            "fluid": pv.fluid.name if pv.fluid else None,
+            "condition": pv.condition,
+        }
+        for pv in session.scalars(query)
+    ]
+
+
+# --- shared ----------------------------------------------------------------------------
+
+MAX_NAME_LENGTH = 200
+
+
+def _check_name(kind: str, name: str) -> None:
+    if not name or not name.strip():
+        raise ValidationError(f"{kind} name", name, "must not be empty")
+    if name != name.strip():
+        raise ValidationError(f"{kind} name", repr(name), "must not start or end with spaces")
+    if len(name) > MAX_NAME_LENGTH:
+        raise ValidationError(
+            f"{kind} name", name[:20] + "…", f"must be at most {MAX_NAME_LENGTH} characters"
+        )
+    if any(ord(ch) < 32 for ch in name):
+        raise ValidationError(f"{kind} name", repr(name), "must not contain control characters")

@@ -1,0 +1,194 @@
+"""Opening a granudb database: engine, pragmas, transactions, first-use setup.
+
+``open_database()`` is the one entry point. It resolves the URL (``granudb.config``),
+creates the embedded SQLite file's folder when it is the default, migrates the schema to
+the newest revision, and on a brand-new database loads the seed data, all in one
+transaction, so two processes starting at once cannot half-create a database.
+
+SQLite runs in WAL mode with foreign keys on and a busy timeout; write transactions start
+with ``BEGIN IMMEDIATE`` so a writer waits for the lock up front instead of failing half-way.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from sqlalchemy import Engine, create_engine, event, inspect
+from sqlalchemy.engine import Connection, make_url
+from sqlalchemy.exc import DBAPIError, IntegrityError, OperationalError
+from sqlalchemy.orm import Session
+
+from granudb.config import default_database_path, resolve_database_url
+from granudb.errors import DatabaseAccessError, GranudbError
+
+BUSY_TIMEOUT_S = 30.0
+
+
+def _sqlite_file(url: str) -> Path | None:
+    parsed = make_url(url)
+    if parsed.get_backend_name() != "sqlite" or not parsed.database:
+        return None
+    if parsed.database == ":memory:" or parsed.database.startswith("file:"):
+        return None
+    return Path(parsed.database)
+
+
+def make_engine(url: str) -> Engine:
+    """A SQLAlchemy engine for ``url`` with granudb's connection settings."""
+    parsed = make_url(url)
+    if parsed.get_backend_name() != "sqlite":
+        try:
+            return create_engine(url, pool_pre_ping=True)
+        except (ImportError, ModuleNotFoundError) as exc:
+            raise DatabaseAccessError(
+                f"database: {parsed.render_as_string(hide_password=True)} needs a driver "
+                f"that is not installed ({exc.name}); for PostgreSQL: pip install 'psycopg[binary]'"
+            ) from None
+        except Exception as exc:  # noqa: BLE001 - any URL parse problem is the user's to fix
+            raise DatabaseAccessError(f"database: {url!r} is not a usable URL ({exc})") from None
+
+    engine = create_engine(url, connect_args={"timeout": BUSY_TIMEOUT_S})
+    in_memory = _sqlite_file(url) is None
+
+    @event.listens_for(engine, "connect")
+    def _on_connect(dbapi_connection: Any, _record: Any) -> None:
+        # Let SQLAlchemy, not pysqlite, decide when transactions begin (see _on_begin).
+        dbapi_connection.isolation_level = None
+        cursor = dbapi_connection.cursor()
+        cursor.execute("PRAGMA foreign_keys=ON")
+        cursor.execute(f"PRAGMA busy_timeout={int(BUSY_TIMEOUT_S * 1000)}")
+        if not in_memory:
+            cursor.execute("PRAGMA journal_mode=WAL")
+            cursor.execute("PRAGMA synchronous=NORMAL")
+        cursor.close()
+
+    @event.listens_for(engine, "begin")
+    def _on_begin(connection: Connection) -> None:
+        mode = connection.get_execution_options().get("sqlite_begin", "DEFERRED")
+        connection.exec_driver_sql(f"BEGIN {mode}")
+
+    return engine
+
+
+def _check_sqlite_location(path: Path, is_default: bool) -> None:
+    folder = path.parent
+    if not folder.exists():
+        if is_default:
+            folder.mkdir(parents=True, exist_ok=True)
+        else:
+            raise DatabaseAccessError(
+                f"database: folder {folder} does not exist (create it, or choose another --db)"
+            )
+
+
+def translate_db_error(exc: DBAPIError) -> GranudbError:
+    """A database driver error as one line a person can act on."""
+    text = str(exc.orig) if exc.orig is not None else str(exc)
+    text = text.splitlines()[0]
+    lowered = text.lower()
+    if isinstance(exc, IntegrityError):
+        if "check constraint" in lowered:
+            return GranudbError(f"database refused a value: {text}")
+        return GranudbError(f"database refused the change: {text}")
+    if "readonly" in lowered or "read-only" in lowered or "read only" in lowered:
+        return DatabaseAccessError(f"database: is read-only ({text}); nothing was changed")
+    if "disk" in lowered and ("full" in lowered or "i/o" in lowered):
+        return DatabaseAccessError(f"database: disk full or failing ({text}); nothing was changed")
+    if "unable to open" in lowered:
+        return DatabaseAccessError(f"database: cannot open the file ({text})")
+    if "locked" in lowered:
+        return DatabaseAccessError(
+            f"database: still locked by another writer after "
+            f"{BUSY_TIMEOUT_S:.0f} s ({text}); try again"
+        )
+    if "not a database" in lowered:
+        return DatabaseAccessError(f"database: the file is not a SQLite database ({text})")
+    if isinstance(exc, OperationalError):
+        return DatabaseAccessError(f"database: {text}")
+    return GranudbError(f"database error: {text}")
+
+
+@dataclass
+class Database:
+    """An opened granudb database: its URL, engine, and how to get a session."""
+
+    url: str
+    engine: Engine
+    created: bool = False
+    seed_report: list[str] = field(default_factory=list)
+
+    @property
+    def dialect(self) -> str:
+        return self.engine.dialect.name
+
+    @property
+    def display_url(self) -> str:
+        return make_url(self.url).render_as_string(hide_password=True)
+
+    @contextmanager
+    def session(self, *, write: bool = False) -> Iterator[Session]:
+        """A session in one transaction: committed on success, rolled back on any error.
+
+        ``write=True`` takes SQLite's write lock at the start (``BEGIN IMMEDIATE``), so a
+        write either waits for another writer and then runs whole, or does not start.
+        """
+        bind = self.engine.execution_options(sqlite_begin="IMMEDIATE") if write else self.engine
+        session = Session(bind=bind, expire_on_commit=False)
+        try:
+            yield session
+            session.commit()
+        except DBAPIError as exc:
+            session.rollback()
+            raise translate_db_error(exc) from None
+        except BaseException:
+            session.rollback()
+            raise
+        finally:
+            session.close()
+
+    def dispose(self) -> None:
+        self.engine.dispose()
+
+
+def open_database(url: str | None = None, *, seed: bool = True, migrate: bool = True) -> Database:
+    """Open (and on first use create, migrate and seed) the database at ``url``.
+
+    ``migrate=False`` opens without touching the schema (used by ``granudb db`` commands,
+    which manage it explicitly); an existing database at an older revision is otherwise
+    migrated forward, and one at an unknown (newer) revision is refused.
+    """
+    from granudb.db import migration
+
+    resolved = resolve_database_url(url)
+    path = _sqlite_file(resolved)
+    if path is not None:
+        _check_sqlite_location(path, is_default=path == default_database_path())
+    engine = make_engine(resolved)
+    database = Database(resolved, engine)
+    if not migrate:
+        return database
+
+    def _seed(connection: Connection) -> None:
+        from granudb.io.seed import load_seed
+
+        with Session(bind=connection) as session:
+            database.seed_report = load_seed(session)
+            session.flush()
+
+    try:
+        database.created = migration.ensure_current(database, _seed if seed else None)
+    except DBAPIError as exc:
+        engine.dispose()
+        raise translate_db_error(exc) from None
+    except BaseException:
+        engine.dispose()
+        raise
+    return database
+
+
+def table_names(database: Database) -> list[str]:
+    return inspect(database.engine).get_table_names()

@@ -1,0 +1,148 @@
+"""Alembic, driven from granudb: the schema is always at the revision the code expects.
+
+``granudb db upgrade|downgrade|current|history`` call these functions; ``open_database``
+calls ``ensure_current`` so a first use creates the schema and a newer granudb migrates an
+older file forward, while a file from a *newer* granudb is refused rather than damaged.
+"""
+
+from __future__ import annotations
+
+import io
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from sqlalchemy import inspect, text
+from sqlalchemy.engine import Connection
+
+from granudb.errors import SchemaError
+from granudb.resources import shipped_dir
+
+if TYPE_CHECKING:
+    from alembic.config import Config
+    from alembic.script import ScriptDirectory
+
+    from granudb.db.engine import Database
+
+
+def alembic_config(
+    connection: Connection | None = None, *, output: io.StringIO | None = None
+) -> Config:
+    from alembic.config import Config
+
+    cfg = Config(output_buffer=output) if output is not None else Config()
+    cfg.set_main_option("script_location", str(shipped_dir("migrations")))
+    if connection is not None:
+        cfg.attributes["connection"] = connection
+    return cfg
+
+
+def script_directory() -> ScriptDirectory:
+    from alembic.script import ScriptDirectory
+
+    return ScriptDirectory.from_config(alembic_config())
+
+
+def head_revision() -> str:
+    head = script_directory().get_current_head()
+    assert head is not None, "granudb ships at least one migration"
+    return head
+
+
+def current_revision(connection: Connection) -> str | None:
+    from alembic.runtime.migration import MigrationContext
+
+    return MigrationContext.configure(connection).get_current_revision()
+
+
+def _lock_for_schema_change(connection: Connection) -> None:
+    """Serialise schema changes between processes (SQLite: BEGIN IMMEDIATE already did)."""
+    if connection.dialect.name == "postgresql":
+        connection.execute(text("SELECT pg_advisory_xact_lock(7418327)"))
+
+
+def check_revision(current: str | None, connection: Connection) -> None:
+    """Refuse a database this granudb does not understand."""
+    script = script_directory()
+    if current is None:
+        tables = set(inspect(connection).get_table_names()) - {"alembic_version"}
+        if tables:
+            raise SchemaError(
+                "database: holds tables but no granudb schema revision "
+                f"({', '.join(sorted(tables)[:5])}…); it is not a granudb database"
+            )
+        return
+    try:
+        script.get_revision(current)
+    except Exception:  # noqa: BLE001 - alembic raises several types for unknown ids
+        raise SchemaError(
+            f"database: schema revision {current} is newer than this granudb knows "
+            f"(newest: {script.get_current_head()}); upgrade granudb to use it"
+        ) from None
+
+
+def ensure_current(
+    database: Database, on_create: Callable[[Connection], None] | None = None
+) -> bool:
+    """Migrate ``database`` to head if needed; return True when it was created just now.
+
+    Runs in one write transaction: checking the revision, migrating and ``on_create``
+    (seeding) either all happen or none, and concurrent first uses wait for each other.
+    """
+    head = head_revision()
+    with database.engine.connect() as probe:
+        current = current_revision(probe)
+        probe.rollback()
+    if current == head:
+        return False
+    engine = database.engine.execution_options(sqlite_begin="IMMEDIATE")
+    with engine.begin() as connection:
+        _lock_for_schema_change(connection)
+        current = current_revision(connection)
+        if current == head:
+            return False
+        check_revision(current, connection)
+        from alembic import command
+
+        command.upgrade(alembic_config(connection), "head")
+        if current is None and on_create is not None:
+            on_create(connection)
+        return current is None
+
+
+def upgrade(database: Database, revision: str = "head") -> tuple[str | None, str | None]:
+    """Migrate forward to ``revision``; returns (before, after)."""
+    return _run(database, "upgrade", revision)
+
+
+def downgrade(database: Database, revision: str) -> tuple[str | None, str | None]:
+    """Migrate back to ``revision`` ("base" drops every granudb table)."""
+    return _run(database, "downgrade", revision)
+
+
+def _run(database: Database, action: str, revision: str) -> tuple[str | None, str | None]:
+    from alembic import command
+    from alembic.util.exc import CommandError
+
+    engine = database.engine.execution_options(sqlite_begin="IMMEDIATE")
+    with engine.begin() as connection:
+        _lock_for_schema_change(connection)
+        before = current_revision(connection)
+        check_revision(before, connection)
+        try:
+            getattr(command, action)(alembic_config(connection), revision)
+        except CommandError as exc:
+            raise SchemaError(f"revision: {revision!r} {str(exc).splitlines()[0]}") from None
+        after = current_revision(connection)
+    return before, after
+
+
+def history() -> list[dict[str, str | None]]:
+    """Every shipped revision, newest first."""
+    return [
+        {
+            "revision": rev.revision,
+            "down_revision": rev.down_revision if isinstance(rev.down_revision, str) else None,
+            "message": rev.doc,
+        }
+        for rev in script_directory().walk_revisions()
+    ]

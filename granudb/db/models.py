@@ -1,0 +1,370 @@
+"""The schema: SQLAlchemy 2 typed models.
+
+Every column holds an SI value and its name says the unit (``density_kg_m3``,
+``youngs_modulus_pa``); the same names are granudb's public vocabulary in JSON, CSV, data
+packages and reports. CHECK constraints refuse unphysical rows even when something bypasses
+the validation layer, and every published number points to a ``Source`` plus the table or
+figure it was printed in (``source_locator``).
+
+Alembic's first revision (``migrations/versions/0001_initial.py``) creates exactly these
+tables; ``tests/db/test_migrations.py`` proves the two agree.
+"""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime
+
+from sqlalchemy import (
+    CheckConstraint,
+    DateTime,
+    Float,
+    ForeignKey,
+    Index,
+    Integer,
+    MetaData,
+    String,
+    Text,
+    UniqueConstraint,
+    func,
+)
+from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
+
+# Stable constraint names, so migrations can refer to them on every dialect.
+NAMING_CONVENTION = {
+    "ix": "ix_%(table_name)s_%(column_0_N_name)s",
+    "uq": "uq_%(table_name)s_%(column_0_N_name)s",
+    "ck": "ck_%(table_name)s_%(constraint_name)s",
+    "fk": "fk_%(table_name)s_%(column_0_name)s_%(referred_table_name)s",
+    "pk": "pk_%(table_name)s",
+}
+
+
+def utcnow() -> datetime:
+    return datetime.now(UTC)
+
+
+def name_key(name: str) -> str:
+    """The case-insensitive lookup key of a name ("Zerodur", "ZERODUR" → "zerodur").
+
+    Computed in Python (``str.casefold``) rather than with SQL ``lower()``, which folds only
+    ASCII in SQLite but all of Unicode in PostgreSQL.
+    """
+    return " ".join(name.split()).casefold()
+
+
+class Base(DeclarativeBase):
+    metadata = MetaData(naming_convention=NAMING_CONVENTION)
+
+
+class Timestamped:
+    # server_default too, so rows written by other tools (sqlite3, psql) get a timestamp.
+    created_at: Mapped[datetime] = mapped_column(
+        DateTime(timezone=True), default=utcnow, server_default=func.current_timestamp()
+    )
+    updated_at: Mapped[datetime] = mapped_column(
+        DateTime(timezone=True),
+        default=utcnow,
+        onupdate=utcnow,
+        server_default=func.current_timestamp(),
+    )
+
+
+class Source(Base):
+    """A publication, correlation or measurement campaign that numbers come from.
+
+    Where in it a number was printed (``table 1``, ``figure 4``, ``§3``) is stored beside the
+    number, as ``source_locator`` on the row that cites the source.
+    """
+
+    __tablename__ = "sources"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    key: Mapped[str] = mapped_column(String(100), unique=True)
+    citation: Mapped[str] = mapped_column(Text)
+    doi: Mapped[str | None] = mapped_column(String(200))
+    url: Mapped[str | None] = mapped_column(String(500))
+    year: Mapped[int | None] = mapped_column(Integer)
+    kind: Mapped[str] = mapped_column(String(40), default="publication")
+    notes: Mapped[str | None] = mapped_column(Text)
+
+    __table_args__ = (
+        CheckConstraint("length(key) > 0", name="key_not_empty"),
+        CheckConstraint("year IS NULL OR (year >= 1600 AND year <= 3000)", name="year_range"),
+    )
+
+
+class Material(Timestamped, Base):
+    """A solid a particle or a wall is made of (Joseph & Hunt 2004, table 1)."""
+
+    __tablename__ = "materials"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    name: Mapped[str] = mapped_column(String(200))
+    name_key: Mapped[str] = mapped_column(String(200), unique=True)
+    description: Mapped[str | None] = mapped_column(Text)
+    density_kg_m3: Mapped[float] = mapped_column(Float)
+    youngs_modulus_pa: Mapped[float] = mapped_column(Float)
+    poisson_ratio: Mapped[float] = mapped_column(Float)
+    roughness_rms_m: Mapped[float] = mapped_column(Float)
+    correlation_length_m: Mapped[float | None] = mapped_column(Float)
+    shear_modulus_pa: Mapped[float | None] = mapped_column(Float)
+    source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
+    source_locator: Mapped[str | None] = mapped_column(String(200))
+
+    source: Mapped[Source | None] = relationship(lazy="joined")
+
+    __table_args__ = (
+        CheckConstraint("length(name) > 0", name="name_not_empty"),
+        CheckConstraint("density_kg_m3 > 0", name="density_positive"),
+        CheckConstraint("youngs_modulus_pa > 0", name="youngs_modulus_positive"),
+        CheckConstraint("poisson_ratio > -1 AND poisson_ratio < 0.5", name="poisson_ratio_range"),
+        CheckConstraint("roughness_rms_m >= 0", name="roughness_non_negative"),
+        CheckConstraint(
+            "correlation_length_m IS NULL OR correlation_length_m > 0",
+            name="correlation_length_positive",
+        ),
+        CheckConstraint(
+            "shear_modulus_pa IS NULL OR shear_modulus_pa > 0", name="shear_modulus_positive"
+        ),
+    )
+
+
+class Fluid(Timestamped, Base):
+    """A liquid the collisions happen in (absent for a dry collision).
+
+    ``viscosity_pa_s`` is the reference viscosity at ``reference_temperature_c`` as the
+    source printed it (``source``); density and the Barus pressure–viscosity coefficient C
+    may come from other sources, cited separately; ``points`` hold measured or correlated
+    viscosity (and density) against temperature so viscosity can be evaluated anywhere
+    inside their range.
+    """
+
+    __tablename__ = "fluids"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    name: Mapped[str] = mapped_column(String(200))
+    name_key: Mapped[str] = mapped_column(String(200), unique=True)
+    description: Mapped[str | None] = mapped_column(Text)
+    glycerol_mass_fraction: Mapped[float | None] = mapped_column(Float)
+    density_kg_m3: Mapped[float] = mapped_column(Float)
+    viscosity_pa_s: Mapped[float] = mapped_column(Float)
+    reference_temperature_c: Mapped[float] = mapped_column(Float, default=20.0)
+    pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
+    source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
+    source_locator: Mapped[str | None] = mapped_column(String(200))
+    density_source_id: Mapped[int | None] = mapped_column(
+        ForeignKey("sources.id", ondelete="RESTRICT")
+    )
+    density_locator: Mapped[str | None] = mapped_column(String(200))
+    pressure_viscosity_source_id: Mapped[int | None] = mapped_column(
+        ForeignKey("sources.id", ondelete="RESTRICT")
+    )
+    pressure_viscosity_locator: Mapped[str | None] = mapped_column(String(200))
+
+    source: Mapped[Source | None] = relationship(foreign_keys=[source_id], lazy="joined")
+    density_source: Mapped[Source | None] = relationship(
+        foreign_keys=[density_source_id], lazy="joined"
+    )
+    pressure_viscosity_source: Mapped[Source | None] = relationship(
+        foreign_keys=[pressure_viscosity_source_id], lazy="joined"
+    )
+    points: Mapped[list[FluidPoint]] = relationship(
+        back_populates="fluid",
+        cascade="all, delete-orphan",
+        order_by="FluidPoint.temperature_c",
+        lazy="selectin",
+    )
+
+    __table_args__ = (
+        CheckConstraint("length(name) > 0", name="name_not_empty"),
+        CheckConstraint("density_kg_m3 > 0", name="density_positive"),
+        CheckConstraint("viscosity_pa_s > 0", name="viscosity_positive"),
+        CheckConstraint(
+            "glycerol_mass_fraction IS NULL OR "
+            "(glycerol_mass_fraction >= 0 AND glycerol_mass_fraction <= 1)",
+            name="glycerol_mass_fraction_range",
+        ),
+        CheckConstraint(
+            "reference_temperature_c > -273.15", name="reference_temperature_above_zero_k"
+        ),
+        CheckConstraint(
+            "pressure_viscosity_pa_inv IS NULL OR pressure_viscosity_pa_inv >= 0",
+            name="pressure_viscosity_non_negative",
+        ),
+    )
+
+
+class FluidPoint(Base):
+    """One viscosity (and optionally density) of a fluid at one temperature."""
+
+    __tablename__ = "fluid_points"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    fluid_id: Mapped[int] = mapped_column(ForeignKey("fluids.id", ondelete="CASCADE"))
+    temperature_c: Mapped[float] = mapped_column(Float)
+    viscosity_pa_s: Mapped[float] = mapped_column(Float)
+    density_kg_m3: Mapped[float | None] = mapped_column(Float)
+    source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
+    source_locator: Mapped[str | None] = mapped_column(String(200))
+
+    fluid: Mapped[Fluid] = relationship(back_populates="points")
+    source: Mapped[Source | None] = relationship(lazy="joined")
+
+    __table_args__ = (
+        UniqueConstraint("fluid_id", "temperature_c"),
+        CheckConstraint("temperature_c > -273.15", name="temperature_above_zero_k"),
+        CheckConstraint("viscosity_pa_s > 0", name="viscosity_positive"),
+        CheckConstraint("density_kg_m3 IS NULL OR density_kg_m3 > 0", name="density_positive"),
+    )
+
+
+class Dataset(Timestamped, Base):
+    """A named, versioned, curated collection of collisions.
+
+    ``content_hash`` is a sha256 over the dataset's collisions in a canonical form (see
+    ``granudb.db.datasets``); two copies with the same hash hold the same measurements.
+    """
+
+    __tablename__ = "datasets"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    name: Mapped[str] = mapped_column(String(200))
+    version: Mapped[str] = mapped_column(String(50), default="1.0.0")
+    title: Mapped[str | None] = mapped_column(Text)
+    description: Mapped[str | None] = mapped_column(Text)
+    license: Mapped[str | None] = mapped_column(String(200))
+    source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
+    content_hash: Mapped[str | None] = mapped_column(String(80))
+
+    source: Mapped[Source | None] = relationship(lazy="joined")
+
+    __table_args__ = (
+        UniqueConstraint("name", "version"),
+        CheckConstraint("length(name) > 0", name="name_not_empty"),
+    )
+
+
+class Collision(Base):
+    """One measured impact of a particle on a wall (or a second particle).
+
+    Sign convention (Joseph & Hunt 2004 §2, PHYSICS.md §5), for the particle's centre of
+    mass in the wall's frame at the instants just before (``_in``) and after (``_out``)
+    contact:
+
+    * ``v_n_in_m_s`` and ``v_n_out_m_s`` are normal *speeds*, both positive: towards the
+      wall before impact, away from it after. So e = v_n_out / v_n_in, which is the paper's
+      e = −v_N,out / v_N,in with signed components.
+    * the tangential axis points along the incoming tangential motion, so
+      ``v_t_in_m_s`` ≥ 0; ``v_t_out_m_s`` is negative when the particle recoils backwards.
+    * spin ``omega_*_rad_s`` is positive where it adds to the contact point's tangential
+      velocity: the contact point moves at v_T = v_t + ω R (R = diameter / 2).
+    * ``incidence_angle_rad`` is ζ_in, the angle between the contact point's trajectory
+      and the wall normal, in [0, π/2).
+
+    ``wall_diameter_m`` is NULL for a flat wall and the second sphere's diameter for a
+    particle–particle collision. ``fluid_id`` NULL means dry.
+    """
+
+    __tablename__ = "collisions"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    dataset_id: Mapped[int] = mapped_column(ForeignKey("datasets.id", ondelete="CASCADE"))
+    run: Mapped[str] = mapped_column(String(200))
+    particle_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    wall_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    fluid_id: Mapped[int | None] = mapped_column(ForeignKey("fluids.id", ondelete="RESTRICT"))
+    diameter_m: Mapped[float] = mapped_column(Float)
+    wall_diameter_m: Mapped[float | None] = mapped_column(Float)
+    incidence_angle_rad: Mapped[float] = mapped_column(Float)
+    v_n_in_m_s: Mapped[float] = mapped_column(Float)
+    v_t_in_m_s: Mapped[float] = mapped_column(Float)
+    omega_in_rad_s: Mapped[float] = mapped_column(Float, default=0.0)
+    v_n_out_m_s: Mapped[float] = mapped_column(Float)
+    v_t_out_m_s: Mapped[float] = mapped_column(Float)
+    omega_out_rad_s: Mapped[float] = mapped_column(Float, default=0.0)
+    temperature_c: Mapped[float | None] = mapped_column(Float)
+    notes: Mapped[str | None] = mapped_column(Text)
+
+    dataset: Mapped[Dataset] = relationship()
+    particle: Mapped[Material] = relationship(foreign_keys=[particle_id])
+    wall: Mapped[Material] = relationship(foreign_keys=[wall_id])
+    fluid: Mapped[Fluid | None] = relationship()
+
+    __table_args__ = (
+        UniqueConstraint("dataset_id", "run"),
+        Index("ix_collisions_pair_fluid", "particle_id", "wall_id", "fluid_id"),
+        Index("ix_collisions_fluid_id", "fluid_id"),
+        CheckConstraint("length(run) > 0", name="run_not_empty"),
+        CheckConstraint("diameter_m > 0", name="diameter_positive"),
+        CheckConstraint(
+            "wall_diameter_m IS NULL OR wall_diameter_m > 0", name="wall_diameter_positive"
+        ),
+        CheckConstraint(
+            "incidence_angle_rad >= 0 AND incidence_angle_rad < 1.5707963267948966",
+            name="incidence_angle_range",
+        ),
+        CheckConstraint("v_n_in_m_s > 0", name="v_n_in_positive"),
+        CheckConstraint("v_t_in_m_s >= 0", name="v_t_in_non_negative"),
+        CheckConstraint("v_n_out_m_s >= 0", name="v_n_out_non_negative"),
+        CheckConstraint(
+            "temperature_c IS NULL OR temperature_c > -273.15", name="temperature_above_zero_k"
+        ),
+    )
+
+
+class CollisionImport(Base):
+    """One file imported into a dataset, remembered by its sha256 so it is never imported
+    twice."""
+
+    __tablename__ = "collision_imports"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    dataset_id: Mapped[int] = mapped_column(ForeignKey("datasets.id", ondelete="CASCADE"))
+    file_sha256: Mapped[str] = mapped_column(String(64))
+    file_name: Mapped[str | None] = mapped_column(String(500))
+    rows: Mapped[int] = mapped_column(Integer)
+    imported_at: Mapped[datetime] = mapped_column(
+        DateTime(timezone=True), default=utcnow, server_default=func.current_timestamp()
+    )
+
+    __table_args__ = (
+        UniqueConstraint("dataset_id", "file_sha256"),
+        CheckConstraint("rows >= 0", name="rows_non_negative"),
+    )
+
+
+class PublishedValue(Base):
+    """A number as a source printed it: a fitted coefficient, a table cell.
+
+    ``value_as_printed`` keeps the printed text exactly (``"0.34 ± 0.07"``); ``value`` and
+    ``uncertainty`` are the same in the SI unit named by ``quantity``'s suffix. The
+    database records what was published even where it disagrees with the paper's own
+    formula; the computation layer computes from the formula and reports may show both.
+    ``label`` groups the cells of one table row (``"table 2: 37 %"``).
+    """
+
+    __tablename__ = "published_values"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    source_id: Mapped[int] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
+    source_locator: Mapped[str] = mapped_column(String(200))
+    label: Mapped[str] = mapped_column(String(200))
+    quantity: Mapped[str] = mapped_column(String(100))
+    value: Mapped[float] = mapped_column(Float)
+    uncertainty: Mapped[float | None] = mapped_column(Float)
+    value_as_printed: Mapped[str] = mapped_column(String(200))
+    particle_id: Mapped[int | None] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    wall_id: Mapped[int | None] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    fluid_id: Mapped[int | None] = mapped_column(ForeignKey("fluids.id", ondelete="RESTRICT"))
+    condition: Mapped[str | None] = mapped_column(String(200))
+    notes: Mapped[str | None] = mapped_column(Text)
+
+    source: Mapped[Source] = relationship(lazy="joined")
+    particle: Mapped[Material | None] = relationship(foreign_keys=[particle_id], lazy="joined")
+    wall: Mapped[Material | None] = relationship(foreign_keys=[wall_id], lazy="joined")
+    fluid: Mapped[Fluid | None] = relationship(lazy="joined")
+
+    __table_args__ = (
+        UniqueConstraint("source_id", "label", "quantity"),
+        CheckConstraint("uncertainty IS NULL OR uncertainty >= 0", name="uncertainty_non_negative"),
+    )

@@ -1,0 +1,57 @@
+"""Insert-or-update by a natural key, saying exactly what changed.
+
+Used to load the seed files idempotently: loading twice changes nothing, and a value edited
+in a seed file updates its row and is reported field by field, never silently.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+
+
+def same_value(old: Any, new: Any) -> bool:
+    """Equal, with floats compared to 1e-12 relative (a CSV's text is not bit-exact)."""
+    if isinstance(old, float) and isinstance(new, float | int):
+        return math.isclose(old, float(new), rel_tol=1e-12, abs_tol=0.0)
+    return old == new
+
+
+@dataclass
+class Change:
+    """What one upsert did: ``action`` is "added", "updated" or "unchanged"."""
+
+    action: str
+    label: str
+    diffs: list[tuple[str, Any, Any]] = field(default_factory=list)
+
+    def describe(self) -> str:
+        if self.action != "updated":
+            return f"{self.action} {self.label}"
+        parts = ", ".join(f"{name} {old!r} → {new!r}" for name, old, new in self.diffs)
+        return f"updated {self.label}: {parts}"
+
+
+def upsert(
+    session: Session, model: type, key: dict[str, Any], values: dict[str, Any], label: str
+) -> tuple[Any, Change]:
+    """Find the ``model`` row matching ``key``; insert it or update the fields that differ."""
+    row = session.scalars(select(model).filter_by(**key)).one_or_none()
+    if row is None:
+        row = model(**key, **values)
+        session.add(row)
+        session.flush()
+        return row, Change("added", label)
+    diffs = []
+    for name, new in values.items():
+        old = getattr(row, name)
+        if not same_value(old, new):
+            diffs.append((name, old, new))
+            setattr(row, name, new)
+    if diffs:
+        session.flush()
+    return row, Change("updated" if diffs else "unchanged", label, diffs)

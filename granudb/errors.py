@@ -1,0 +1,42 @@
+"""The one exception type granudb raises for anything a user can fix.
+
+Every refusal names the field, the value and the rule, so the command line can print it
+as one line (``Error: density: -3 kg/m^3 must be > 0``) with no traceback.
+"""
+
+from __future__ import annotations
+
+
+class GranudbError(ValueError):
+    """A refusal a user can act on; ``str()`` is the whole one-line message."""
+
+    exit_code = 1
+
+
+class ValidationError(GranudbError):
+    """A value from outside (CLI option, CSV cell, package field) breaks a rule."""
+
+    def __init__(self, field: str, value: object, rule: str, *, row: int | None = None) -> None:
+        self.field = field
+        self.value = value
+        self.rule = rule
+        self.row = row
+        where = f"row {row}: " if row is not None else ""
+        shown = value if isinstance(value, str) else repr(value)
+        super().__init__(f"{where}{field}: {shown} {rule}")
+
+
+class NotFoundError(GranudbError):
+    """A named thing (material, fluid, source, dataset) is not in the database."""
+
+
+class ConflictError(GranudbError):
+    """The request would break uniqueness or a reference (duplicate name, row in use)."""
+
+
+class SchemaError(GranudbError):
+    """The database is at a schema revision this granudb cannot work with."""
+
+
+class DatabaseAccessError(GranudbError):
+    """The database cannot be opened or written (missing directory, read-only, full)."""

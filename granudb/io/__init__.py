@@ -1,0 +1,1 @@
+"""Getting data in and out: units at the edges, CSV and seed files, validation."""

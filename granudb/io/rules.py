@@ -1,0 +1,116 @@
+"""The physical rules every stored value obeys, checked before anything is written.
+
+The database holds the same rules as CHECK constraints (``granudb.db.models``); checking
+here first lets granudb refuse bad input with a line that names the field, the value as the
+user typed it and the rule, instead of a driver error. Data Package schemas reuse
+``RULES`` for their field constraints, so the three places cannot drift apart.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from granudb.errors import ValidationError
+
+
+@dataclass(frozen=True)
+class Rule:
+    """An allowed range: ``minimum``/``maximum`` with inclusive or exclusive ends."""
+
+    minimum: float | None = None
+    maximum: float | None = None
+    min_inclusive: bool = True
+    max_inclusive: bool = True
+
+    @property
+    def text(self) -> str:
+        parts = []
+        if self.minimum is not None:
+            parts.append(f"{'≥' if self.min_inclusive else '>'} {self.minimum:g}")
+        if self.maximum is not None:
+            parts.append(f"{'≤' if self.max_inclusive else '<'} {self.maximum:g}")
+        return "must be " + " and ".join(parts)
+
+    def holds(self, value: float) -> bool:
+        if math.isnan(value) or math.isinf(value):
+            return False
+        if self.minimum is not None and (
+            value < self.minimum or (value == self.minimum and not self.min_inclusive)
+        ):
+            return False
+        return self.maximum is None or not (
+            value > self.maximum or (value == self.maximum and not self.max_inclusive)
+        )
+
+    def holds_array(self, values: Any) -> Any:
+        """Vectorized ``holds`` (NaN counts as "no value" and passes; required-ness is
+        checked separately)."""
+        import numpy as np
+
+        values = np.asarray(values, dtype=float)
+        ok = np.isnan(values) | np.isfinite(values)
+        if self.minimum is not None:
+            ok &= np.isnan(values) | (
+                values >= self.minimum if self.min_inclusive else values > self.minimum
+            )
+        if self.maximum is not None:
+            ok &= np.isnan(values) | (
+                values <= self.maximum if self.max_inclusive else values < self.maximum
+            )
+        return ok
+
+
+POSITIVE = Rule(minimum=0.0, min_inclusive=False)
+NON_NEGATIVE = Rule(minimum=0.0)
+ABOVE_ABSOLUTE_ZERO = Rule(minimum=-273.15, min_inclusive=False)
+
+RULES: dict[str, Rule] = {
+    "density_kg_m3": POSITIVE,
+    "youngs_modulus_pa": POSITIVE,
+    "shear_modulus_pa": POSITIVE,
+    "poisson_ratio": Rule(-1.0, 0.5, min_inclusive=False, max_inclusive=False),
+    "roughness_rms_m": NON_NEGATIVE,
+    "correlation_length_m": POSITIVE,
+    "glycerol_mass_fraction": Rule(0.0, 1.0),
+    "viscosity_pa_s": POSITIVE,
+    "reference_temperature_c": ABOVE_ABSOLUTE_ZERO,
+    "temperature_c": ABOVE_ABSOLUTE_ZERO,
+    "pressure_viscosity_pa_inv": NON_NEGATIVE,
+    "diameter_m": POSITIVE,
+    "wall_diameter_m": POSITIVE,
+    "incidence_angle_rad": Rule(0.0, math.pi / 2, max_inclusive=False),
+    "v_n_in_m_s": POSITIVE,
+    "v_t_in_m_s": NON_NEGATIVE,
+    "v_n_out_m_s": NON_NEGATIVE,
+}
+
+
+def check_value(
+    column: str,
+    value: float | None,
+    *,
+    field: str | None = None,
+    shown: str | None = None,
+    row: int | None = None,
+) -> None:
+    """Raise ``ValidationError`` if ``value`` (SI, for ``column``) breaks its rule.
+
+    ``field`` is how the user named the value (``--density``, a CSV header) and ``shown``
+    the text they typed; both default to the column and the SI value.
+    """
+    rule = RULES.get(column)
+    if rule is None or value is None:
+        return
+    if not rule.holds(float(value)):
+        raise ValidationError(
+            field or column, shown if shown is not None else value, rule.text, row=row
+        )
+
+
+def check_record(record: dict[str, Any], *, row: int | None = None) -> None:
+    """Check every ruled column of an SI record."""
+    for column, value in record.items():
+        if isinstance(value, int | float) and not isinstance(value, bool):
+            check_value(column, value, row=row)

@@ -1,0 +1,197 @@
+"""The catalogue commands, end to end through the CLI, on a real SQLite file."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+
+def test_first_use_in_an_empty_data_directory_prints_the_seed_materials_in_si(
+    tmp_path: Path,
+) -> None:
+    env = {**os.environ}  # HOME/XDG_DATA_HOME already point into tmp_path (conftest)
+    out = subprocess.run(
+        [sys.executable, "-m", "granudb", "materials", "list", "--format", "json"],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=True,
+    )
+    materials = {m["name"]: m for m in json.loads(out.stdout)}
+    assert set(materials) == {"glass", "steel", "Zerodur"}
+    glass = materials["glass"]
+    assert glass["youngs_modulus_pa"] == 6.0e10
+    assert glass["density_kg_m3"] == 2540.0
+    assert glass["poisson_ratio"] == 0.23
+    assert glass["roughness_rms_m"] == pytest.approx(1.305e-7, rel=1e-12)
+    assert materials["steel"]["youngs_modulus_pa"] == 1.9e11
+    assert materials["Zerodur"]["roughness_rms_m"] == pytest.approx(1.55e-8, rel=1e-12)
+    assert glass["source"] == "joseph-hunt-2004" and glass["source_locator"] == "table 1"
+    created = Path(os.environ["XDG_DATA_HOME"]) / "granudb" / "granudb.sqlite"
+    assert created.is_file()
+    assert "created" in out.stderr  # said once, on stderr, so the JSON stays clean
+
+
+def test_json_output_is_a_plain_array_with_unit_suffixed_names(cli, db_path: Path) -> None:
+    data = json.loads(cli("fluids", "list", "--format", "json", db=db_path).stdout)
+    assert isinstance(data, list)
+    water = next(f for f in data if f["name"] == "water")
+    assert water["viscosity_pa_s"] == pytest.approx(1.0e-3)
+    assert water["pressure_viscosity_pa_inv"] is None
+    glycerol = next(f for f in data if f["name"] == "glycerol-45")
+    assert glycerol["pressure_viscosity_pa_inv"] == 6e-9
+    assert glycerol["glycerol_mass_fraction"] == 0.45
+
+
+def test_csv_output_has_the_same_names(cli, db_path: Path) -> None:
+    text = cli("materials", "list", "--format", "csv", db=db_path).stdout
+    rows = list(csv.DictReader(io.StringIO(text)))
+    assert [r["name"] for r in rows] == ["glass", "steel", "Zerodur"]
+    assert float(rows[1]["youngs_modulus_pa"]) == 1.9e11
+
+
+def test_table_output_shows_units_a_person_reads(cli, db_path: Path) -> None:
+    out = cli("materials", "list", db=db_path).stdout
+    assert "60 GPa" in out and "130.5 nm" in out and "7780 kg/m³" in out
+
+
+def test_add_show_update_remove_a_material(cli, db_path: Path) -> None:
+    added = cli(
+        "materials",
+        "add",
+        "PTFE",
+        "--density",
+        "2.2 g/cm^3",
+        "--youngs-modulus",
+        "0.5 GPa",
+        "--poisson-ratio",
+        "0.46",
+        "--roughness",
+        "0.2 um",
+        "--description",
+        "Teflon sphere",
+        "--source",
+        "johnson-1985",
+        db=db_path,
+    )
+    assert added.exit_code == 0, added.stderr
+    shown = json.loads(cli("materials", "show", "ptfe", "--format", "json", db=db_path).stdout)
+    assert shown["density_kg_m3"] == 2200.0
+    assert shown["youngs_modulus_pa"] == 5e8
+    assert shown["roughness_rms_m"] == 2e-7
+    assert shown["shear_modulus_derived"] is True
+    assert shown["shear_modulus_pa"] == pytest.approx(5e8 / (2 * 1.46))
+    assert shown["citation"].startswith("Johnson, K. L.")
+
+    updated = cli("materials", "update", "Ptfe", "--youngs-modulus", "0.55 GPa", db=db_path)
+    assert updated.exit_code == 0
+    assert "youngs_modulus_pa 500000000.0 → 550000000.0" in updated.stdout
+    same = cli("materials", "update", "PTFE", "--youngs-modulus", "550 MPa", db=db_path)
+    assert "unchanged" in same.stdout
+
+    assert cli("materials", "remove", "PTFE", db=db_path).exit_code == 0
+    gone = cli("materials", "show", "PTFE", db=db_path)
+    assert gone.exit_code == 1
+    assert "known: glass, steel, Zerodur" in gone.stderr
+
+
+def test_add_update_remove_a_fluid(cli, db_path: Path) -> None:
+    added = cli(
+        "fluids",
+        "add",
+        "silicone oil",
+        "--viscosity",
+        "10 cSt * 0.96 g/cm^3",
+        "--density",
+        "960 kg/m^3",
+        "--temperature",
+        "25 degC",
+        db=db_path,
+    )
+    assert added.exit_code == 0, added.stderr
+    shown = json.loads(cli("fluids", "show", "Silicone Oil", "--format", "json", db=db_path).stdout)
+    assert shown["viscosity_pa_s"] == pytest.approx(9.6e-3)
+    assert shown["reference_temperature_c"] == 25.0
+    assert shown["points"] == []
+    updated = cli(
+        "fluids",
+        "update",
+        "silicone oil",
+        "--pressure-coefficient",
+        "2e-8 1/Pa",
+        "--rename",
+        "PDMS 10 cSt",
+        db=db_path,
+    )
+    assert "name 'silicone oil' → 'PDMS 10 cSt'" in updated.stdout
+    assert cli("fluids", "remove", "pdms 10 cst", db=db_path).exit_code == 0
+
+
+def test_removing_a_material_in_use_says_by_what(cli, db_path: Path) -> None:
+    from granudb.db.catalog import get_material
+    from granudb.db.engine import open_database
+    from granudb.db.models import Collision, Dataset
+
+    database = open_database(str(db_path))
+    with database.session(write=True) as session:
+        cli_added = Dataset(name="drops", version="1.0.0")
+        session.add(cli_added)
+        session.flush()
+        for run in range(3):
+            session.add(
+                Collision(
+                    dataset_id=cli_added.id,
+                    run=f"r{run}",
+                    particle_id=get_material(session, "steel").id,
+                    wall_id=get_material(session, "Zerodur").id,
+                    diameter_m=0.0127,
+                    incidence_angle_rad=0.1,
+                    v_n_in_m_s=0.3,
+                    v_t_in_m_s=0.03,
+                    v_n_out_m_s=0.2,
+                    v_t_out_m_s=0.02,
+                )
+            )
+    database.dispose()
+    result = cli("materials", "remove", "steel", db=db_path)
+    assert result.exit_code == 1
+    assert "3 collisions in dataset drops 1.0.0 (as particle)" in result.stderr
+    result = cli("materials", "remove", "zerodur", db=db_path)
+    assert "3 collisions in dataset drops 1.0.0 (as wall)" in result.stderr
+
+
+def test_sources_show_lists_what_cites_it(cli, db_path: Path) -> None:
+    data = json.loads(
+        cli("sources", "show", "joseph-hunt-2004", "--format", "json", db=db_path).stdout
+    )
+    assert data["doi"] == "10.1017/S002211200400919X"
+    assert data["cited_by"]["materials"] == 3
+    labels = {(p["label"], p["quantity"]) for p in data["published_values"]}
+    assert ("dry steel on Zerodur", "rotational_restitution") in labels
+
+
+def test_db_commands(cli, db_path: Path) -> None:
+    current = json.loads(cli("db", "current", "--format", "json", db=db_path).stdout)
+    assert current["revision"] == current["head"] and current["up_to_date"] is True
+    history = json.loads(cli("db", "history", "--format", "json").stdout)
+    assert history[-1]["down_revision"] is None
+    assert "0 added, 0 updated" in cli("db", "seed", db=db_path).stdout
+
+
+def test_help_does_not_import_heavy_libraries() -> None:
+    code = (
+        "import sys; from granudb.cli.main import app\n"
+        "try:\n    app(['--help'])\nexcept SystemExit:\n    pass\n"
+        "heavy = [m for m in ('sqlalchemy', 'pandas', 'numpy', 'pint', 'alembic', 'scipy')"
+        " if m in sys.modules]\n"
+        "print('HEAVY=' + ','.join(heavy))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip().splitlines()[-1] == "HEAVY="
