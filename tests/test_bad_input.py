@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from support import dump_hash
+from support import dump_hash, execute
 
 MATERIAL = [
     "--density",
@@ -135,19 +135,20 @@ CASES = [
 
 @pytest.mark.parametrize(("argv", "expected"), CASES, ids=[" ".join(c[0][:3]) for c in CASES])
 def test_refused_in_one_line_with_the_database_unchanged(
-    cli, db_path: Path, argv: list[str], expected: str
+    cli, db: str, argv: list[str], expected: str
 ) -> None:
-    before = dump_hash(db_path)
-    result = cli(*argv, db=db_path)
+    before = dump_hash(db)
+    result = cli(*argv, db=db)
     assert result.exit_code == 1
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1, result.stderr
     assert lines[0].startswith("Error: ")
     assert expected in lines[0]
     assert "Traceback" not in result.stderr + result.stdout
-    assert dump_hash(db_path) == before
+    assert dump_hash(db) == before
 
 
+@pytest.mark.sqlite_only
 def test_missing_database_folder_is_refused_without_creating_it(cli, tmp_path: Path) -> None:
     missing = tmp_path / "no" / "such" / "folder" / "lab.sqlite"
     result = cli("materials", "list", db=missing)
@@ -159,6 +160,7 @@ def test_missing_database_folder_is_refused_without_creating_it(cli, tmp_path: P
     assert not missing.parent.exists()
 
 
+@pytest.mark.sqlite_only
 def test_a_file_that_is_not_a_database_is_refused_and_left_alone(cli, tmp_path: Path) -> None:
     notes = tmp_path / "notes.txt"
     notes.write_text("lab notebook, not a database\n" * 100)
@@ -169,12 +171,9 @@ def test_a_file_that_is_not_a_database_is_refused_and_left_alone(cli, tmp_path: 
     assert notes.read_bytes() == before
 
 
-def test_a_database_of_another_program_is_refused(cli, tmp_path: Path) -> None:
-    import sqlite3
-
-    other = tmp_path / "other.sqlite"
-    with sqlite3.connect(other) as connection:
-        connection.execute("CREATE TABLE samples (id INTEGER PRIMARY KEY, label TEXT)")
+def test_a_database_of_another_program_is_refused(cli, new_db: str) -> None:
+    other = new_db
+    execute(other, "CREATE TABLE samples (id INTEGER PRIMARY KEY, label TEXT)")
     before = dump_hash(other)
     result = cli("materials", "list", db=other)
     assert result.exit_code == 1
@@ -182,24 +181,21 @@ def test_a_database_of_another_program_is_refused(cli, tmp_path: Path) -> None:
     assert dump_hash(other) == before
 
 
-def test_a_newer_schema_revision_is_refused(cli, db_path: Path) -> None:
-    import sqlite3
-
-    with sqlite3.connect(db_path) as connection:
-        connection.execute("UPDATE alembic_version SET version_num = 'f00dface'")
-    before = dump_hash(db_path)
-    result = cli("materials", "list", db=db_path)
+def test_a_newer_schema_revision_is_refused(cli, db: str) -> None:
+    execute(db, "UPDATE alembic_version SET version_num = 'f00dface'")
+    before = dump_hash(db)
+    result = cli("materials", "list", db=db)
     assert result.exit_code == 1
     assert "schema revision f00dface is newer than this granudb knows" in result.stderr
-    assert dump_hash(db_path) == before
+    assert dump_hash(db) == before
 
 
-def test_hostile_names_are_stored_and_shown_verbatim(cli, db_path: Path) -> None:
+def test_hostile_names_are_stored_and_shown_verbatim(cli, db: str) -> None:
     import json
 
     hostile = "<script>alert(1)</script> [bold]x[/bold] '; DROP TABLE materials; --"
-    assert cli("materials", "add", hostile, *MATERIAL, db=db_path).exit_code == 0
-    listed = json.loads(cli("materials", "list", "--format", "json", db=db_path).stdout)
+    assert cli("materials", "add", hostile, *MATERIAL, db=db).exit_code == 0
+    listed = json.loads(cli("materials", "list", "--format", "json", db=db).stdout)
     assert hostile in [m["name"] for m in listed]
-    table = cli("materials", "list", db=db_path).stdout
+    table = cli("materials", "list", db=db).stdout
     assert "[bold]x[/bold]" in table  # Rich markup in data is shown, not interpreted

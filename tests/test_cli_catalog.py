@@ -39,8 +39,8 @@ def test_first_use_in_an_empty_data_directory_prints_the_seed_materials_in_si(
     assert "created" in out.stderr  # said once, on stderr, so the JSON stays clean
 
 
-def test_json_output_is_a_plain_array_with_unit_suffixed_names(cli, db_path: Path) -> None:
-    data = json.loads(cli("fluids", "list", "--format", "json", db=db_path).stdout)
+def test_json_output_is_a_plain_array_with_unit_suffixed_names(cli, db: str) -> None:
+    data = json.loads(cli("fluids", "list", "--format", "json", db=db).stdout)
     assert isinstance(data, list)
     water = next(f for f in data if f["name"] == "water")
     assert water["viscosity_pa_s"] == pytest.approx(1.0e-3)
@@ -50,19 +50,19 @@ def test_json_output_is_a_plain_array_with_unit_suffixed_names(cli, db_path: Pat
     assert glycerol["glycerol_mass_fraction"] == 0.45
 
 
-def test_csv_output_has_the_same_names(cli, db_path: Path) -> None:
-    text = cli("materials", "list", "--format", "csv", db=db_path).stdout
+def test_csv_output_has_the_same_names(cli, db: str) -> None:
+    text = cli("materials", "list", "--format", "csv", db=db).stdout
     rows = list(csv.DictReader(io.StringIO(text)))
     assert [r["name"] for r in rows] == ["glass", "steel", "Zerodur"]
     assert float(rows[1]["youngs_modulus_pa"]) == 1.9e11
 
 
-def test_table_output_shows_units_a_person_reads(cli, db_path: Path) -> None:
-    out = cli("materials", "list", db=db_path).stdout
+def test_table_output_shows_units_a_person_reads(cli, db: str) -> None:
+    out = cli("materials", "list", db=db).stdout
     assert "60 GPa" in out and "130.5 nm" in out and "7780 kg/m³" in out
 
 
-def test_add_show_update_remove_a_material(cli, db_path: Path) -> None:
+def test_add_show_update_remove_a_material(cli, db: str) -> None:
     added = cli(
         "materials",
         "add",
@@ -79,10 +79,10 @@ def test_add_show_update_remove_a_material(cli, db_path: Path) -> None:
         "Teflon sphere",
         "--source",
         "johnson-1985",
-        db=db_path,
+        db=db,
     )
     assert added.exit_code == 0, added.stderr
-    shown = json.loads(cli("materials", "show", "ptfe", "--format", "json", db=db_path).stdout)
+    shown = json.loads(cli("materials", "show", "ptfe", "--format", "json", db=db).stdout)
     assert shown["density_kg_m3"] == 2200.0
     assert shown["youngs_modulus_pa"] == 5e8
     assert shown["roughness_rms_m"] == 2e-7
@@ -90,19 +90,19 @@ def test_add_show_update_remove_a_material(cli, db_path: Path) -> None:
     assert shown["shear_modulus_pa"] == pytest.approx(5e8 / (2 * 1.46))
     assert shown["citation"].startswith("Johnson, K. L.")
 
-    updated = cli("materials", "update", "Ptfe", "--youngs-modulus", "0.55 GPa", db=db_path)
+    updated = cli("materials", "update", "Ptfe", "--youngs-modulus", "0.55 GPa", db=db)
     assert updated.exit_code == 0
     assert "youngs_modulus_pa 500000000.0 → 550000000.0" in updated.stdout
-    same = cli("materials", "update", "PTFE", "--youngs-modulus", "550 MPa", db=db_path)
+    same = cli("materials", "update", "PTFE", "--youngs-modulus", "550 MPa", db=db)
     assert "unchanged" in same.stdout
 
-    assert cli("materials", "remove", "PTFE", db=db_path).exit_code == 0
-    gone = cli("materials", "show", "PTFE", db=db_path)
+    assert cli("materials", "remove", "PTFE", db=db).exit_code == 0
+    gone = cli("materials", "show", "PTFE", db=db)
     assert gone.exit_code == 1
     assert "known: glass, steel, Zerodur" in gone.stderr
 
 
-def test_add_update_remove_a_fluid(cli, db_path: Path) -> None:
+def test_add_update_remove_a_fluid(cli, db: str) -> None:
     added = cli(
         "fluids",
         "add",
@@ -113,10 +113,10 @@ def test_add_update_remove_a_fluid(cli, db_path: Path) -> None:
         "960 kg/m^3",
         "--temperature",
         "25 degC",
-        db=db_path,
+        db=db,
     )
     assert added.exit_code == 0, added.stderr
-    shown = json.loads(cli("fluids", "show", "Silicone Oil", "--format", "json", db=db_path).stdout)
+    shown = json.loads(cli("fluids", "show", "Silicone Oil", "--format", "json", db=db).stdout)
     assert shown["viscosity_pa_s"] == pytest.approx(9.6e-3)
     assert shown["reference_temperature_c"] == 25.0
     assert shown["points"] == []
@@ -128,18 +128,18 @@ def test_add_update_remove_a_fluid(cli, db_path: Path) -> None:
         "2e-8 1/Pa",
         "--rename",
         "PDMS 10 cSt",
-        db=db_path,
+        db=db,
     )
     assert "name 'silicone oil' → 'PDMS 10 cSt'" in updated.stdout
-    assert cli("fluids", "remove", "pdms 10 cst", db=db_path).exit_code == 0
+    assert cli("fluids", "remove", "pdms 10 cst", db=db).exit_code == 0
 
 
-def test_removing_a_material_in_use_says_by_what(cli, db_path: Path) -> None:
+def test_removing_a_material_in_use_says_by_what(cli, db: str) -> None:
     from granudb.db.catalog import get_material
     from granudb.db.engine import open_database
     from granudb.db.models import Collision, Dataset
 
-    database = open_database(str(db_path))
+    database = open_database(db)
     with database.session(write=True) as session:
         cli_added = Dataset(name="drops", version="1.0.0")
         session.add(cli_added)
@@ -160,29 +160,27 @@ def test_removing_a_material_in_use_says_by_what(cli, db_path: Path) -> None:
                 )
             )
     database.dispose()
-    result = cli("materials", "remove", "steel", db=db_path)
+    result = cli("materials", "remove", "steel", db=db)
     assert result.exit_code == 1
     assert "3 collisions in dataset drops 1.0.0 (as particle)" in result.stderr
-    result = cli("materials", "remove", "zerodur", db=db_path)
+    result = cli("materials", "remove", "zerodur", db=db)
     assert "3 collisions in dataset drops 1.0.0 (as wall)" in result.stderr
 
 
-def test_sources_show_lists_what_cites_it(cli, db_path: Path) -> None:
-    data = json.loads(
-        cli("sources", "show", "joseph-hunt-2004", "--format", "json", db=db_path).stdout
-    )
+def test_sources_show_lists_what_cites_it(cli, db: str) -> None:
+    data = json.loads(cli("sources", "show", "joseph-hunt-2004", "--format", "json", db=db).stdout)
     assert data["doi"] == "10.1017/S002211200400919X"
     assert data["cited_by"]["materials"] == 3
     labels = {(p["label"], p["quantity"]) for p in data["published_values"]}
     assert ("dry steel on Zerodur", "rotational_restitution") in labels
 
 
-def test_db_commands(cli, db_path: Path) -> None:
-    current = json.loads(cli("db", "current", "--format", "json", db=db_path).stdout)
+def test_db_commands(cli, db: str) -> None:
+    current = json.loads(cli("db", "current", "--format", "json", db=db).stdout)
     assert current["revision"] == current["head"] and current["up_to_date"] is True
     history = json.loads(cli("db", "history", "--format", "json").stdout)
     assert history[-1]["down_revision"] is None
-    assert "0 added, 0 updated" in cli("db", "seed", db=db_path).stdout
+    assert "0 added, 0 updated" in cli("db", "seed", db=db).stdout
 
 
 def test_help_does_not_import_heavy_libraries() -> None:

@@ -19,17 +19,17 @@ from granudb.resources import shipped_dir
 SEED = shipped_dir("seed_data")
 
 
-def test_loading_twice_changes_nothing(db_path: Path) -> None:
-    before = dump_hash(db_path)
-    database = open_database(str(db_path))
+def test_loading_twice_changes_nothing(db: str) -> None:
+    before = dump_hash(db)
+    database = open_database(db)
     with database.session(write=True) as session:
         report = load_seed(session)
     database.dispose()
     assert report[-1].startswith("seed: 0 added, 0 updated,")
-    assert dump_hash(db_path) == before
+    assert dump_hash(db) == before
 
 
-def test_an_edited_value_updates_its_row_and_says_so(db_path: Path, tmp_path: Path) -> None:
+def test_an_edited_value_updates_its_row_and_says_so(db: str, tmp_path: Path) -> None:
     folder = tmp_path / "seed"
     shutil.copytree(SEED, folder)
     materials = folder / "materials.csv"
@@ -41,7 +41,7 @@ def test_an_edited_value_updates_its_row_and_says_so(db_path: Path, tmp_path: Pa
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
-    database = open_database(str(db_path))
+    database = open_database(db)
     with database.session(write=True) as session:
         report = load_seed(session, folder)
     with database.session() as session:
@@ -52,7 +52,7 @@ def test_an_edited_value_updates_its_row_and_says_so(db_path: Path, tmp_path: Pa
     assert report[-1].startswith("seed: 0 added, 1 updated,")
 
 
-def test_a_bad_seed_file_changes_nothing(db_path: Path, tmp_path: Path) -> None:
+def test_a_bad_seed_file_changes_nothing(db: str, tmp_path: Path) -> None:
     folder = tmp_path / "seed"
     shutil.copytree(SEED, folder)
     text = (folder / "materials.csv").read_text(encoding="utf-8")
@@ -61,19 +61,19 @@ def test_a_bad_seed_file_changes_nothing(db_path: Path, tmp_path: Path) -> None:
         (folder / "sources.toml").read_text(encoding="utf-8").replace("year = 1985", "year = 1986"),
         encoding="utf-8",
     )
-    before = dump_hash(db_path)
-    database = open_database(str(db_path))
+    before = dump_hash(db)
+    database = open_database(db)
     with (
         pytest.raises(ValidationError, match=r"row 3: poisson_ratio: 0.57 must be"),
         database.session(write=True) as session,
     ):
         load_seed(session, folder)
     database.dispose()
-    assert dump_hash(db_path) == before  # the source edit before the bad row rolled back too
+    assert dump_hash(db) == before  # the source edit before the bad row rolled back too
 
 
-def test_table_1_as_printed(db_path: Path) -> None:
-    database = open_database(str(db_path))
+def test_table_1_as_printed(db: str) -> None:
+    database = open_database(db)
     with database.session() as session:
         rows = {m.name: m for m in session.scalars(select(Material))}
     database.dispose()
@@ -95,8 +95,8 @@ def test_table_1_as_printed(db_path: Path) -> None:
         assert m.source.key == "joseph-hunt-2004" and m.source_locator == "table 1"
 
 
-def test_fluids_of_the_paper(db_path: Path) -> None:
-    database = open_database(str(db_path))
+def test_fluids_of_the_paper(db: str) -> None:
+    database = open_database(db)
     with database.session() as session:
         fluids = {f.name: f for f in session.scalars(select(Fluid))}
         printed = {
@@ -118,8 +118,8 @@ def test_fluids_of_the_paper(db_path: Path) -> None:
     database.dispose()
 
 
-def test_every_published_number_carries_its_source_and_place(db_path: Path) -> None:
-    database = open_database(str(db_path))
+def test_every_published_number_carries_its_source_and_place(db: str) -> None:
+    database = open_database(db)
     with database.session() as session:
         values = list(session.scalars(select(PublishedValue)))
         assert session.scalar(select(func.count()).select_from(PublishedValue)) >= 30

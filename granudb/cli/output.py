@@ -43,24 +43,24 @@ def to_json_value(value: Any) -> Any:
     return _clean(value)
 
 
-def console(stderr: bool = False) -> Any:
+def console(stderr: bool = False, soft_wrap: bool = False) -> Any:
     from rich.console import Console
 
-    return Console(stderr=stderr, highlight=False, soft_wrap=False)
+    return Console(stderr=stderr, highlight=False, soft_wrap=soft_wrap)
 
 
 def note(message: str) -> None:
     """A remark for the person at the terminal (stderr, so pipes stay clean)."""
     from rich.markup import escape
 
-    console(stderr=True).print(f"[dim]{escape(message)}[/dim]")
+    console(stderr=True, soft_wrap=True).print(f"[dim]{escape(message)}[/dim]")
 
 
 def say(message: str) -> None:
     """A result line on stdout (escaped: names from the database are never markup)."""
     from rich.markup import escape
 
-    console().print(escape(message))
+    console(soft_wrap=True).print(escape(message))
 
 
 def label(column: str) -> str:
