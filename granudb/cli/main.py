@@ -14,6 +14,7 @@ from typer.core import TyperGroup
 
 from granudb import __version__
 from granudb.cli import db, fluids, materials, sources
+from granudb.cli.common import DbOption
 
 
 class GranudbGroup(TyperGroup):
@@ -62,6 +63,32 @@ app.add_typer(materials.app, name="materials")
 app.add_typer(fluids.app, name="fluids")
 app.add_typer(sources.app, name="sources")
 app.add_typer(db.app, name="db")
+
+
+@app.command("datasette-metadata")
+def datasette_metadata(
+    db: DbOption = None,
+) -> None:
+    """Print Datasette metadata (titles, descriptions, units) for the database as JSON.
+
+    Browse the database with: granudb datasette-metadata > metadata.json &&
+    datasette PATH/TO/granudb.sqlite -m metadata.json
+    """
+    from pathlib import Path
+
+    from sqlalchemy.engine import make_url
+
+    from granudb.cli.output import to_json
+    from granudb.config import resolve_database_url
+    from granudb.vocabulary import datasette_metadata as metadata
+
+    url = make_url(resolve_database_url(db))
+    name = (
+        Path(url.database).stem
+        if url.get_backend_name() == "sqlite" and url.database
+        else "granudb"
+    )
+    typer.echo(to_json(metadata(name)))
 
 
 def main() -> None:
