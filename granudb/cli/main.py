@@ -13,7 +13,7 @@ import typer
 from typer.core import TyperGroup
 
 from granudb import __version__
-from granudb.cli import db, fluids, materials, sources
+from granudb.cli import db, fluids, materials, pair, sources
 from granudb.cli.common import DbOption
 
 
@@ -62,6 +62,7 @@ def _root(
 app.add_typer(materials.app, name="materials")
 app.add_typer(fluids.app, name="fluids")
 app.add_typer(sources.app, name="sources")
+app.command("pair")(pair.pair)
 app.add_typer(db.app, name="db")
 
 

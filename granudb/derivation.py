@@ -1,0 +1,228 @@
+"""Joining stored properties to the physics: one scenario (``granudb pair``) or a table of
+measured collisions, derived in one vectorized pass.
+
+The fluid's viscosity and density at a temperature come from its measured (or correlated)
+points, interpolated by ``TabulatedViscosity``; with no temperature given, the reference
+value as the source printed it is used. Nothing is extrapolated: a temperature outside a
+fluid's data is refused with the range that is covered.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from sqlalchemy.orm import Session
+
+from granudb.db import catalog
+from granudb.db.models import Fluid, Material
+from granudb.errors import ValidationError
+from granudb.physics.derive import derive, scalar_view
+from granudb.physics.viscosity import TabulatedViscosity
+
+REFERENCE_TOLERANCE_C = 0.5  # a temperature this close to the reference uses the printed value
+
+
+@dataclass
+class FluidState:
+    """A fluid at one temperature, and where each number came from."""
+
+    name: str
+    viscosity_pa_s: float
+    density_kg_m3: float
+    temperature_c: float
+    pressure_viscosity_pa_inv: float | None
+    basis: str
+
+
+def fluid_model(fluid: Fluid) -> TabulatedViscosity | None:
+    """The fluid's viscosity–temperature model, or None when it has fewer than two points."""
+    points = sorted(fluid.points, key=lambda p: p.temperature_c)
+    if len(points) < 2:
+        return None
+    densities = [p.density_kg_m3 if p.density_kg_m3 is not None else np.nan for p in points]
+    return TabulatedViscosity(
+        [p.temperature_c for p in points], [p.viscosity_pa_s for p in points], densities
+    )
+
+
+def fluid_state(
+    fluid: Fluid, temperature_c: float | None = None, viscosity_pa_s: float | None = None
+) -> FluidState:
+    """The fluid at ``temperature_c`` (default: its reference temperature, printed value).
+
+    ``viscosity_pa_s`` overrides the viscosity (what-if studies, the paper's gap fits).
+    """
+    source = fluid.source.key if fluid.source else "no source"
+    model = fluid_model(fluid)
+    density = fluid.density_kg_m3
+    if temperature_c is None or abs(temperature_c - fluid.reference_temperature_c) <= (
+        REFERENCE_TOLERANCE_C
+    ):
+        temperature = fluid.reference_temperature_c if temperature_c is None else temperature_c
+        viscosity = fluid.viscosity_pa_s
+        basis = (
+            f"{fluid.viscosity_pa_s * 1e3:.4g} mPa·s at {fluid.reference_temperature_c:g} °C"
+            f" as printed ({source}{', ' + fluid.source_locator if fluid.source_locator else ''})"
+        )
+    elif model is None:
+        raise ValidationError(
+            "--temperature",
+            f"{temperature_c:g} °C",
+            f"differs from fluid {fluid.name}'s reference {fluid.reference_temperature_c:g} °C "
+            "and it has no viscosity–temperature points (give --viscosity instead)",
+        )
+    else:
+        temperature = temperature_c
+        viscosity = float(model.viscosity(temperature_c))
+        if model.density_kg_m3 is not None:
+            density = float(model.density(temperature_c))
+        point_source = next((p.source.key for p in fluid.points if p.source), source)
+        basis = (
+            f"interpolated at {temperature_c:g} °C from {len(fluid.points)} points "
+            f"({model.low_c:g}–{model.high_c:g} °C, {point_source})"
+        )
+    if viscosity_pa_s is not None:
+        viscosity = viscosity_pa_s
+        basis = f"{viscosity_pa_s * 1e3:.4g} mPa·s given with --viscosity"
+    return FluidState(
+        fluid.name, viscosity, density, temperature, fluid.pressure_viscosity_pa_inv, basis
+    )
+
+
+def _material_inputs(prefix: str, material: Material) -> dict[str, Any]:
+    return {
+        f"{prefix}_density_kg_m3": material.density_kg_m3,
+        f"{prefix}_youngs_modulus_pa": material.youngs_modulus_pa,
+        f"{prefix}_poisson_ratio": material.poisson_ratio,
+        f"{prefix}_roughness_rms_m": material.roughness_rms_m,
+        f"{prefix}_shear_modulus_pa": (
+            np.nan if material.shear_modulus_pa is None else material.shear_modulus_pa
+        ),
+    }
+
+
+@dataclass
+class PairResult:
+    """Everything ``granudb pair`` shows: inputs, properties with sources, derived values."""
+
+    particle: dict[str, Any]
+    wall: dict[str, Any]
+    fluid: dict[str, Any] | None
+    fluid_state: FluidState | None
+    inputs: dict[str, Any]
+    derived: dict[str, Any]
+    citations: dict[str, str] = field(default_factory=dict)
+
+
+def derive_pair(
+    session: Session,
+    particle: str,
+    wall: str,
+    *,
+    diameter_m: float,
+    speed_m_s: float,
+    angle_rad: float = 0.0,
+    fluid: str | None = None,
+    temperature_c: float | None = None,
+    viscosity_pa_s: float | None = None,
+    wall_diameter_m: float | None = None,
+    critical_stokes: float = 10.0,
+) -> PairResult:
+    """Derive one scenario: ``particle`` hits ``wall`` (in ``fluid``) at ``speed_m_s``,
+    ``angle_rad`` from the normal, without spin."""
+    if not 0.0 <= angle_rad < np.pi / 2:
+        raise ValidationError("--angle", f"{np.degrees(angle_rad):g} deg", "must be ≥ 0° and < 90°")
+    if not speed_m_s > 0:
+        raise ValidationError("--velocity", f"{speed_m_s:g} m/s", "must be > 0")
+    if viscosity_pa_s is not None and fluid is None:
+        raise ValidationError(
+            "--viscosity",
+            f"{viscosity_pa_s:g} Pa·s",
+            "needs --fluid (a dry collision has no viscosity)",
+        )
+    first = catalog.get_material(session, particle)
+    second = catalog.get_material(session, wall)
+    state = None
+    fluid_row = None
+    if fluid is not None:
+        fluid_row = catalog.get_fluid(session, fluid)
+        state = fluid_state(fluid_row, temperature_c, viscosity_pa_s)
+    elif temperature_c is not None:
+        raise ValidationError(
+            "--temperature",
+            f"{temperature_c:g} °C",
+            "needs --fluid (it sets the fluid's viscosity)",
+        )
+    inputs = {
+        "diameter_m": diameter_m,
+        "wall_diameter_m": wall_diameter_m,
+        "impact_speed_m_s": speed_m_s,
+        "incidence_angle_rad": angle_rad,
+        "v_n_in_m_s": speed_m_s * np.cos(angle_rad),
+        "v_t_in_m_s": speed_m_s * np.sin(angle_rad),
+        "temperature_c": state.temperature_c if state else None,
+        "critical_stokes": critical_stokes,
+    }
+    result = derive(
+        **_material_inputs("particle", first),
+        **_material_inputs("wall", second),
+        diameter_m=diameter_m,
+        wall_diameter_m=np.nan if wall_diameter_m is None else wall_diameter_m,
+        v_n_in_m_s=inputs["v_n_in_m_s"],
+        v_t_in_m_s=inputs["v_t_in_m_s"],
+        fluid_density_kg_m3=state.density_kg_m3 if state else np.nan,
+        viscosity_pa_s=state.viscosity_pa_s if state else np.nan,
+        pressure_viscosity_pa_inv=(
+            state.pressure_viscosity_pa_inv
+            if state and state.pressure_viscosity_pa_inv is not None
+            else np.nan
+        ),
+        critical_stokes=critical_stokes,
+    )
+    derived = scalar_view(result)
+    for name in (
+        "normal_restitution",
+        "rotational_restitution",
+        "effective_rebound",
+        "sliding_friction",
+    ):
+        derived.pop(name)  # a scenario has no measured rebound
+    citations = {}
+    for row in (first, second, fluid_row):
+        if row is not None and row.source is not None:
+            citations[row.source.key] = row.source.citation
+    fluid_record = catalog.fluid_record(fluid_row) if fluid_row is not None else None
+    return PairResult(
+        catalog.material_record(first),
+        catalog.material_record(second),
+        fluid_record,
+        state,
+        inputs,
+        derived,
+        citations,
+    )
+
+
+def pair_json(result: PairResult) -> dict[str, Any]:
+    """The JSON document of ``granudb pair``: SI values under stable snake_case names."""
+    fluid = None
+    if result.fluid is not None and result.fluid_state is not None:
+        fluid = {
+            **result.fluid,
+            "reference_viscosity_pa_s": result.fluid["viscosity_pa_s"],
+            "reference_density_kg_m3": result.fluid["density_kg_m3"],
+            "viscosity_pa_s": result.fluid_state.viscosity_pa_s,
+            "density_kg_m3": result.fluid_state.density_kg_m3,
+            "temperature_c": result.fluid_state.temperature_c,
+            "viscosity_basis": result.fluid_state.basis,
+        }
+    return {
+        "particle": result.particle,
+        "wall": result.wall,
+        "fluid": fluid,
+        "inputs": result.inputs,
+        **result.derived,
+        "sources": result.citations,
+    }
