@@ -11,8 +11,7 @@ import pytest
 
 
 @pytest.mark.sqlite_only
-def test_datasette_serves_the_database_with_granudb_metadata(cli, db: str,
-                                                             tmp_path: Path) -> None:
+def test_datasette_serves_the_database_with_granudb_metadata(cli, db: str, tmp_path: Path) -> None:
     from datasette.app import Datasette
 
     path = tmp_path / "lab.sqlite"
