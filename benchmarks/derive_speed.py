@@ -1,0 +1,120 @@
+"""How fast is the vectorized derivation, against the obvious per-row alternative?
+
+Derives every column of ``granudb.physics.derive`` for N random scenarios (default
+1,000,000, in chunks to bound memory), then times the obvious alternative on a sample:
+a per-row Python loop with scalar math and ``scipy.integrate.quad`` for the friction
+integral A(c). Prints rows per second for both, their ratio, peak memory, and the largest
+relative disagreement between the two on the sample (should be ≤ 1e-9).
+
+    python benchmarks/derive_speed.py [--rows 1000000] [--sample 2000] [--chunk 250000]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import resource
+import time
+
+import numpy as np
+from scipy.integrate import quad
+
+from granudb.physics.derive import derive
+
+
+def scenarios(n: int, seed: int) -> dict[str, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    return {
+        "particle_density_kg_m3": rng.uniform(1000, 8000, n),
+        "particle_youngs_modulus_pa": rng.uniform(1e9, 2e11, n),
+        "particle_poisson_ratio": rng.uniform(0.1, 0.45, n),
+        "particle_roughness_rms_m": rng.uniform(1e-9, 1e-6, n),
+        "wall_density_kg_m3": rng.uniform(1000, 8000, n),
+        "wall_youngs_modulus_pa": rng.uniform(1e9, 2e11, n),
+        "wall_poisson_ratio": rng.uniform(0.1, 0.45, n),
+        "wall_roughness_rms_m": rng.uniform(1e-9, 1e-6, n),
+        "diameter_m": rng.uniform(1e-3, 3e-2, n),
+        "v_n_in_m_s": rng.uniform(0.01, 2.0, n),
+        "v_t_in_m_s": rng.uniform(0.0, 2.0, n),
+        "fluid_density_kg_m3": rng.uniform(990, 1260, n),
+        "viscosity_pa_s": rng.uniform(5e-4, 0.5, n),
+        "pressure_viscosity_pa_inv": np.full(n, 6e-9),
+    }
+
+
+def per_row(row: dict[str, float]) -> dict[str, float]:
+    """The obvious implementation: one scenario at a time, quad for A(c)."""
+    e_star = 1 / (
+        (1 - row["particle_poisson_ratio"] ** 2) / row["particle_youngs_modulus_pa"]
+        + (1 - row["wall_poisson_ratio"] ** 2) / row["wall_youngs_modulus_pa"]
+    )
+    r = row["diameter_m"] / 2
+    vn, vt, mu = row["v_n_in_m_s"], row["v_t_in_m_s"], row["viscosity_pa_s"]
+    rho_p = row["particle_density_kg_m3"]
+    load = 4 / 3 * r**2 * e_star * (5 * math.pi * rho_p * vn**2 / (4 * e_star)) ** 0.6
+    a = (3 * r * load / (4 * e_star)) ** (1 / 3)
+    p = 3 * load / (2 * math.pi * a**2)
+    eta = row["pressure_viscosity_pa_inv"] / 16
+    c = eta * p
+    integral, _ = quad(
+        lambda z: (1 + c * math.sqrt(1 - z * z)) ** 16 * z, 0, 1, epsabs=0, epsrel=1e-13, limit=200
+    )
+    h = 4.3384 * r * (mu * vt * eta / r) ** (5 / 7) * (load / (e_star * r**2)) ** (-1 / 21)
+    friction = 2 * math.pi * mu * vt * a**2 * integral / (load * h)
+    x1 = (4 * mu * vn * r**1.5 / (math.pi * e_star)) ** 0.4
+    return {
+        "reduced_modulus_pa": e_star,
+        "stokes_number": 2 * rho_p * r * math.hypot(vn, vt) / (9 * mu),
+        "impact_load_n": load,
+        "max_pressure_pa": p,
+        "min_gap_m": x1 / 3,
+        "friction_integral": integral,
+        "lubricated_friction": friction,
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rows", type=int, default=1_000_000)
+    parser.add_argument("--sample", type=int, default=2_000)
+    parser.add_argument("--chunk", type=int, default=250_000)
+    args = parser.parse_args()
+
+    start = time.perf_counter()
+    done = 0
+    while done < args.rows:
+        n = min(args.chunk, args.rows - done)
+        derive(**scenarios(n, seed=done))
+        done += n
+    vectorized_s = time.perf_counter() - start
+
+    sample = scenarios(args.sample, seed=12345)
+    start = time.perf_counter()
+    slow = [per_row({k: float(v[i]) for k, v in sample.items()}) for i in range(args.sample)]
+    per_row_s = time.perf_counter() - start
+    fast = derive(**sample)
+    worst = 0.0
+    for name in slow[0]:
+        reference = np.array([row[name] for row in slow])
+        worst = max(worst, float(np.max(np.abs(fast[name] / reference - 1))))
+
+    fast_rate = args.rows / vectorized_s
+    slow_rate = args.sample / per_row_s
+    peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(
+        f"vectorized derive(): {args.rows:,} rows in {vectorized_s:.2f} s = "
+        f"{fast_rate:,.0f} rows/s (chunks of {args.chunk:,})"
+    )
+    print(
+        f"per-row Python + quad: {args.sample:,} rows in {per_row_s:.2f} s = "
+        f"{slow_rate:,.0f} rows/s"
+    )
+    print(f"ratio: {fast_rate / slow_rate:,.0f}x")
+    print(f"peak memory (max RSS): {peak_mb:,.0f} MB")
+    print(f"largest relative disagreement on the sample: {worst:.2e} (must be <= 1e-9)")
+    if worst > 1e-9:
+        raise SystemExit("the two implementations disagree")
+
+
+if __name__ == "__main__":
+    main()
