@@ -226,3 +226,205 @@ def pair_json(result: PairResult) -> dict[str, Any]:
         **result.derived,
         "sources": result.citations,
     }
+
+
+# --- measured collisions -----------------------------------------------------------------
+
+LISTED_COLUMNS = [
+    "dataset",
+    "version",
+    "run",
+    "particle",
+    "wall",
+    "fluid",
+    "diameter_m",
+    "incidence_angle_rad",
+    "v_n_in_m_s",
+    "v_t_in_m_s",
+    "omega_in_rad_s",
+    "v_n_out_m_s",
+    "v_t_out_m_s",
+    "omega_out_rad_s",
+    "temperature_c",
+    "viscosity_pa_s",
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_incidence",
+    "effective_rebound",
+    "sliding_friction",
+    "normal_stokes_number",
+    "reynolds_number",
+    "min_gap_m",
+    "composite_roughness_m",
+    "film_parameter",
+    "roughness_exceeds_gap",
+    "rebound_expected",
+    "tangential_regime",
+    "quasi_static_valid",
+    "shear_strain",
+    "tangential_speed_m_s",
+    "lubricated_friction",
+    "effective_radius_m",
+    "reduced_modulus_pa",
+    "notes",
+]
+
+
+def _fluid_viscosity(
+    fluids: dict[int, Fluid], fluid_ids: np.ndarray, temperatures: np.ndarray, runs: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Viscosity and density per row: at the run's temperature from the fluid's points, or
+    the printed reference values when the run has no temperature."""
+    viscosity = np.full(len(fluid_ids), np.nan)
+    density = np.full(len(fluid_ids), np.nan)
+    for fluid_id, fluid in fluids.items():
+        rows = fluid_ids == fluid_id
+        if not rows.any():
+            continue
+        viscosity[rows] = fluid.viscosity_pa_s
+        density[rows] = fluid.density_kg_m3
+        measured = rows & ~np.isnan(temperatures)
+        near = measured & (
+            np.abs(temperatures - fluid.reference_temperature_c) <= REFERENCE_TOLERANCE_C
+        )
+        measured &= ~near
+        if not measured.any():
+            continue
+        model = fluid_model(fluid)
+        if model is None:
+            index = int(np.flatnonzero(measured)[0])
+            raise ValidationError(
+                f"run {runs[index]}",
+                f"{temperatures[index]:g} °C",
+                f"differs from fluid {fluid.name}'s reference temperature and the fluid has no "
+                "viscosity–temperature points",
+            )
+        outside = measured & ((temperatures < model.low_c) | (temperatures > model.high_c))
+        if outside.any():
+            index = int(np.flatnonzero(outside)[0])
+            raise ValidationError(
+                f"run {runs[index]}",
+                f"{temperatures[index]:g} °C",
+                f"is outside fluid {fluid.name}'s viscosity data ({model.low_c:g}–"
+                f"{model.high_c:g} °C); granudb does not extrapolate",
+            )
+        viscosity[measured] = model.viscosity(temperatures[measured])
+        if model.density_kg_m3 is not None:
+            density[measured] = model.density(temperatures[measured])
+    return viscosity, density
+
+
+def collision_table(
+    session: Session,
+    *,
+    dataset: str | None = None,
+    version: str | None = None,
+    particle: str | None = None,
+    wall: str | None = None,
+    fluid: str | None = None,
+    critical_stokes: float = 10.0,
+) -> Any:
+    """Measured collisions with every derived column, as a pandas DataFrame (SI)."""
+    import pandas as pd
+    from sqlalchemy import select
+    from sqlalchemy.orm import aliased
+
+    from granudb.db import datasets as dataset_queries
+    from granudb.db.models import Collision, Dataset
+
+    first, second = aliased(Material), aliased(Material)
+    query = (
+        select(Collision, Dataset.name, Dataset.version, first, second)
+        .join(Dataset, Collision.dataset_id == Dataset.id)
+        .join(first, Collision.particle_id == first.id)
+        .join(second, Collision.wall_id == second.id)
+    )
+    if dataset is not None:
+        query = query.where(
+            Collision.dataset_id == dataset_queries.get_dataset(session, dataset, version).id
+        )
+    if particle is not None:
+        query = query.where(Collision.particle_id == catalog.get_material(session, particle).id)
+    if wall is not None:
+        query = query.where(Collision.wall_id == catalog.get_material(session, wall).id)
+    if fluid is not None:
+        if fluid.lower() == "dry":
+            query = query.where(Collision.fluid_id.is_(None))
+        else:
+            query = query.where(Collision.fluid_id == catalog.get_fluid(session, fluid).id)
+    query = query.order_by(Dataset.name, Dataset.version, Collision.run)
+    rows = session.execute(query).all()
+    fluids = {f.id: f for f in catalog.list_fluids(session)}
+    if not rows:
+        return pd.DataFrame({c: [] for c in LISTED_COLUMNS})
+
+    def column(getter: Any, dtype: Any = float) -> np.ndarray:
+        return np.array([getter(r) for r in rows], dtype=dtype)
+
+    def number(value: float | None) -> float:
+        return np.nan if value is None else value
+
+    c = {
+        name: column(lambda r, n=name: number(getattr(r[0], n)))
+        for name in (
+            "diameter_m",
+            "wall_diameter_m",
+            "incidence_angle_rad",
+            "v_n_in_m_s",
+            "v_t_in_m_s",
+            "omega_in_rad_s",
+            "v_n_out_m_s",
+            "v_t_out_m_s",
+            "omega_out_rad_s",
+            "temperature_c",
+        )
+    }
+    runs = column(lambda r: r[0].run, object)
+    fluid_ids = column(lambda r: -1 if r[0].fluid_id is None else r[0].fluid_id, int)
+    viscosity, density = _fluid_viscosity(fluids, fluid_ids, c["temperature_c"], runs)
+    props = {}
+    for prefix, index in (("particle", 3), ("wall", 4)):
+        props[f"{prefix}_density_kg_m3"] = column(lambda r, i=index: r[i].density_kg_m3)
+        props[f"{prefix}_youngs_modulus_pa"] = column(lambda r, i=index: r[i].youngs_modulus_pa)
+        props[f"{prefix}_poisson_ratio"] = column(lambda r, i=index: r[i].poisson_ratio)
+        props[f"{prefix}_roughness_rms_m"] = column(lambda r, i=index: r[i].roughness_rms_m)
+        props[f"{prefix}_shear_modulus_pa"] = column(
+            lambda r, i=index: number(r[i].shear_modulus_pa)
+        )
+    barus = np.array(
+        [number(fluids[i].pressure_viscosity_pa_inv) if i in fluids else np.nan for i in fluid_ids]
+    )
+    result = derive(
+        **props,
+        diameter_m=c["diameter_m"],
+        wall_diameter_m=c["wall_diameter_m"],
+        v_n_in_m_s=c["v_n_in_m_s"],
+        v_t_in_m_s=c["v_t_in_m_s"],
+        omega_in_rad_s=c["omega_in_rad_s"],
+        v_n_out_m_s=c["v_n_out_m_s"],
+        v_t_out_m_s=c["v_t_out_m_s"],
+        omega_out_rad_s=c["omega_out_rad_s"],
+        fluid_density_kg_m3=density,
+        viscosity_pa_s=viscosity,
+        pressure_viscosity_pa_inv=barus,
+        critical_stokes=critical_stokes,
+    )
+    frame = pd.DataFrame(
+        {
+            "dataset": column(lambda r: r[1], object),
+            "version": column(lambda r: r[2], object),
+            "run": runs,
+            "particle": column(lambda r: r[3].name, object),
+            "wall": column(lambda r: r[4].name, object),
+            "fluid": [fluids[i].name if i in fluids else None for i in fluid_ids],
+            **c,
+            "viscosity_pa_s": viscosity,
+            "particle_density_kg_m3": props["particle_density_kg_m3"],
+            "notes": column(lambda r: r[0].notes, object),
+        }
+    )
+    for name, values in result.items():
+        if name not in frame:
+            frame[name] = values
+    ordered = LISTED_COLUMNS + [n for n in frame.columns if n not in LISTED_COLUMNS]
+    return frame[ordered]

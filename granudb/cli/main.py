@@ -6,6 +6,7 @@ exit code 1; nothing else is printed, and the transaction it happened in was rol
 
 from __future__ import annotations
 
+import os
 import sys
 from typing import Any
 
@@ -13,7 +14,7 @@ import typer
 from typer.core import TyperGroup
 
 from granudb import __version__
-from granudb.cli import db, fluids, materials, pair, sources
+from granudb.cli import collisions, db, fit, fluids, materials, pair, sources
 from granudb.cli.common import DbOption
 
 
@@ -29,6 +30,19 @@ class GranudbGroup(TyperGroup):
             message = str(exc).replace("\n", " ")
             typer.echo(f"Error: {message}", err=True)
             raise typer.Exit(exc.exit_code) from None
+        except (typer.Exit, typer.Abort, KeyboardInterrupt):
+            raise
+        except Exception as exc:
+            if os.environ.get("GRANUDB_DEBUG"):
+                raise
+            # A bug, not bad input: still one line, and the transaction was rolled back.
+            first = str(exc).splitlines()[0] if str(exc) else ""
+            typer.echo(
+                f"Error: internal error ({type(exc).__name__}: {first}); nothing was "
+                "changed. Set GRANUDB_DEBUG=1 for the traceback and please report it.",
+                err=True,
+            )
+            raise typer.Exit(2) from None
 
 
 app = typer.Typer(
@@ -62,6 +76,8 @@ def _root(
 app.add_typer(materials.app, name="materials")
 app.add_typer(fluids.app, name="fluids")
 app.add_typer(sources.app, name="sources")
+app.add_typer(collisions.app, name="collisions")
+app.add_typer(fit.app, name="fit")
 app.command("pair")(pair.pair)
 app.add_typer(db.app, name="db")
 
