@@ -1,0 +1,42 @@
+"""Writing a report to disk: one self-contained HTML file, or Markdown with SVG files
+beside it (linked relatively, so the folder can be moved or committed as it is)."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+from granudb.errors import ValidationError
+from granudb.report.render import render
+
+
+def default_name(report: dict[str, Any], fmt: str) -> str:
+    slug = re.sub(r"[^a-z0-9]+", "-", report["title"].lower()).strip("-")[:80] or "report"
+    return f"{slug}.{'html' if fmt == 'html' else 'md'}"
+
+
+def write_report(report: dict[str, Any], fmt: str, output: Path | None) -> Path:
+    """Write ``report`` as ``fmt`` ("html" or "md") to ``output`` (default: a name made
+    from the title, in the current folder); returns the path written."""
+    if fmt not in {"html", "md"}:
+        raise ValidationError("--format", fmt, "must be html or md")
+    path = Path(output) if output is not None else Path.cwd() / default_name(report, fmt)
+    if path.is_dir():
+        path = path / default_name(report, fmt)
+    if not path.parent.is_dir():
+        raise ValidationError("--output", str(path), "is in a folder that does not exist")
+    if fmt == "md":
+        folder = path.with_name(path.stem + "_figures")
+        if report["figures"]:
+            folder.mkdir(exist_ok=True)
+        for figure in report["figures"]:
+            (folder / f"{figure['id']}.svg").write_text(
+                '<?xml version="1.0" encoding="utf-8"?>\n' + figure["svg"], encoding="utf-8"
+            )
+            figure["file"] = f"{folder.name}/{figure['id']}.svg"
+    text = render(report, fmt)
+    temporary = path.with_name(path.name + ".part")
+    temporary.write_text(text, encoding="utf-8")
+    temporary.replace(path)
+    return path
