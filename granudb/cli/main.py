@@ -14,7 +14,7 @@ import typer
 from typer.core import TyperGroup
 
 from granudb import __version__
-from granudb.cli import collisions, db, fit, fluids, materials, pair, report, sources
+from granudb.cli import collisions, dataset, db, fit, fluids, materials, pair, report, sources
 from granudb.cli.common import DbOption
 
 
@@ -78,6 +78,7 @@ app.add_typer(fluids.app, name="fluids")
 app.add_typer(sources.app, name="sources")
 app.add_typer(collisions.app, name="collisions")
 app.add_typer(fit.app, name="fit")
+app.add_typer(dataset.app, name="dataset")
 app.command("pair")(pair.pair)
 app.command("report")(report.report)
 app.add_typer(db.app, name="db")

@@ -11,6 +11,8 @@ the same runs with the same values.
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Iterable, Sequence
+from typing import Any
 
 from sqlalchemy import select
 from sqlalchemy.orm import Session, aliased
@@ -99,18 +101,35 @@ def content_hash(session: Session, dataset: Dataset) -> str:
         .order_by(Collision.run.collate(collation)),
         execution_options={"yield_per": 20_000},
     )
+    return hash_rows(result.partitions())
+
+
+def hash_rows(batches: Iterable[Iterable[Sequence[object]]]) -> str:
+    """sha256 of rows already in canonical order, (run, particle, wall, fluid, *COLUMNS,
+    notes), given in batches."""
     digest = hashlib.sha256()
-    for rows in result.partitions():
-        digest.update(
-            "".join(
-                "\x1f".join(
-                    ["" if v is None else repr(v) if type(v) is float else str(v) for v in row]
-                )
-                + "\x1e"
-                for row in rows
-            ).encode("utf-8")
+    for rows in batches:
+        text = "".join(
+            "\x1f".join(["" if v is None else repr(v) if type(v) is float else str(v) for v in row])
+            + "\x1e"
+            for row in rows
         )
+        digest.update(text.encode("utf-8"))
     return digest.hexdigest()
+
+
+def hash_frame(frame: Any) -> str:
+    """The content hash of collisions given by name in a DataFrame (a package's table)."""
+    import math
+
+    columns = ["run", "particle", "wall", "fluid", *COLUMNS, "notes"]
+    values = [frame[c].tolist() for c in columns]
+    order = sorted(range(len(frame)), key=lambda i: str(values[0][i]).encode("utf-8"))
+    rows = (
+        [None if isinstance(v, float) and math.isnan(v) else v for v in (c[i] for c in values)]
+        for i in order
+    )
+    return hash_rows([rows])
 
 
 def update_content_hash(session: Session, dataset: Dataset) -> str:

@@ -1,0 +1,115 @@
+"""The dataset catalogue: what each dataset holds, and how two versions differ."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from sqlalchemy import func, select
+from sqlalchemy.orm import Session, aliased
+
+from granudb.db.models import Collision, Dataset, Fluid, Material
+
+DATASET_COLUMNS = ["name", "version", "title", "runs", "content_hash", "license", "source"]
+COMPARED = [
+    "particle_id",
+    "wall_id",
+    "fluid_id",
+    "diameter_m",
+    "wall_diameter_m",
+    "incidence_angle_rad",
+    "v_n_in_m_s",
+    "v_t_in_m_s",
+    "omega_in_rad_s",
+    "v_n_out_m_s",
+    "v_t_out_m_s",
+    "omega_out_rad_s",
+    "temperature_c",
+    "notes",
+]
+
+
+def _runs(session: Session) -> dict[int, int]:
+    rows = session.execute(
+        select(Collision.dataset_id, func.count()).group_by(Collision.dataset_id)
+    ).all()
+    return dict(rows)
+
+
+def dataset_records(session: Session) -> list[dict[str, Any]]:
+    runs = _runs(session)
+    return [
+        {
+            "name": d.name,
+            "version": d.version,
+            "title": d.title,
+            "runs": runs.get(d.id, 0),
+            "content_hash": d.content_hash,
+            "license": d.license,
+            "source": d.source.key if d.source else None,
+        }
+        for d in session.scalars(select(Dataset).order_by(Dataset.name, Dataset.version))
+    ]
+
+
+def dataset_record(session: Session, dataset: Dataset) -> dict[str, Any]:
+    runs = (
+        session.scalar(
+            select(func.count()).select_from(Collision).where(Collision.dataset_id == dataset.id)
+        )
+        or 0
+    )
+    return {
+        "name": dataset.name,
+        "version": dataset.version,
+        "title": dataset.title,
+        "description": dataset.description,
+        "license": dataset.license,
+        "source": dataset.source.key if dataset.source else None,
+        "citation": dataset.source.citation if dataset.source else None,
+        "content_hash": dataset.content_hash,
+        "runs": runs,
+        "created_at": dataset.created_at,
+        "updated_at": dataset.updated_at,
+    }
+
+
+def group_counts(session: Session, dataset: Dataset) -> list[dict[str, Any]]:
+    """Runs by (particle, wall, fluid) — "dry" where there is no fluid."""
+    particle, wall = aliased(Material), aliased(Material)
+    rows = session.execute(
+        select(particle.name, wall.name, Fluid.name, func.count())
+        .select_from(Collision)
+        .join(particle, Collision.particle_id == particle.id)
+        .join(wall, Collision.wall_id == wall.id)
+        .outerjoin(Fluid, Collision.fluid_id == Fluid.id)
+        .where(Collision.dataset_id == dataset.id)
+        .group_by(particle.name, wall.name, Fluid.name)
+        .order_by(particle.name, wall.name, Fluid.name)
+    ).all()
+    return [{"particle": p, "wall": w, "fluid": f or "dry", "runs": n} for p, w, f, n in rows]
+
+
+def diff_datasets(session: Session, first: Dataset, second: Dataset) -> list[dict[str, Any]]:
+    """Runs added in ``second``, removed from ``first``, and changed (field by field)."""
+    from granudb.db.upsert import same_value
+
+    def load(dataset: Dataset) -> dict[str, dict[str, Any]]:
+        rows = session.execute(
+            select(Collision.run, *(getattr(Collision, c) for c in COMPARED)).where(
+                Collision.dataset_id == dataset.id
+            )
+        ).all()
+        return {row[0]: dict(zip(COMPARED, row[1:], strict=True)) for row in rows}
+
+    before, after = load(first), load(second)
+    changes: list[dict[str, Any]] = []
+    for run in sorted(after.keys() - before.keys()):
+        changes.append({"change": "added", "run": run, "fields": ""})
+    for run in sorted(before.keys() - after.keys()):
+        changes.append({"change": "removed", "run": run, "fields": ""})
+    for run in sorted(before.keys() & after.keys()):
+        differing = [c for c in COMPARED if not same_value(before[run][c], after[run][c])]
+        if differing:
+            changes.append({"change": "changed", "run": run, "fields": ", ".join(differing)})
+    order = {"added": 0, "removed": 1, "changed": 2}
+    return sorted(changes, key=lambda c: (order[c["change"]], c["run"]))

@@ -1,0 +1,243 @@
+"""Sharing datasets as Frictionless Data Packages: export, validate, import, catalogue."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+from support import dump_hash
+
+EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
+
+
+@pytest.fixture
+def exported(cli, db: str, tmp_path: Path) -> Path:
+    assert (
+        cli(
+            "collisions",
+            "import",
+            str(EXAMPLE),
+            "--dataset",
+            "example",
+            "--title",
+            "Example runs",
+            "--license",
+            "CC-BY-4.0",
+            db=db,
+        ).exit_code
+        == 0
+    )
+    out = tmp_path / "pkg"
+    result = cli("dataset", "export", "example", "--output", str(out), db=db)
+    assert result.exit_code == 0, result.stderr
+    return out
+
+
+def test_export_is_a_valid_data_package(exported: Path) -> None:
+    descriptor = json.loads((exported / "datapackage.json").read_text("utf-8"))
+    assert descriptor["name"] == "example" and descriptor["version"] == "1.0.0"
+    assert descriptor["licenses"] == [{"name": "CC-BY-4.0"}]
+    resources = {r["name"]: r for r in descriptor["resources"]}
+    assert set(resources) == {"collisions", "materials", "fluids", "fluid_points", "sources"}
+    fields = {f["name"]: f for f in resources["collisions"]["schema"]["fields"]}
+    assert fields["v_n_in_m_s"]["unit"] == "m/s"
+    assert fields["v_n_in_m_s"]["constraints"] == {"required": True, "exclusiveMinimum": 0.0}
+    assert resources["collisions"]["schema"]["foreignKeys"][0]["reference"]["resource"] == (
+        "materials"
+    )
+    assert resources["collisions"]["hash"].startswith("sha256:")
+    assert (exported / "README.md").read_text("utf-8").startswith("# Example runs")
+    assert "cff-version: 1.2.0" in (exported / "CITATION.cff").read_text("utf-8")
+    # the upstream validator agrees
+    tool = shutil.which("frictionless") or str(Path(sys.executable).parent / "frictionless")
+    check = subprocess.run(
+        [tool, "validate", "datapackage.json"],
+        cwd=exported,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert check.returncode == 0, check.stdout[-3000:]
+    assert "INVALID" not in check.stdout
+
+
+def test_round_trip_keeps_the_content_hash(
+    cli, db: str, new_db: str, exported: Path, tmp_path: Path
+) -> None:
+    first = json.loads((exported / "datapackage.json").read_text("utf-8"))
+    result = cli("dataset", "import", str(exported), db=new_db)
+    assert result.exit_code == 0, result.stderr
+    again = tmp_path / "again.zip"
+    assert cli("dataset", "export", "example", "--output", str(again), db=new_db).exit_code == 0
+    with zipfile.ZipFile(again) as archive:
+        second = json.loads(archive.read("datapackage.json"))
+        assert (
+            archive.read("data/collisions.csv")
+            == (exported / "data" / "collisions.csv").read_bytes()
+        )
+    assert second["granudb:content_hash"] == first["granudb:content_hash"]
+    shown = json.loads(cli("dataset", "show", "example", "--format", "json", db=new_db).stdout)
+    assert shown["content_hash"] == first["granudb:content_hash"] and shown["runs"] == 12
+
+
+def test_conflicting_material_is_refused_field_by_field_then_renamed(
+    cli, db: str, exported: Path
+) -> None:
+    assert cli("materials", "update", "glass", "--roughness", "0.2 um", db=db).exit_code == 0
+    before = dump_hash(db)
+    refused = cli("dataset", "import", str(exported), "--as", "copy", db=db)
+    assert refused.exit_code == 1
+    assert "material glass: roughness_rms_m: 2e-07 here, 1.305e-07 in the package" in (
+        refused.stderr
+    )
+    assert dump_hash(db) == before
+    renamed = cli("dataset", "import", str(exported), "--as", "copy", "--rename-conflicts", db=db)
+    assert renamed.exit_code == 0, renamed.stderr
+    assert "renamed material glass → glass (example)" in renamed.stdout
+    names = [
+        m["name"] for m in json.loads(cli("materials", "list", "--format", "json", db=db).stdout)
+    ]
+    assert "glass" in names and "glass (example)" in names
+
+
+def test_same_name_and_version_is_refused(cli, db: str, exported: Path) -> None:
+    before = dump_hash(db)
+    result = cli("dataset", "import", str(exported), db=db)
+    assert result.exit_code == 1 and "dataset example 1.0.0 already exists" in result.stderr
+    assert dump_hash(db) == before
+
+
+def _edit(package: Path, change) -> Path:
+    path = package / "datapackage.json"
+    descriptor = json.loads(path.read_text("utf-8"))
+    change(descriptor)
+    path.write_text(json.dumps(descriptor), encoding="utf-8")
+    return package
+
+
+def _resource(descriptor: dict, name: str) -> dict:
+    return next(r for r in descriptor["resources"] if r["name"] == name)
+
+
+BAD_PACKAGES = {
+    "path traversal": (
+        lambda d: _resource(d, "materials").update(path="../../etc/passwd"),
+        "materials: path '../../etc/passwd' is not a relative path inside",
+    ),
+    "absolute path": (
+        lambda d: _resource(d, "materials").update(path="/etc/passwd"),
+        "is not a relative path inside the package",
+    ),
+    "url": (
+        lambda d: _resource(d, "sources").update(path="https://example.org/x.csv"),
+        "is not a relative path inside the package",
+    ),
+    "hash": (
+        lambda d: _resource(d, "collisions").update(hash="sha256:" + "0" * 64),
+        "collisions: sha256",
+    ),
+    "unknown field": (
+        lambda d: _resource(d, "collisions")["schema"]["fields"].append(
+            {"name": "colour", "type": "string"}
+        ),
+        "collisions.colour: is not a field granudb knows",
+    ),
+    "wrong unit": (
+        lambda d: _resource(d, "collisions")["schema"]["fields"][8].update(unit="mm/s"),
+        "unit 'mm/s' is not 'm/s'",
+    ),
+    "missing resource": (
+        lambda d: d["resources"].remove(_resource(d, "fluids")),
+        "fluids: resource is missing",
+    ),
+    "inline data": (lambda d: _resource(d, "sources").update(data=[]), "inline 'data'"),
+    "content hash": (lambda d: d.update({"granudb:content_hash": "f" * 64}), "content hash"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_PACKAGES))
+def test_bad_packages_are_refused_and_change_nothing(
+    cli, db: str, exported: Path, case: str
+) -> None:
+    change, expected = BAD_PACKAGES[case]
+    package = _edit(exported, change)
+    before = dump_hash(db)
+    result = cli("dataset", "import", str(package), "--as", "other", db=db)
+    assert result.exit_code == 1
+    assert expected in result.stderr, result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stderr.strip().splitlines()[-1].startswith("Error: package: ")
+    assert dump_hash(db) == before
+    if case != "content hash":  # only import recomputes the hash
+        assert cli("dataset", "validate", str(package)).exit_code == 1
+
+
+def test_tampered_values_are_caught(cli, db: str, exported: Path) -> None:
+    data = exported / "data" / "collisions.csv"
+    data.write_text(data.read_text("utf-8").replace("0.3,", "-0.3,", 1), encoding="utf-8")
+    result = cli("dataset", "validate", str(exported))
+    assert result.exit_code == 1
+    assert "collisions: sha256" in result.stderr
+    assert "collisions.v_n_in_m_s: must be > 0" in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("entry", "expected"),
+    [
+        ("../evil.txt", "would be written outside the package folder"),
+        ("/abs/evil.txt", "would be written outside the package folder"),
+    ],
+)
+def test_zip_entries_are_checked_before_extraction(
+    cli, tmp_path: Path, entry: str, expected: str
+) -> None:
+    archive = tmp_path / "bad.zip"
+    with zipfile.ZipFile(archive, "w") as handle:
+        handle.writestr("datapackage.json", "{}")
+        handle.writestr(entry, "x")
+    result = cli("dataset", "validate", str(archive))
+    assert result.exit_code == 1 and expected in result.stderr
+    assert not (tmp_path.parent / "evil.txt").exists()
+
+
+def test_zip_bomb_is_refused(cli, tmp_path: Path) -> None:
+    archive = tmp_path / "bomb.zip"
+    with zipfile.ZipFile(archive, "w", compression=zipfile.ZIP_DEFLATED) as handle:
+        handle.writestr("datapackage.json", "{}")
+        handle.writestr("data/collisions.csv", b"0" * 50_000_000)
+    result = cli("dataset", "validate", str(archive))
+    assert result.exit_code == 1 and "possible zip bomb" in result.stderr
+
+
+def test_diff_between_versions(cli, db: str, tmp_path: Path) -> None:
+    text = EXAMPLE.read_text("utf-8").splitlines()
+    assert (
+        cli(
+            "collisions", "import", str(EXAMPLE), "--dataset", "d", "--version", "1", db=db
+        ).exit_code
+        == 0
+    )
+    changed = [
+        text[0],
+        *text[1:6],
+        text[6].replace("519.62", "519.00"),
+        "new-run" + text[7][text[7].index(",") :],
+    ]
+    path = tmp_path / "v2.csv"
+    path.write_text("\n".join(changed) + "\n", encoding="utf-8")
+    assert (
+        cli("collisions", "import", str(path), "--dataset", "d", "--version", "2", db=db).exit_code
+        == 0
+    )
+    out = json.loads(cli("dataset", "diff", "d@1", "d@2", "--format", "json", db=db).stdout)
+    kinds = {(c["change"], c["run"]) for c in out}
+    assert ("added", "new-run") in kinds
+    assert ("changed", "steel-dry-6") in kinds
+    assert sum(1 for c in out if c["change"] == "removed") == 6
+    listed = json.loads(cli("dataset", "list", "--format", "json", db=db).stdout)
+    assert {(d["name"], d["version"], d["runs"]) for d in listed} == {("d", "1", 12), ("d", "2", 7)}
