@@ -22,7 +22,9 @@ class ValidationError(GranudbError):
         self.rule = rule
         self.row = row
         where = f"row {row}: " if row is not None else ""
-        shown = value if isinstance(value, str) else repr(value)
+        # A value with a newline or other control character is shown escaped, so the
+        # message stays one line whatever the input.
+        shown = value if isinstance(value, str) and value.isprintable() else repr(value)
         super().__init__(f"{where}{field}: {shown} {rule}")
 
 

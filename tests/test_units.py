@@ -80,3 +80,15 @@ def test_mm_per_s_round_trips_to_the_decimal_written(d) -> None:
     typed = f"{d} mm/s"
     value = parse_quantity(typed, "m_s", "v")
     assert value == float(f"{float(d) / 1000:.15g}")
+
+
+@given(
+    st.text(max_size=40), st.sampled_from(["pa", "m", "m_s", "pa_s", "c", "rad", "", "fraction"])
+)
+def test_fuzzed_quantities_parse_or_refuse_cleanly(text: str, unit: str) -> None:
+    try:
+        value = parse_quantity(text, unit, "--x")
+    except ValidationError as exc:
+        assert "\n" not in str(exc) and str(exc).startswith("--x: ")
+    else:
+        assert math.isfinite(value)

@@ -101,7 +101,7 @@ def parse_quantity(text: str | float, unit: Unit | str, field: str) -> float:
         raise ValidationError(
             field, raw, f"is not {unit.dimension} (expected a unit like '{unit.example}')"
         ) from None
-    except (pint.errors.PintError, AttributeError, TypeError, ValueError, SyntaxError) as exc:
+    except Exception as exc:  # noqa: BLE001 - Pint's parser raises many types (TokenError…)
         detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise ValidationError(
             field, raw, f"is not a quantity Pint understands ({detail})"
@@ -130,7 +130,7 @@ def conversion(from_unit: str, to: Unit) -> tuple[float, float]:
         raise ValidationError(
             "unit", f"[{from_unit}]", f"is not {to.dimension} (expected e.g. [{to.pint}])"
         ) from None
-    except (pint.errors.PintError, AttributeError, TypeError, ValueError, SyntaxError):
+    except Exception:  # noqa: BLE001 - Pint's parser raises many types (TokenError…)
         raise ValidationError("unit", f"[{from_unit}]", "is not a unit Pint knows") from None
     return one - zero, zero
 

@@ -1,0 +1,149 @@
+"""Reliability: concurrent writers and readers, a killed import, read-only databases."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from sqlalchemy import text
+from support import dump_hash, engine_for
+
+HEADER = (
+    "run,particle,wall,fluid,diameter [mm],incidence_angle [deg],v_n_in [mm/s],"
+    "v_t_in [mm/s],omega_in [rad/s],v_n_out [mm/s],v_t_out [mm/s],omega_out [rad/s]\n"
+)
+WRITERS = 4
+ROWS = 2_000
+
+READER = """
+import json, sys, time
+from granudb.db.engine import open_database
+from granudb.db.dataset_catalog import dataset_records
+database = open_database(sys.argv[1])
+seen = []
+deadline = time.time() + float(sys.argv[2])
+while time.time() < deadline:
+    with database.session() as session:
+        seen.append({r["name"]: r["runs"] for r in dataset_records(session)})
+    time.sleep(0.02)
+print(json.dumps(seen))
+"""
+
+
+def _csv(path: Path, rows: int, prefix: str) -> Path:
+    with path.open("w", encoding="utf-8") as handle:
+        handle.write(HEADER)
+        for i in range(rows):
+            handle.write(f"{prefix}-{i},steel,Zerodur,,12.7,20,300,109,0,280,40,-5\n")
+    return path
+
+
+def _granudb(*args: str) -> subprocess.Popen:
+    return subprocess.Popen(
+        [sys.executable, "-m", "granudb", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
+def test_concurrent_imports_and_readers_lose_nothing(db: str, tmp_path: Path) -> None:
+    files = [_csv(tmp_path / f"w{i}.csv", ROWS, f"w{i}") for i in range(WRITERS)]
+    readers = [
+        subprocess.Popen(
+            [sys.executable, "-c", READER, db, "8"],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for _ in range(2)
+    ]
+    writers = [
+        _granudb("collisions", "import", str(f), "--dataset", f"set-{i}", "--db", db)
+        for i, f in enumerate(files)
+    ]
+    listers = [_granudb("collisions", "list", "--format", "csv", "--db", db) for _ in range(2)]
+    for process in writers + listers:
+        out, err = process.communicate(timeout=300)
+        assert process.returncode == 0, err
+        assert "locked" not in err.lower()
+    for process in readers:
+        out, err = process.communicate(timeout=300)
+        assert process.returncode == 0, err
+        for snapshot in json.loads(out):
+            for name, runs in snapshot.items():
+                assert runs == ROWS, f"a reader saw {runs} runs of {name}: half an import"
+    engine = engine_for(db)
+    with engine.connect() as connection:
+        total = connection.execute(text("SELECT count(*) FROM collisions")).scalar()
+        imports = connection.execute(text("SELECT count(*) FROM collision_imports")).scalar()
+    engine.dispose()
+    assert total == WRITERS * ROWS and imports == WRITERS
+
+
+@pytest.mark.sqlite_only
+def test_sigkill_during_a_large_import_leaves_none_of_it(db: str, tmp_path: Path) -> None:
+    import sqlite3
+
+    big = _csv(tmp_path / "big.csv", 300_000, "big")
+    before = dump_hash(db)
+    process = _granudb("collisions", "import", str(big), "--dataset", "big", "--db", db)
+    time.sleep(3.0)  # well into the insert; the whole import takes several seconds
+    assert process.poll() is None, "the import finished before it could be killed"
+    os.kill(process.pid, signal.SIGKILL)
+    process.wait(timeout=30)
+    with sqlite3.connect(db) as connection:
+        assert connection.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+        assert connection.execute("SELECT count(*) FROM collisions").fetchone()[0] == 0
+    assert dump_hash(db) == before
+    # and the database still works
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "granudb",
+            "collisions",
+            "import",
+            str(_csv(tmp_path / "small.csv", 10, "s")),
+            "--dataset",
+            "after",
+            "--db",
+            db,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0, done.stderr
+
+
+@pytest.mark.sqlite_only
+def test_read_only_database_is_refused_in_one_line(cli, db: str) -> None:
+    before = dump_hash(db)
+    url = f"sqlite:///file:{db}?mode=ro&uri=true"
+    assert cli("materials", "list", db=url).exit_code == 0
+    result = cli(
+        "materials",
+        "add",
+        "x",
+        "--density",
+        "1 g/cm^3",
+        "--youngs-modulus",
+        "1 GPa",
+        "--poisson-ratio",
+        "0.3",
+        "--roughness",
+        "1 nm",
+        db=url,
+    )
+    assert result.exit_code == 1
+    assert result.stderr.strip() == (
+        "Error: database: is read-only (attempt to write a readonly database); nothing was changed"
+    )
+    assert dump_hash(db) == before
