@@ -71,3 +71,8 @@ def quantities(pairs: dict[str, tuple[str | None, str]]) -> dict[str, float]:
         if value is not None:
             values[column] = value
     return values
+
+
+def given(**options: str | None) -> dict[str, str]:
+    """The text options the user gave (``None`` means "not given", not "clear it")."""
+    return {name: value for name, value in options.items() if value is not None}

@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from granudb.cli.common import DbOption, Format, FormatOption, open_db, quantities
+from granudb.cli.common import DbOption, Format, FormatOption, given, open_db, quantities
 
 app = typer.Typer(
     help="Fluids: density, viscosity and how it varies with temperature.", no_args_is_help=True
@@ -112,10 +112,7 @@ def add(
     values: dict[str, object] = _values(
         viscosity, density, temperature or "20 degC", pressure_coefficient, glycerol_fraction
     )
-    if description is not None:
-        values["description"] = description
-    if source_locator is not None:
-        values["source_locator"] = source_locator
+    values.update(given(description=description, source_locator=source_locator))
     database = open_db(db)
     with database.session(write=True) as session:
         catalog.add_fluid(session, name, values, source=source)
@@ -143,10 +140,7 @@ def update(
     values: dict[str, object] = _values(
         viscosity, density, temperature, pressure_coefficient, glycerol_fraction
     )
-    if description is not None:
-        values["description"] = description
-    if source_locator is not None:
-        values["source_locator"] = source_locator
+    values.update(given(description=description, source_locator=source_locator))
     database = open_db(db)
     with database.session(write=True) as session:
         change = catalog.update_fluid(session, name, values, source=source, new_name=rename)

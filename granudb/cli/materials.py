@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from granudb.cli.common import DbOption, Format, FormatOption, open_db, quantities
+from granudb.cli.common import DbOption, Format, FormatOption, given, open_db, quantities
 
 app = typer.Typer(help="Particle and wall materials (ρ, E, ν, roughness).", no_args_is_help=True)
 
@@ -106,10 +106,7 @@ def add(
     values: dict[str, object] = _values(
         density, youngs_modulus, poisson_ratio, roughness, correlation_length, shear_modulus
     )
-    if description is not None:
-        values["description"] = description
-    if source_locator is not None:
-        values["source_locator"] = source_locator
+    values.update(given(description=description, source_locator=source_locator))
     database = open_db(db)
     with database.session(write=True) as session:
         catalog.add_material(session, name, values, source=source)
@@ -138,10 +135,7 @@ def update(
     values: dict[str, object] = _values(
         density, youngs_modulus, poisson_ratio, roughness, correlation_length, shear_modulus
     )
-    if description is not None:
-        values["description"] = description
-    if source_locator is not None:
-        values["source_locator"] = source_locator
+    values.update(given(description=description, source_locator=source_locator))
     database = open_db(db)
     with database.session(write=True) as session:
         change = catalog.update_material(session, name, values, source=source, new_name=rename)

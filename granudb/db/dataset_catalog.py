@@ -7,25 +7,11 @@ from typing import Any
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session, aliased
 
+from granudb.db.datasets import COLUMNS
 from granudb.db.models import Collision, Dataset, Fluid, Material
 
 DATASET_COLUMNS = ["name", "version", "title", "runs", "content_hash", "license", "source"]
-COMPARED = [
-    "particle_id",
-    "wall_id",
-    "fluid_id",
-    "diameter_m",
-    "wall_diameter_m",
-    "incidence_angle_rad",
-    "v_n_in_m_s",
-    "v_t_in_m_s",
-    "omega_in_rad_s",
-    "v_n_out_m_s",
-    "v_t_out_m_s",
-    "omega_out_rad_s",
-    "temperature_c",
-    "notes",
-]
+COMPARED = ["particle_id", "wall_id", "fluid_id", *COLUMNS, "notes"]
 
 
 def _runs(session: Session) -> dict[int, int]:

@@ -26,18 +26,7 @@ from granudb.db.models import Collision, CollisionImport, Fluid, Material, name_
 from granudb.errors import ConflictError, ValidationError
 from granudb.io.rules import RULES
 
-NUMERIC = [
-    "diameter_m",
-    "wall_diameter_m",
-    "incidence_angle_rad",
-    "v_n_in_m_s",
-    "v_t_in_m_s",
-    "omega_in_rad_s",
-    "v_n_out_m_s",
-    "v_t_out_m_s",
-    "omega_out_rad_s",
-    "temperature_c",
-]
+NUMERIC = list(datasets.COLUMNS)  # the measured columns, SI
 TEXT = ["run", "particle", "wall", "fluid", "notes"]
 REQUIRED = [
     "run",
