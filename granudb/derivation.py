@@ -330,11 +330,31 @@ def collision_table(
     from sqlalchemy.orm import aliased
 
     from granudb.db import datasets as dataset_queries
+    from granudb.db.datasets import COLUMNS
     from granudb.db.models import Collision, Dataset
 
     first, second = aliased(Material), aliased(Material)
+    material_columns = [
+        "density_kg_m3",
+        "youngs_modulus_pa",
+        "poisson_ratio",
+        "roughness_rms_m",
+        "shear_modulus_pa",
+    ]
+    # Plain columns, not ORM objects: 100,000 rows load in a fraction of a second.
     query = (
-        select(Collision, Dataset.name, Dataset.version, first, second)
+        select(
+            Dataset.name.label("dataset"),
+            Dataset.version.label("version"),
+            Collision.run,
+            first.name.label("particle"),
+            second.name.label("wall"),
+            Collision.fluid_id,
+            *(getattr(Collision, name) for name in COLUMNS),
+            Collision.notes,
+            *(getattr(first, name).label(f"particle_{name}") for name in material_columns),
+            *(getattr(second, name).label(f"wall_{name}") for name in material_columns),
+        )
         .join(Dataset, Collision.dataset_id == Dataset.id)
         .join(first, Collision.particle_id == first.id)
         .join(second, Collision.wall_id == second.id)
@@ -353,47 +373,30 @@ def collision_table(
         else:
             query = query.where(Collision.fluid_id == catalog.get_fluid(session, fluid).id)
     query = query.order_by(Dataset.name, Dataset.version, Collision.run)
-    rows = session.execute(query).all()
+    result_rows = session.connection().execute(query)
+    frame = pd.DataFrame(result_rows.fetchall(), columns=list(result_rows.keys()))
     fluids = {f.id: f for f in catalog.list_fluids(session)}
-    if not rows:
+    if frame.empty:
         return pd.DataFrame({c: [] for c in LISTED_COLUMNS})
 
-    def column(getter: Any, dtype: Any = float) -> np.ndarray:
-        return np.array([getter(r) for r in rows], dtype=dtype)
+    def floats(name: str) -> np.ndarray:
+        return pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
 
-    def number(value: float | None) -> float:
-        return np.nan if value is None else value
-
-    c = {
-        name: column(lambda r, n=name: number(getattr(r[0], n)))
-        for name in (
-            "diameter_m",
-            "wall_diameter_m",
-            "incidence_angle_rad",
-            "v_n_in_m_s",
-            "v_t_in_m_s",
-            "omega_in_rad_s",
-            "v_n_out_m_s",
-            "v_t_out_m_s",
-            "omega_out_rad_s",
-            "temperature_c",
-        )
-    }
-    runs = column(lambda r: r[0].run, object)
-    fluid_ids = column(lambda r: -1 if r[0].fluid_id is None else r[0].fluid_id, int)
+    c = {name: floats(name) for name in COLUMNS}
+    fluid_ids = frame["fluid_id"].fillna(-1).to_numpy(dtype=int)
+    runs = frame["run"].to_numpy(dtype=object)
     viscosity, density = _fluid_viscosity(fluids, fluid_ids, c["temperature_c"], runs)
-    props = {}
-    for prefix, index in (("particle", 3), ("wall", 4)):
-        props[f"{prefix}_density_kg_m3"] = column(lambda r, i=index: r[i].density_kg_m3)
-        props[f"{prefix}_youngs_modulus_pa"] = column(lambda r, i=index: r[i].youngs_modulus_pa)
-        props[f"{prefix}_poisson_ratio"] = column(lambda r, i=index: r[i].poisson_ratio)
-        props[f"{prefix}_roughness_rms_m"] = column(lambda r, i=index: r[i].roughness_rms_m)
-        props[f"{prefix}_shear_modulus_pa"] = column(
-            lambda r, i=index: number(r[i].shear_modulus_pa)
-        )
-    barus = np.array(
-        [number(fluids[i].pressure_viscosity_pa_inv) if i in fluids else np.nan for i in fluid_ids]
-    )
+    props = {
+        f"{prefix}_{name}": floats(f"{prefix}_{name}")
+        for prefix in ("particle", "wall")
+        for name in material_columns
+    }
+    barus_by_id = {
+        i: (np.nan if f.pressure_viscosity_pa_inv is None else f.pressure_viscosity_pa_inv)
+        for i, f in fluids.items()
+    }
+    names_by_id = {i: f.name for i, f in fluids.items()}
+    barus = pd.Series(fluid_ids).map(barus_by_id).to_numpy(dtype=float)
     result = derive(
         **props,
         diameter_m=c["diameter_m"],
@@ -411,16 +414,16 @@ def collision_table(
     )
     frame = pd.DataFrame(
         {
-            "dataset": column(lambda r: r[1], object),
-            "version": column(lambda r: r[2], object),
+            "dataset": frame["dataset"].to_numpy(dtype=object),
+            "version": frame["version"].to_numpy(dtype=object),
             "run": runs,
-            "particle": column(lambda r: r[3].name, object),
-            "wall": column(lambda r: r[4].name, object),
-            "fluid": [fluids[i].name if i in fluids else None for i in fluid_ids],
+            "particle": frame["particle"].to_numpy(dtype=object),
+            "wall": frame["wall"].to_numpy(dtype=object),
+            "fluid": pd.Series(fluid_ids).map(names_by_id).to_numpy(dtype=object),
             **c,
             "viscosity_pa_s": viscosity,
             "particle_density_kg_m3": props["particle_density_kg_m3"],
-            "notes": column(lambda r: r[0].notes, object),
+            "notes": frame["notes"].to_numpy(dtype=object),
         }
     )
     for name, values in result.items():
