@@ -136,7 +136,15 @@ class Database:
         ``write=True`` takes SQLite's write lock at the start (``BEGIN IMMEDIATE``), so a
         write either waits for another writer and then runs whole, or does not start.
         """
-        bind = self.engine.execution_options(sqlite_begin="IMMEDIATE") if write else self.engine
+        if write:
+            bind = self.engine.execution_options(sqlite_begin="IMMEDIATE")
+        elif self.dialect == "postgresql":
+            # One snapshot for every statement of a read (a report runs many): PostgreSQL's
+            # default READ COMMITTED would let an import that commits mid-way show half.
+            # (SQLite's deferred transaction already reads one snapshot in WAL mode.)
+            bind = self.engine.execution_options(isolation_level="REPEATABLE READ")
+        else:
+            bind = self.engine
         session = Session(bind=bind, expire_on_commit=False)
         try:
             yield session
