@@ -138,3 +138,28 @@ def test_concurrent_first_use_creates_and_seeds_once(new_db: str) -> None:
         assert connection.execute(text("SELECT count(*) FROM materials")).scalar() == 3
         assert connection.execute(text("SELECT count(*) FROM sources")).scalar() >= 3
     engine.dispose()
+
+
+def test_a_database_at_the_first_revision_is_migrated_forward_with_its_data(
+    cli, new_db: str
+) -> None:
+    """A file made by the first release (revision 0001) keeps every row through
+    ``granudb db upgrade``, and the new column appears."""
+    from granudb.db.engine import open_database
+    from granudb.io.seed import load_seed
+
+    database = open_database(new_db, migrate=False)
+    migration.upgrade(database, "0001")
+    with database.engine.begin() as connection:
+        connection.execute(text("INSERT INTO datasets (name, version) VALUES ('old', '1')"))
+    with database.session(write=True) as session:
+        load_seed(session)
+    database.dispose()
+    before = cli("materials", "list", "--format", "json", db=new_db)
+    # opening with any command migrates it forward
+    assert before.exit_code == 0, before.stderr
+    current = cli("db", "current", "--format", "json", db=new_db).stdout
+    assert f'"revision": "{migration.head_revision()}"' in current
+    datasets = cli("dataset", "list", "--format", "json", db=new_db).stdout
+    assert '"name": "old"' in datasets
+    assert "glass" in before.stdout

@@ -235,6 +235,8 @@ class Dataset(Timestamped, Base):
     license: Mapped[str | None] = mapped_column(String(200))
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     content_hash: Mapped[str | None] = mapped_column(String(80))
+    #: The dataset's own DOI (e.g. a Zenodo version DOI), once it has been published.
+    doi: Mapped[str | None] = mapped_column(String(200))
 
     source: Mapped[Source | None] = relationship(lazy="joined")
 

@@ -227,7 +227,9 @@ def _citation(dataset: Dataset, content_hash: str, created: str) -> str:
     ]
     if dataset.license:
         lines.append(f"license: {quoted(dataset.license)}")
-    if dataset.source is not None and dataset.source.doi:
+    if dataset.doi:
+        lines.append(f"doi: {quoted(dataset.doi)}")
+    elif dataset.source is not None and dataset.source.doi:
         lines.append(f"doi: {quoted(dataset.source.doi)}")
     lines.append(f"abstract: {quoted(dataset.description or '')}")
     lines.append(f"keywords: [{quoted('granudb:content_hash=' + content_hash)}]")
@@ -287,6 +289,8 @@ def build_package(
     }
     if dataset.license:
         descriptor["licenses"] = [{"name": dataset.license}]
+    if dataset.doi:
+        descriptor["id"] = f"https://doi.org/{dataset.doi}"
     files["datapackage.json"] = (
         json.dumps(descriptor, indent=2, ensure_ascii=False) + "\n"
     ).encode("utf-8")

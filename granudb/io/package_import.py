@@ -655,6 +655,9 @@ def import_package(
             if licenses and isinstance(licenses[0], dict) and licenses[0].get("name")
             else None,
         )
+        package_id = descriptor.get("id")
+        if isinstance(package_id, str) and package_id.startswith("https://doi.org/"):
+            dataset.doi = package_id.removeprefix("https://doi.org/")[:200]
         session.add(dataset)
         session.flush()
         declared = descriptor.get("granudb:content_hash")
