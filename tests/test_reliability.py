@@ -147,3 +147,31 @@ def test_read_only_database_is_refused_in_one_line(cli, db: str) -> None:
         "Error: database: is read-only (attempt to write a readonly database); nothing was changed"
     )
     assert dump_hash(db) == before
+
+
+@pytest.mark.sqlite_only
+def test_a_full_disk_is_refused_in_one_line_with_nothing_written(db: str, tmp_path: Path) -> None:
+    """SQLite's ``max_page_count`` makes the file "full" exactly as a full disk does
+    (SQLITE_FULL): the import is refused with one line and the database is unchanged."""
+    from sqlalchemy import event
+
+    from granudb.db.engine import open_database
+    from granudb.errors import DatabaseAccessError
+    from granudb.io.collisions_csv import import_collisions
+
+    before = dump_hash(db)
+    database = open_database(db)
+    with database.engine.connect() as connection:
+        pages = connection.execute(text("PRAGMA page_count")).scalar()
+    database.engine.dispose()
+
+    @event.listens_for(database.engine, "connect")
+    def _cap(dbapi_connection, _record) -> None:
+        dbapi_connection.execute(f"PRAGMA max_page_count={pages + 5}")
+
+    with pytest.raises(DatabaseAccessError) as info:
+        import_collisions(database, _csv(tmp_path / "full.csv", 20_000, "f"), dataset="full")
+    database.dispose()
+    assert str(info.value).startswith("database: disk full or failing")
+    assert "\n" not in str(info.value)
+    assert dump_hash(db) == before
