@@ -168,7 +168,9 @@ def restitution(frame: Any, model: str = "threshold") -> list[dict[str, Any]]:
             "parameter_stderr": math.nan,
             "parameter_name": "critical_stokes" if model == "threshold" else "k",
         }
-        if len(st) >= 3:
+        # A two-parameter curve needs St_n to vary: at least 3 distinct values spanning a
+        # factor of 2; otherwise the fit is left empty rather than made up.
+        if len(np.unique(st)) >= 3 and float(np.max(st)) >= 2.0 * float(np.min(st)):
             guess = (min(1.0, float(np.max(e)) * 1.05), max(1.0, float(np.min(st)) * 0.5))
             try:
                 values, covariance = curve_fit(

@@ -201,6 +201,7 @@ def regime_map_figure(
     point: tuple[float, float] | None,
     critical_stokes: float,
     figure_id: str = "fig-regime-map",
+    runs: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> dict:
     """Impact velocity × viscosity plane for the pair, shaded by regime."""
     from granudb.physics.derive import derive
@@ -243,7 +244,14 @@ def regime_map_figure(
     gap_mu = (3 * sigma) ** 2.5 * math.pi * e_star / (4 * velocity * radius**1.5)
     stokes_mu = 2 * particle["density_kg_m3"] * radius * velocity / (9 * critical_stokes)
     svg = plots.regime_map(
-        velocity, viscosity, regime, (velocity, gap_mu), (velocity, stokes_mu), point, figure_id
+        velocity,
+        viscosity,
+        regime,
+        (velocity, gap_mu),
+        (velocity, stokes_mu),
+        point,
+        figure_id,
+        runs,
     )
     return {
         "id": figure_id,
@@ -550,6 +558,8 @@ def _add_collisions(session: Any, report: dict[str, Any], query: Any, *, with_fl
         },
     ]
     immersed = frame["normal_stokes_number"].notna().to_numpy()
+    if with_flag and immersed.any():
+        _add_regime_map(session, report, frame[immersed], query.critical_stokes)
     if immersed.any():
         st_n = frame["normal_stokes_number"].to_numpy(float)[immersed]
         e = frame["normal_restitution"].to_numpy(float)[immersed]
@@ -625,3 +635,27 @@ def _published_for(published: list[dict[str, Any]], fit: dict[str, Any]) -> str:
         )
         or "—"
     )
+
+
+def _add_regime_map(
+    session: Any, report: dict[str, Any], immersed: Any, critical_stokes: float
+) -> None:
+    """The regime map of the pair with the most immersed runs, with those runs on it."""
+    from granudb.db import catalog
+
+    pairs = immersed.groupby(["particle", "wall"]).size().sort_values(ascending=False)
+    particle, wall = pairs.index[0]
+    runs = immersed[(immersed["particle"] == particle) & (immersed["wall"] == wall)]
+    first = catalog.material_record(catalog.get_material(session, particle))
+    second = catalog.material_record(catalog.get_material(session, wall))
+    figure = regime_map_figure(
+        first,
+        second,
+        None,
+        float(runs["diameter_m"].median()),
+        None,
+        critical_stokes,
+        runs=(runs["v_n_in_m_s"].to_numpy(float), runs["viscosity_pa_s"].to_numpy(float)),
+    )
+    figure["caption"] += f" Dots: the {len(runs)} immersed runs of this pair."
+    report["figures"].append(figure)

@@ -206,6 +206,7 @@ def regime_map(
     stokes_line: tuple[np.ndarray, np.ndarray] | None,
     point: tuple[float, float] | None = None,
     figure_id: str = "fig-regime-map",
+    runs: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> str:
     """Impact velocity × viscosity plane shaded by regime, with h_m = σ and St = St_c.
 
@@ -238,6 +239,18 @@ def regime_map(
             stokes_line[0], stokes_line[1] * 1e3, "--", color="black", lw=1.2, label="St_n = St_c"
         )
         handles.append(line)
+    if runs is not None and len(runs[0]):
+        rv, rmu = thin(np.asarray(runs[0], float), np.asarray(runs[1], float))
+        (dots,) = ax.plot(
+            rv,
+            rmu * 1e3,
+            ".",
+            color="black",
+            ms=3,
+            alpha=0.6,
+            label=f"measured runs ({len(runs[0])})",
+        )
+        handles.append(dots)
     if point is not None:
         (marker,) = ax.plot(
             [point[0]], [point[1] * 1e3], "*", color="crimson", ms=12, label="this collision"
