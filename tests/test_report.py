@@ -227,3 +227,26 @@ def test_html_renders_in_headless_chromium(cli, db, tmp_path) -> None:
         )
         assert shot.returncode == 0, shot.stderr[-2000:]
         assert (ARTIFACTS / name).stat().st_size > 10_000
+
+
+def test_report_takes_the_query_filters_of_collisions_list(cli, db, tmp_path) -> None:
+    assert cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db).exit_code == 0
+    out = tmp_path / "filtered.html"
+    result = cli(
+        "report",
+        "--dataset",
+        "example",
+        "--fluid",
+        "dry",
+        "--angle-range",
+        "20..60 deg",
+        "--output",
+        str(out),
+        db=db,
+    )
+    assert result.exit_code == 0, result.stderr
+    html = out.read_text(encoding="utf-8")
+    # dry runs at 25°, 40° and 60° only: too few for two lines of ≥ 2 runs, so all slide
+    assert "--angle-range" in html and "<td>0 / 3</td>" in html
+    bad = cli("report", "--dataset", "example", "--angle-range", "20 deg", db=db)
+    assert bad.exit_code == 1 and "--angle-range: 20 deg must be LOW..HIGH" in bad.stderr

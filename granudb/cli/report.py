@@ -27,6 +27,9 @@ def report(
     min_st: Annotated[float | None, typer.Option("--min-st")] = None,
     max_st: Annotated[float | None, typer.Option("--max-st")] = None,
     regime: Annotated[str | None, typer.Option("--regime")] = None,
+    angle_range: Annotated[
+        str | None, typer.Option("--angle-range", help="Incidence angles, '10..40 deg'.")
+    ] = None,
     diameter: Annotated[
         str, typer.Option("--diameter", help="Pair scenario: particle diameter.")
     ] = "12.7 mm",
@@ -51,6 +54,7 @@ def report(
 ) -> None:
     """Write a lab report: properties with sources, derived quantities, verdicts with the
     roughness flag, fits next to published values, figures and methods."""
+    from granudb.cli.collisions import _angle_range
     from granudb.cli.common import open_db
     from granudb.cli.output import say
     from granudb.cli.pair import _angle
@@ -91,6 +95,7 @@ def report(
                 fluid=fluid,
                 min_st=min_st,
                 max_st=max_st,
+                angle_range=_angle_range(angle_range) if angle_range else None,
                 regime=regime,
                 critical_stokes=critical_stokes,
             )
