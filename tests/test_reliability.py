@@ -94,7 +94,13 @@ def test_sigkill_during_a_large_import_leaves_none_of_it(db: str, tmp_path: Path
     big = _csv(tmp_path / "big.csv", 300_000, "big")
     before = dump_hash(db)
     process = _granudb("collisions", "import", str(big), "--dataset", "big", "--db", db)
-    time.sleep(3.0)  # well into the insert; the whole import takes several seconds
+    # Kill once rows are being written: the write-ahead log has grown past 2 MB.
+    wal = Path(db + "-wal")
+    deadline = time.time() + 60
+    while time.time() < deadline and process.poll() is None:
+        if wal.exists() and wal.stat().st_size > 2_000_000:
+            break
+        time.sleep(0.02)
     assert process.poll() is None, "the import finished before it could be killed"
     os.kill(process.pid, signal.SIGKILL)
     process.wait(timeout=30)
