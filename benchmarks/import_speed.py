@@ -76,7 +76,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rows", type=int, default=1_000_000)
     args = parser.parse_args()
-    from granudb.db.engine import open_database
+    from granudb.api.database import connect as open_database
     from granudb.io.collisions_csv import import_collisions
 
     with tempfile.TemporaryDirectory() as folder:

@@ -1,22 +1,31 @@
 """granudb: a materials-and-regime database for particle-wall collisions in liquids.
 
-The library is the product; the ``granudb`` command is a thin layer over it.
-Heavy dependencies (pandas, SQLAlchemy, matplotlib) are imported lazily so that
-``granudb --help`` stays fast.
+The library is the product; the ``granudb`` command is a thin layer over it. The public
+functions live in ``granudb.api`` and are imported here on first use, so that
+``import granudb`` and ``granudb --help`` stay fast.
 """
 
-__version__ = "0.1.0"
+from __future__ import annotations
 
-__all__ = ["__version__", "collisions"]
+from typing import Any
+
+from granudb.version import __version__
+
+_API = {
+    "connect": "granudb.api.database",
+    "collisions": "granudb.api.collisions",
+}
+
+__all__ = ["__version__", *_API]
 
 
-def collisions(database: str | None = None, **filters: object) -> object:
-    """Measured collisions with every derived column, as a pandas DataFrame.
+def __getattr__(name: str) -> Any:
+    if name in _API:
+        from importlib import import_module
 
-    ``database`` is a URL or SQLite path (default: as the command line); ``filters`` are
-    those of ``granudb collisions list``: dataset, version, particle, wall, fluid, min_st,
-    max_st, angle_range (radians), regime, critical_stokes.
-    """
-    from granudb.query import collisions as query
+        return getattr(import_module(_API[name]), name)
+    raise AttributeError(f"module 'granudb' has no attribute {name!r}")
 
-    return query(database, **filters)
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

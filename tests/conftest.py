@@ -74,7 +74,7 @@ def _postgres_url(database: str) -> str:
 @pytest.fixture(scope="session")
 def template_db(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     """A migrated, seeded database to copy: a file path (SQLite) or a database name."""
-    from granudb.db.engine import open_database
+    from granudb.api.database import connect as open_database
 
     if BACKEND == "sqlite":
         path = tmp_path_factory.mktemp("template") / "granudb.sqlite"

@@ -135,8 +135,8 @@ def test_add_update_remove_a_fluid(cli, db: str) -> None:
 
 
 def test_removing_a_material_in_use_says_by_what(cli, db: str) -> None:
+    from granudb.api.database import connect as open_database
     from granudb.db.catalog import get_material
-    from granudb.db.engine import open_database
     from granudb.db.models import Collision, Dataset
 
     database = open_database(db)

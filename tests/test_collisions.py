@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from support import dump_hash
 
-from granudb.db.engine import open_database
+from granudb.api.database import connect as open_database
 from granudb.errors import GranudbError
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
@@ -315,9 +315,9 @@ def test_python_api_returns_a_dataframe(cli, db: str) -> None:
 def test_walton_fit_recovers_the_published_dry_values(db: str, tmp_path: Path) -> None:
     # Synthetic runs scattered around the paper's dry fits (β = 0.34, μ_f = 0.11 for steel;
     # β = 0.39, μ_f = 0.106 for glass; ē = 0.97): the fit must give them back within error.
-    from granudb import fits
+    from granudb.analysis import fits
+    from granudb.analysis.query import CollisionQuery, select_collisions
     from granudb.io.collisions_csv import import_collisions
-    from granudb.query import CollisionQuery, select_collisions
 
     rows = walton_rows(120, "steel", "", 0.34, 0.11, 0.97, 0.01, seed=4) + walton_rows(
         120, "glass", "", 0.39, 0.106, 0.97, 0.01, seed=5
@@ -357,7 +357,7 @@ def test_fit_commands(cli, db: str) -> None:
 def test_restitution_models_recover_their_parameters() -> None:
     import pandas as pd
 
-    from granudb import fits
+    from granudb.analysis import fits
 
     st_n = np.geomspace(5, 2000, 60)
     for model, parameter in (("threshold", 10.0), ("exponential", 35.0)):

@@ -145,7 +145,7 @@ def test_fluid_rules(db: str, column: str, value: object) -> None:
 
 def test_rules_module_matches_the_database(db: str) -> None:
     """The pre-write checks and the CHECK constraints agree at every boundary."""
-    from granudb.io.rules import RULES
+    from granudb.vocabulary.rules import RULES
 
     for column in ("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m"):
         rule = RULES[column]

@@ -7,8 +7,8 @@ import pytest
 from sqlalchemy import func, select, text
 from support import engine_for
 
+from granudb.api.database import connect as open_database
 from granudb.db import migration
-from granudb.db.engine import open_database
 from granudb.db.models import Base, Material
 
 
@@ -145,10 +145,10 @@ def test_a_database_at_the_first_revision_is_migrated_forward_with_its_data(
 ) -> None:
     """A file made by the first release (revision 0001) keeps every row through
     ``granudb db upgrade``, and the new column appears."""
-    from granudb.db.engine import open_database
-    from granudb.io.seed import load_seed
+    from granudb.api.database import load_seed
+    from granudb.db.engine import open_database as open_raw
 
-    database = open_database(new_db, migrate=False)
+    database = open_raw(new_db, migrate=False)
     migration.upgrade(database, "0001")
     with database.engine.begin() as connection:
         connection.execute(text("INSERT INTO datasets (name, version) VALUES ('old', '1')"))

@@ -23,7 +23,7 @@ ROWS = 2_000
 
 READER = """
 import json, sys, time
-from granudb.db.engine import open_database
+from granudb.api.database import connect as open_database
 from granudb.db.dataset_catalog import dataset_records
 database = open_database(sys.argv[1])
 seen = []
@@ -161,7 +161,7 @@ def test_a_full_disk_is_refused_in_one_line_with_nothing_written(db: str, tmp_pa
     (SQLITE_FULL): the import is refused with one line and the database is unchanged."""
     from sqlalchemy import event
 
-    from granudb.db.engine import open_database
+    from granudb.api.database import connect as open_database
     from granudb.errors import DatabaseAccessError
     from granudb.io.collisions_csv import import_collisions
 

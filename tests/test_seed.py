@@ -10,10 +10,10 @@ import pytest
 from sqlalchemy import func, select
 from support import dump_hash
 
-from granudb.db.engine import open_database
+from granudb.api.database import connect as open_database
+from granudb.api.database import load_seed
 from granudb.db.models import Fluid, Material, PublishedValue
 from granudb.errors import ValidationError
-from granudb.io.seed import load_seed
 from granudb.resources import shipped_dir
 
 SEED = shipped_dir("seed_data")

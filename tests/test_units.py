@@ -9,7 +9,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from granudb.errors import ValidationError
-from granudb.io.units import engineering, parse_quantity, round_significant
+from granudb.io.units import parse_quantity, round_significant
+from granudb.report.format import engineering
 
 
 @pytest.mark.parametrize(

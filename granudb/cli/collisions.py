@@ -138,9 +138,9 @@ def list_(
     fmt: FormatOption = Format.table,
 ) -> None:
     """Each run with e, β, Ψ_in, Ψ_out, μ_f (2.9), St_n, Re and the regime verdicts."""
+    from granudb.analysis.derivation import LISTED_COLUMNS
+    from granudb.analysis.query import CollisionQuery, select_collisions
     from granudb.cli.output import emit
-    from granudb.derivation import LISTED_COLUMNS
-    from granudb.query import CollisionQuery, select_collisions
 
     database = open_db(db)
     query = CollisionQuery(

@@ -41,9 +41,9 @@ FormatOption = Annotated[
 
 def open_db(url: str | None) -> Database:
     """Open the database, creating, migrating and seeding it on first use."""
-    from granudb.db.engine import open_database
+    from granudb.api.database import connect
 
-    database = open_database(url)
+    database = connect(url)
     if database.created:
         from granudb.cli.output import note
 
@@ -55,8 +55,9 @@ def quantity(text: str | None, column: str, option: str) -> float | None:
     """Parse an option's text into SI for ``column`` and check its physical rule."""
     if text is None:
         return None
-    from granudb.io.rules import check_value
-    from granudb.io.units import parse_quantity, unit_of_column
+    from granudb.io.units import parse_quantity
+    from granudb.vocabulary.rules import check_value
+    from granudb.vocabulary.units import unit_of_column
 
     value = parse_quantity(text, unit_of_column(column), option)
     check_value(column, value, field=option, shown=text)

@@ -25,16 +25,16 @@ def upgrade(
     db: DbOption = None,
 ) -> None:
     """Migrate the database forward (a new database is created and seeded)."""
+    from granudb.api.database import connect
     from granudb.cli.output import say
     from granudb.db import migration
-    from granudb.db.engine import open_database
 
     if revision == "head":
         database = _open(db)
         with database.engine.connect() as connection:
             before = migration.current_revision(connection)
         database.dispose()
-        database = open_database(db)
+        database = connect(db)
         after = migration.head_revision()
     else:
         database = _open(db)
@@ -93,9 +93,9 @@ def history(fmt: FormatOption = Format.table) -> None:
 @app.command()
 def seed(db: DbOption = None) -> None:
     """Reload the shipped seed data: adds what is missing, updates what changed, says what."""
+    from granudb.api.database import load_seed
     from granudb.cli.common import open_db
     from granudb.cli.output import say
-    from granudb.io.seed import load_seed
 
     database = open_db(db)
     if database.created:

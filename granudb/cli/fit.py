@@ -20,7 +20,7 @@ Fluid = Annotated[str | None, typer.Option("--fluid", help="A fluid name, or 'dr
 
 
 def _frame(db, dataset, version, particle, wall, fluid):
-    from granudb.query import CollisionQuery, select_collisions
+    from granudb.analysis.query import CollisionQuery, select_collisions
 
     database = open_db(db)
     query = CollisionQuery(
@@ -41,7 +41,7 @@ def walton(
     fmt: FormatOption = Format.table,
 ) -> None:
     """β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē."""
-    from granudb import fits
+    from granudb.analysis import fits
     from granudb.cli.output import emit
 
     _, frame = _frame(db, dataset, version, particle, wall, fluid)
@@ -59,7 +59,7 @@ def restitution(
     fmt: FormatOption = Format.table,
 ) -> None:
     """e against the normal Stokes number for immersed runs: e_dry and St_c (or k)."""
-    from granudb import fits
+    from granudb.analysis import fits
     from granudb.cli.output import emit
 
     _, frame = _frame(db, dataset, version, particle, wall, None)
@@ -107,10 +107,10 @@ def gap_viscosity(
     fmt: FormatOption = Format.table,
 ) -> None:
     """Gap viscosity μ₀ fitting (5.10) to smooth sliding runs, and the gap temperature."""
-    from granudb import fits
+    from granudb.analysis import fits
+    from granudb.analysis.derivation import fluid_model
     from granudb.cli.output import emit
     from granudb.db import catalog
-    from granudb.derivation import fluid_model
 
     database, frame = _frame(db, dataset, version, particle, wall, fluid)
     with database.session() as session:

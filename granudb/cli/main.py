@@ -13,9 +13,9 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from granudb import __version__
 from granudb.cli import collisions, dataset, db, fit, fluids, materials, pair, report, sources
 from granudb.cli.common import DbOption
+from granudb.version import __version__
 
 
 class GranudbGroup(TyperGroup):
@@ -99,7 +99,7 @@ def datasette_metadata(
 
     from granudb.cli.output import to_json
     from granudb.config import resolve_database_url
-    from granudb.vocabulary import datasette_metadata as metadata
+    from granudb.io.datasette import datasette_metadata as metadata
 
     url = make_url(resolve_database_url(db))
     name = (

@@ -65,7 +65,7 @@ def say(message: str) -> None:
 
 def label(column: str) -> str:
     """A table header for a column: ``youngs_modulus_pa`` → ``youngs modulus``."""
-    from granudb.io.units import UNITS
+    from granudb.vocabulary.units import UNITS
 
     for suffix in sorted((s for s in UNITS if s and s != "fraction"), key=len, reverse=True):
         if column.endswith("_" + suffix):
@@ -89,7 +89,7 @@ def emit(
         from rich.table import Table
         from rich.text import Text
 
-        from granudb.io.units import display
+        from granudb.report.format import display
 
         table = Table(title=Text(title) if title else None, title_justify="left")
         for column in columns:
@@ -115,7 +115,7 @@ def emit_one(
     from rich.table import Table
     from rich.text import Text
 
-    from granudb.io.units import display
+    from granudb.report.format import display
 
     table = Table(title=Text(title) if title else None, title_justify="left", show_header=False)
     table.add_column("property", style="bold")

@@ -45,8 +45,8 @@ def pair(
     fmt: PairFormat = Format.table,
 ) -> None:
     """Properties, every derived quantity and the regime verdicts for one collision."""
+    from granudb.analysis.derivation import derive_pair
     from granudb.cli.common import open_db
-    from granudb.derivation import derive_pair
 
     if fmt is Format.csv:
         from granudb.errors import ValidationError
@@ -80,8 +80,8 @@ def pair(
     if fmt is Format.json:
         import sys
 
+        from granudb.analysis.derivation import pair_json
         from granudb.cli.output import to_json
-        from granudb.derivation import pair_json
 
         sys.stdout.write(to_json(pair_json(result)) + "\n")
         return
@@ -103,9 +103,9 @@ def _print(result, critical_stokes: float) -> None:
     from rich.text import Text
 
     from granudb.cli.output import console, label
-    from granudb.io.units import display
-    from granudb.physics.derive import DERIVED_COLUMNS
-    from granudb.verdicts import verdicts
+    from granudb.report.format import display
+    from granudb.report.verdicts import verdicts
+    from granudb.vocabulary import DERIVED_TERMS
 
     out = console()
     inputs = Table(title="Collision", title_justify="left", show_header=False)
@@ -158,7 +158,8 @@ def _print(result, critical_stokes: float) -> None:
     derived.add_column("quantity")
     derived.add_column("value", justify="right")
     derived.add_column("relation", overflow="fold")
-    for name, _, description in DERIVED_COLUMNS:
+    for name, described in DERIVED_TERMS.items():
+        description = described.description
         if name not in result.derived or name == "incidence_angle_rad":
             continue
         derived.add_row(name, Text(display(result.derived[name], name)), Text(description))

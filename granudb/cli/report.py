@@ -54,12 +54,12 @@ def report(
 ) -> None:
     """Write a lab report: properties with sources, derived quantities, verdicts with the
     roughness flag, fits next to published values, figures and methods."""
+    from granudb.analysis.query import CollisionQuery
     from granudb.cli.collisions import _angle_range
     from granudb.cli.common import open_db
     from granudb.cli.output import say
     from granudb.cli.pair import _angle
     from granudb.errors import ValidationError
-    from granudb.query import CollisionQuery
     from granudb.report.build import dataset_report, pair_report
     from granudb.report.write import write_report
 

@@ -25,7 +25,7 @@ from granudb.db.models import (
 )
 from granudb.db.upsert import Change, same_value
 from granudb.errors import ConflictError, NotFoundError, ValidationError
-from granudb.io.rules import check_record
+from granudb.vocabulary.rules import check_record
 
 MATERIAL_COLUMNS = [
     "name",

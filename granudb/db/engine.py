@@ -11,7 +11,7 @@ with ``BEGIN IMMEDIATE`` so a writer waits for the lock up front instead of fail
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -162,12 +162,20 @@ class Database:
         self.engine.dispose()
 
 
-def open_database(url: str | None = None, *, seed: bool = True, migrate: bool = True) -> Database:
-    """Open (and on first use create, migrate and seed) the database at ``url``.
+def open_database(
+    url: str | None = None,
+    *,
+    on_create: Callable[[Session], list[str]] | None = None,
+    migrate: bool = True,
+) -> Database:
+    """Open (and on first use create and migrate) the database at ``url``.
 
-    ``migrate=False`` opens without touching the schema (used by ``granudb db`` commands,
-    which manage it explicitly); an existing database at an older revision is otherwise
-    migrated forward, and one at an unknown (newer) revision is refused.
+    ``on_create`` fills a brand-new database (the seed data, loaded by the layer above:
+    ``granudb.api.connect``) in the same transaction that creates the schema, and returns
+    lines to report. ``migrate=False`` opens without touching the schema (used by
+    ``granudb db`` commands, which manage it explicitly); an existing database at an older
+    revision is otherwise migrated forward, and one at an unknown (newer) revision is
+    refused.
     """
     from granudb.db import migration
 
@@ -180,15 +188,14 @@ def open_database(url: str | None = None, *, seed: bool = True, migrate: bool = 
     if not migrate:
         return database
 
-    def _seed(connection: Connection) -> None:
-        from granudb.io.seed import load_seed
-
+    def _fill(connection: Connection) -> None:
+        assert on_create is not None
         with Session(bind=connection) as session:
-            database.seed_report = load_seed(session)
+            database.seed_report = on_create(session)
             session.flush()
 
     try:
-        database.created = migration.ensure_current(database, _seed if seed else None)
+        database.created = migration.ensure_current(database, _fill if on_create else None)
     except DBAPIError as exc:
         engine.dispose()
         raise translate_db_error(exc) from None

@@ -24,7 +24,7 @@ from sqlalchemy import select
 from granudb.db import datasets
 from granudb.db.models import Collision, CollisionImport, Fluid, Material, name_key
 from granudb.errors import ConflictError, ValidationError
-from granudb.io.rules import RULES
+from granudb.vocabulary.rules import RULES
 
 NUMERIC = list(datasets.COLUMNS)  # the measured columns, SI
 TEXT = ["run", "particle", "wall", "fluid", "notes"]

@@ -23,10 +23,10 @@ from typing import Any
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from granudb import __version__
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
 from granudb.errors import ConflictError, ValidationError
 from granudb.io.package_schema import DESCRIPTIONS, columns, table_schema
+from granudb.version import __version__
 
 PROFILE = "https://datapackage.org/profiles/2.0/datapackage.json"
 RESOURCE_ORDER = ["collisions", "materials", "fluids", "fluid_points", "sources"]

@@ -30,8 +30,8 @@ from typing import Any
 
 from granudb.errors import GranudbError
 from granudb.io.package_schema import PRIMARY_KEYS, RESOURCES, columns
-from granudb.io.rules import RULES
 from granudb.vocabulary import term
+from granudb.vocabulary.rules import RULES
 
 MAX_DESCRIPTOR_BYTES = 1_000_000
 MAX_RESOURCE_BYTES = 2_000_000_000

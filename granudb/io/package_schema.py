@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from granudb.io.rules import RULES
 from granudb.vocabulary import term
+from granudb.vocabulary.rules import RULES
 
 # (name, type, required) per resource, in file column order.
 RESOURCES: dict[str, list[tuple[str, str, bool]]] = {

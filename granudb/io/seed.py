@@ -1,26 +1,20 @@
-"""Loading ``seed_data/``: the published materials, fluids and numbers granudb ships.
+"""Reading ``seed_data/``: the published materials, fluids and numbers granudb ships.
 
 The files are meant to be read and edited by people (units in the CSV headers, sources in
-TOML). Loading is idempotent: a second load changes nothing, and a changed value updates
-its row and is reported. Rows are never deleted by a load, so nothing a user added is lost.
+TOML). This module turns them into checked SI records; ``granudb.db.seed_store`` writes
+them (idempotently, reporting every change).
 """
 
 from __future__ import annotations
 
 import tomllib
-from collections import Counter
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from sqlalchemy import select
-from sqlalchemy.orm import Session
-
-from granudb.db.models import Fluid, FluidPoint, Material, PublishedValue, Source, name_key
-from granudb.db.upsert import Change, upsert
-from granudb.errors import ValidationError
-from granudb.io.rules import check_record
 from granudb.io.tables import convert_frame, map_headers
 from granudb.resources import shipped_dir
+from granudb.vocabulary.rules import check_record
 
 MATERIAL_NUMERIC = [
     "density_kg_m3",
@@ -85,106 +79,26 @@ def _missing(value: Any) -> bool:
     return value is None or (isinstance(value, float) and value != value) or value == ""
 
 
-class _Resolver:
-    """Looks up referenced rows by key or name while loading."""
+@dataclass
+class SeedData:
+    """The seed files as SI records, in the order they must be written."""
 
-    def __init__(self, session: Session) -> None:
-        self.session = session
-
-    def source(self, key: str | None, where: str) -> int | None:
-        if key is None:
-            return None
-        found = self.session.scalars(select(Source.id).filter_by(key=key)).one_or_none()
-        if found is None:
-            raise ValidationError(where, key, "names no source in sources.toml")
-        return found
-
-    def named(self, model: type, name: str | None, where: str) -> int | None:
-        if name is None:
-            return None
-        found = self.session.scalars(select(model.id).filter_by(name_key=name_key(name)))
-        row = found.one_or_none()
-        if row is None:
-            raise ValidationError(where, name, f"names no {model.__tablename__[:-1]}")
-        return row
+    sources: list[dict[str, Any]]
+    materials: list[dict[str, Any]]
+    fluids: list[dict[str, Any]]
+    points: list[dict[str, Any]]
+    published: list[dict[str, Any]]
 
 
-def load_seed(session: Session, folder: Path | None = None) -> list[str]:
-    """Load every seed file in ``folder`` (default: the shipped ``seed_data``).
-
-    Returns one line per change plus a summary line; raises ``ValidationError`` (and the
-    caller's transaction rolls back) if a file breaks a rule.
-    """
+def read_seed(folder: Path | None = None) -> SeedData:
+    """Every seed file in ``folder`` (default: the shipped ``seed_data``), checked."""
     folder = folder or shipped_dir("seed_data")
-    resolve = _Resolver(session)
-    changes: list[Change] = []
-
     sources = tomllib.loads((folder / "sources.toml").read_text(encoding="utf-8"))["sources"]
-    for entry in sources:
-        values = {k: entry.get(k) for k in ("citation", "doi", "url", "year", "notes")}
-        values["kind"] = entry.get("kind", "publication")
-        changes.append(
-            upsert(session, Source, {"key": entry["key"]}, values, f"source {entry['key']}")[1]
-        )
-
-    for row in read_table(folder / "materials.csv", MATERIAL_NUMERIC, MATERIAL_TEXT):
-        name = row.pop("name")
-        row["source_id"] = resolve.source(row.pop("source"), f"materials.csv {name}")
-        changes.append(
-            upsert(
-                session,
-                Material,
-                {"name_key": name_key(name)},
-                {"name": name, **row},
-                f"material {name}",
-            )[1]
-        )
-
-    for row in read_table(folder / "fluids.csv", FLUID_NUMERIC, FLUID_TEXT):
-        name = row.pop("name")
-        for prefix in ("", "density_", "pressure_viscosity_"):
-            row[f"{prefix}source_id"] = resolve.source(
-                row.pop(f"{prefix}source"), f"fluids.csv {name}"
-            )
-        changes.append(
-            upsert(
-                session, Fluid, {"name_key": name_key(name)}, {"name": name, **row}, f"fluid {name}"
-            )[1]
-        )
-
     points = folder / "fluid_points.csv"
-    if points.exists():
-        for row in read_table(points, POINT_NUMERIC, POINT_TEXT):
-            fluid = row.pop("fluid")
-            fluid_id = resolve.named(Fluid, fluid, "fluid_points.csv fluid")
-            row["source_id"] = resolve.source(row.pop("source"), "fluid_points.csv")
-            key = {"fluid_id": fluid_id, "temperature_c": row.pop("temperature_c")}
-            label = f"fluid point {fluid} at {key['temperature_c']:g} °C"
-            changes.append(upsert(session, FluidPoint, key, row, label)[1])
-
-    for row in read_table(folder / "published_values.csv", PUBLISHED_NUMERIC, PUBLISHED_TEXT):
-        where = f"published_values.csv {row['label']}"
-        key = {
-            "source_id": resolve.source(row.pop("source"), where),
-            "label": row.pop("label"),
-            "quantity": row.pop("quantity"),
-        }
-        row["particle_id"] = resolve.named(Material, row.pop("particle"), where)
-        row["wall_id"] = resolve.named(Material, row.pop("wall"), where)
-        row["fluid_id"] = resolve.named(Fluid, row.pop("fluid"), where)
-        label = f"published value {key['label']} / {key['quantity']}"
-        changes.append(upsert(session, PublishedValue, key, row, label)[1])
-
-    session.flush()
-    return summarize(changes)
-
-
-def summarize(changes: list[Change]) -> list[str]:
-    """One line per update, then a count of what was added, updated and left alone."""
-    lines = [c.describe() for c in changes if c.action == "updated"]
-    counts = Counter(c.action for c in changes)
-    lines.append(
-        f"seed: {counts['added']} added, {counts['updated']} updated, "
-        f"{counts['unchanged']} unchanged"
+    return SeedData(
+        sources=list(sources),
+        materials=read_table(folder / "materials.csv", MATERIAL_NUMERIC, MATERIAL_TEXT),
+        fluids=read_table(folder / "fluids.csv", FLUID_NUMERIC, FLUID_TEXT),
+        points=read_table(points, POINT_NUMERIC, POINT_TEXT) if points.exists() else [],
+        published=read_table(folder / "published_values.csv", PUBLISHED_NUMERIC, PUBLISHED_TEXT),
     )
-    return lines

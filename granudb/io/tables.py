@@ -13,7 +13,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from granudb.errors import ValidationError
-from granudb.io.units import Unit, conversion, unit_of_column
+from granudb.io.units import conversion
+from granudb.vocabulary.units import Unit, unit_of_column
 
 _HEADER = re.compile(r"^\s*(?P<base>[A-Za-z_][A-Za-z0-9_ ]*?)\s*(\[(?P<unit>[^\]]*)\])?\s*$")
 

@@ -1,9 +1,10 @@
-"""Units at the edges: parse what people type, format what people read.
+"""Units at the edges: parse what people type.
 
 Inside granudb every number is SI and every name carries its unit
 (``youngs_modulus_pa``). People type ``"190 GPa"`` or ``"4.5 cP"``; this module turns that
-into a float in the column's unit with Pint, refusing a wrong dimension by field name, and
-formats SI floats back into engineering notation (``60 GPa``, ``130.5 nm``, ``5.1 µs``).
+into a float in the column's unit with Pint, refusing a wrong dimension by field name,. Formatting
+for people (``60 GPa``, ``130.5 nm``) is ``granudb.report.format``; the unit table both read
+is ``granudb.vocabulary.units``.
 
 Pint is imported lazily (one registry for the whole program) so ``granudb --help`` stays fast.
 """
@@ -12,11 +13,11 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 from functools import cache
 from typing import Any
 
 from granudb.errors import ValidationError
+from granudb.vocabulary.units import UNITS, Unit
 
 
 @cache
@@ -28,38 +29,6 @@ def registry() -> Any:
     ureg.define("percent_wt = 0.01 = wt_percent")
     return ureg
 
-
-@dataclass(frozen=True)
-class Unit:
-    """The unit a column is stored in, e.g. ``Unit("pa", "Pa", "pressure")``.
-
-    ``suffix`` is what the column name ends with, ``pint`` how Pint spells the unit,
-    ``dimension`` how an error message names what was expected.
-    """
-
-    suffix: str
-    pint: str
-    dimension: str
-    example: str
-
-
-UNITS: dict[str, Unit] = {
-    "kg_m3": Unit("kg_m3", "kg/m^3", "a density", "2540 kg/m^3"),
-    "pa": Unit("pa", "Pa", "a pressure or modulus", "190 GPa"),
-    "pa_inv": Unit("pa_inv", "1/Pa", "an inverse pressure", "6e-9 1/Pa"),
-    "pa_s": Unit("pa_s", "Pa*s", "a dynamic viscosity", "4.5 cP"),
-    "m": Unit("m", "m", "a length", "12.7 mm"),
-    "m_s": Unit("m_s", "m/s", "a velocity", "0.3 m/s"),
-    "rad": Unit("rad", "rad", "an angle", "30 deg"),
-    "rad_s": Unit("rad_s", "rad/s", "an angular velocity", "6.3 rad/s"),
-    "c": Unit("c", "degC", "a temperature", "20 degC"),
-    "s": Unit("s", "s", "a time", "6.6 s"),
-    "n_m": Unit("n_m", "N*m", "a torque or torsional stiffness", "3.8e-6 N*m"),
-    "n": Unit("n", "N", "a force", "10 N"),
-    "kg": Unit("kg", "kg", "a mass", "8.4 g"),
-    "fraction": Unit("fraction", "dimensionless", "a fraction", "45 %"),
-    "": Unit("", "dimensionless", "a pure number", "0.23"),
-}
 
 _NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 
@@ -133,83 +102,6 @@ def conversion(from_unit: str, to: Unit) -> tuple[float, float]:
     except Exception:  # noqa: BLE001 - Pint's parser raises many types (TokenError…)
         raise ValidationError("unit", f"[{from_unit}]", "is not a unit Pint knows") from None
     return one - zero, zero
-
-
-def unit_of_column(column: str) -> Unit:
-    """The ``Unit`` a unit-suffixed column name (``v_n_in_m_s``) is stored in."""
-    for suffix in sorted((s for s in UNITS if s), key=len, reverse=True):
-        if column.endswith("_" + suffix):
-            return UNITS[suffix]
-    return UNITS[""]
-
-
-# --- formatting for people -------------------------------------------------------------
-
-_PREFIXES = {-15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G", 12: "T"}
-# Units that read naturally with an SI prefix; the rest are shown plainly.
-_PREFIXABLE = {"Pa", "m", "s", "N", "m/s", "N·m"}
-_DISPLAY = {
-    "kg_m3": "kg/m³",
-    "pa": "Pa",
-    "pa_inv": "1/Pa",
-    "pa_s": "mPa·s",
-    "m": "m",
-    "m_s": "m/s",
-    "rad": "°",
-    "rad_s": "rad/s",
-    "c": "°C",
-    "s": "s",
-    "n_m": "N·m",
-    "n": "N",
-    "kg": "g",
-    "fraction": "%",
-}
-
-
-def engineering(value: float, unit: str, digits: int = 4) -> str:
-    """Format ``value`` with an SI prefix chosen so the mantissa is in [1, 1000).
-
-    >>> engineering(6.0e10, "Pa")
-    '60 GPa'
-    >>> engineering(1.305e-7, "m")
-    '130.5 nm'
-    """
-    if value is None or (isinstance(value, float) and math.isnan(value)):
-        return "—"
-    if value == 0 or not math.isfinite(value):
-        return f"{value:g} {unit}".strip()
-    exponent = int(math.floor(math.log10(abs(value)) / 3) * 3)
-    exponent = max(min(exponent, 12), -15)
-    mantissa = value / 10**exponent
-    text = f"{mantissa:.{digits}g}"
-    return f"{text} {_PREFIXES[exponent]}{unit}".strip()
-
-
-def display(value: Any, column: str) -> str:
-    """How a table shows the SI ``value`` of ``column`` to a person."""
-    if value is None:
-        return "—"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if not isinstance(value, int | float):
-        return str(value)
-    if isinstance(value, float) and math.isnan(value):
-        return "—"
-    unit = unit_of_column(column)
-    shown = _DISPLAY.get(unit.suffix)
-    if shown is None:
-        return f"{value:.4g}"
-    if unit.suffix == "pa_s":
-        return f"{value * 1e3:.4g} mPa·s"
-    if unit.suffix == "rad":
-        return f"{math.degrees(value):.4g}°"
-    if unit.suffix == "kg":
-        return engineering(value * 1e3, "g") if abs(value) < 1 else f"{value:.4g} kg"
-    if unit.suffix == "fraction":
-        return f"{value * 100:.4g} %"
-    if shown in _PREFIXABLE:
-        return engineering(float(value), shown)
-    return f"{value:.4g} {shown}"
 
 
 def round_significant(values: Any, digits: int = 15) -> Any:

@@ -3,7 +3,8 @@ vectorized pass (no per-row Python, no quadrature).
 
 ``derive()`` takes arrays (or scalars, broadcast together) of the pair's material
 properties, the fluid's state, the particle size and the velocities, and returns a dict of
-arrays named as in ``DERIVED_COLUMNS``. A dry collision has ``viscosity_pa_s`` NaN: its
+arrays under granudb's column names (their units and meanings are in
+``granudb.vocabulary.DERIVED_TERMS``). A dry collision has ``viscosity_pa_s`` NaN: its
 fluid quantities are NaN, its roughness verdict False and rebound is expected. Where an
 input makes a quantity undefined (no pressure–viscosity coefficient, no measured rebound)
 that quantity is NaN, element by element.
@@ -15,65 +16,19 @@ from typing import Any
 
 import numpy as np
 
-from granudb.errors import ValidationError
 from granudb.physics import contact, flow, impact, lubrication
-from granudb.physics._types import Numeric
+from granudb.physics._types import Numeric, PhysicsInputError
 
 #: Friction coefficient assumed where asperities touch or the collision is dry; the paper's
 #: dry fits give 0.11 (steel) and 0.106 (glass) on Zerodur (§3).
 DRY_FRICTION = 0.11
-
-#: (name, unit, description) of every output column, in presentation order.
-DERIVED_COLUMNS: tuple[tuple[str, str, str], ...] = (
-    ("reduced_modulus_pa", "Pa", "E*, reduced modulus of the pair (§1)"),
-    ("reduced_shear_modulus_pa", "Pa", "G*, reduced shear modulus (Appendix)"),
-    ("effective_radius_m", "m", "R, effective radius (1/R = 1/R₁ + 1/R₂)"),
-    ("particle_mass_kg", "kg", "m₁ = ρ π d³/6"),
-    ("effective_mass_kg", "kg", "m, effective mass (wall: m₂ = ∞)"),
-    ("impact_speed_m_s", "m/s", "V = √(v_n² + v_t²), speed of the centre"),
-    ("incidence_angle_rad", "rad", "angle of the centre's path to the normal, atan(v_t/v_n)"),
-    ("reynolds_number", "", "Re = 2ρ_f R V / μ (§1)"),
-    ("stokes_number", "", "St = 2ρ_p R V / (9μ) (§1)"),
-    ("normal_stokes_number", "", "St_n = 2ρ_p R v_N,in / (9μ) (§4)"),
-    ("impact_load_n", "N", "W, peak Hertz load at v_N,in ((2.2) for a wall)"),
-    ("contact_radius_m", "m", "a = (3RW/(4E*))^{1/3} (2.1)"),
-    ("max_pressure_pa", "Pa", "p_max = 3W/(2πa²) (5.5)"),
-    ("max_approach_m", "m", "δ_max = (15mV²/(16E*R^{1/2}))^{2/5}"),
-    ("contact_time_s", "s", "t_c ≈ 2.87 (m²/(R E*² V))^{1/5}"),
-    ("wave_speed_m_s", "m/s", "c = √(E/ρ), the slower of the two bodies"),
-    ("quasi_static_ratio", "", "a/(c t_c): Hertz holds when ≪ 1 (thesis (3.18))"),
-    ("quasi_static_valid", "", "quasi_static_ratio < 0.1"),
-    ("elastic_length_m", "m", "x₁ = (4μv₀R^{3/2}/(πE*))^{2/5} (§1, Davis et al.)"),
-    ("min_gap_m", "m", "h_m = x₁/3, EHD minimum gap of the approach (§1, §4)"),
-    ("eta_hat_pa_inv", "1/Pa", "η̂ = C/16 (§5)"),
-    ("piezoviscous_length_m", "m", "x₃ = (η̂μ₀v₀R)^{1/2} (§1)"),
-    ("composite_roughness_m", "m", "σ = √(σ₁² + σ₂²)"),
-    ("film_parameter", "", "Λ = h_m/σ: < 1 asperity contact, 1–3 mixed, > 3 full film"),
-    ("roughness_exceeds_gap", "", "σ > h_m: asperities touch through the film"),
-    ("rebound_expected", "", "St_n > St_c (dry: always)"),
-    ("tangential_speed_m_s", "m/s", "U = v_T,in = v_t + ωR, contact point's speed"),
-    ("traction_film_m", "m", "Gohar's traction film (5.6)"),
-    ("friction_integral", "", "A(η̂ p_max) (5.9)"),
-    ("lubricated_friction", "", "μ_f of the smooth lubricated contact (5.8)"),
-    ("shear_strain", "", "(μ₀U/(E*R))^{2/7}, figure 15's axis"),
-    ("friction_coefficient_used", "", "μ_f for Maw: dry value unless a full film is expected"),
-    ("maw_chi", "", "χ = (2G*/E*)(1 + 1/K²) (2.3)"),
-    ("maw_psi_in", "", "ψ_in = 2(2G*/E*) v_T,in / (μ_f v_N,in) (2.4)"),
-    ("tangential_regime", "", "stick / slip_then_stick / gross_slip (Maw)"),
-    ("normal_restitution", "", "e = v_n_out / v_n_in"),
-    ("rotational_restitution", "", "β = −v_T,out / v_T,in (2.8)"),
-    ("effective_incidence", "", "Ψ_in = v_T,in / v_N,in (2.5)"),
-    ("effective_rebound", "", "Ψ_out = v_T,out / v_N,in (2.5)"),
-    ("sliding_friction", "", "μ_f = (Ψ_in − Ψ_out)/((1+e)(1+1/K²)) (2.9)"),
-)
-DERIVED_NAMES = tuple(name for name, _, _ in DERIVED_COLUMNS)
 
 
 def _check(name: str, values: np.ndarray, ok: np.ndarray, rule: str) -> None:
     bad = ~ok
     if bad.any():
         index = int(np.flatnonzero(bad.ravel())[0])
-        raise ValidationError(
+        raise PhysicsInputError(
             name, f"{values.ravel()[index]:g}", rule, row=index + 1 if values.size > 1 else None
         )
 
@@ -105,7 +60,7 @@ def derive(
     dry_friction: float = DRY_FRICTION,
     gap_fraction: float = lubrication.GAP_FRACTION,
 ) -> dict[str, np.ndarray]:
-    """Derive every column of ``DERIVED_COLUMNS`` for arrays of collisions.
+    """Derive every derived column (``granudb.vocabulary.DERIVED_TERMS``) for arrays of collisions.
 
     Inputs are SI and broadcast together. NaN shear modulus: derived from E and ν. NaN
     ``wall_diameter_m``: a flat wall (infinite radius and mass). NaN ``viscosity_pa_s``: a
@@ -113,7 +68,7 @@ def derive(
     The tangential regime uses ``dry_friction`` where the collision is dry or the roughness
     exceeds the gap, else the lubricated friction (5.8) — the paper's regime argument (§4).
 
-    Raises ``ValidationError`` on unphysical input (non-positive size, speed or modulus,
+    Raises ``PhysicsInputError`` on unphysical input (non-positive size, speed or modulus,
     ν outside (−1, 0.5), incidence outside [0°, 90°)).
     """
     arrays = np.broadcast_arrays(
@@ -292,11 +247,6 @@ def derive(
         "effective_rebound": psi_out,
         "sliding_friction": mu_f,
     }
-
-
-def derived_units() -> dict[str, str]:
-    """``{column: unit}`` for the derived columns ("" for pure numbers and verdicts)."""
-    return {name: unit for name, unit, _ in DERIVED_COLUMNS}
 
 
 def scalar_view(result: dict[str, np.ndarray], index: int = 0) -> dict[str, Any]:

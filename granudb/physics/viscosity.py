@@ -19,14 +19,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from granudb.errors import ValidationError
-from granudb.physics._types import Numeric, as_float
+from granudb.physics._types import Numeric, PhysicsInputError, as_float
 
 KELVIN = 273.15
 CHENG_RANGE_C = (0.0, 100.0)
 
 
-class ViscosityRangeError(ValidationError):
+class ViscosityRangeError(PhysicsInputError):
     """A temperature (or viscosity) outside what a fluid model covers."""
 
 
@@ -191,16 +190,16 @@ class TabulatedViscosity:
         t = np.asarray(temperature_c, dtype=float)
         mu = np.asarray(viscosity_pa_s, dtype=float)
         if t.ndim != 1 or t.size < 2 or t.shape != mu.shape:
-            raise ValidationError(
+            raise PhysicsInputError(
                 "points", t.size, "need at least two (temperature, viscosity) pairs"
             )
         order = np.argsort(t)
         self.temperature_c = t[order]
         self.viscosity_pa_s = mu[order]
         if np.any(np.diff(self.temperature_c) <= 0):
-            raise ValidationError("temperature_c", "repeated", "must differ between points")
+            raise PhysicsInputError("temperature_c", "repeated", "must differ between points")
         if np.any(self.viscosity_pa_s <= 0):
-            raise ValidationError("viscosity_pa_s", "≤ 0", "must be > 0 at every point")
+            raise PhysicsInputError("viscosity_pa_s", "≤ 0", "must be > 0 at every point")
         self._x = 1.0 / (self.temperature_c + KELVIN)
         self._y = np.log(self.viscosity_pa_s)
         self.density_kg_m3 = None

@@ -13,10 +13,10 @@ from typing import Any
 
 import numpy as np
 
-from granudb import __version__
-from granudb.io.units import display
-from granudb.physics.derive import DERIVED_COLUMNS
-from granudb.verdicts import GAP_DEFINITION, verdicts
+from granudb.report.format import display
+from granudb.report.verdicts import GAP_DEFINITION, verdicts
+from granudb.version import __version__
+from granudb.vocabulary import DERIVED_TERMS
 
 METHODS = [
     ("reduced modulus", "1/E* = (1−ν₁²)/E₁ + (1−ν₂²)/E₂", "Joseph & Hunt (2004) §1"),
@@ -156,7 +156,7 @@ def _fluid_block(record: dict[str, Any], state: Any, citations: dict[str, str]) 
 
 def roughness_flag(derived: dict[str, Any], immersed: bool) -> dict[str, Any]:
     """The prominent flag: σ against h_m, stated with the definition used and Λ."""
-    from granudb.verdicts import roughness_verdict
+    from granudb.report.verdicts import roughness_verdict
 
     verdict = roughness_verdict(derived, immersed)
     headline = (
@@ -174,7 +174,8 @@ def roughness_flag(derived: dict[str, Any], immersed: bool) -> dict[str, Any]:
 
 def _derived_rows(derived: dict[str, Any]) -> list[dict[str, str]]:
     rows = []
-    for name, _, description in DERIVED_COLUMNS:
+    for name, described in DERIVED_TERMS.items():
+        description = described.description
         if name not in derived or name == "incidence_angle_rad":
             continue
         rows.append(
@@ -299,7 +300,7 @@ def pair_report(
     critical_stokes: float,
 ) -> dict[str, Any]:
     """A report for one scenario, plus the stored runs of the same pair if there are any."""
-    from granudb.derivation import derive_pair
+    from granudb.analysis.derivation import derive_pair
 
     result = derive_pair(
         session,
@@ -364,7 +365,7 @@ def pair_report(
     report["references"] = sorted(
         {f"[{key}] {text}" for key, text in citations.items()} | set(REFERENCES)
     )
-    from granudb.query import CollisionQuery
+    from granudb.analysis.query import CollisionQuery
 
     _add_collisions(
         session, report, CollisionQuery(particle=particle, wall=wall, fluid=fluid), with_flag=False
@@ -395,9 +396,9 @@ def _group_label(row: Any) -> str:
 
 
 def _add_collisions(session: Any, report: dict[str, Any], query: Any, *, with_flag: bool) -> None:
-    from granudb import fits
+    from granudb.analysis import fits
+    from granudb.analysis.query import select_collisions
     from granudb.db import catalog
-    from granudb.query import select_collisions
     from granudb.report import plots
 
     frame = select_collisions(session, query)
@@ -493,7 +494,7 @@ def _add_collisions(session: Any, report: dict[str, Any], query: Any, *, with_fl
                 ],
             }
         )
-    from granudb.derivation import fluid_model
+    from granudb.analysis.derivation import fluid_model
 
     models = {f.name: fluid_model(f) for f in catalog.list_fluids(session)}
     gap = fits.gap_viscosity(frame, models)

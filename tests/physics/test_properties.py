@@ -10,9 +10,12 @@ from hypothesis import given
 from hypothesis import strategies as st
 from scipy.integrate import quad
 
-from granudb.errors import ValidationError
 from granudb.physics import contact, flow, impact, lubrication
-from granudb.physics.derive import DERIVED_NAMES, derive
+from granudb.physics._types import PhysicsInputError as ValidationError
+from granudb.physics.derive import derive
+from granudb.vocabulary import DERIVED_TERMS
+
+DERIVED_NAMES = tuple(DERIVED_TERMS)
 
 moduli = st.floats(1e6, 1e12)
 ratios = st.floats(-0.99, 0.49)

@@ -9,14 +9,24 @@ labels are all generated from here, so they cannot drift apart.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 
 @dataclass(frozen=True)
 class Term:
+    """One concept: its title, SI unit (as Pint spells it; ``None`` for text and pure
+    numbers), a sentence a newcomer can act on, its role and the symbol people read.
+
+    ``role`` is "stored" (a database column), "derived" (computed by
+    ``granudb.physics.derive``) or "text"; ``symbol`` is what a table or report shows in
+    place of the machine name (``E*``); ``option`` the command-line option that sets it.
+    """
+
     title: str
     unit: str | None
     description: str
+    role: str = "stored"
+    symbol: str | None = None
+    option: str | None = None
 
 
 TERMS: dict[str, Term] = {
@@ -118,6 +128,106 @@ TERMS: dict[str, Term] = {
     "condition": Term("Condition", None, "Experimental condition, e.g. 'dry (air)'."),
 }
 
+
+def _derived(title: str, unit: str | None, symbol: str, description: str) -> Term:
+    return Term(title, unit, description, role="derived", symbol=symbol)
+
+
+#: Every column ``granudb.physics.derive.derive`` returns, in presentation order; a test
+#: checks the two agree.
+DERIVED_TERMS: dict[str, Term] = {
+    "reduced_modulus_pa": _derived(
+        "Reduced modulus", "Pa", "E*", "E*, reduced modulus of the pair (§1)"
+    ),
+    "reduced_shear_modulus_pa": _derived(
+        "Reduced shear modulus", "Pa", "G*", "G*, reduced shear modulus (Appendix)"
+    ),
+    "effective_radius_m": _derived(
+        "Effective radius", "m", "R*", "R, effective radius (1/R = 1/R₁ + 1/R₂)"
+    ),
+    "particle_mass_kg": _derived("Particle mass", "kg", "m₁", "m₁ = ρ π d³/6"),
+    "effective_mass_kg": _derived("Effective mass", "kg", "m*", "m, effective mass (wall: m₂ = ∞)"),
+    "impact_speed_m_s": _derived(
+        "Impact speed", "m/s", "V", "V = √(v_n² + v_t²), speed of the centre"
+    ),
+    "incidence_angle_rad": _derived(
+        "Incidence angle", "rad", "ζ_in", "angle of the centre's path to the normal, atan(v_t/v_n)"
+    ),
+    "reynolds_number": _derived("Reynolds number", None, "Re", "Re = 2ρ_f R V / μ (§1)"),
+    "stokes_number": _derived("Stokes number", None, "St", "St = 2ρ_p R V / (9μ) (§1)"),
+    "normal_stokes_number": _derived(
+        "Normal stokes number", None, "St_n", "St_n = 2ρ_p R v_N,in / (9μ) (§4)"
+    ),
+    "impact_load_n": _derived(
+        "Impact load", "N", "W", "W, peak Hertz load at v_N,in ((2.2) for a wall)"
+    ),
+    "contact_radius_m": _derived("Contact radius", "m", "a", "a = (3RW/(4E*))^{1/3} (2.1)"),
+    "max_pressure_pa": _derived("Max pressure", "Pa", "p_max", "p_max = 3W/(2πa²) (5.5)"),
+    "max_approach_m": _derived("Max approach", "m", "δ_max", "δ_max = (15mV²/(16E*R^{1/2}))^{2/5}"),
+    "contact_time_s": _derived("Contact time", "s", "t_c", "t_c ≈ 2.87 (m²/(R E*² V))^{1/5}"),
+    "wave_speed_m_s": _derived(
+        "Wave speed", "m/s", "c", "c = √(E/ρ), the slower of the two bodies"
+    ),
+    "quasi_static_ratio": _derived(
+        "Quasi static ratio", None, "a/(c t_c)", "a/(c t_c): Hertz holds when ≪ 1 (thesis (3.18))"
+    ),
+    "quasi_static_valid": _derived(
+        "Quasi static valid", None, "quasi-static", "quasi_static_ratio < 0.1"
+    ),
+    "elastic_length_m": _derived(
+        "Elastic length", "m", "x₁", "x₁ = (4μv₀R^{3/2}/(πE*))^{2/5} (§1, Davis et al.)"
+    ),
+    "min_gap_m": _derived(
+        "Min gap", "m", "h_m", "h_m = x₁/3, EHD minimum gap of the approach (§1, §4)"
+    ),
+    "eta_hat_pa_inv": _derived("Eta hat", "1/Pa", "η̂", "η̂ = C/16 (§5)"),
+    "piezoviscous_length_m": _derived("Piezoviscous length", "m", "x₃", "x₃ = (η̂μ₀v₀R)^{1/2} (§1)"),
+    "composite_roughness_m": _derived("Composite roughness", "m", "σ", "σ = √(σ₁² + σ₂²)"),
+    "film_parameter": _derived(
+        "Film parameter", None, "Λ", "Λ = h_m/σ: < 1 asperity contact, 1–3 mixed, > 3 full film"
+    ),
+    "roughness_exceeds_gap": _derived(
+        "Roughness exceeds gap", None, "σ > h_m", "σ > h_m: asperities touch through the film"
+    ),
+    "rebound_expected": _derived("Rebound expected", None, "rebound", "St_n > St_c (dry: always)"),
+    "tangential_speed_m_s": _derived(
+        "Tangential speed", "m/s", "v_T,in", "U = v_T,in = v_t + ωR, contact point's speed"
+    ),
+    "traction_film_m": _derived("Traction film", "m", "h_film", "Gohar's traction film (5.6)"),
+    "friction_integral": _derived("Friction integral", None, "A", "A(η̂ p_max) (5.9)"),
+    "lubricated_friction": _derived(
+        "Lubricated friction", None, "μ_f (5.8)", "μ_f of the smooth lubricated contact (5.8)"
+    ),
+    "shear_strain": _derived("Shear strain", None, "γ_s", "(μ₀U/(E*R))^{2/7}, figure 15's axis"),
+    "friction_coefficient_used": _derived(
+        "Friction coefficient used",
+        None,
+        "μ_f (Maw)",
+        "μ_f for Maw: dry value unless a full film is expected",
+    ),
+    "maw_chi": _derived("Maw chi", None, "χ", "χ = (2G*/E*)(1 + 1/K²) (2.3)"),
+    "maw_psi_in": _derived(
+        "Maw psi in", None, "ψ_in", "ψ_in = 2(2G*/E*) v_T,in / (μ_f v_N,in) (2.4)"
+    ),
+    "tangential_regime": _derived(
+        "Tangential regime", None, "regime", "stick / slip_then_stick / gross_slip (Maw)"
+    ),
+    "normal_restitution": _derived("Normal restitution", None, "e", "e = v_n_out / v_n_in"),
+    "rotational_restitution": _derived(
+        "Rotational restitution", None, "β", "β = −v_T,out / v_T,in (2.8)"
+    ),
+    "effective_incidence": _derived(
+        "Effective incidence", None, "Ψ_in", "Ψ_in = v_T,in / v_N,in (2.5)"
+    ),
+    "effective_rebound": _derived(
+        "Effective rebound", None, "Ψ_out", "Ψ_out = v_T,out / v_N,in (2.5)"
+    ),
+    "sliding_friction": _derived(
+        "Sliding friction", None, "μ_f", "μ_f = (Ψ_in − Ψ_out)/((1+e)(1+1/K²)) (2.9)"
+    ),
+}
+
+
 TABLES: dict[str, str] = {
     "sources": "Publications, correlations and campaigns that stored numbers come from.",
     "materials": "Particle and wall materials; Joseph & Hunt (2004) table 1 ships as seed data.",
@@ -145,39 +255,3 @@ def term(column: str) -> Term:
             f"Reference to {column[:-3].replace('_', ' ')}.",
         )
     return Term(column.replace("_", " ").capitalize(), None, "")
-
-
-def datasette_metadata(database_name: str = "granudb") -> dict[str, Any]:
-    """Datasette ``metadata.json`` for a granudb SQLite file: titles, descriptions, units.
-
-    Datasette shows a column description as a tooltip and a ``units`` entry beside values;
-    foreign keys display the referenced row's ``name`` (or ``key`` for sources).
-    ``database_name`` is what Datasette calls the file: its name without ``.sqlite``.
-    """
-    from granudb import __version__
-    from granudb.db.models import Base
-
-    tables: dict[str, Any] = {}
-    for table in Base.metadata.sorted_tables:
-        columns = {
-            c.name: term(c.name).description or term(c.name).title
-            for c in table.columns
-            if c.name != "id"
-        }
-        units = {c.name: term(c.name).unit for c in table.columns if term(c.name).unit is not None}
-        entry: dict[str, Any] = {"description": TABLES.get(table.name, ""), "columns": columns}
-        if units:
-            entry["units"] = units
-        if "name" in table.columns:
-            entry["label_column"] = "name"
-        elif table.name == "sources":
-            entry["label_column"] = "key"
-        tables[table.name] = entry
-    return {
-        "title": "granudb",
-        "description": "Materials, fluids and measured particle–wall collisions in liquids "
-        f"(granudb {__version__}). Values are SI; column names carry the unit.",
-        "source": "Joseph & Hunt (2004), J. Fluid Mech. 510, 71–93 (seed data)",
-        "source_url": "https://doi.org/10.1017/S002211200400919X",
-        "databases": {database_name: {"tables": tables}},
-    }

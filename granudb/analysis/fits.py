@@ -1,7 +1,7 @@
 """Fits of measured collisions: Walton's β and μ_f, restitution against Stokes number, and
 the gap viscosity of smooth sliding collisions (Joseph & Hunt §3–§5).
 
-All fits take the DataFrame of ``granudb.query.select_collisions`` and work per group
+All fits take the DataFrame of ``granudb.analysis.query.select_collisions`` and work per group
 (dataset × particle × wall × fluid).
 
 Walton split rule (documented in README): on the Ψ_out–Ψ_in plane, sticking runs lie on

@@ -36,7 +36,7 @@ class CollisionQuery:
 
 def select_collisions(session: Any, query: CollisionQuery) -> Any:
     """The collisions matching ``query``, with every derived column (a DataFrame)."""
-    from granudb.derivation import collision_table
+    from granudb.analysis.derivation import collision_table
 
     if query.regime is not None and query.regime not in REGIMES:
         raise ValidationError("--regime", query.regime, f"must be one of {', '.join(REGIMES)}")
@@ -67,19 +67,3 @@ def select_collisions(session: Any, query: CollisionQuery) -> Any:
     elif query.regime == "no_rebound":
         keep &= ~frame["rebound_expected"].astype(bool)
     return frame[keep].reset_index(drop=True)
-
-
-def collisions(database: str | None = None, **filters: Any) -> Any:
-    """Python API: measured collisions with derived columns as a pandas DataFrame.
-
-    >>> import granudb  # doctest: +SKIP
-    >>> frame = granudb.collisions(dataset="drops", particle="steel")  # doctest: +SKIP
-    """
-    from granudb.db.engine import open_database
-
-    opened = open_database(database)
-    try:
-        with opened.session() as session:
-            return select_collisions(session, CollisionQuery(**filters))
-    finally:
-        opened.dispose()

@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from granudb.io.units import engineering
+from granudb.report.format import engineering
 
 GAP_DEFINITION = "h_m = x₁/3, the EHD minimum gap of the normal approach (Joseph & Hunt §1, §4)"
 

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from sqlalchemy.orm import Session
 
+from granudb.analysis._errors import physics_refusal
 from granudb.db import catalog
 from granudb.db.models import Fluid, Material
 from granudb.errors import ValidationError
@@ -75,9 +76,10 @@ def fluid_state(
         )
     else:
         temperature = temperature_c
-        viscosity = float(model.viscosity(temperature_c))
-        if model.density_kg_m3 is not None:
-            density = float(model.density(temperature_c))
+        with physics_refusal("--temperature"):
+            viscosity = float(model.viscosity(temperature_c))
+            if model.density_kg_m3 is not None:
+                density = float(model.density(temperature_c))
         point_source = next((p.source.key for p in fluid.points if p.source), source)
         basis = (
             f"interpolated at {temperature_c:g} °C from {len(fluid.points)} points "
@@ -165,22 +167,23 @@ def derive_pair(
         "temperature_c": state.temperature_c if state else None,
         "critical_stokes": critical_stokes,
     }
-    result = derive(
-        **_material_inputs("particle", first),
-        **_material_inputs("wall", second),
-        diameter_m=diameter_m,
-        wall_diameter_m=np.nan if wall_diameter_m is None else wall_diameter_m,
-        v_n_in_m_s=inputs["v_n_in_m_s"],
-        v_t_in_m_s=inputs["v_t_in_m_s"],
-        fluid_density_kg_m3=state.density_kg_m3 if state else np.nan,
-        viscosity_pa_s=state.viscosity_pa_s if state else np.nan,
-        pressure_viscosity_pa_inv=(
-            state.pressure_viscosity_pa_inv
-            if state and state.pressure_viscosity_pa_inv is not None
-            else np.nan
-        ),
-        critical_stokes=critical_stokes,
-    )
+    with physics_refusal():
+        result = derive(
+            **_material_inputs("particle", first),
+            **_material_inputs("wall", second),
+            diameter_m=diameter_m,
+            wall_diameter_m=np.nan if wall_diameter_m is None else wall_diameter_m,
+            v_n_in_m_s=inputs["v_n_in_m_s"],
+            v_t_in_m_s=inputs["v_t_in_m_s"],
+            fluid_density_kg_m3=state.density_kg_m3 if state else np.nan,
+            viscosity_pa_s=state.viscosity_pa_s if state else np.nan,
+            pressure_viscosity_pa_inv=(
+                state.pressure_viscosity_pa_inv
+                if state and state.pressure_viscosity_pa_inv is not None
+                else np.nan
+            ),
+            critical_stokes=critical_stokes,
+        )
     derived = scalar_view(result)
     for name in (
         "normal_restitution",
@@ -397,21 +400,22 @@ def collision_table(
     }
     names_by_id = {i: f.name for i, f in fluids.items()}
     barus = pd.Series(fluid_ids).map(barus_by_id).to_numpy(dtype=float)
-    result = derive(
-        **props,
-        diameter_m=c["diameter_m"],
-        wall_diameter_m=c["wall_diameter_m"],
-        v_n_in_m_s=c["v_n_in_m_s"],
-        v_t_in_m_s=c["v_t_in_m_s"],
-        omega_in_rad_s=c["omega_in_rad_s"],
-        v_n_out_m_s=c["v_n_out_m_s"],
-        v_t_out_m_s=c["v_t_out_m_s"],
-        omega_out_rad_s=c["omega_out_rad_s"],
-        fluid_density_kg_m3=density,
-        viscosity_pa_s=viscosity,
-        pressure_viscosity_pa_inv=barus,
-        critical_stokes=critical_stokes,
-    )
+    with physics_refusal():
+        result = derive(
+            **props,
+            diameter_m=c["diameter_m"],
+            wall_diameter_m=c["wall_diameter_m"],
+            v_n_in_m_s=c["v_n_in_m_s"],
+            v_t_in_m_s=c["v_t_in_m_s"],
+            omega_in_rad_s=c["omega_in_rad_s"],
+            v_n_out_m_s=c["v_n_out_m_s"],
+            v_t_out_m_s=c["v_t_out_m_s"],
+            omega_out_rad_s=c["omega_out_rad_s"],
+            fluid_density_kg_m3=density,
+            viscosity_pa_s=viscosity,
+            pressure_viscosity_pa_inv=barus,
+            critical_stokes=critical_stokes,
+        )
     frame = pd.DataFrame(
         {
             "dataset": frame["dataset"].to_numpy(dtype=object),

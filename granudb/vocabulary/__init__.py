@@ -1,0 +1,27 @@
+"""granudb's one vocabulary: every name, its unit, meaning, symbol and physical rule.
+
+Every list of columns in granudb (catalogue and seed columns, listed and exported
+columns, Data Package schemas, report labels, Datasette metadata, DataFrame
+``attrs["units"]``) is generated from here, so a concept has one name everywhere.
+This package sits at the bottom of the layers: it imports nothing of granudb but
+``granudb.errors``.
+"""
+
+from granudb.vocabulary.rules import RULES, Rule, check_record, check_value
+from granudb.vocabulary.terms import DERIVED_TERMS, TABLES, TERMS, Term, term
+from granudb.vocabulary.units import UNITS, Unit, unit_of_column
+
+__all__ = [
+    "DERIVED_TERMS",
+    "RULES",
+    "TABLES",
+    "TERMS",
+    "UNITS",
+    "Rule",
+    "Term",
+    "Unit",
+    "check_record",
+    "check_value",
+    "term",
+    "unit_of_column",
+]
