@@ -43,7 +43,7 @@ def test_json_output_is_a_plain_array_with_unit_suffixed_names(cli, db: str) -> 
     data = json.loads(cli("fluids", "list", "--format", "json", db=db).stdout)
     assert isinstance(data, list)
     water = next(f for f in data if f["name"] == "water")
-    assert water["viscosity_pa_s"] == pytest.approx(1.0e-3)
+    assert water["reference_viscosity_pa_s"] == pytest.approx(1.0e-3)
     assert water["pressure_viscosity_pa_inv"] is None
     glycerol = next(f for f in data if f["name"] == "glycerol-45")
     assert glycerol["pressure_viscosity_pa_inv"] == 6e-9
@@ -107,24 +107,24 @@ def test_add_update_remove_a_fluid(cli, db: str) -> None:
         "fluids",
         "add",
         "silicone oil",
-        "--viscosity",
+        "--reference-viscosity",
         "10 cSt * 0.96 g/cm^3",
-        "--density",
+        "--reference-density",
         "960 kg/m^3",
-        "--temperature",
+        "--reference-temperature",
         "25 degC",
         db=db,
     )
     assert added.exit_code == 0, added.stderr
     shown = json.loads(cli("fluids", "show", "Silicone Oil", "--format", "json", db=db).stdout)
-    assert shown["viscosity_pa_s"] == pytest.approx(9.6e-3)
+    assert shown["reference_viscosity_pa_s"] == pytest.approx(9.6e-3)
     assert shown["reference_temperature_c"] == 25.0
     assert shown["points"] == []
     updated = cli(
         "fluids",
         "update",
         "silicone oil",
-        "--pressure-coefficient",
+        "--pressure-viscosity",
         "2e-8 1/Pa",
         "--rename",
         "PDMS 10 cSt",
@@ -152,7 +152,7 @@ def test_removing_a_material_in_use_says_by_what(cli, db: str) -> None:
                     particle_id=get_material(session, "steel").id,
                     wall_id=get_material(session, "Zerodur").id,
                     diameter_m=0.0127,
-                    incidence_angle_rad=0.1,
+                    nominal_angle_rad=0.1,
                     v_n_in_m_s=0.3,
                     v_t_in_m_s=0.03,
                     v_n_out_m_s=0.2,

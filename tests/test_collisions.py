@@ -89,7 +89,7 @@ def test_example_file_imports_in_si(cli, db: str) -> None:
     assert len(rows) == 12
     first = next(r for r in rows if r["run"] == "steel-dry-1")
     assert first["v_n_in_m_s"] == 0.3 and first["diameter_m"] == 0.0127
-    assert first["incidence_angle_rad"] == pytest.approx(math.radians(5), rel=1e-12)
+    assert first["nominal_angle_rad"] == pytest.approx(math.radians(5), rel=1e-12)
     assert first["fluid"] is None and first["normal_stokes_number"] is None
     assert first["normal_restitution"] == pytest.approx(0.97)
     assert first["rotational_restitution"] == pytest.approx(0.34, abs=2e-3)

@@ -71,7 +71,7 @@ def _insert_collision(db: str, **changes: object) -> None:
         "wall_id": 2,
         "fluid_id": None,
         "diameter_m": 0.0127,
-        "incidence_angle_rad": 0.3,
+        "nominal_angle_rad": 0.3,
         "v_n_in_m_s": 0.3,
         "v_t_in_m_s": 0.1,
         "omega_in_rad_s": 0.0,
@@ -98,8 +98,8 @@ def _insert_collision(db: str, **changes: object) -> None:
         ("v_n_in_m_s", -0.1),
         ("v_t_in_m_s", -0.1),
         ("v_n_out_m_s", -0.1),
-        ("incidence_angle_rad", -0.1),
-        ("incidence_angle_rad", 1.5708),
+        ("nominal_angle_rad", -0.1),
+        ("nominal_angle_rad", 1.5708),
         ("particle_id", 999),
         ("fluid_id", 999),
         ("run", ""),
@@ -122,9 +122,9 @@ def test_a_good_collision_is_accepted_and_runs_are_unique_per_dataset(db: str) -
 @pytest.mark.parametrize(
     ("column", "value"),
     [
-        ("viscosity_pa_s", 0.0),
-        ("viscosity_pa_s", -1e-3),
-        ("density_kg_m3", 0.0),
+        ("reference_viscosity_pa_s", 0.0),
+        ("reference_viscosity_pa_s", -1e-3),
+        ("reference_density_kg_m3", 0.0),
         ("pressure_viscosity_pa_inv", -1e-9),
         ("glycerol_mass_fraction", 1.5),
         ("reference_temperature_c", -274.0),
@@ -134,8 +134,8 @@ def test_fluid_rules(db: str, column: str, value: object) -> None:
     row = {
         "name": "f",
         "name_key": "f",
-        "density_kg_m3": 1000.0,
-        "viscosity_pa_s": 1e-3,
+        "reference_density_kg_m3": 1000.0,
+        "reference_viscosity_pa_s": 1e-3,
         "reference_temperature_c": 20.0,
         column: value,
     }
@@ -159,3 +159,74 @@ def test_rules_module_matches_the_database(db: str) -> None:
             except IntegrityError:
                 ok_in_db = False
             assert rule.holds(edge) == ok_in_db, (column, edge)
+
+
+NON_FINITE = [float("nan"), float("inf"), float("-inf")]
+
+
+def _read(db: str, sql: str) -> object:
+    from sqlalchemy import text
+    from support import engine_for
+
+    engine = engine_for(db)
+    try:
+        with engine.connect() as connection:
+            return connection.execute(text(sql)).scalar()
+    finally:
+        engine.dispose()
+
+
+def _stored_or_refused(insert, read) -> None:
+    """A non-finite number is refused, or (SQLite's driver turns NaN into NULL) stored as
+    "no value" in an optional column: never as NaN or infinity."""
+    try:
+        insert()
+    except IntegrityError:
+        return
+    assert read() is None
+
+
+@pytest.mark.parametrize("value", NON_FINITE, ids=["nan", "inf", "-inf"])
+@pytest.mark.parametrize(
+    "column", ["density_kg_m3", "youngs_modulus_pa", "roughness_rms_m", "shear_modulus_pa"]
+)
+def test_materials_refuse_nan_and_infinity(db: str, column: str, value: float) -> None:
+    """README: rows written by other tools obey the rules too — NaN and ±inf included
+    (PostgreSQL sorts 'NaN' above every number, so `density > 0` alone accepted it)."""
+    _stored_or_refused(
+        lambda: _insert_material(db, **{column: value}),
+        lambda: _read(db, f"SELECT {column} FROM materials WHERE name = 'm'"),
+    )
+
+
+@pytest.mark.parametrize("value", NON_FINITE, ids=["nan", "inf", "-inf"])
+@pytest.mark.parametrize("column", ["v_n_in_m_s", "v_t_out_m_s", "omega_in_rad_s", "temperature_c"])
+def test_collisions_refuse_nan_and_infinity(db: str, column: str, value: float) -> None:
+    _stored_or_refused(
+        lambda: _insert_collision(db, **{column: value}),
+        lambda: _read(db, f"SELECT {column} FROM collisions WHERE run = 'r1'"),
+    )
+
+
+@pytest.mark.sqlite_only
+def test_sqlite_text_overflow_is_refused(db: str) -> None:
+    """SQLite reads the literal 9e999 as +infinity: the CHECK refuses it."""
+    with pytest.raises(IntegrityError):
+        execute(
+            db,
+            "INSERT INTO materials (name, name_key, density_kg_m3, youngs_modulus_pa, "
+            "poisson_ratio, roughness_rms_m) VALUES ('x', 'x', 9e999, 1e9, 0.3, 0)",
+        )
+
+
+@pytest.mark.parametrize("value", NON_FINITE, ids=["nan", "inf", "-inf"])
+def test_fluids_refuse_nan_and_infinity(db: str, value: float) -> None:
+    row = {
+        "name": "f",
+        "name_key": "f",
+        "reference_density_kg_m3": 1000.0,
+        "reference_viscosity_pa_s": value,
+        "reference_temperature_c": 20.0,
+    }
+    with pytest.raises(IntegrityError):
+        _insert(db, "fluids", row)

@@ -3,6 +3,8 @@ migrations run both ways on a database that holds data."""
 
 from __future__ import annotations
 
+import json
+
 import pytest
 from sqlalchemy import func, select, text
 from support import engine_for
@@ -145,15 +147,35 @@ def test_a_database_at_the_first_revision_is_migrated_forward_with_its_data(
 ) -> None:
     """A file made by the first release (revision 0001) keeps every row through
     ``granudb db upgrade``, and the new column appears."""
-    from granudb.api.database import load_seed
     from granudb.db.engine import open_database as open_raw
 
     database = open_raw(new_db, migrate=False)
     migration.upgrade(database, "0001")
     with database.engine.begin() as connection:
         connection.execute(text("INSERT INTO datasets (name, version) VALUES ('old', '1')"))
-    with database.session(write=True) as session:
-        load_seed(session)
+        for name in ("glass", "Zerodur"):
+            connection.execute(
+                text(
+                    "INSERT INTO materials (name, name_key, density_kg_m3, youngs_modulus_pa, "
+                    "poisson_ratio, roughness_rms_m) VALUES (:n, :k, 2540, 6e10, 0.23, 1e-7)"
+                ),
+                {"n": name, "k": name.lower()},
+            )
+        connection.execute(
+            text(
+                "INSERT INTO fluids (name, name_key, density_kg_m3, viscosity_pa_s, "
+                "reference_temperature_c) VALUES ('oil', 'oil', 960, 0.0096, 25)"
+            )
+        )
+        connection.execute(
+            text(
+                "INSERT INTO collisions (dataset_id, run, particle_id, wall_id, fluid_id, "
+                "diameter_m, incidence_angle_rad, v_n_in_m_s, v_t_in_m_s, omega_in_rad_s, "
+                "v_n_out_m_s, v_t_out_m_s, omega_out_rad_s) SELECT d.id, 'r1', p.id, w.id, "
+                "f.id, 0.0127, 0.5, 0.3, 0.16, 0, 0.25, 0.05, -2 FROM datasets d, materials p, "
+                "materials w, fluids f WHERE p.name = 'glass' AND w.name = 'Zerodur'"
+            )
+        )
     database.dispose()
     before = cli("materials", "list", "--format", "json", db=new_db)
     # opening with any command migrates it forward
@@ -163,3 +185,10 @@ def test_a_database_at_the_first_revision_is_migrated_forward_with_its_data(
     datasets = cli("dataset", "list", "--format", "json", db=new_db).stdout
     assert '"name": "old"' in datasets
     assert "glass" in before.stdout
+    fluid = json.loads(cli("fluids", "show", "oil", "--format", "json", db=new_db).stdout)
+    assert fluid["reference_viscosity_pa_s"] == 0.0096  # renamed by 0003, value kept
+    runs = json.loads(
+        cli("collisions", "list", "--dataset", "old", "--format", "json", db=new_db).stdout
+    )
+    assert runs[0]["nominal_angle_rad"] == 0.5  # the stored angle keeps its value
+    assert runs[0]["omega_out_rad_s"] == -2

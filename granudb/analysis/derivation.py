@@ -57,14 +57,15 @@ def fluid_state(
     """
     source = fluid.source.key if fluid.source else "no source"
     model = fluid_model(fluid)
-    density = fluid.density_kg_m3
+    density = fluid.reference_density_kg_m3
     if temperature_c is None or abs(temperature_c - fluid.reference_temperature_c) <= (
         REFERENCE_TOLERANCE_C
     ):
         temperature = fluid.reference_temperature_c if temperature_c is None else temperature_c
-        viscosity = fluid.viscosity_pa_s
+        viscosity = fluid.reference_viscosity_pa_s
         basis = (
-            f"{fluid.viscosity_pa_s * 1e3:.4g} mPa·s at {fluid.reference_temperature_c:g} °C"
+            f"{fluid.reference_viscosity_pa_s * 1e3:.4g} mPa·s at "
+            f"{fluid.reference_temperature_c:g} °C"
             f" as printed ({source}{', ' + fluid.source_locator if fluid.source_locator else ''})"
         )
     elif model is None:
@@ -214,8 +215,6 @@ def pair_json(result: PairResult) -> dict[str, Any]:
     if result.fluid is not None and result.fluid_state is not None:
         fluid = {
             **result.fluid,
-            "reference_viscosity_pa_s": result.fluid["viscosity_pa_s"],
-            "reference_density_kg_m3": result.fluid["density_kg_m3"],
             "viscosity_pa_s": result.fluid_state.viscosity_pa_s,
             "density_kg_m3": result.fluid_state.density_kg_m3,
             "temperature_c": result.fluid_state.temperature_c,
@@ -242,6 +241,7 @@ LISTED_COLUMNS = [
     "fluid",
     "diameter_m",
     "incidence_angle_rad",
+    "nominal_angle_rad",
     "v_n_in_m_s",
     "v_t_in_m_s",
     "omega_in_rad_s",
@@ -284,8 +284,8 @@ def _fluid_viscosity(
         rows = fluid_ids == fluid_id
         if not rows.any():
             continue
-        viscosity[rows] = fluid.viscosity_pa_s
-        density[rows] = fluid.density_kg_m3
+        viscosity[rows] = fluid.reference_viscosity_pa_s
+        density[rows] = fluid.reference_density_kg_m3
         measured = rows & ~np.isnan(temperatures)
         near = measured & (
             np.abs(temperatures - fluid.reference_temperature_c) <= REFERENCE_TOLERANCE_C

@@ -13,19 +13,24 @@ app = typer.Typer(
 )
 
 Name = Annotated[str, typer.Argument(help="Fluid name (matched case-insensitively).")]
-Viscosity = Annotated[str | None, typer.Option("--viscosity", help='e.g. "4.5 cP"')]
-Density = Annotated[str | None, typer.Option("--density", help='e.g. "1112 kg/m^3"')]
+Viscosity = Annotated[
+    str | None,
+    typer.Option("--reference-viscosity", help='At the reference temperature, e.g. "4.5 cP"'),
+]
+Density = Annotated[
+    str | None,
+    typer.Option("--reference-density", help='At the reference temperature, e.g. "1112 kg/m^3"'),
+]
 Temperature = Annotated[
     str | None,
     typer.Option(
-        "--temperature", help='Temperature of the viscosity value, "20 degC" (default 20 °C).'
+        "--reference-temperature",
+        help='Temperature of the reference viscosity and density, "20 degC" (default 20 °C).',
     ),
 ]
 Pressure = Annotated[
     str | None,
-    typer.Option(
-        "--pressure-coefficient", help='Barus pressure-viscosity coefficient, "6e-9 1/Pa".'
-    ),
+    typer.Option("--pressure-viscosity", help='Barus pressure-viscosity coefficient, "6e-9 1/Pa".'),
 ]
 Glycerol = Annotated[
     str | None, typer.Option("--glycerol-fraction", help='Glycerol mass fraction, "45 %" or 0.45.')
@@ -40,10 +45,10 @@ Locator = Annotated[
 def _values(viscosity, density, temperature, pressure, glycerol) -> dict[str, float]:
     return quantities(
         {
-            "viscosity_pa_s": (viscosity, "--viscosity"),
-            "density_kg_m3": (density, "--density"),
-            "reference_temperature_c": (temperature, "--temperature"),
-            "pressure_viscosity_pa_inv": (pressure, "--pressure-coefficient"),
+            "reference_viscosity_pa_s": (viscosity, "--reference-viscosity"),
+            "reference_density_kg_m3": (density, "--reference-density"),
+            "reference_temperature_c": (temperature, "--reference-temperature"),
+            "pressure_viscosity_pa_inv": (pressure, "--pressure-viscosity"),
             "glycerol_mass_fraction": (glycerol, "--glycerol-fraction"),
         }
     )
@@ -106,7 +111,8 @@ def add(
     from granudb.db import catalog
     from granudb.errors import ValidationError
 
-    for option, value in {"--viscosity": viscosity, "--density": density}.items():
+    required = {"--reference-viscosity": viscosity, "--reference-density": density}
+    for option, value in required.items():
         if value is None:
             raise ValidationError(option, "(missing)", "is required to add a fluid")
     values: dict[str, object] = _values(

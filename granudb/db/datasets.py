@@ -19,19 +19,12 @@ from sqlalchemy.orm import Session, aliased
 
 from granudb.db.models import Collision, Dataset, Fluid, Material
 from granudb.errors import NotFoundError, ValidationError
+from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
+from granudb.vocabulary import COLLISION_TARGET
 
-COLUMNS = [
-    "diameter_m",
-    "wall_diameter_m",
-    "incidence_angle_rad",
-    "v_n_in_m_s",
-    "v_t_in_m_s",
-    "omega_in_rad_s",
-    "v_n_out_m_s",
-    "v_t_out_m_s",
-    "omega_out_rad_s",
-    "temperature_c",
-]
+#: How many of ``COLUMNS`` every hashed row carries; the target sphere's velocities follow
+#: only when a row has any, so datasets hashed before they existed keep their hash.
+_ALWAYS_HASHED = len(COLUMNS) - len(COLLISION_TARGET)
 DEFAULT_VERSION = "1.0.0"
 
 
@@ -109,13 +102,17 @@ def hash_rows(batches: Iterable[Iterable[Sequence[object]]]) -> str:
     notes), given in batches."""
     digest = hashlib.sha256()
     for rows in batches:
-        text = "".join(
-            "\x1f".join(["" if v is None else repr(v) if type(v) is float else str(v) for v in row])
-            + "\x1e"
-            for row in rows
-        )
+        text = "".join("\x1f".join(_canonical(row)) + "\x1e" for row in rows)
         digest.update(text.encode("utf-8"))
     return digest.hexdigest()
+
+
+def _canonical(row: Sequence[object]) -> list[str]:
+    cells = ["" if v is None else repr(v) if type(v) is float else str(v) for v in row]
+    first_target = 4 + _ALWAYS_HASHED
+    target = cells[first_target : first_target + len(COLLISION_TARGET)]
+    kept = cells[:first_target] + [cells[-1]]
+    return kept + target if any(target) else kept
 
 
 def hash_frame(frame: Any) -> str:
@@ -123,7 +120,7 @@ def hash_frame(frame: Any) -> str:
     import math
 
     columns = ["run", "particle", "wall", "fluid", *COLUMNS, "notes"]
-    values = [frame[c].tolist() for c in columns]
+    values = [frame[c].tolist() if c in frame else [None] * len(frame) for c in columns]
     order = sorted(range(len(frame)), key=lambda i: str(values[0][i]).encode("utf-8"))
     rows = (
         [None if isinstance(v, float) and math.isnan(v) else v for v in (c[i] for c in values)]

@@ -8,7 +8,8 @@ older file forward, while a file from a *newer* granudb is refused rather than d
 from __future__ import annotations
 
 import io
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
 from sqlalchemy import inspect, text
@@ -60,6 +61,40 @@ def _lock_for_schema_change(connection: Connection) -> None:
         connection.execute(text("SELECT pg_advisory_xact_lock(7418327)"))
 
 
+@contextmanager
+def schema_transaction(database: Database) -> Iterator[Connection]:
+    """One write transaction for a schema change, with SQLite's foreign keys off.
+
+    SQLite changes a column by rebuilding its table (Alembic's batch mode): the old table
+    is dropped, and with foreign keys on, dropping ``datasets`` would delete every
+    collision through ``ON DELETE CASCADE``. ``PRAGMA foreign_keys`` cannot change inside
+    a transaction, so it is switched off before ``BEGIN`` and back on afterwards, and
+    ``PRAGMA foreign_key_check`` must find nothing before the change commits (SQLite's
+    documented procedure for schema changes).
+    """
+    engine = database.engine.execution_options(sqlite_begin="IMMEDIATE")
+    with engine.connect() as connection:
+        raw = (
+            connection.connection.driver_connection if connection.dialect.name == "sqlite" else None
+        )
+        if raw is not None:
+            raw.execute("PRAGMA foreign_keys=OFF")
+        try:
+            with connection.begin():
+                _lock_for_schema_change(connection)
+                yield connection
+                if raw is not None:
+                    broken = connection.exec_driver_sql("PRAGMA foreign_key_check").fetchall()
+                    if broken:
+                        raise SchemaError(
+                            f"database: the schema change would break {len(broken)} "
+                            f"references (first in table {broken[0][0]}); nothing was changed"
+                        )
+        finally:
+            if raw is not None:
+                raw.execute("PRAGMA foreign_keys=ON")
+
+
 def check_revision(current: str | None, connection: Connection) -> None:
     """Refuse a database this granudb does not understand."""
     script = script_directory()
@@ -94,9 +129,7 @@ def ensure_current(
         probe.rollback()
     if current == head:
         return False
-    engine = database.engine.execution_options(sqlite_begin="IMMEDIATE")
-    with engine.begin() as connection:
-        _lock_for_schema_change(connection)
+    with schema_transaction(database) as connection:
         current = current_revision(connection)
         if current == head:
             return False
@@ -123,9 +156,7 @@ def _run(database: Database, action: str, revision: str) -> tuple[str | None, st
     from alembic import command
     from alembic.util.exc import CommandError
 
-    engine = database.engine.execution_options(sqlite_begin="IMMEDIATE")
-    with engine.begin() as connection:
-        _lock_for_schema_change(connection)
+    with schema_transaction(database) as connection:
         before = current_revision(connection)
         check_revision(before, connection)
         try:

@@ -108,6 +108,9 @@ class Material(Timestamped, Base):
     roughness_rms_m: Mapped[float] = mapped_column(Float)
     correlation_length_m: Mapped[float | None] = mapped_column(Float)
     shear_modulus_pa: Mapped[float | None] = mapped_column(Float)
+    #: Yield stress Y in tension (Johnson 1985 §11.4: yield starts at p_max = 1.6 Y);
+    #: empty where not known or for brittle solids, which crack instead.
+    yield_stress_pa: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
 
@@ -126,17 +129,20 @@ class Material(Timestamped, Base):
         CheckConstraint(
             "shear_modulus_pa IS NULL OR shear_modulus_pa > 0", name="shear_modulus_positive"
         ),
+        CheckConstraint(
+            "yield_stress_pa IS NULL OR yield_stress_pa > 0", name="yield_stress_positive"
+        ),
     )
 
 
 class Fluid(Timestamped, Base):
     """A liquid the collisions happen in (absent for a dry collision).
 
-    ``viscosity_pa_s`` is the reference viscosity at ``reference_temperature_c`` as the
-    source printed it (``source``); density and the Barus pressure–viscosity coefficient C
-    may come from other sources, cited separately; ``points`` hold measured or correlated
-    viscosity (and density) against temperature so viscosity can be evaluated anywhere
-    inside their range.
+    ``reference_viscosity_pa_s`` and ``reference_density_kg_m3`` are the fluid at
+    ``reference_temperature_c`` as the source printed them (``source``); density and the
+    Barus pressure–viscosity coefficient C may come from other sources, cited separately;
+    ``points`` hold measured or correlated viscosity (and density) against temperature so
+    viscosity can be evaluated anywhere inside their range.
     """
 
     __tablename__ = "fluids"
@@ -146,8 +152,8 @@ class Fluid(Timestamped, Base):
     name_key: Mapped[str] = mapped_column(String(200), unique=True)
     description: Mapped[str | None] = mapped_column(Text)
     glycerol_mass_fraction: Mapped[float | None] = mapped_column(Float)
-    density_kg_m3: Mapped[float] = mapped_column(Float)
-    viscosity_pa_s: Mapped[float] = mapped_column(Float)
+    reference_density_kg_m3: Mapped[float] = mapped_column(Float)
+    reference_viscosity_pa_s: Mapped[float] = mapped_column(Float)
     reference_temperature_c: Mapped[float] = mapped_column(Float, default=20.0)
     pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
@@ -177,8 +183,8 @@ class Fluid(Timestamped, Base):
 
     __table_args__ = (
         CheckConstraint("length(name) > 0", name="name_not_empty"),
-        CheckConstraint("density_kg_m3 > 0", name="density_positive"),
-        CheckConstraint("viscosity_pa_s > 0", name="viscosity_positive"),
+        CheckConstraint("reference_density_kg_m3 > 0", name="density_positive"),
+        CheckConstraint("reference_viscosity_pa_s > 0", name="viscosity_positive"),
         CheckConstraint(
             "glycerol_mass_fraction IS NULL OR "
             "(glycerol_mass_fraction >= 0 AND glycerol_mass_fraction <= 1)",
@@ -260,11 +266,16 @@ class Collision(Base):
       ``v_t_in_m_s`` ≥ 0; ``v_t_out_m_s`` is negative when the particle recoils backwards.
     * spin ``omega_*_rad_s`` is positive where it adds to the contact point's tangential
       velocity: the contact point moves at v_T = v_t + ω R (R = diameter / 2).
-    * ``incidence_angle_rad`` is ζ_in, the angle between the contact point's trajectory
-      and the wall normal, in [0, π/2).
+    * ``nominal_angle_rad`` is the set-up's nominal incidence angle, if the lab records
+      one (NULL otherwise); the incidence angle ζ_in of the contact point's path is
+      derived from the velocities (``incidence_angle_rad`` in listings), and an import
+      checks that the two agree.
+    * ``omega_*_rad_s`` NULL means the spin was not measured (not zero).
 
     ``wall_diameter_m`` is NULL for a flat wall and the second sphere's diameter for a
-    particle–particle collision. ``fluid_id`` NULL means dry.
+    particle–particle collision; ``wall_v_*``/``wall_omega_*`` are that sphere's velocities
+    and spins on the same axes (NULL for a flat wall or a fixed sphere). ``fluid_id`` NULL
+    means dry.
     """
 
     __tablename__ = "collisions"
@@ -277,13 +288,19 @@ class Collision(Base):
     fluid_id: Mapped[int | None] = mapped_column(ForeignKey("fluids.id", ondelete="RESTRICT"))
     diameter_m: Mapped[float] = mapped_column(Float)
     wall_diameter_m: Mapped[float | None] = mapped_column(Float)
-    incidence_angle_rad: Mapped[float] = mapped_column(Float)
+    nominal_angle_rad: Mapped[float | None] = mapped_column(Float)
     v_n_in_m_s: Mapped[float] = mapped_column(Float)
     v_t_in_m_s: Mapped[float] = mapped_column(Float)
-    omega_in_rad_s: Mapped[float] = mapped_column(Float, default=0.0)
+    omega_in_rad_s: Mapped[float | None] = mapped_column(Float)
     v_n_out_m_s: Mapped[float] = mapped_column(Float)
     v_t_out_m_s: Mapped[float] = mapped_column(Float)
-    omega_out_rad_s: Mapped[float] = mapped_column(Float, default=0.0)
+    omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
+    wall_v_n_in_m_s: Mapped[float | None] = mapped_column(Float)
+    wall_v_t_in_m_s: Mapped[float | None] = mapped_column(Float)
+    wall_omega_in_rad_s: Mapped[float | None] = mapped_column(Float)
+    wall_v_n_out_m_s: Mapped[float | None] = mapped_column(Float)
+    wall_v_t_out_m_s: Mapped[float | None] = mapped_column(Float)
+    wall_omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
     temperature_c: Mapped[float | None] = mapped_column(Float)
     notes: Mapped[str | None] = mapped_column(Text)
 
@@ -302,8 +319,9 @@ class Collision(Base):
             "wall_diameter_m IS NULL OR wall_diameter_m > 0", name="wall_diameter_positive"
         ),
         CheckConstraint(
-            "incidence_angle_rad >= 0 AND incidence_angle_rad < 1.5707963267948966",
-            name="incidence_angle_range",
+            "nominal_angle_rad IS NULL OR "
+            "(nominal_angle_rad >= 0 AND nominal_angle_rad < 1.5707963267948966)",
+            name="nominal_angle_range",
         ),
         CheckConstraint("v_n_in_m_s > 0", name="v_n_in_positive"),
         CheckConstraint("v_t_in_m_s >= 0", name="v_t_in_non_negative"),
@@ -370,3 +388,27 @@ class PublishedValue(Base):
         UniqueConstraint("source_id", "label", "quantity"),
         CheckConstraint("uncertainty IS NULL OR uncertainty >= 0", name="uncertainty_non_negative"),
     )
+
+
+#: The largest finite double: a column is finite when it lies within ±FINITE_MAX. The same
+#: text works on both backends: PostgreSQL sorts 'NaN' above every number and SQLite stores
+#: a NaN as NULL, so NaN, +inf and −inf all fail it.
+FINITE_MAX = "1.7976931348623157e308"
+
+
+def finite_check(column: str) -> str:
+    """SQL that holds when ``column`` is NULL or a finite number (not NaN, not ±inf)."""
+    return f"{column} IS NULL OR ({column} >= -{FINITE_MAX} AND {column} <= {FINITE_MAX})"
+
+
+def _add_finite_checks() -> None:
+    """Every floating-point column refuses NaN and ±infinity, even from other tools."""
+    for table in Base.metadata.tables.values():
+        for column in table.columns:
+            if isinstance(column.type, Float):
+                table.append_constraint(
+                    CheckConstraint(finite_check(column.name), name=f"{column.name}_finite")
+                )
+
+
+_add_finite_checks()

@@ -24,23 +24,25 @@ from sqlalchemy import select
 from granudb.db import datasets
 from granudb.db.models import Collision, CollisionImport, Fluid, Material, name_key
 from granudb.errors import ConflictError, ValidationError
+from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TEXT
 from granudb.vocabulary.rules import RULES
 
-NUMERIC = list(datasets.COLUMNS)  # the measured columns, SI
-TEXT = ["run", "particle", "wall", "fluid", "notes"]
+NUMERIC = list(COLLISION_MEASURED)  # the measured columns, SI
+TEXT = list(COLLISION_TEXT)
+#: Empty spin cells mean "not measured" and stay empty; the angle is optional (it is
+#: derived from the velocities), and so are the target sphere's velocities.
 REQUIRED = [
     "run",
     "particle",
     "wall",
     "diameter_m",
-    "incidence_angle_rad",
     "v_n_in_m_s",
     "v_t_in_m_s",
-    "omega_in_rad_s",
     "v_n_out_m_s",
     "v_t_out_m_s",
-    "omega_out_rad_s",
 ]
+#: Headers of earlier granudb files, read as today's columns.
+ALIASES = {"incidence_angle": "nominal_angle"}
 #: e = v_n_out / v_n_in above this is refused: energy from nowhere, beyond measurement error.
 MAX_RESTITUTION = 1.05
 MAX_LENGTH = {"run": 200, "particle": 200, "wall": 200, "fluid": 200, "notes": 10_000}
@@ -170,7 +172,7 @@ def _in_units(column: str, mapping: dict[str, Any]) -> str:
     if cmap is None or (cmap.scale == 1.0 and cmap.offset == 0.0):
         return ""
     rule = RULES[column]
-    if column == "incidence_angle_rad" and rule.maximum is not None:
+    if column == "nominal_angle_rad" and rule.maximum is not None:
         return " rad, i.e. below 90°"
     return f" {cmap.unit.pint} (in SI)"
 
@@ -257,7 +259,11 @@ def import_collisions(
                 first_row = rows + 2  # spreadsheet rows: the header is row 1
                 if mapping is None:
                     mapping = map_headers(
-                        [str(c) for c in chunk.columns], NUMERIC, TEXT, table=TABLE
+                        [str(c) for c in chunk.columns],
+                        NUMERIC,
+                        TEXT,
+                        table=TABLE,
+                        aliases=ALIASES,
                     )
                     missing = [c for c in REQUIRED if c not in mapping]
                     if missing:
@@ -331,8 +337,6 @@ def insert_collisions(session: Any, dataset_id: int, frame: Any) -> int:
     columns: list[list[Any]] = [[dataset_id] * n]
     for name in INSERT_COLUMNS[1:]:
         values = frame[name]
-        if name in ("omega_in_rad_s", "omega_out_rad_s"):
-            values = values.fillna(0.0)
         array = values.to_numpy(dtype=object)
         missing = values.isna().to_numpy()
         if name in ("particle_id", "wall_id", "fluid_id"):

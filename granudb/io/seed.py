@@ -23,12 +23,13 @@ MATERIAL_NUMERIC = [
     "roughness_rms_m",
     "correlation_length_m",
     "shear_modulus_pa",
+    "yield_stress_pa",
 ]
 MATERIAL_TEXT = ["name", "description", "source", "source_locator"]
 FLUID_NUMERIC = [
     "glycerol_mass_fraction",
-    "density_kg_m3",
-    "viscosity_pa_s",
+    "reference_density_kg_m3",
+    "reference_viscosity_pa_s",
     "reference_temperature_c",
     "pressure_viscosity_pa_inv",
 ]

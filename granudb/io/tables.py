@@ -38,7 +38,12 @@ class ColumnMap:
 
 
 def map_headers(
-    headers: list[str], numeric: list[str], text: list[str], *, table: str
+    headers: list[str],
+    numeric: list[str],
+    text: list[str],
+    *,
+    table: str,
+    aliases: dict[str, str] | None = None,
 ) -> dict[str, ColumnMap]:
     """Map each header to a known column; refuse unknown, ambiguous or unit-less ones.
 
@@ -53,6 +58,7 @@ def map_headers(
         if not match:
             raise ValidationError(f"{table} header", repr(header), "is not 'name' or 'name [unit]'")
         base, unit_text = match["base"].strip().replace(" ", "_"), match["unit"]
+        base = (aliases or {}).get(base, base)
         if base in text and unit_text is None:
             column, cmap = base, ColumnMap(header, base, unit_of_column(""), numeric=False)
         elif base in numeric and unit_text is None:

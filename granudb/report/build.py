@@ -137,7 +137,7 @@ def _fluid_block(record: dict[str, Any], state: Any, citations: dict[str, str]) 
         },
         {
             "label": "Reference viscosity",
-            "value": display(record["viscosity_pa_s"], "viscosity_pa_s"),
+            "value": display(record["reference_viscosity_pa_s"], "viscosity_pa_s"),
             "source": source,
         },
         {

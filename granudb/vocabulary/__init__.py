@@ -8,10 +8,26 @@ This package sits at the bottom of the layers: it imports nothing of granudb but
 """
 
 from granudb.vocabulary.rules import RULES, Rule, check_record, check_value
-from granudb.vocabulary.terms import DERIVED_TERMS, TABLES, TERMS, Term, term
+from granudb.vocabulary.terms import (
+    COLLISION_MEASURED,
+    COLLISION_TARGET,
+    COLLISION_TEXT,
+    DERIVED_TERMS,
+    FLUID_PROPERTIES,
+    MATERIAL_PROPERTIES,
+    TABLES,
+    TERMS,
+    Term,
+    term,
+)
 from granudb.vocabulary.units import UNITS, Unit, unit_of_column
 
 __all__ = [
+    "COLLISION_MEASURED",
+    "COLLISION_TARGET",
+    "COLLISION_TEXT",
+    "FLUID_PROPERTIES",
+    "MATERIAL_PROPERTIES",
     "DERIVED_TERMS",
     "RULES",
     "TABLES",

@@ -63,16 +63,53 @@ TERMS: dict[str, Term] = {
     "glycerol_mass_fraction": Term(
         "Glycerol mass fraction", None, "Mass fraction of glycerol in water, 0–1."
     ),
-    "viscosity_pa_s": Term("Dynamic viscosity", "Pa*s", "Dynamic viscosity μ (1 cP = 1 mPa·s)."),
+    "viscosity_pa_s": Term(
+        "Dynamic viscosity",
+        "Pa*s",
+        "Dynamic viscosity μ of the fluid at the temperature in question (1 cP = 1 mPa·s).",
+        symbol="μ",
+        option="--viscosity",
+    ),
+    "reference_viscosity_pa_s": Term(
+        "Reference viscosity",
+        "Pa*s",
+        "The fluid's viscosity at its reference temperature, as the source printed it.",
+        symbol="μ_ref",
+        option="--reference-viscosity",
+    ),
+    "reference_density_kg_m3": Term(
+        "Reference density",
+        "kg/m^3",
+        "The fluid's density at its reference temperature.",
+        symbol="ρ_f,ref",
+        option="--reference-density",
+    ),
     "reference_temperature_c": Term(
-        "Reference temperature", "degC", "Temperature at which the fluid's viscosity was given."
+        "Reference temperature",
+        "degC",
+        "Temperature at which the fluid's reference viscosity and density were given.",
+        option="--reference-temperature",
     ),
     "pressure_viscosity_pa_inv": Term(
         "Pressure–viscosity coefficient",
         "1/Pa",
         "Barus coefficient C in μ(p) = μ₀ exp(C p); empty where not known.",
     ),
-    "temperature_c": Term("Temperature", "degC", "Temperature."),
+    "temperature_c": Term(
+        "Temperature",
+        "degC",
+        "Temperature of the fluid during the collision (sets its viscosity and density).",
+        symbol="T",
+        option="--temperature",
+    ),
+    "yield_stress_pa": Term(
+        "Yield stress",
+        "Pa",
+        "Yield stress Y in tension; yield starts below the surface at p_max = 1.6 Y "
+        "(Johnson 1985 §11.4). Empty where not known and for brittle solids.",
+        symbol="Y",
+        option="--yield-stress",
+    ),
     # datasets
     "version": Term("Version", None, "Version of the dataset (semantic versioning)."),
     "title": Term("Title", None, "Human-readable title."),
@@ -89,10 +126,12 @@ TERMS: dict[str, Term] = {
     "wall_diameter_m": Term(
         "Wall diameter", "m", "Diameter of a second sphere; empty for a flat wall."
     ),
-    "incidence_angle_rad": Term(
-        "Incidence angle",
+    "nominal_angle_rad": Term(
+        "Nominal angle",
         "rad",
-        "ζ_in: angle between the contact point's path and the wall normal, in [0, π/2).",
+        "The set-up's nominal incidence angle, if the lab records one, in [0, π/2); "
+        "checked at import against the angle of the velocities. The incidence angle ζ_in "
+        "itself (incidence_angle_rad) is derived from the velocities.",
     ),
     "v_n_in_m_s": Term(
         "Normal speed in", "m/s", "Normal speed towards the wall just before contact (> 0)."
@@ -106,7 +145,7 @@ TERMS: dict[str, Term] = {
         "Spin in",
         "rad/s",
         "Spin before contact, positive where it adds to the contact "
-        "point's tangential velocity (v_T = v_t + ωR).",
+        "point's tangential velocity (v_T = v_t + ωR); empty if not measured.",
     ),
     "v_n_out_m_s": Term(
         "Normal speed out", "m/s", "Normal speed away from the wall just after contact (≥ 0)."
@@ -116,7 +155,45 @@ TERMS: dict[str, Term] = {
         "m/s",
         "Tangential velocity after contact, negative when it recoils.",
     ),
-    "omega_out_rad_s": Term("Spin out", "rad/s", "Spin after contact (same sign convention)."),
+    "omega_out_rad_s": Term(
+        "Spin out", "rad/s", "Spin after contact (same sign convention); empty if not measured."
+    ),
+    "wall_v_n_in_m_s": Term(
+        "Target normal velocity in",
+        "m/s",
+        "A free target sphere's velocity along the normal (from particle to target) just "
+        "before contact; empty for a flat wall or a fixed sphere.",
+    ),
+    "wall_v_t_in_m_s": Term(
+        "Target tangential velocity in",
+        "m/s",
+        "A free target sphere's tangential velocity before contact, on the particle's axis.",
+    ),
+    "wall_omega_in_rad_s": Term(
+        "Target spin in",
+        "rad/s",
+        "A free target sphere's spin before contact, positive where it adds to the relative "
+        "velocity of the contact points.",
+    ),
+    "wall_v_n_out_m_s": Term(
+        "Target normal velocity out", "m/s", "The target sphere's normal velocity after contact."
+    ),
+    "wall_v_t_out_m_s": Term(
+        "Target tangential velocity out",
+        "m/s",
+        "The target sphere's tangential velocity after contact.",
+    ),
+    "wall_omega_out_rad_s": Term(
+        "Target spin out", "rad/s", "The target sphere's spin after contact."
+    ),
+    "impact_speed_m_s": Term(
+        "Impact speed",
+        "m/s",
+        "V = √(v_n² + v_t²), the speed of the particle's centre before contact.",
+        role="input",
+        symbol="V",
+        option="--velocity",
+    ),
     # published values
     "label": Term("Label", None, "What the value describes, e.g. 'dry steel on Zerodur'."),
     "quantity": Term(
@@ -228,6 +305,52 @@ DERIVED_TERMS: dict[str, Term] = {
 }
 
 
+#: The measured columns of a collision, SI, in the order of the content hash and of every
+#: export; the free target sphere's velocities (``COLLISION_TARGET``) come last.
+COLLISION_TARGET = [
+    "wall_v_n_in_m_s",
+    "wall_v_t_in_m_s",
+    "wall_omega_in_rad_s",
+    "wall_v_n_out_m_s",
+    "wall_v_t_out_m_s",
+    "wall_omega_out_rad_s",
+]
+COLLISION_MEASURED = [
+    "diameter_m",
+    "wall_diameter_m",
+    "nominal_angle_rad",
+    "v_n_in_m_s",
+    "v_t_in_m_s",
+    "omega_in_rad_s",
+    "v_n_out_m_s",
+    "v_t_out_m_s",
+    "omega_out_rad_s",
+    "temperature_c",
+    *COLLISION_TARGET,
+]
+#: The text columns of a collision as people and files name them.
+COLLISION_TEXT = ["run", "particle", "wall", "fluid", "notes"]
+
+#: A material's stored properties (SI), in the order tables and exports show them.
+MATERIAL_PROPERTIES = [
+    "density_kg_m3",
+    "youngs_modulus_pa",
+    "poisson_ratio",
+    "roughness_rms_m",
+    "correlation_length_m",
+    "shear_modulus_pa",
+    "yield_stress_pa",
+]
+#: A fluid's stored properties (SI).
+FLUID_PROPERTIES = [
+    "glycerol_mass_fraction",
+    "reference_density_kg_m3",
+    "reference_viscosity_pa_s",
+    "reference_temperature_c",
+    "pressure_viscosity_pa_inv",
+]
+
+
 TABLES: dict[str, str] = {
     "sources": "Publications, correlations and campaigns that stored numbers come from.",
     "materials": "Particle and wall materials; Joseph & Hunt (2004) table 1 ships as seed data.",
@@ -248,6 +371,8 @@ def term(column: str) -> Term:
     """The term for ``column``; ids and foreign keys get a generic one."""
     if column in TERMS:
         return TERMS[column]
+    if column in DERIVED_TERMS:
+        return DERIVED_TERMS[column]
     if column.endswith("_id"):
         return Term(
             column[:-3].replace("_", " ").capitalize(),
