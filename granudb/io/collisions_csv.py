@@ -13,17 +13,15 @@ a dataset at most once.
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-from sqlalchemy import select
 
 from granudb.db import datasets
-from granudb.db.models import Collision, CollisionImport, Fluid, Material, name_key
-from granudb.errors import ConflictError, ValidationError
+from granudb.errors import ValidationError
 from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TEXT
 from granudb.vocabulary.rules import RULES
 
@@ -73,38 +71,6 @@ def _first(mask: Any) -> int:
 
 def _header_of(mapping: dict[str, Any], column: str) -> str:
     return mapping[column].header if column in mapping else column
-
-
-class _Names:
-    """Case-insensitive lookup of material and fluid names to ids, vectorized."""
-
-    def __init__(self, session: Any) -> None:
-        self.materials = {
-            name_key(n): i for i, n in session.execute(select(Material.id, Material.name))
-        }
-        self.material_names = sorted(
-            (n for (n,) in session.execute(select(Material.name))), key=str.casefold
-        )
-        self.fluids = {name_key(n): i for i, n in session.execute(select(Fluid.id, Fluid.name))}
-        self.fluid_names = sorted(
-            (n for (n,) in session.execute(select(Fluid.name))), key=str.casefold
-        )
-
-    def ids(
-        self, names: Any, table: dict[str, int], known: list[str], header: str, first_row: int
-    ) -> Any:
-        unique = {n: table.get(name_key(n)) for n in names.dropna().unique() if isinstance(n, str)}
-        ids = names.map(unique)
-        unknown = names.notna() & ids.isna()
-        if unknown.any():
-            pos = _first(unknown)
-            raise ValidationError(
-                header,
-                repr(str(names.iloc[pos])),
-                f"is not in the database (known: {', '.join(known)})",
-                row=first_row + pos,
-            )
-        return ids
 
 
 def _check_chunk(frame: Any, raw: Any, mapping: dict[str, Any], first_row: int) -> None:
@@ -225,93 +191,58 @@ def import_collisions(
     progress: Callable[[int], None] | None = None,
     chunk_rows: int = CHUNK_ROWS,
 ) -> ImportResult:
-    """Import ``path`` into ``dataset`` (created if new), all or nothing."""
-    import pandas as pd
+    """Import ``path`` into ``dataset`` (created if new), all or nothing.
 
-    from granudb.db.catalog import get_source
-    from granudb.io.tables import convert_frame, map_headers
+    This module reads and checks the file (``collision_frames``); ``granudb.db.collision_store``
+    resolves names, refuses repeated runs and writes everything in one transaction.
+    """
+    from granudb.db.collision_store import ImportTarget, store_collisions
 
     path = Path(path)
     if not path.is_file():
         raise ValidationError("FILE", str(path), "is not a file")
     sha256 = file_sha256(path)
-    rows = 0
     try:
         _check_shape(path)
-        with database.session(write=True) as session:
-            source_id = get_source(session, source).id if source is not None else None
-            target, _ = datasets.get_or_create_dataset(
-                session, dataset, version, title=title, license=license, source_id=source_id
-            )
-            earlier = session.scalars(
-                select(CollisionImport).filter_by(dataset_id=target.id, file_sha256=sha256)
-            ).first()
-            if earlier is not None:
-                raise ConflictError(
-                    f"FILE: {path.name} was already imported into dataset {dataset} {version} "
-                    f"on {earlier.imported_at:%Y-%m-%d %H:%M} ({earlier.rows} rows); nothing "
-                    "was imported again"
+    except UnicodeDecodeError:
+        raise ValidationError("FILE", path.name, "is not UTF-8 text") from None
+    target = ImportTarget(dataset, version, source, title, license, sha256, path.name)
+    rows = store_collisions(database, target, collision_frames(path, chunk_rows), progress=progress)
+    return ImportResult(dataset, version, rows, sha256, path.name)
+
+
+def collision_frames(path: Path, chunk_rows: int = CHUNK_ROWS) -> Iterator[Any]:
+    """The file's rows as checked SI DataFrames, chunk by chunk, names still as text.
+
+    Each frame's ``attrs["first_row"]`` is the spreadsheet row of its first line (the
+    header is row 1), so later checks can name the row.
+    """
+    import pandas as pd
+
+    from granudb.io.tables import convert_frame, map_headers
+
+    mapping = None
+    rows = 0
+    try:
+        for chunk in _read_chunks(path, chunk_rows):
+            first_row = rows + 2
+            if mapping is None:
+                mapping = map_headers(
+                    [str(c) for c in chunk.columns], NUMERIC, TEXT, table=TABLE, aliases=ALIASES
                 )
-            names = _Names(session)
-            seen = set(session.scalars(select(Collision.run).filter_by(dataset_id=target.id)))
-            mapping = None
-            for chunk in _read_chunks(path, chunk_rows):
-                first_row = rows + 2  # spreadsheet rows: the header is row 1
-                if mapping is None:
-                    mapping = map_headers(
-                        [str(c) for c in chunk.columns],
-                        NUMERIC,
-                        TEXT,
-                        table=TABLE,
-                        aliases=ALIASES,
-                    )
-                    missing = [c for c in REQUIRED if c not in mapping]
-                    if missing:
-                        raise ValidationError(
-                            f"{TABLE} header",
-                            ", ".join(missing),
-                            "are required columns but missing",
-                        )
-                frame = convert_frame(chunk, mapping, table=TABLE, first_row=first_row)
-                for column in NUMERIC + TEXT:
-                    if column not in frame:
-                        frame[column] = np.nan if column in NUMERIC else None
-                _check_chunk(frame, chunk, mapping, first_row)
-                runs = frame["run"]
-                repeated = runs.duplicated() | runs.isin(seen)
-                if repeated.any():
-                    pos = _first(repeated)
+                missing = [c for c in REQUIRED if c not in mapping]
+                if missing:
                     raise ValidationError(
-                        "run",
-                        repr(runs.iloc[pos]),
-                        "appears twice (in this file or already in the dataset)",
-                        row=first_row + pos,
+                        f"{TABLE} header", ", ".join(missing), "are required columns but missing"
                     )
-                seen.update(runs)
-                frame["particle_id"] = names.ids(
-                    frame.pop("particle"),
-                    names.materials,
-                    names.material_names,
-                    "particle",
-                    first_row,
-                )
-                frame["wall_id"] = names.ids(
-                    frame.pop("wall"), names.materials, names.material_names, "wall", first_row
-                )
-                frame["fluid_id"] = names.ids(
-                    frame.pop("fluid"), names.fluids, names.fluid_names, "fluid", first_row
-                )
-                rows += insert_collisions(session, target.id, frame)
-                if progress is not None:
-                    progress(rows)
-            if rows == 0:
-                raise ValidationError("FILE", path.name, "holds no rows")
-            session.add(
-                CollisionImport(
-                    dataset_id=target.id, file_sha256=sha256, file_name=path.name[:500], rows=rows
-                )
-            )
-            datasets.update_content_hash(session, target)
+            frame = convert_frame(chunk, mapping, table=TABLE, first_row=first_row)
+            for column in NUMERIC + TEXT:
+                if column not in frame:
+                    frame[column] = np.nan if column in NUMERIC else None
+            _check_chunk(frame, chunk, mapping, first_row)
+            frame.attrs["first_row"] = first_row
+            rows += len(frame)
+            yield frame
     except UnicodeDecodeError:
         raise ValidationError("FILE", path.name, "is not UTF-8 text") from None
     except pd.errors.ParserError as exc:
@@ -319,38 +250,5 @@ def import_collisions(
         raise ValidationError("FILE", path.name, f"is not a well-formed CSV ({detail})") from None
     except pd.errors.EmptyDataError:
         raise ValidationError("FILE", path.name, "is empty") from None
-    return ImportResult(dataset, version, rows, sha256, path.name)
-
-
-INSERT_COLUMNS = ["dataset_id", "run", "particle_id", "wall_id", "fluid_id", *NUMERIC, "notes"]
-
-
-def insert_collisions(session: Any, dataset_id: int, frame: Any) -> int:
-    """Bulk-insert SI rows (ids already resolved); returns the count.
-
-    Rows go to the driver's ``executemany`` as tuples with one parameterised statement:
-    several times faster than ORM objects or dicts, and still no SQL built from data.
-    """
-    n = len(frame)
-    if n == 0:
-        return 0
-    columns: list[list[Any]] = [[dataset_id] * n]
-    for name in INSERT_COLUMNS[1:]:
-        values = frame[name]
-        array = values.to_numpy(dtype=object)
-        missing = values.isna().to_numpy()
-        if name in ("particle_id", "wall_id", "fluid_id"):
-            array = [None if m else int(v) for v, m in zip(array, missing, strict=True)]
-        elif missing.any():
-            array = [None if m else v for v, m in zip(array, missing, strict=True)]
-        else:
-            array = array.tolist()
-        columns.append(array)
-    connection = session.connection()
-    mark = "?" if connection.dialect.paramstyle == "qmark" else "%s"
-    statement = (
-        f"INSERT INTO collisions ({', '.join(INSERT_COLUMNS)}) "
-        f"VALUES ({', '.join([mark] * len(INSERT_COLUMNS))})"
-    )
-    connection.exec_driver_sql(statement, list(zip(*columns, strict=True)))
-    return n
+    if rows == 0:
+        raise ValidationError("FILE", path.name, "holds no rows")

@@ -599,8 +599,8 @@ def import_package(
     from sqlalchemy import select
 
     from granudb.db import datasets
+    from granudb.db.collision_store import insert_collisions
     from granudb.db.models import Dataset, Fluid, Material
-    from granudb.io.collisions_csv import insert_collisions
 
     validated = validate_package(path)
     if validated.problems:

@@ -1,0 +1,86 @@
+"""The rules every name and free text obeys, wherever it comes from.
+
+One set for the command line, CSV files and Data Packages, so a string that one door
+accepts every other door and every later read accepts too. Names (materials, fluids,
+datasets, runs, sources) are single-line, printable, without surrounding spaces, without
+bidirectional overrides or zero-width characters (which make two different names look the
+same, or one name read backwards in a terminal), and at most ``MAX_NAME`` characters.
+Free text (descriptions, notes) may hold line breaks and tabs but no other control
+character, and no bare carriage return (spreadsheets and CSV readers disagree about it).
+"""
+
+from __future__ import annotations
+
+import re
+
+from granudb.errors import ValidationError
+
+MAX_NAME = 200
+MAX_TEXT = 10_000
+
+#: C0 and C1 control characters (tab, line feed excepted for free text).
+_CONTROL = "\x00-\x08\x0b-\x1f\x7f-\x9f"
+#: Bidirectional embeddings, overrides and isolates, and marks (Unicode TR9).
+_BIDI = "\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069"
+#: Zero-width and invisible formatting characters.
+_INVISIBLE = "\u200b-\u200d\u2060-\u2064\ufeff\u00ad"
+
+_NAME_FORBIDDEN = re.compile(f"[\t\n\r{_CONTROL}{_BIDI}{_INVISIBLE}]")
+_TEXT_FORBIDDEN = re.compile(f"[\r{_CONTROL}{_BIDI}{_INVISIBLE}]")
+
+
+def _describe(character: str) -> str:
+    return f"U+{ord(character):04X}"
+
+
+def check_name(field: str, value: str, *, max_length: int = MAX_NAME) -> str:
+    """``value`` if it is a valid name, else ``ValidationError`` naming the rule.
+
+    >>> check_name("name", "Zerodur")
+    'Zerodur'
+    """
+    if not isinstance(value, str) or not value.strip():
+        raise ValidationError(field, repr(value), "must not be empty")
+    if value != value.strip():
+        raise ValidationError(field, repr(value), "must not begin or end with spaces")
+    if len(value) > max_length:
+        raise ValidationError(
+            field, repr(value[:20] + "…"), f"must be at most {max_length} characters"
+        )
+    bad = _NAME_FORBIDDEN.search(value)
+    if bad:
+        raise ValidationError(
+            field,
+            repr(value[:40]),
+            f"must not contain {_describe(bad.group())} (control, bidirectional or "
+            "invisible characters)",
+        )
+    return value
+
+
+def check_text(field: str, value: str | None, *, max_length: int = MAX_TEXT) -> str | None:
+    """``value`` if it is valid free text (``None`` stays ``None``), else
+    ``ValidationError``."""
+    if value is None:
+        return None
+    if len(value) > max_length:
+        raise ValidationError(
+            field, repr(value[:20] + "…"), f"must be at most {max_length} characters"
+        )
+    bad = _TEXT_FORBIDDEN.search(value)
+    if bad:
+        raise ValidationError(
+            field,
+            repr(value[:40]),
+            f"must not contain {_describe(bad.group())} (control, bidirectional or "
+            "invisible characters; line breaks are \\n)",
+        )
+    return value
+
+
+def name_pattern() -> str:
+    """A regular expression (for Table Schema ``pattern``) that valid names match."""
+    return (
+        f"^[^\\s{_CONTROL}{_BIDI}{_INVISIBLE}](?:[^\t\n\r{_CONTROL}{_BIDI}{_INVISIBLE}]*"
+        f"[^\\s{_CONTROL}{_BIDI}{_INVISIBLE}])?$"
+    )
