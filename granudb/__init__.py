@@ -13,7 +13,14 @@ from granudb.version import __version__
 
 _API = {
     "connect": "granudb.api.database",
+    "pair": "granudb.api.pair",
+    "materials": "granudb.api.catalog",
+    "fluids": "granudb.api.catalog",
     "collisions": "granudb.api.collisions",
+    "derive": "granudb.api.collisions",
+    "fit_walton": "granudb.api.fits",
+    "fit_restitution": "granudb.api.fits",
+    "fit_gap_viscosity": "granudb.api.fits",
 }
 
 __all__ = ["__version__", *_API]

@@ -16,16 +16,38 @@ class GranudbError(ValueError):
 class ValidationError(GranudbError):
     """A value from outside (CLI option, CSV cell, package field) breaks a rule."""
 
-    def __init__(self, field: str, value: object, rule: str, *, row: int | None = None) -> None:
+    def __init__(
+        self,
+        field: str,
+        value: object,
+        rule: str,
+        *,
+        row: int | None = None,
+        parameter: bool = False,
+    ) -> None:
         self.field = field
         self.value = value
         self.rule = rule
         self.row = row
-        where = f"row {row}: " if row is not None else ""
+        #: ``field`` is a parameter of the Python API (``temperature``); the command line
+        #: names the same input ``--temperature`` (one name, two spellings).
+        self.parameter = parameter
+        super().__init__(self.render(field))
+
+    def render(self, field: str) -> str:
+        """The one-line message with ``field`` as the caller names it."""
+        where = f"row {self.row}: " if self.row is not None else ""
         # A value with a newline or other control character is shown escaped, so the
         # message stays one line whatever the input.
+        value = self.value
         shown = value if isinstance(value, str) and value.isprintable() else repr(value)
-        super().__init__(f"{where}{field}: {shown} {rule}")
+        return f"{where}{field}: {shown} {self.rule}"
+
+    def as_option(self) -> str:
+        """The message for the command line: a Python parameter becomes its option."""
+        if self.parameter:
+            return self.render("--" + self.field.replace("_", "-"))
+        return str(self)
 
 
 class NotFoundError(GranudbError):

@@ -84,7 +84,9 @@ def test_example_file_imports_in_si(cli, db: str) -> None:
     assert result.exit_code == 0, result.stderr
     assert "imported 12 runs into dataset example 1.0.0" in result.stdout
     rows = json.loads(
-        cli("collisions", "list", "--dataset", "example", "--format", "json", db=db).stdout
+        cli(
+            "collisions", "list", "--dataset", "example", "--wide", "--format", "json", db=db
+        ).stdout
     )
     assert len(rows) == 12
     first = next(r for r in rows if r["run"] == "steel-dry-1")
@@ -297,17 +299,19 @@ def test_list_filters(cli, db: str) -> None:
     assert runs("--particle", "glass") == {"glass-g45-1", "glass-g45-2"}
     assert runs("--angle-range", "20..45 deg", "--fluid", "dry") == {"steel-dry-4", "steel-dry-5"}
     assert runs("--regime", "gross_slip", "--fluid", "dry") == {"steel-dry-5", "steel-dry-6"}
-    assert runs("--regime", "rough") == {"glass-g45-1", "glass-g45-2"}
-    assert runs("--min-st", "500") == {f"steel-g37-{i}" for i in range(1, 5)}
+    assert runs("--roughness-exceeds-gap") == {"glass-g45-1", "glass-g45-2"}
+    assert runs("--min-normal-stokes", "500") == {f"steel-g37-{i}" for i in range(1, 5)}
     csv_out = cli("collisions", "list", "--format", "csv", db=db).stdout
-    assert csv_out.splitlines()[0].startswith("dataset,version,run,particle")
+    assert csv_out.splitlines()[0].startswith("run,particle,wall,fluid")
+    wide = cli("collisions", "list", "--wide", "--format", "csv", db=db).stdout
+    assert wide.splitlines()[0].startswith("dataset,version,run,particle")
 
 
 def test_python_api_returns_a_dataframe(cli, db: str) -> None:
     import granudb
 
     cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db)
-    frame = granudb.collisions(db, particle="steel", fluid="glycerol-37")
+    frame = granudb.collisions(db=db, particle="steel", fluid="glycerol-37")
     assert len(frame) == 4
     assert frame["normal_restitution"].to_numpy() == pytest.approx(0.8)
 
@@ -316,7 +320,7 @@ def test_walton_fit_recovers_the_published_dry_values(db: str, tmp_path: Path) -
     # Synthetic runs scattered around the paper's dry fits (β = 0.34, μ_f = 0.11 for steel;
     # β = 0.39, μ_f = 0.106 for glass; ē = 0.97): the fit must give them back within error.
     from granudb.analysis import fits
-    from granudb.analysis.query import CollisionQuery, select_collisions
+    from granudb.analysis.collisions import CollisionQuery, select_collisions
     from granudb.io.collisions_csv import import_collisions
 
     rows = walton_rows(120, "steel", "", 0.34, 0.11, 0.97, 0.01, seed=4) + walton_rows(

@@ -188,7 +188,9 @@ def test_a_database_at_the_first_revision_is_migrated_forward_with_its_data(
     fluid = json.loads(cli("fluids", "show", "oil", "--format", "json", db=new_db).stdout)
     assert fluid["reference_viscosity_pa_s"] == 0.0096  # renamed by 0003, value kept
     runs = json.loads(
-        cli("collisions", "list", "--dataset", "old", "--format", "json", db=new_db).stdout
+        cli(
+            "collisions", "list", "--dataset", "old", "--wide", "--format", "json", db=new_db
+        ).stdout
     )
     assert runs[0]["nominal_angle_rad"] == 0.5  # the stored angle keeps its value
     assert runs[0]["omega_out_rad_s"] == -2

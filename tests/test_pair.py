@@ -218,7 +218,7 @@ def test_table_output_speaks_in_words_and_units(cli, db: str) -> None:
             ["--fluid", "water", "--temperature", "80 degC"],
             "--temperature: 80 is outside the temperature range 10 to 60",
         ),
-        (["--viscosity", "1 cP"], "--viscosity: 1 cP needs --fluid"),
+        (["--viscosity", "1 cP"], "--viscosity: 1 cP needs a fluid"),
     ],
 )
 def test_bad_input(cli, db: str, args: list[str], expected: str) -> None:

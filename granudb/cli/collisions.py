@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from granudb.cli import options
 from granudb.cli.common import DbOption, Format, FormatOption, open_db
 
 app = typer.Typer(
@@ -14,22 +15,6 @@ app = typer.Typer(
     no_args_is_help=True,
 )
 
-TABLE_COLUMNS = [
-    "run",
-    "particle",
-    "wall",
-    "fluid",
-    "incidence_angle_rad",
-    "v_n_in_m_s",
-    "normal_restitution",
-    "rotational_restitution",
-    "effective_incidence",
-    "effective_rebound",
-    "sliding_friction",
-    "normal_stokes_number",
-    "roughness_exceeds_gap",
-    "tangential_regime",
-]
 PROGRESS_ABOVE_BYTES = 400_000  # about 5,000 rows
 
 
@@ -93,74 +78,87 @@ def import_(
     )
 
 
-def _angle_range(text: str) -> tuple[float, float]:
-    from granudb.errors import ValidationError
-    from granudb.io.units import parse_quantity
+def natural_key(label: object) -> tuple:
+    """Sort run labels as people count: run-2 before run-10."""
+    import re
 
-    low, sep, high = text.partition("..")
-    if not sep:
-        raise ValidationError("--angle-range", text, "must be LOW..HIGH, e.g. '10..40 deg'")
-    high = high.strip()
-    unit = high.lstrip("0123456789.eE+- ").strip()
-    low = low.strip()
-    if unit and low and low.replace(".", "", 1).isdigit():
-        low = f"{low} {unit}"
-    return (
-        parse_quantity(low, "rad", "--angle-range"),
-        parse_quantity(high, "rad", "--angle-range"),
-    )
+    parts = re.split(r"(\d+)", str(label))
+    return tuple((0, int(p), "") if p.isdigit() else (1, 0, p.casefold()) for p in parts)
+
+
+def choose_columns(columns: str | None, wide: bool, available: list[str]) -> list[str]:
+    """The columns to show, the same in every format: the narrow default, ``--wide`` for
+    all, or ``--columns a,b,c`` (machine names, as in JSON and CSV)."""
+    from granudb.analysis.collisions import DEFAULT_COLUMNS
+    from granudb.errors import ValidationError
+
+    if columns is None:
+        return available if wide else DEFAULT_COLUMNS
+    chosen = [c.strip() for c in columns.split(",") if c.strip()]
+    unknown = [c for c in chosen if c not in available]
+    if unknown or not chosen:
+        raise ValidationError(
+            "--columns",
+            ", ".join(unknown) or columns,
+            f"are not columns of the listing (known: {', '.join(available)})",
+        )
+    return chosen
 
 
 @app.command("list")
 def list_(
-    dataset: Annotated[str | None, typer.Option("--dataset")] = None,
-    version: Annotated[str | None, typer.Option("--version")] = None,
-    particle: Annotated[str | None, typer.Option("--particle")] = None,
-    wall: Annotated[str | None, typer.Option("--wall")] = None,
-    fluid: Annotated[str | None, typer.Option("--fluid", help="A fluid name, or 'dry'.")] = None,
-    min_st: Annotated[
-        float | None, typer.Option("--min-st", help="Minimum normal Stokes number.")
-    ] = None,
-    max_st: Annotated[
-        float | None, typer.Option("--max-st", help="Maximum normal Stokes number.")
-    ] = None,
-    angle_range: Annotated[
-        str | None, typer.Option("--angle-range", help="Incidence angles, '10..40 deg'.")
-    ] = None,
-    regime: Annotated[
+    dataset: options.Dataset = None,
+    version: options.Version = None,
+    particle: options.Particle = None,
+    wall: options.Wall = None,
+    fluid: options.Fluid = None,
+    min_normal_stokes: options.MinNormalStokes = None,
+    max_normal_stokes: options.MaxNormalStokes = None,
+    angle_range: options.AngleRange = None,
+    regime: options.Regime = None,
+    roughness_exceeds_gap: options.RoughnessExceedsGap = None,
+    rebound_expected: options.ReboundExpected = None,
+    critical_stokes: options.CriticalStokes = 10.0,
+    columns: Annotated[
         str | None,
-        typer.Option(
-            "--regime", help="stick, slip_then_stick, gross_slip, rough (σ > h_m) or no_rebound."
-        ),
+        typer.Option("--columns", help="Comma-separated column names to show (see --wide)."),
     ] = None,
-    critical_stokes: Annotated[float, typer.Option("--critical-stokes")] = 10.0,
+    wide: Annotated[bool, typer.Option("--wide", help="Every column.")] = False,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
 ) -> None:
-    """Each run with e, β, Ψ_in, Ψ_out, μ_f (2.9), St_n, Re and the regime verdicts."""
-    from granudb.analysis.derivation import LISTED_COLUMNS
-    from granudb.analysis.query import CollisionQuery, select_collisions
+    """Each run with e, β, Ψ_in, μ_f (2.9), St_n, Λ and Maw's regime (``--wide``: all)."""
+    from granudb.api.collisions import collisions
     from granudb.cli.output import emit
 
-    database = open_db(db)
-    query = CollisionQuery(
+    frame = collisions(
+        db=open_db(db),
         dataset=dataset,
         version=version,
         particle=particle,
         wall=wall,
         fluid=fluid,
-        min_st=min_st,
-        max_st=max_st,
-        angle_range=_angle_range(angle_range) if angle_range else None,
+        min_normal_stokes=min_normal_stokes,
+        max_normal_stokes=max_normal_stokes,
+        angle_range=angle_range,
         regime=regime,
+        roughness_exceeds_gap=roughness_exceeds_gap,
+        rebound_expected=rebound_expected,
         critical_stokes=critical_stokes,
     )
-    with database.session() as session:
-        frame = select_collisions(session, query)
+    shown = choose_columns(columns, wide, list(frame.columns))
+    if not frame.empty:
+        order = sorted(
+            range(len(frame)),
+            key=lambda i: (
+                frame["dataset"].iat[i],
+                frame["version"].iat[i],
+                natural_key(frame["run"].iat[i]),
+            ),
+        )
+        frame = frame.iloc[order]
     records = frame.to_dict("records")
-    emit(
-        records,
-        TABLE_COLUMNS if fmt is Format.table else LISTED_COLUMNS,
-        fmt,
-        title=f"Collisions ({len(records)} runs)",
-    )
+    if fmt is Format.table:
+        for record in records:
+            record["fluid"] = record.get("fluid") or "dry"
+    emit(records, shown, fmt, title=f"Collisions ({len(records)} runs)", symbols=True)

@@ -7,36 +7,14 @@ load only when a command runs.
 
 from __future__ import annotations
 
-from enum import StrEnum
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING
 
-import typer
-
-from granudb.config import ENV_VAR
+from granudb.cli.options import DbOption, Format, FormatOption
 
 if TYPE_CHECKING:
     from granudb.db.engine import Database
 
-
-class Format(StrEnum):
-    table = "table"
-    json = "json"
-    csv = "csv"
-
-
-DbOption = Annotated[
-    str | None,
-    typer.Option(
-        "--db",
-        envvar=ENV_VAR,
-        show_envvar=True,
-        help="Database: a SQLAlchemy URL or a SQLite file path "
-        "(default: granudb.sqlite in the user data directory).",
-    ),
-]
-FormatOption = Annotated[
-    Format, typer.Option("--format", "-f", help="table for people; json or csv (SI) for scripts.")
-]
+__all__ = ["DbOption", "Format", "FormatOption", "given", "open_db", "quantities", "quantity"]
 
 
 def open_db(url: str | None) -> Database:

@@ -22,12 +22,13 @@ class GranudbGroup(TyperGroup):
     """Turns granudb's refusals into a one-line error and a non-zero exit."""
 
     def invoke(self, ctx: typer.Context) -> Any:
-        from granudb.errors import GranudbError
+        from granudb.errors import GranudbError, ValidationError
 
         try:
             return super().invoke(ctx)
         except GranudbError as exc:
-            message = str(exc).replace("\n", " ")
+            shown = exc.as_option() if isinstance(exc, ValidationError) else str(exc)
+            message = shown.replace("\n", " ")
             typer.echo(f"Error: {message}", err=True)
             raise typer.Exit(exc.exit_code) from None
         except (typer.Exit, typer.Abort, KeyboardInterrupt, BrokenPipeError):

@@ -14,7 +14,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from granudb.cli.common import Format
+from granudb.cli.options import Format
 
 
 def _clean(value: Any) -> Any:
@@ -73,10 +73,28 @@ def label(column: str) -> str:
     return column.replace("_", " ")
 
 
+def header(column: str, symbols: bool) -> str:
+    """A table header: the symbol people read (``St_n``) when asked for and known, else
+    the column name in words."""
+    if symbols:
+        from granudb.vocabulary import term
+
+        symbol = term(column).symbol
+        if symbol:
+            return symbol  # the cells carry their units (``300 mm/s``)
+    return label(column)
+
+
 def emit(
-    records: Sequence[dict[str, Any]], columns: Sequence[str], fmt: Format, title: str | None = None
+    records: Sequence[dict[str, Any]],
+    columns: Sequence[str],
+    fmt: Format,
+    title: str | None = None,
+    *,
+    symbols: bool = False,
 ) -> None:
-    """Print ``records`` (SI dicts) in ``fmt``, keeping ``columns`` in order."""
+    """Print ``records`` (SI dicts) in ``fmt``, keeping ``columns`` in order; a table uses
+    symbols for its headers when ``symbols``, JSON and CSV always the machine names."""
     rows = [{c: r.get(c) for c in columns} for r in records]
     if fmt is Format.json:
         sys.stdout.write(to_json(rows) + "\n")
@@ -93,7 +111,7 @@ def emit(
 
         table = Table(title=Text(title) if title else None, title_justify="left")
         for column in columns:
-            table.add_column(label(column), overflow="fold")
+            table.add_column(header(column, symbols), overflow="ellipsis", no_wrap=symbols)
         for row in rows:
             table.add_row(*(Text(display(row[c], c)) for c in columns))
         console().print(table)

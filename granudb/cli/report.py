@@ -54,11 +54,11 @@ def report(
 ) -> None:
     """Write a lab report: properties with sources, derived quantities, verdicts with the
     roughness flag, fits next to published values, figures and methods."""
-    from granudb.analysis.query import CollisionQuery
-    from granudb.cli.collisions import _angle_range
+    from granudb.analysis.collisions import CollisionQuery
+    from granudb.api._inputs import angle as _angle
+    from granudb.api._inputs import angle_range as _angle_range
     from granudb.cli.common import open_db
     from granudb.cli.output import say
-    from granudb.cli.pair import _angle
     from granudb.errors import ValidationError
     from granudb.report.build import dataset_report, pair_report
     from granudb.report.write import write_report
@@ -93,10 +93,11 @@ def report(
                 particle=particle,
                 wall=wall,
                 fluid=fluid,
-                min_st=min_st,
-                max_st=max_st,
-                angle_range=_angle_range(angle_range) if angle_range else None,
-                regime=regime,
+                min_normal_stokes=min_st,
+                max_normal_stokes=max_st,
+                angle_range=_angle_range(angle_range),
+                regime=None if regime == "rough" else regime,
+                roughness_exceeds_gap=True if regime == "rough" else None,
                 critical_stokes=critical_stokes,
             )
             report_data = dataset_report(

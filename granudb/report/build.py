@@ -300,7 +300,7 @@ def pair_report(
     critical_stokes: float,
 ) -> dict[str, Any]:
     """A report for one scenario, plus the stored runs of the same pair if there are any."""
-    from granudb.analysis.derivation import derive_pair
+    from granudb.analysis.pair import derive_pair
 
     result = derive_pair(
         session,
@@ -365,7 +365,7 @@ def pair_report(
     report["references"] = sorted(
         {f"[{key}] {text}" for key, text in citations.items()} | set(REFERENCES)
     )
-    from granudb.analysis.query import CollisionQuery
+    from granudb.analysis.collisions import CollisionQuery
 
     _add_collisions(
         session, report, CollisionQuery(particle=particle, wall=wall, fluid=fluid), with_flag=False
@@ -397,7 +397,7 @@ def _group_label(row: Any) -> str:
 
 def _add_collisions(session: Any, report: dict[str, Any], query: Any, *, with_flag: bool) -> None:
     from granudb.analysis import fits
-    from granudb.analysis.query import select_collisions
+    from granudb.analysis.collisions import select_collisions
     from granudb.db import catalog
     from granudb.report import plots
 
@@ -494,7 +494,7 @@ def _add_collisions(session: Any, report: dict[str, Any], query: Any, *, with_fl
                 ],
             }
         )
-    from granudb.analysis.derivation import fluid_model
+    from granudb.analysis.fluid_state import fluid_model
 
     models = {f.name: fluid_model(f) for f in catalog.list_fluids(session)}
     gap = fits.gap_viscosity(frame, models)

@@ -81,6 +81,8 @@ RULES: dict[str, Rule] = {
     "diameter_m": POSITIVE,
     "wall_diameter_m": POSITIVE,
     "nominal_angle_rad": Rule(0.0, math.pi / 2, max_inclusive=False),
+    "incidence_angle_rad": Rule(0.0, math.pi / 2, max_inclusive=False),
+    "impact_speed_m_s": POSITIVE,
     "reference_viscosity_pa_s": POSITIVE,
     "reference_density_kg_m3": POSITIVE,
     "yield_stress_pa": POSITIVE,

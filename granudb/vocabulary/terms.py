@@ -8,7 +8,7 @@ labels are all generated from here, so they cannot drift apart.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 
 @dataclass(frozen=True)
@@ -185,14 +185,6 @@ TERMS: dict[str, Term] = {
     ),
     "wall_omega_out_rad_s": Term(
         "Target spin out", "rad/s", "The target sphere's spin after contact."
-    ),
-    "impact_speed_m_s": Term(
-        "Impact speed",
-        "m/s",
-        "V = √(v_n² + v_t²), the speed of the particle's centre before contact.",
-        role="input",
-        symbol="V",
-        option="--velocity",
     ),
     # published values
     "label": Term("Label", None, "What the value describes, e.g. 'dry steel on Zerodur'."),
@@ -380,3 +372,30 @@ def term(column: str) -> Term:
             f"Reference to {column[:-3].replace('_', ' ')}.",
         )
     return Term(column.replace("_", " ").capitalize(), None, "")
+
+
+#: The symbols people read for stored columns (derived ones carry theirs above).
+_SYMBOLS = {
+    "diameter_m": "d",
+    "wall_diameter_m": "d₂",
+    "nominal_angle_rad": "ζ_nom",
+    "v_n_in_m_s": "v_n,in",
+    "v_t_in_m_s": "v_t,in",
+    "omega_in_rad_s": "ω_in",
+    "v_n_out_m_s": "v_n,out",
+    "v_t_out_m_s": "v_t,out",
+    "omega_out_rad_s": "ω_out",
+    "density_kg_m3": "ρ",
+    "youngs_modulus_pa": "E",
+    "poisson_ratio": "ν",
+    "roughness_rms_m": "σ",
+    "shear_modulus_pa": "G",
+    "pressure_viscosity_pa_inv": "C",
+}
+TERMS.update(
+    {
+        name: replace(TERMS[name], symbol=symbol)
+        for name, symbol in _SYMBOLS.items()
+        if name in TERMS
+    }
+)

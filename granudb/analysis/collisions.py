@@ -1,0 +1,257 @@
+"""Measured collisions as a DataFrame with every derived column, and the query that selects
+them (by dataset, pair, fluid, Stokes number, angle and regime).
+
+Shared by ``granudb collisions list``, the fits, the reports and the Python API
+(``granudb.collisions()``), so a query means the same everywhere. A row the physics
+cannot derive (say, a temperature outside its fluid's data) is kept, with its derived
+columns empty and the reason in ``derivation_note``: one bad row never hides the others.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from granudb.analysis._errors import physics_refusal
+from granudb.analysis.fluid_state import fluid_states_per_row
+from granudb.errors import ValidationError
+from granudb.vocabulary import COLLISION_MEASURED, MATERIAL_PROPERTIES, term
+
+#: What ``collisions list`` shows by default, in every format: one line per run.
+DEFAULT_COLUMNS = [
+    "run",
+    "particle",
+    "wall",
+    "fluid",
+    "v_n_in_m_s",
+    "incidence_angle_rad",
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_incidence",
+    "sliding_friction",
+    "normal_stokes_number",
+    "film_parameter",
+    "tangential_regime",
+]
+#: Every column, in presentation order (``--wide``); derived ones not named here follow.
+WIDE_COLUMNS = [
+    "dataset",
+    "version",
+    "run",
+    "particle",
+    "wall",
+    "fluid",
+    "diameter_m",
+    "incidence_angle_rad",
+    "nominal_angle_rad",
+    *[c for c in COLLISION_MEASURED if c not in ("diameter_m", "nominal_angle_rad")],
+    "viscosity_pa_s",
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_incidence",
+    "effective_rebound",
+    "sliding_friction",
+    "normal_stokes_number",
+    "reynolds_number",
+    "min_gap_m",
+    "composite_roughness_m",
+    "film_parameter",
+    "roughness_exceeds_gap",
+    "rebound_expected",
+    "tangential_regime",
+    "quasi_static_valid",
+    "shear_strain",
+    "tangential_speed_m_s",
+    "lubricated_friction",
+    "effective_radius_m",
+    "reduced_modulus_pa",
+    "notes",
+    "derivation_note",
+]
+TANGENTIAL_REGIMES = ("stick", "slip_then_stick", "gross_slip")
+_MATERIAL = [c for c in MATERIAL_PROPERTIES if c not in ("correlation_length_m",)]
+
+
+@dataclass(frozen=True)
+class CollisionQuery:
+    """Which collisions: every field ``None`` means "any". Field names are the Python
+    API's parameters and, with dashes, the command line's options."""
+
+    dataset: str | None = None
+    version: str | None = None
+    particle: str | None = None
+    wall: str | None = None
+    fluid: str | None = None
+    min_normal_stokes: float | None = None
+    max_normal_stokes: float | None = None
+    angle_range: tuple[float, float] | None = None
+    regime: str | None = None
+    roughness_exceeds_gap: bool | None = None
+    rebound_expected: bool | None = None
+    critical_stokes: float = 10.0
+
+    def describe(self) -> str:
+        parts = [
+            f"{k}={v}" for k, v in self.__dict__.items() if v is not None and k != "critical_stokes"
+        ]
+        return ", ".join(parts) or "all collisions"
+
+    def check(self) -> None:
+        """Refuse a query that cannot mean anything, naming the parameter."""
+        if self.regime is not None and self.regime not in TANGENTIAL_REGIMES:
+            raise ValidationError(
+                "regime",
+                self.regime,
+                f"must be one of {', '.join(TANGENTIAL_REGIMES)}",
+                parameter=True,
+            )
+        if not (math.isfinite(self.critical_stokes) and self.critical_stokes > 0):
+            raise ValidationError(
+                "critical_stokes", self.critical_stokes, "must be > 0", parameter=True
+            )
+        if self.angle_range is not None:
+            low, high = self.angle_range
+            if not 0 <= low <= high < math.pi / 2:
+                raise ValidationError(
+                    "angle_range",
+                    f"{math.degrees(low):g}..{math.degrees(high):g} deg",
+                    "must be LOW..HIGH with 0° ≤ LOW ≤ HIGH < 90°",
+                    parameter=True,
+                )
+
+
+def select_collisions(session: Any, query: CollisionQuery) -> Any:
+    """The collisions matching ``query``, with every derived column (a DataFrame, SI,
+    units in ``attrs["units"]``)."""
+    query.check()
+    frame = collision_table(
+        session,
+        dataset=query.dataset,
+        version=query.version,
+        particle=query.particle,
+        wall=query.wall,
+        fluid=query.fluid,
+        critical_stokes=query.critical_stokes,
+    )
+    keep = frame["run"].notna()
+    st = frame["normal_stokes_number"]
+    if query.min_normal_stokes is not None:
+        keep &= st >= query.min_normal_stokes
+    if query.max_normal_stokes is not None:
+        keep &= st <= query.max_normal_stokes
+    if query.angle_range is not None:
+        keep &= frame["incidence_angle_rad"].between(*query.angle_range)
+    if query.regime is not None:
+        keep &= frame["tangential_regime"] == query.regime
+    for flag in ("roughness_exceeds_gap", "rebound_expected"):
+        wanted = getattr(query, flag)
+        if wanted is not None:
+            keep &= frame[flag].fillna(not wanted).astype(bool) == wanted
+    selected = frame[keep].reset_index(drop=True)
+    selected.attrs["units"] = frame.attrs.get("units", {})
+    return selected
+
+
+def collision_table(session: Any, *, critical_stokes: float = 10.0, **filters: Any) -> Any:
+    """Measured collisions with every derived column, as a pandas DataFrame (SI).
+
+    ``filters``: dataset, version, particle, wall, fluid ("dry" for none).
+    """
+    import pandas as pd
+
+    from granudb.db import catalog
+    from granudb.db.collision_queries import load_collisions
+
+    stored = load_collisions(session, **filters)
+    if stored.empty:
+        empty = pd.DataFrame({c: [] for c in WIDE_COLUMNS})
+        empty.attrs["units"] = units_of(empty.columns)
+        return empty
+    fluids = {f.id: f for f in catalog.list_fluids(session)}
+    return _derive_stored(stored, fluids, critical_stokes)
+
+
+def _floats(frame: Any, name: str) -> np.ndarray:
+    import pandas as pd
+
+    return pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
+
+
+def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) -> Any:
+    import pandas as pd
+
+    from granudb.physics.derive import derive
+
+    c = {name: _floats(stored, name) for name in COLLISION_MEASURED}
+    fluid_ids = stored["fluid_id"].fillna(-1).to_numpy(dtype=int)
+    viscosity, density, reason = fluid_states_per_row(fluids, fluid_ids, c["temperature_c"])
+    props = {
+        f"{p}_{name}": _floats(stored, f"{p}_{name}")
+        for p in ("particle", "wall")
+        for name in _MATERIAL
+    }
+    props.pop("particle_yield_stress_pa"), props.pop("wall_yield_stress_pa")
+    barus = (
+        pd.Series(fluid_ids)
+        .map({i: f.pressure_viscosity_pa_inv for i, f in fluids.items()})
+        .to_numpy(dtype=float)
+    )
+    with physics_refusal():
+        result = derive(
+            **props,
+            **{k: c[k] for k in ("diameter_m", "wall_diameter_m", "v_n_in_m_s", "v_t_in_m_s")},
+            **{k: c[k] for k in ("v_n_out_m_s", "v_t_out_m_s")},
+            omega_in_rad_s=np.nan_to_num(c["omega_in_rad_s"], nan=0.0),
+            omega_out_rad_s=c["omega_out_rad_s"],
+            fluid_density_kg_m3=density,
+            viscosity_pa_s=viscosity,
+            pressure_viscosity_pa_inv=barus,
+            critical_stokes=critical_stokes,
+        )
+    frame = pd.DataFrame(
+        {
+            **{k: stored[k].to_numpy(dtype=object) for k in ("dataset", "version", "run")},
+            **{k: stored[k].to_numpy(dtype=object) for k in ("particle", "wall")},
+            "fluid": pd.Series(fluid_ids)
+            .map({i: f.name for i, f in fluids.items()})
+            .to_numpy(dtype=object),
+            **c,
+            "viscosity_pa_s": viscosity,
+            "particle_density_kg_m3": props["particle_density_kg_m3"],
+            "notes": stored["notes"].to_numpy(dtype=object),
+        }
+    )
+    for name, values in result.items():
+        if name not in frame:
+            frame[name] = values
+    frame["derivation_note"] = reason
+    _blank_underivable(frame, reason != None)  # noqa: E711 - elementwise on an object array
+    ordered = [*WIDE_COLUMNS, *(n for n in frame.columns if n not in WIDE_COLUMNS)]
+    frame = frame[ordered]
+    frame.attrs["units"] = units_of(frame.columns)
+    return frame
+
+
+def _blank_underivable(frame: Any, bad: np.ndarray) -> None:
+    """Rows without a fluid state keep their measurements but no derived value (a wrong
+    number is worse than none)."""
+    if not bad.any():
+        return
+    from granudb.vocabulary import DERIVED_TERMS
+
+    for name in DERIVED_TERMS:
+        if name in frame:
+            column = frame[name]
+            frame[name] = (
+                column.astype(object).where(~bad, None)
+                if column.dtype == object or column.dtype == bool
+                else column.where(~bad, np.nan)
+            )
+
+
+def units_of(columns: Any) -> dict[str, str]:
+    """``{column: SI unit}`` for the columns that have one (for ``DataFrame.attrs``)."""
+    return {c: term(c).unit for c in columns if term(c).unit}

@@ -1,0 +1,138 @@
+"""A fluid at a temperature: its viscosity and density, and where each number came from.
+
+With no temperature the fluid's reference values are used exactly as the source printed
+them. At a temperature, viscosity and density come from the fluid's measured (or
+correlated) points, interpolated by ``TabulatedViscosity`` (Andrade's law between
+neighbouring points). Nothing is extrapolated: a temperature outside a fluid's data is
+refused, naming the range that is covered.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from granudb.analysis._errors import physics_refusal
+from granudb.db.models import Fluid
+from granudb.errors import ValidationError
+from granudb.physics.viscosity import TabulatedViscosity
+
+REFERENCE_TOLERANCE_C = 0.5  # a temperature this close to the reference uses the printed value
+
+
+@dataclass
+class FluidState:
+    """A fluid at one temperature, and where each number came from."""
+
+    name: str
+    viscosity_pa_s: float
+    density_kg_m3: float
+    temperature_c: float
+    pressure_viscosity_pa_inv: float | None
+    basis: str
+
+
+def fluid_model(fluid: Fluid) -> TabulatedViscosity | None:
+    """The fluid's viscosity–temperature model, or None when it has fewer than two points."""
+    points = sorted(fluid.points, key=lambda p: p.temperature_c)
+    if len(points) < 2:
+        return None
+    densities = [p.density_kg_m3 if p.density_kg_m3 is not None else np.nan for p in points]
+    return TabulatedViscosity(
+        [p.temperature_c for p in points], [p.viscosity_pa_s for p in points], densities
+    )
+
+
+def _printed(fluid: Fluid) -> str:
+    source = fluid.source.key if fluid.source else "no source"
+    locator = f", {fluid.source_locator}" if fluid.source_locator else ""
+    return (
+        f"{fluid.reference_viscosity_pa_s * 1e3:.4g} mPa·s at "
+        f"{fluid.reference_temperature_c:g} °C as printed ({source}{locator})"
+    )
+
+
+def fluid_state(
+    fluid: Fluid, temperature_c: float | None = None, viscosity_pa_s: float | None = None
+) -> FluidState:
+    """The fluid at ``temperature_c`` (default: its reference temperature, printed value).
+
+    ``viscosity_pa_s`` overrides the viscosity (what-if studies, the paper's gap fits).
+    Errors name the Python parameters (``temperature``); the command line shows them as
+    its options.
+    """
+    density = fluid.reference_density_kg_m3
+    if temperature_c is None or abs(temperature_c - fluid.reference_temperature_c) <= (
+        REFERENCE_TOLERANCE_C
+    ):
+        temperature = fluid.reference_temperature_c if temperature_c is None else temperature_c
+        viscosity = fluid.reference_viscosity_pa_s
+        basis = _printed(fluid)
+    else:
+        model = fluid_model(fluid)
+        if model is None:
+            raise ValidationError(
+                "temperature",
+                f"{temperature_c:g} °C",
+                f"differs from fluid {fluid.name}'s reference {fluid.reference_temperature_c:g} "
+                "°C and it has no viscosity–temperature points (give a viscosity instead)",
+                parameter=True,
+            )
+        temperature = temperature_c
+        with physics_refusal("--temperature"):
+            viscosity = float(model.viscosity(temperature_c))
+            if model.density_kg_m3 is not None:
+                density = float(model.density(temperature_c))
+        point_source = next((p.source.key for p in fluid.points if p.source), "no source")
+        basis = (
+            f"interpolated at {temperature_c:g} °C from {len(fluid.points)} points "
+            f"({model.low_c:g}–{model.high_c:g} °C, {point_source})"
+        )
+    if viscosity_pa_s is not None:
+        viscosity = viscosity_pa_s
+        basis = f"{viscosity_pa_s * 1e3:.4g} mPa·s given as the viscosity (what-if)"
+    return FluidState(
+        fluid.name, viscosity, density, temperature, fluid.pressure_viscosity_pa_inv, basis
+    )
+
+
+def fluid_states_per_row(
+    fluids: dict[int, Fluid], fluid_ids: np.ndarray, temperatures: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Viscosity, density and a reason per row (stored collisions).
+
+    A row's fluid at its temperature from the fluid's points, or the printed reference
+    values when the row has no temperature. A row whose temperature the fluid's data do
+    not cover gets NaN and a reason instead of failing the whole read: one bad row must
+    not hide every other.
+    """
+    n = len(fluid_ids)
+    viscosity, density = np.full(n, np.nan), np.full(n, np.nan)
+    reason = np.full(n, None, dtype=object)
+    for fluid_id, fluid in fluids.items():
+        rows = fluid_ids == fluid_id
+        if not rows.any():
+            continue
+        viscosity[rows] = fluid.reference_viscosity_pa_s
+        density[rows] = fluid.reference_density_kg_m3
+        measured = rows & ~np.isnan(temperatures)
+        measured &= np.abs(temperatures - fluid.reference_temperature_c) > REFERENCE_TOLERANCE_C
+        if not measured.any():
+            continue
+        model = fluid_model(fluid)
+        low, high = (model.low_c, model.high_c) if model else (np.nan, np.nan)
+        outside = measured & ~((temperatures >= low) & (temperatures <= high))
+        if outside.any():
+            covered = f"{low:g}–{high:g} °C" if model else "only its reference temperature"
+            viscosity[outside] = density[outside] = np.nan
+            reason[outside] = [
+                f"temperature {t:g} °C is outside fluid {fluid.name}'s data ({covered})"
+                for t in temperatures[outside]
+            ]
+        inside = measured & ~outside
+        if inside.any():
+            viscosity[inside] = model.viscosity(temperatures[inside])
+            if model.density_kg_m3 is not None:
+                density[inside] = model.density(temperatures[inside])
+    return viscosity, density, reason

@@ -1,0 +1,172 @@
+"""One scenario: a particle of a given size hits a wall (or a second sphere), in a fluid or
+dry, at a speed and an angle, without spin: every derived quantity and verdict.
+
+Inputs are SI floats; ``granudb.api.pair`` also accepts strings with units. Errors name
+the Python parameters (``velocity``); the command line shows them as its options.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from sqlalchemy.orm import Session
+
+from granudb.analysis._errors import physics_refusal
+from granudb.analysis.fluid_state import FluidState, fluid_state
+from granudb.db import catalog
+from granudb.db.models import Material
+from granudb.errors import ValidationError
+from granudb.physics.derive import derive, scalar_view
+
+#: Per-collision parameters that need a measured rebound: a scenario has none.
+MEASURED_ONLY = (
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_rebound",
+    "sliding_friction",
+)
+
+
+def material_inputs(prefix: str, material: Material) -> dict[str, Any]:
+    """A material's stored properties as ``derive()`` keyword arguments."""
+    return {
+        f"{prefix}_density_kg_m3": material.density_kg_m3,
+        f"{prefix}_youngs_modulus_pa": material.youngs_modulus_pa,
+        f"{prefix}_poisson_ratio": material.poisson_ratio,
+        f"{prefix}_roughness_rms_m": material.roughness_rms_m,
+        f"{prefix}_shear_modulus_pa": (
+            np.nan if material.shear_modulus_pa is None else material.shear_modulus_pa
+        ),
+    }
+
+
+@dataclass
+class PairResult:
+    """Everything ``granudb pair`` shows: inputs, properties with sources, derived values."""
+
+    particle: dict[str, Any]
+    wall: dict[str, Any]
+    fluid: dict[str, Any] | None
+    fluid_state: FluidState | None
+    inputs: dict[str, Any]
+    derived: dict[str, Any]
+    citations: dict[str, str] = field(default_factory=dict)
+
+
+def is_dry(fluid: str | None) -> bool:
+    """``None`` and ``"dry"`` (any case) both mean a dry collision, everywhere."""
+    return fluid is None or fluid.strip().casefold() == "dry"
+
+
+def _check_scenario(
+    diameter_m: float, speed_m_s: float, angle_rad: float, critical_stokes: float
+) -> None:
+    if not (math.isfinite(diameter_m) and diameter_m > 0):
+        raise ValidationError("diameter", f"{diameter_m:g} m", "must be > 0", parameter=True)
+    if not (math.isfinite(speed_m_s) and speed_m_s > 0):
+        raise ValidationError("velocity", f"{speed_m_s:g} m/s", "must be > 0", parameter=True)
+    if not 0.0 <= angle_rad < math.pi / 2:
+        raise ValidationError(
+            "angle", f"{math.degrees(angle_rad):g} deg", "must be ≥ 0° and < 90°", parameter=True
+        )
+    if not (math.isfinite(critical_stokes) and critical_stokes > 0):
+        raise ValidationError(
+            "critical_stokes", f"{critical_stokes:g}", "must be > 0", parameter=True
+        )
+
+
+def derive_pair(
+    session: Session,
+    particle: str,
+    wall: str,
+    *,
+    diameter_m: float,
+    speed_m_s: float,
+    angle_rad: float = 0.0,
+    fluid: str | None = None,
+    temperature_c: float | None = None,
+    viscosity_pa_s: float | None = None,
+    wall_diameter_m: float | None = None,
+    critical_stokes: float = 10.0,
+) -> PairResult:
+    """Derive one scenario: ``particle`` hits ``wall`` (in ``fluid``) at ``speed_m_s``,
+    ``angle_rad`` from the normal, without spin."""
+    _check_scenario(diameter_m, speed_m_s, angle_rad, critical_stokes)
+    if is_dry(fluid):
+        for name, value in (("viscosity", viscosity_pa_s), ("temperature", temperature_c)):
+            if value is not None:
+                raise ValidationError(
+                    name, f"{value:g}", "needs a fluid (a dry collision has none)", parameter=True
+                )
+    first = catalog.get_material(session, particle)
+    second = catalog.get_material(session, wall)
+    fluid_row = None if is_dry(fluid) else catalog.get_fluid(session, fluid)
+    state = fluid_state(fluid_row, temperature_c, viscosity_pa_s) if fluid_row else None
+    inputs = {
+        "diameter_m": diameter_m,
+        "wall_diameter_m": wall_diameter_m,
+        "impact_speed_m_s": speed_m_s,
+        "incidence_angle_rad": angle_rad,
+        "v_n_in_m_s": speed_m_s * math.cos(angle_rad),
+        "v_t_in_m_s": speed_m_s * math.sin(angle_rad),
+        "temperature_c": state.temperature_c if state else None,
+        "critical_stokes": critical_stokes,
+    }
+    with physics_refusal():
+        result = derive(
+            **material_inputs("particle", first),
+            **material_inputs("wall", second),
+            diameter_m=diameter_m,
+            wall_diameter_m=np.nan if wall_diameter_m is None else wall_diameter_m,
+            v_n_in_m_s=inputs["v_n_in_m_s"],
+            v_t_in_m_s=inputs["v_t_in_m_s"],
+            fluid_density_kg_m3=state.density_kg_m3 if state else np.nan,
+            viscosity_pa_s=state.viscosity_pa_s if state else np.nan,
+            pressure_viscosity_pa_inv=(
+                state.pressure_viscosity_pa_inv
+                if state and state.pressure_viscosity_pa_inv is not None
+                else np.nan
+            ),
+            critical_stokes=critical_stokes,
+        )
+    derived = {k: v for k, v in scalar_view(result).items() if k not in MEASURED_ONLY}
+    citations = {
+        row.source.key: row.source.citation
+        for row in (first, second, fluid_row)
+        if row is not None and row.source is not None
+    }
+    return PairResult(
+        catalog.material_record(first),
+        catalog.material_record(second),
+        catalog.fluid_record(fluid_row) if fluid_row is not None else None,
+        state,
+        inputs,
+        derived,
+        citations,
+    )
+
+
+def pair_json(result: PairResult) -> dict[str, Any]:
+    """The document of ``granudb pair --format json`` and ``granudb.pair()``: SI values
+    under the vocabulary's names. The fluid carries its stored reference values
+    (``reference_viscosity_pa_s``) and its state at the temperature (``viscosity_pa_s``)."""
+    fluid = None
+    if result.fluid is not None and result.fluid_state is not None:
+        fluid = {
+            **result.fluid,
+            "viscosity_pa_s": result.fluid_state.viscosity_pa_s,
+            "density_kg_m3": result.fluid_state.density_kg_m3,
+            "temperature_c": result.fluid_state.temperature_c,
+            "viscosity_basis": result.fluid_state.basis,
+        }
+    return {
+        "particle": result.particle,
+        "wall": result.wall,
+        "fluid": fluid,
+        "inputs": result.inputs,
+        **result.derived,
+        "sources": result.citations,
+    }
