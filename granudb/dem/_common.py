@@ -1,0 +1,121 @@
+"""Helpers shared by the writers: number formatting, comments, limit checks with --clamp."""
+
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from granudb.dem.spec import DemModel, PairParameters, ParticleType, Value
+from granudb.errors import ValidationError
+
+
+def num(x: float) -> str:
+    """A number as the codes read it: plain decimal or exponent, 10 significant digits."""
+    return f"{x:.10g}"
+
+
+def comment(text: str, prefix: str = "# ", width: int = 96) -> list[str]:
+    """``text`` as comment lines of at most ``width`` characters."""
+    lines: list[str] = []
+    for paragraph in text.split("\n"):
+        wrapped = textwrap.wrap(paragraph, width - len(prefix)) or [""]
+        lines.extend(prefix + w for w in wrapped)
+    return lines
+
+
+def describe(value: Value) -> str:
+    return f"{num(value.value)} ({value.provenance})"
+
+
+def pair_label(pair: PairParameters) -> str:
+    return f"{pair.type_i}/{pair.type_j}"
+
+
+@dataclass
+class Limited:
+    """A value after a code's limit check: possibly clamped, with the note saying so."""
+
+    value: float
+    note: str | None = None
+
+
+def check(
+    code: str,
+    field: str,
+    value: float,
+    ok: bool,
+    rule: str,
+    nearest: float,
+    clamp: bool,
+) -> Limited:
+    """Pass ``value`` if ``ok``; else clamp to ``nearest`` (with a note) or refuse in one line.
+
+    The refusal names the code and its rule, so a user knows which code cannot take the
+    number and what ``--clamp`` would write instead.
+    """
+    if ok:
+        return Limited(value)
+    if clamp:
+        return Limited(nearest, f"CLAMPED from {num(value)} to {num(nearest)}: {code} {rule}")
+    raise ValidationError(
+        field, f"{value:.4g}", f"{code} {rule}; use --clamp to write {num(nearest)} with a comment"
+    )
+
+
+def check_poisson(code: str, model: DemModel, low: float, clamp: bool) -> dict[str, Limited]:
+    """ν in [low, 0.5] for every type (elastic solids have ν ≤ 0.5; some codes refuse ν < 0)."""
+    out: dict[str, Limited] = {}
+    for t in model.types:
+        nu = t.poisson_ratio
+        out[t.name] = check(
+            code,
+            f"poisson_ratio {t.name}",
+            nu,
+            low <= nu <= 0.5,
+            f"requires {low:g} <= poissonsRatio <= 0.5",
+            min(max(nu, low), 0.5),
+            clamp,
+        )
+    return out
+
+
+def type_lines(model: DemModel, prefix: str = "# ") -> list[str]:
+    lines = []
+    for i, t in enumerate(model.types, start=1):
+        what = "flat wall" if t.is_wall else f"sphere, d = {num(t.diameter_m or 0.0)} m"
+        lines.append(
+            f"{prefix}type {i} = {t.name} ({what}): E = {num(t.youngs_modulus_pa)} Pa, "
+            f"nu = {num(t.poisson_ratio)}, rho = {num(t.density_kg_m3)} kg/m^3"
+        )
+    return lines
+
+
+def ordered_pairs(model: DemModel) -> Iterator[tuple[ParticleType, ParticleType, PairParameters]]:
+    """Every i ≤ j pair that can touch, in type order."""
+    for i, a in enumerate(model.types):
+        for b in model.types[i:]:
+            pair = model.pair(a.name, b.name)
+            if pair is not None:
+                yield a, b, pair
+
+
+def wet_note(pair: PairParameters) -> str | None:
+    if pair.wet is None:
+        return None
+    w = pair.wet
+    return (
+        f"immersed: e(St) = {num(w.max_restitution)} exp(-{num(w.critical_stokes)}/St), "
+        f"mu_fluid = {num(w.fluid_viscosity_pa_s)} Pa s ({w.provenance}); the e written is the "
+        f"value at the stated Stokes number"
+    )
+
+
+def header(code: str, version: str, model: DemModel) -> list[str]:
+    v = model.characteristic_velocity_m_s
+    lines = [
+        f"granudb DEM export for {code} ({version}), SI units (m, kg, s, Pa).",
+        f"Characteristic impact speed {num(v)} m/s. Every number below says where it came from.",
+    ]
+    out = [line for text in lines for line in comment(text)]
+    return out + type_lines(model)

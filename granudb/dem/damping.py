@@ -1,0 +1,154 @@
+"""From a target e to the damping input each code needs (PHYSICS.md §13).
+
+All three runnable codes use the same contact law for a Hertz contact: an elastic force
+K δ^{3/2} with K = (4/3) E* √R* (PHYSICS.md §13) and a dashpot whose coefficient grows as
+δ^{1/4}, so that in the units of the contact
+
+    m* δ̈ = −K δ^{3/2} − C √(m* K) δ^{1/4} δ̇ .                               (1)
+
+Scaling δ by (m* V²/K)^{2/5} and t by that length over V removes m*, K and V: the
+restitution coefficient depends on the dimensionless damping C alone, which is why this
+law gives an e independent of the impact speed (Tsuji, Tanaka & Ishida 1992, Powder
+Technol. 71). What differs between codes is how they turn the e a user types into C:
+
+- LIGGGHTS ``model hertz``: γ_n = 2√(5/6) β √(S_n m*), S_n = 2E*√(R*δ), β the linear
+  spring–dashpot ratio ln e/√(π²+ln²e) (PHYSICS.md §13), i.e. C = √5 |ln e|/√(π²+ln²e).
+  Integrating (1) gives back e to 1e-6 (tests/dem/test_damping.py): its input is the target.
+- LAMMPS ``damping tsuji``: C = α(e), Tsuji's polynomial fit (LAMMPS pair_granular doc).
+  It is not the inverse of (1): typed 0.97 gives 0.979, typed 0.5 gives 0.616 (LAMMPS
+  issues #2812, #3025). granudb writes the e_in whose α(e_in) is the C that (1) needs.
+- Yade ``MindlinPhys``: c_n = 2 β_n √(m* k_n) with the tangent stiffness k_n = S_n, i.e.
+  C = √6 β_n; its force is clamped at zero (no attraction at the end of the contact), so
+  (1) is integrated with the clamp and β_n = C/√6 is written.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+from granudb.errors import ValidationError
+
+#: Tsuji et al. (1992) polynomial α(e) as implemented by LAMMPS ``damping tsuji``.
+TSUJI_POLYNOMIAL = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
+
+
+def linear_damping_ratio(restitution: float) -> float:
+    """ζ = −ln e / √(π² + ln² e), the linear spring–dashpot ratio (PHYSICS.md §13)."""
+    log_e = math.log(restitution)
+    return -log_e / math.sqrt(math.pi**2 + log_e**2)
+
+
+def hertz_restitution(
+    damping: float, *, clamp_attraction: bool = False, step: float = 1e-3
+) -> float:
+    """e of law (1) for dimensionless damping C, by fourth-order Runge–Kutta.
+
+    ``clamp_attraction`` sets the total force to max(0, ·) as Yade does, so the contact
+    ends when the force (not the overlap) reaches zero (Thornton et al. 2013).
+    """
+
+    def accel(x: float, v: float) -> float:
+        xp = max(x, 0.0)
+        a = -(xp**1.5) - damping * xp**0.25 * v
+        return min(a, 0.0) if clamp_attraction else a
+
+    x, v, t = 0.0, 1.0, 0.0
+    while t < 200.0:
+        k1x, k1v = v, accel(x, v)
+        k2x, k2v = v + 0.5 * step * k1v, accel(x + 0.5 * step * k1x, v + 0.5 * step * k1v)
+        k3x, k3v = v + 0.5 * step * k2v, accel(x + 0.5 * step * k2x, v + 0.5 * step * k2v)
+        k4x, k4v = v + step * k3v, accel(x + step * k3x, v + step * k3v)
+        x_new = x + step / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x)
+        v_new = v + step / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v)
+        t += step
+        if x_new <= 0.0 and t > step:
+            frac = x / (x - x_new)
+            return -(v + frac * (v_new - v))
+        if (
+            v_new >= 0.0
+            and v < 0.0
+            and x_new > 0.0
+            and clamp_attraction
+            and accel(x_new, v_new) == 0
+        ):
+            return 0.0  # overdamped with the clamp: the sphere stays in contact
+        x, v = x_new, v_new
+    return 0.0
+
+
+def hertz_damping(restitution: float) -> float:
+    """C of law (1) for a target e without clamping: √5 |ln e| / √(π² + ln² e).
+
+    The 2√(5/6) prefactor of LIGGGHTS's Hertz damping times √(3/2) from S_n = (3/2)K√δ;
+    tests/dem/test_damping.py integrates (1) to check it gives e back.
+    """
+    return math.sqrt(5.0) * linear_damping_ratio(restitution)
+
+
+@lru_cache(maxsize=256)
+def clamped_hertz_damping(restitution: float) -> float:
+    """C of law (1) with the force clamped at zero (Yade), by bisection on the integration."""
+    lo, hi = 0.0, 50.0
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        if hertz_restitution(mid, clamp_attraction=True, step=2e-3) > restitution:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def tsuji_alpha(restitution: float) -> float:
+    """LAMMPS's α(e) = 1.2728 − 4.2783e + … + 4.8218e⁶ (pair_style granular doc, tsuji)."""
+    return sum(c * restitution**k for k, c in enumerate(TSUJI_POLYNOMIAL))
+
+
+#: The most damping LAMMPS's tsuji can give (α at e = 0) and the least (α at e = 1).
+TSUJI_ALPHA_MAX = tsuji_alpha(0.0)
+TSUJI_ALPHA_MIN = tsuji_alpha(1.0)
+
+
+def lammps_tsuji_range() -> tuple[float, float]:
+    """Targets e that LAMMPS tsuji damping can reproduce on a Hertz contact."""
+    return restitution_for_hertz_damping(TSUJI_ALPHA_MAX), restitution_for_hertz_damping(
+        TSUJI_ALPHA_MIN
+    )
+
+
+def restitution_for_hertz_damping(damping: float) -> float:
+    """Inverse of :func:`hertz_damping`: e = exp(−π s/√(1−s²)), s = C/√5."""
+    s = damping / math.sqrt(5.0)
+    if s >= 1.0:
+        return 0.0
+    return math.exp(-math.pi * s / math.sqrt(1.0 - s * s))
+
+
+def lammps_tsuji_input(restitution: float, label: str) -> float:
+    """The e to type after ``hertz k_n ... damping tsuji`` so LAMMPS gives ``restitution``.
+
+    Solves α(e_in) = C(e) by bisection (α decreases monotonically on [0, 1]).
+    """
+    low, high = lammps_tsuji_range()
+    if not low <= restitution <= high:
+        raise ValidationError(
+            f"restitution {label}",
+            f"{restitution:.4g}",
+            f"LAMMPS damping tsuji reaches only {low:.4f} <= e <= {high:.5f} on a Hertz "
+            f"contact (alpha(e) is between {TSUJI_ALPHA_MIN:.4g} and {TSUJI_ALPHA_MAX:.4g}); "
+            "use --clamp to write the nearest",
+        )
+    target = hertz_damping(restitution)
+    lo, hi = 0.0, 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if tsuji_alpha(mid) > target:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def yade_betan(restitution: float) -> float:
+    """β_n for Yade's MindlinPhys so that its clamped Hertz law gives ``restitution``."""
+    return clamped_hertz_damping(round(restitution, 12)) / math.sqrt(6.0)

@@ -1,0 +1,151 @@
+"""LAMMPS input fragment: ``pair_style granular`` with every pair written explicitly.
+
+Checked against the Debian package lammps 20220106 (``LAMMPS (29 Sep 2021 - Update 2)``,
+src/GRANULAR/pair_granular.cpp and fix_wall_gran.cpp of that release):
+
+- ``hertz/material E η ν`` takes ONE E and ν and forms E_eff = E/(2(1−ν²)) as if both
+  bodies were that material, and ``fix wall/gran`` converts E differently again (LAMMPS
+  issue #4141). granudb therefore writes ``hertz k_n`` with k_n = (4/3)E* of the pair
+  and ``tangential mindlin k_t`` with k_t = 8G* (PHYSICS.md §13): force k_n √R* δ^{3/2},
+  tangential stiffness k_t a, identical for pairs and walls, no conversion in the code.
+- ``damping tsuji`` reads the η slot as e but maps it with a fitted polynomial that does
+  not reproduce e on a Hertz contact; the e written is corrected (granudb.dem.damping), so
+  it differs from the target and the comment gives both.
+- Unset pairs are mixed (geometric means, E* formula): every particle pair is written.
+- Walls are not atom types: each (particle type, wall) pair is a ``fix wall/gran granular``
+  on a group of that type, with the wall's geometry from a string variable the user sets.
+"""
+
+from __future__ import annotations
+
+import math
+
+from granudb.dem import damping
+from granudb.dem._common import (
+    Limited,
+    check,
+    check_poisson,
+    comment,
+    describe,
+    header,
+    num,
+    pair_label,
+    wet_note,
+)
+from granudb.dem.spec import DemModel, PairParameters, ParticleType
+from granudb.physics.contact import max_approach
+
+CODE = "LAMMPS"
+VERSION = "29 Sep 2021 - Update 2, Debian package lammps 20220106"
+
+
+def type_number(model: DemModel, name: str) -> int:
+    """LAMMPS atom type of a particle type: particles only, in model order (walls excluded)."""
+    return [t.name for t in model.particles].index(name) + 1
+
+
+def group_name(t: ParticleType) -> str:
+    return f"granudb_{t.name}"
+
+
+def wall_variable(wall: ParticleType) -> str:
+    """Name of the string variable holding a wall's geometry (e.g. ``zplane 0.0 NULL``)."""
+    return f"granudb_wall_{wall.name}"
+
+
+def tsuji_input(pair: PairParameters, clamp: bool) -> Limited:
+    """The e for ``damping tsuji`` that makes LAMMPS give the target e (or a refusal)."""
+    e = pair.restitution.value
+    low, high = damping.lammps_tsuji_range()
+    limited = check(
+        CODE,
+        f"restitution {pair_label(pair)}",
+        e,
+        low <= e <= high,
+        f"damping tsuji reaches only {low:.4f} <= e <= {high:.5f} on a Hertz contact "
+        f"(its alpha(e) polynomial spans {damping.TSUJI_ALPHA_MIN:.4g}.."
+        f"{damping.TSUJI_ALPHA_MAX:.4g})",
+        min(max(e, low), high),
+        clamp,
+    )
+    return Limited(damping.lammps_tsuji_input(limited.value, pair_label(pair)), limited.note)
+
+
+def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
+    """The granular model arguments of one pair and the comment lines explaining them."""
+    scales = model.contact(pair)
+    e_in = tsuji_input(pair, clamp)
+    args = (
+        f"hertz {num(scales.hertz_stiffness)} {num(e_in.value)} "
+        f"tangential mindlin {num(scales.mindlin_stiffness)} 1.0 {num(pair.friction.value)} "
+        "damping tsuji"
+    )
+    notes = [
+        f"{pair_label(pair)}: e = {describe(pair.restitution)}",
+        f"  mu_f = {describe(pair.friction)}",
+        f"  k_n = 4/3 E* = {num(scales.hertz_stiffness)} Pa (E* = "
+        f"{num(scales.reduced_modulus_pa)} Pa), k_t = 8 G* = {num(scales.mindlin_stiffness)} Pa "
+        "(PHYSICS.md section 13)",
+        f"  tsuji input {num(e_in.value)} so that LAMMPS's alpha(e) gives e = "
+        f"{num(pair.restitution.value)} on this Hertz contact (granudb.dem.damping)",
+    ]
+    if e_in.note:
+        notes.append("  " + e_in.note)
+    if (note := wet_note(pair)) is not None:
+        notes.append("  " + note)
+    if pair.rolling_friction is not None:
+        a, b = model.type(pair.type_i), model.type(pair.type_j)
+        delta = float(
+            max_approach(
+                scales.mass_kg,
+                model.characteristic_velocity_m_s,
+                scales.reduced_modulus_pa,
+                scales.radius_m,
+            )
+        )
+        k_roll = scales.mindlin_stiffness * math.sqrt(scales.radius_m * delta)
+        args += f" rolling sds {num(k_roll)} 0.0 {num(pair.rolling_friction.value)}"
+        notes.append(
+            f"  rolling mu_r = {describe(pair.rolling_friction)}; k_roll = 8 G* a_max at the "
+            f"characteristic speed ({a.name}/{b.name}), no rolling damping"
+        )
+    return args, notes
+
+
+def write(model: DemModel, *, clamp: bool = False) -> str:
+    """The fragment to include after ``create_box`` (atom_style sphere, units si)."""
+    check_poisson(CODE, model, -1.0, clamp)
+    out = header(CODE, VERSION, model)
+    out += comment(
+        "LAMMPS atom types are the particle types only: "
+        + ", ".join(f"{type_number(model, t.name)} = {t.name}" for t in model.particles)
+        + ". Needs atom_style sphere and comm_modify vel yes."
+    )
+    out += ["", "pair_style granular"]
+    particles = model.particles
+    for i, a in enumerate(particles):
+        for b in particles[i:]:
+            pair = model.pair(a.name, b.name)
+            assert pair is not None  # DemModel guarantees every particle pair
+            args, notes = coefficients(model, pair, clamp)
+            out += [""] + [line for n in notes for line in comment(n)]
+            out.append(
+                f"pair_coeff {type_number(model, a.name)} {type_number(model, b.name)} {args}"
+            )
+    for t in particles:
+        out.append(f"group {group_name(t)} type {type_number(model, t.name)}")
+    for wall in model.walls:
+        out += [""] + comment(
+            f"wall {wall.name}: set its geometry before including this file, e.g. "
+            f'variable {wall_variable(wall)} string "zplane 0.0 NULL"'
+        )
+        for t in particles:
+            pair = model.pair(t.name, wall.name)
+            assert pair is not None
+            args, notes = coefficients(model, pair, clamp)
+            out += [line for n in notes for line in comment(n)]
+            out.append(
+                f"fix granudb_{wall.name}_{t.name} {group_name(t)} wall/gran granular {args} "
+                f"${{{wall_variable(wall)}}}"
+            )
+    return "\n".join(out) + "\n"

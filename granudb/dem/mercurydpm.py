@@ -1,0 +1,104 @@
+"""MercuryDPM C++ snippet (export only: no Debian package, not verified by a run).
+
+Uses the documented species API: ``LinearViscoelasticSlidingFrictionSpecies`` (or
+``LinearViscoelasticFrictionSpecies`` when a rolling coefficient is known),
+``setDensity``, ``setCollisionTimeAndRestitutionCoefficient(tc, e, mass)`` whose ``mass``
+is 2/(1/m₁+1/m₂) = 2m* (MercuryDPM source doc), ``setSlidingStiffness(2/7 k)``,
+``setSlidingDissipation(2/7 γ)``, ``setSlidingFrictionCoefficient``,
+``setRollingFrictionCoefficient`` and ``speciesHandler.getMixedObject(s1, s2)`` for pairs.
+A linear spring–dashpot reproduces e exactly at any speed; its stiffness is set from the
+Hertz contact time t_c ≈ 2.87(m*²/(R*E*²V))^{1/5} at the characteristic speed (Johnson
+§11.4, PHYSICS.md §13), so collisions last as long as Hertz's at that speed.
+"""
+
+from __future__ import annotations
+
+from granudb.dem._common import (
+    check,
+    check_poisson,
+    comment,
+    describe,
+    header,
+    num,
+    ordered_pairs,
+    pair_label,
+    wet_note,
+)
+from granudb.dem.spec import DemModel
+
+CODE = "MercuryDPM"
+VERSION = "species API of MercuryDPM 0.x/1.0 (export only, not run)"
+API_NAMES = (
+    "speciesHandler.copyAndAddObject",
+    "speciesHandler.getMixedObject",
+    "setDensity",
+    "setCollisionTimeAndRestitutionCoefficient",
+    "setSlidingStiffness",
+    "setSlidingDissipation",
+    "setSlidingFrictionCoefficient",
+    "setRollingFrictionCoefficient",
+)
+
+
+def write(model: DemModel, *, clamp: bool = False) -> str:
+    """C++ statements for ``setupInitialConditions()`` of a DPMBase subclass."""
+    check_poisson(CODE, model, -1.0, clamp)
+    rolling = any(p.rolling_friction is not None for p in model.pairs)
+    species = (
+        "LinearViscoelasticFrictionSpecies"
+        if rolling
+        else ("LinearViscoelasticSlidingFrictionSpecies")
+    )
+    out = header(
+        CODE,
+        VERSION,
+        model,
+    )
+    out = [line.replace("# ", "// ", 1) for line in out]
+    out.append(f"// species class: {species}; walls get a species too (density unused).")
+    for t in model.types:
+        out.append(f"auto* {t.name} = speciesHandler.copyAndAddObject({species}());")
+        out.append(f"{t.name}->setDensity({num(t.density_kg_m3)});  // {t.name} material value")
+    for a, b, pair in ordered_pairs(model):
+        scales = model.contact(pair)
+        e = check(
+            CODE,
+            f"restitution {pair_label(pair)}",
+            pair.restitution.value,
+            0.0 < pair.restitution.value <= 1.0,
+            "requires 0 < e <= 1",
+            1.0,
+            clamp,
+        )
+        var = f"{a.name}_{b.name}"
+        target = (
+            f"{a.name}"
+            if a.name == b.name
+            else (f"speciesHandler.getMixedObject({a.name}, {b.name})")
+        )
+        notes = [
+            f"{pair_label(pair)}: e = {describe(pair.restitution)}",
+            f"mu_f = {describe(pair.friction)}",
+            f"t_c = {num(scales.contact_time_s)} s: Hertz contact time at "
+            f"{num(model.characteristic_velocity_m_s)} m/s "
+            f"(E* = {num(scales.reduced_modulus_pa)} Pa, "
+            f"R* = {num(scales.radius_m)} m, m* = {num(scales.mass_kg)} kg); mass argument 2m*",
+        ]
+        if e.note:
+            notes.append(e.note)
+        if (note := wet_note(pair)) is not None:
+            notes.append(note)
+        out += [line for n in notes for line in comment(n, "// ")]
+        out.append(f"auto* {var} = {target};")
+        out.append(
+            f"{var}->setCollisionTimeAndRestitutionCoefficient({num(scales.contact_time_s)}, "
+            f"{num(e.value)}, {num(2.0 * scales.mass_kg)});"
+        )
+        out.append(f"{var}->setSlidingStiffness(2.0 / 7.0 * {var}->getStiffness());")
+        out.append(f"{var}->setSlidingDissipation(2.0 / 7.0 * {var}->getDissipation());")
+        out.append(f"{var}->setSlidingFrictionCoefficient({num(pair.friction.value)});")
+        if rolling:
+            mu_r = pair.rolling_friction.value if pair.rolling_friction else 0.0
+            source = describe(pair.rolling_friction) if pair.rolling_friction else "not known: 0"
+            out.append(f"{var}->setRollingFrictionCoefficient({num(mu_r)});  // {source}")
+    return "\n".join(out) + "\n"

@@ -1,0 +1,297 @@
+"""What a DEM export is made of: particle types, per-pair values with provenance, a model.
+
+Plain frozen dataclasses, so the database layer (or a notebook) can build a model from
+whatever it has, and every writer in this package reads the same validated object. A
+value never travels without the sentence that says where it came from, because a DEM
+input whose numbers cannot be traced back to a measurement cannot be trusted or updated.
+
+The pair matrix must be complete: every (particle, particle) and (particle, wall) pair
+exactly once. A missing pair would otherwise be filled by the target code's mixing rule
+(geometric means in LAMMPS, the minimum friction angle in Yade), silently replacing the
+measured value. Wall–wall pairs never touch and may be omitted.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from granudb.errors import ValidationError
+from granudb.physics.contact import (
+    contact_time,
+    effective_mass,
+    effective_radius,
+    reduced_modulus,
+    reduced_shear_modulus,
+    shear_modulus,
+    sphere_mass,
+)
+from granudb.physics.flow import stokes_number
+
+
+@dataclass(frozen=True)
+class Value:
+    """A number and where it came from, e.g. ``Value(0.97, "Joseph & Hunt 2004 §3")``."""
+
+    value: float
+    provenance: str
+
+    def __post_init__(self) -> None:
+        if not math.isfinite(self.value):
+            raise ValidationError("value", self.value, "must be a finite number")
+        if not self.provenance.strip():
+            raise ValidationError(
+                "provenance", repr(self.provenance), "must say where it came from"
+            )
+
+
+@dataclass(frozen=True)
+class ParticleType:
+    """One material and size; ``diameter_m=None`` with ``is_wall=True`` is a flat wall."""
+
+    name: str
+    youngs_modulus_pa: float
+    poisson_ratio: float
+    density_kg_m3: float
+    diameter_m: float | None
+    is_wall: bool = False
+
+    def __post_init__(self) -> None:
+        if not self.name or not self.name.replace("_", "").replace("-", "").isalnum():
+            raise ValidationError("type name", repr(self.name), "must be letters, digits, _ or -")
+        _positive(f"youngs_modulus {self.name}", self.youngs_modulus_pa, "Pa")
+        _positive(f"density {self.name}", self.density_kg_m3, "kg/m^3")
+        if not -1.0 < self.poisson_ratio <= 0.5:
+            raise ValidationError(
+                f"poisson_ratio {self.name}", self.poisson_ratio, "must be in (-1, 0.5]"
+            )
+        if self.is_wall != (self.diameter_m is None):
+            raise ValidationError(
+                f"diameter {self.name}", self.diameter_m, "must be None exactly for a flat wall"
+            )
+        if self.diameter_m is not None:
+            _positive(f"diameter {self.name}", self.diameter_m, "m")
+
+    @property
+    def radius_m(self) -> float:
+        """Radius [m]; infinite for a flat wall (PHYSICS.md §1)."""
+        return math.inf if self.diameter_m is None else self.diameter_m / 2.0
+
+    @property
+    def mass_kg(self) -> float:
+        """Mass of one particle [kg]; infinite for a wall (it does not move)."""
+        if self.diameter_m is None:
+            return math.inf
+        return float(sphere_mass(self.density_kg_m3, self.diameter_m))
+
+
+@dataclass(frozen=True)
+class WetParameters:
+    """An e(St) law e = e_max exp(−St_c/St) (Legendre et al. 2006, PHYSICS.md §10)."""
+
+    fluid_viscosity_pa_s: float
+    critical_stokes: float
+    max_restitution: float
+    provenance: str
+
+    def __post_init__(self) -> None:
+        _positive("fluid_viscosity", self.fluid_viscosity_pa_s, "Pa s")
+        _positive("critical_stokes", self.critical_stokes, "")
+        if not 0.0 < self.max_restitution <= 1.0:
+            raise ValidationError("max_restitution", self.max_restitution, "must be in (0, 1]")
+
+    def restitution(self, stokes: float) -> float:
+        """e at Stokes number ``stokes``: e_max exp(−St_c/St) (Legendre et al. 2006)."""
+        return self.max_restitution * math.exp(-self.critical_stokes / stokes)
+
+
+@dataclass(frozen=True)
+class PairParameters:
+    """Everything a code needs for one pair of types; ``restitution`` is the e to reproduce.
+
+    For an immersed pair ``restitution`` is e at a stated Stokes number (say which in its
+    provenance); ``wet`` carries the e(St) law where one is known.
+    """
+
+    type_i: str
+    type_j: str
+    restitution: Value
+    friction: Value
+    rolling_friction: Value | None = None
+    wet: WetParameters | None = None
+
+    def __post_init__(self) -> None:
+        label = f"{self.type_i}/{self.type_j}"
+        if not 0.0 < self.restitution.value <= 1.0:
+            raise ValidationError(
+                f"restitution {label}", self.restitution.value, "must be in (0, 1]"
+            )
+        if self.friction.value < 0.0:
+            raise ValidationError(f"friction {label}", self.friction.value, "must be >= 0")
+        if self.rolling_friction is not None and self.rolling_friction.value < 0.0:
+            raise ValidationError(
+                f"rolling_friction {label}", self.rolling_friction.value, "must be >= 0"
+            )
+
+    @property
+    def key(self) -> frozenset[str]:
+        return frozenset((self.type_i, self.type_j))
+
+
+@dataclass(frozen=True)
+class ContactScales:
+    """Hertz–Mindlin quantities of one pair (PHYSICS.md §1, §2, §9, §13)."""
+
+    reduced_modulus_pa: float  # E*, 1/E* = Σ(1−ν²)/E
+    reduced_shear_modulus_pa: float  # G*, 1/G* = Σ(2−ν)/G
+    radius_m: float  # R*, 1/R* = 1/R₁ + 1/R₂
+    mass_kg: float  # m*, 1/m* = 1/m₁ + 1/m₂
+    contact_time_s: float  # t_c ≈ 2.87 (m*²/(R* E*² V))^{1/5} at the characteristic speed
+
+    @property
+    def hertz_stiffness(self) -> float:
+        """k_n = (4/3) E* (force = k_n √R* δ^{3/2}), PHYSICS.md §13 [Pa]."""
+        return 4.0 / 3.0 * self.reduced_modulus_pa
+
+    @property
+    def mindlin_stiffness(self) -> float:
+        """8 G*, so that k_t = 8 G* a with a = √(R* δ) (Mindlin; PHYSICS.md §13) [Pa]."""
+        return 8.0 * self.reduced_shear_modulus_pa
+
+
+@dataclass(frozen=True)
+class DemModel:
+    """N types (particles and walls), their complete pair matrix, a characteristic speed."""
+
+    types: tuple[ParticleType, ...]
+    pairs: tuple[PairParameters, ...]
+    characteristic_velocity_m_s: float
+    _by_key: dict[frozenset[str], PairParameters] = field(init=False, repr=False, compare=False)
+
+    def __init__(
+        self,
+        types: list[ParticleType] | tuple[ParticleType, ...],
+        pairs: list[PairParameters] | tuple[PairParameters, ...],
+        characteristic_velocity_m_s: float,
+    ) -> None:
+        object.__setattr__(self, "types", tuple(types))
+        object.__setattr__(self, "pairs", tuple(pairs))
+        object.__setattr__(self, "characteristic_velocity_m_s", characteristic_velocity_m_s)
+        _positive("characteristic_velocity", characteristic_velocity_m_s, "m/s")
+        object.__setattr__(self, "_by_key", _pair_index(self.types, self.pairs))
+
+    def type(self, name: str) -> ParticleType:
+        for t in self.types:
+            if t.name == name:
+                return t
+        raise ValidationError("type", name, "is not one of the model's types")
+
+    def index(self, name: str) -> int:
+        """1-based type number, the order of ``types`` (LIGGGHTS and LAMMPS atom types)."""
+        return [t.name for t in self.types].index(name) + 1
+
+    def pair(self, name_i: str, name_j: str) -> PairParameters | None:
+        """The pair's parameters; None only for a wall–wall pair (walls never touch)."""
+        return self._by_key.get(frozenset((name_i, name_j)))
+
+    @property
+    def particles(self) -> tuple[ParticleType, ...]:
+        return tuple(t for t in self.types if not t.is_wall)
+
+    @property
+    def walls(self) -> tuple[ParticleType, ...]:
+        return tuple(t for t in self.types if t.is_wall)
+
+    def contact(self, pair: PairParameters, speed: float | None = None) -> ContactScales:
+        """E*, G*, R*, m* and t_c of a pair (PHYSICS.md §1, §9; t_c from Johnson §11.4)."""
+        a, b = self.type(pair.type_i), self.type(pair.type_j)
+        e_star = float(
+            reduced_modulus(
+                a.youngs_modulus_pa, a.poisson_ratio, b.youngs_modulus_pa, b.poisson_ratio
+            )
+        )
+        g_star = float(
+            reduced_shear_modulus(
+                shear_modulus(a.youngs_modulus_pa, a.poisson_ratio),
+                a.poisson_ratio,
+                shear_modulus(b.youngs_modulus_pa, b.poisson_ratio),
+                b.poisson_ratio,
+            )
+        )
+        radius = float(effective_radius(a.radius_m, b.radius_m))
+        mass = float(effective_mass(a.mass_kg, b.mass_kg))
+        v = self.characteristic_velocity_m_s if speed is None else speed
+        t_c = float(contact_time(mass, radius, e_star, v))
+        return ContactScales(e_star, g_star, radius, mass, t_c)
+
+
+def predicted_wet_restitution(
+    dry: Value,
+    particle: ParticleType,
+    viscosity_pa_s: float,
+    speed_m_s: float,
+    *,
+    critical_stokes: float = 35.0,
+) -> tuple[Value, WetParameters]:
+    """e_wet = e_dry exp(−β_L/St), St = 2ρ_p R V/(9μ) (Legendre et al. 2006; PHYSICS.md §10).
+
+    Returns the constant e at the stated Stokes number (what a code without a wet model
+    takes) and the law itself (for LIGGGHTS-style e(St) models). St here has no added
+    mass (Joseph & Hunt §1); PHYSICS.md §10 notes the added-mass variant.
+    """
+    st = float(stokes_number(particle.density_kg_m3, particle.radius_m, speed_m_s, viscosity_pa_s))
+    law = WetParameters(
+        viscosity_pa_s,
+        critical_stokes,
+        dry.value,
+        f"predicted: e = e_dry exp(-{critical_stokes:g}/St) (Legendre et al. 2006), "
+        f"e_dry from {dry.provenance}",
+    )
+    e = law.restitution(st)
+    note = (
+        f"predicted: e = e_dry exp(-{critical_stokes:g}/St), St = {st:.3g} at V = "
+        f"{speed_m_s:g} m/s, mu = {viscosity_pa_s:g} Pa s (Legendre et al. 2006); "
+        f"e_dry = {dry.value:g} from {dry.provenance}"
+    )
+    return Value(e, note), law
+
+
+def _positive(name: str, value: float, unit: str) -> None:
+    if not (math.isfinite(value) and value > 0.0):
+        raise ValidationError(
+            name, value, f"must be a positive number{' of ' + unit if unit else ''}"
+        )
+
+
+def _pair_index(
+    types: tuple[ParticleType, ...], pairs: tuple[PairParameters, ...]
+) -> dict[frozenset[str], PairParameters]:
+    """Check the pair matrix is complete and unique; return it keyed by the unordered pair."""
+    if not types:
+        raise ValidationError("types", "[]", "must name at least one particle type")
+    names = [t.name for t in types]
+    if len(set(names)) != len(names):
+        raise ValidationError("types", ",".join(names), "must have distinct names")
+    if all(t.is_wall for t in types):
+        raise ValidationError("types", ",".join(names), "must include a particle type")
+    index: dict[frozenset[str], PairParameters] = {}
+    for p in pairs:
+        for name in (p.type_i, p.type_j):
+            if name not in names:
+                raise ValidationError(f"pair {p.type_i}/{p.type_j}", name, "is not a declared type")
+        if p.key in index:
+            raise ValidationError(f"pair {p.type_i}/{p.type_j}", "twice", "must be given once")
+        index[p.key] = p
+    by_name = {t.name: t for t in types}
+    for i, a in enumerate(names):
+        for b in names[i:]:
+            if by_name[a].is_wall and by_name[b].is_wall:
+                continue
+            if frozenset((a, b)) not in index:
+                raise ValidationError(
+                    f"pair {a}/{b}",
+                    "missing",
+                    "must be given: the pair matrix must be complete so that no code's "
+                    "mixing rule replaces a value",
+                )
+    return index

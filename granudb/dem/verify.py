@@ -1,0 +1,229 @@
+"""Run the exported parameters in the real codes and read the rebound back.
+
+For every installed code (binary found with :func:`shutil.which`) each requested collision
+is run in a temporary directory: a sphere on a flat wall, normal and oblique, and head-on
+on a resting sphere of a particle pair. The rebound gives the achieved e (e = −v_N,out/
+v_N,in with relative velocities, PHYSICS.md §5, §9) and, for oblique impacts, Ψ_out to
+compare with Walton's sliding branch Ψ_out = Ψ_in − μ_f(1+e)(1+1/K²) and the achieved
+μ_f = (Ψ_in − Ψ_out)/((1+e)·7/2) (Joseph & Hunt (2.6), (2.9)). A code that is not
+installed gives records with status "not checked", never a pass.
+"""
+
+from __future__ import annotations
+
+import math
+import shutil
+import tempfile
+import time
+from collections.abc import Iterable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+from granudb.dem import _runners, lammps, liggghts, yade
+from granudb.dem._runners import Case
+from granudb.dem.spec import DemModel
+from granudb.physics.impact import (
+    GROSS_SLIP,
+    TANGENTIAL_REGIME_NAMES,
+    gyration_factor,
+    maw_chi,
+    maw_psi,
+    stiffness_ratio,
+    tangential_regime,
+)
+
+#: Code name → the binary that runs it (Debian packages liggghts, lammps, yade).
+BINARIES = {"liggghts": "liggghts", "lammps": "lmp", "yade": "yade"}
+WRITERS = {"liggghts": liggghts, "lammps": lammps, "yade": yade}
+
+
+@dataclass(frozen=True)
+class Record:
+    """One collision in one code: what was asked and what the code gave back."""
+
+    code: str
+    pair: str
+    kind: str  # "normal", "oblique" or "sphere-sphere"
+    speed_m_s: float
+    angle_deg: float
+    status: str  # "checked" or "not checked"
+    target_e: float
+    achieved_e: float | None = None
+    e_rel_error: float | None = None
+    psi_in: float | None = None
+    psi_out: float | None = None
+    psi_out_walton: float | None = None
+    target_friction: float | None = None
+    achieved_friction: float | None = None
+    friction_rel_error: float | None = None
+    regime: str | None = None  # Maw's regime of the oblique impact (sliding branch or not)
+    seconds: float | None = None
+    note: str = ""
+
+
+def installed_codes() -> dict[str, str | None]:
+    """Each runnable code and the path of its binary, or None when it is not installed."""
+    return {code: shutil.which(binary) for code, binary in BINARIES.items()}
+
+
+def cases(
+    model: DemModel,
+    speeds: Sequence[float] = (0.1, 0.3, 0.5),
+    angles_deg: Sequence[float] = (45.0, 60.0),
+    oblique_speed: float | None = None,
+) -> list[Case]:
+    """Normal and oblique wall impacts for every particle/wall pair; head-on for particle pairs."""
+    out: list[Case] = []
+    v_oblique = oblique_speed or model.characteristic_velocity_m_s
+    for p in model.particles:
+        for w in model.walls:
+            out += [Case(p.name, w.name, v, 0.0) for v in speeds]
+            out += [Case(p.name, w.name, v_oblique, a) for a in angles_deg]
+        for q in model.particles:
+            if model.index(q.name) >= model.index(p.name):
+                out += [Case(p.name, q.name, v, 0.0) for v in speeds]
+    return out
+
+
+def verify(
+    model: DemModel,
+    case_list: Iterable[Case] | None = None,
+    *,
+    codes: Sequence[str] = ("liggghts", "lammps", "yade"),
+    clamp: bool = False,
+    workdir: Path | None = None,
+) -> list[Record]:
+    """Export ``model`` for each code, run every case in it, return one record per run."""
+    todo = list(case_list) if case_list is not None else cases(model)
+    found = installed_codes()
+    records: list[Record] = []
+    for code in codes:
+        binary = found.get(code)
+        if binary is None:
+            records += [
+                _record(model, code, c, None, "not checked", f"{BINARIES[code]} not found")
+                for c in todo
+            ]
+            continue
+        fragment = WRITERS[code].write(model, clamp=clamp)
+        with tempfile.TemporaryDirectory(prefix=f"granudb-{code}-", dir=workdir) as tmp:
+            records += _run_code(model, code, binary, fragment, todo, Path(tmp))
+    return records
+
+
+def _run_code(
+    model: DemModel, code: str, binary: str, fragment: str, todo: list[Case], tmp: Path
+) -> list[Record]:
+    if code == "yade":
+        script = tmp / "verify.py"
+        script.write_text(_runners.yade_script(model, fragment, todo))
+        start = time.perf_counter()
+        output = _runners.run([binary, "-n", "-x", str(script)], tmp, timeout=600)
+        per_case = (time.perf_counter() - start) / max(len(todo), 1)
+        lines = [ln for ln in output.splitlines() if ln.startswith("GRANUDB ")]
+        if len(lines) != len(todo):
+            _runners.parse(output, code)  # raises with the code's own last words
+        return [
+            _record(model, code, c, _runners.parse(ln, code), "checked", seconds=per_case)
+            for c, ln in zip(todo, lines, strict=True)
+        ]
+
+    def one(index_case: tuple[int, Case]) -> Record:
+        index, case = index_case
+        folder = tmp / f"case{index}"
+        folder.mkdir()
+        build = _runners.liggghts_input if code == "liggghts" else _runners.lammps_input
+        (folder / "in.granudb").write_text(build(model, fragment, case))
+        start = time.perf_counter()
+        output = _runners.run(
+            [binary, "-in", "in.granudb", "-log", "none", "-echo", "none"], folder
+        )
+        seconds = time.perf_counter() - start
+        return _record(model, code, case, _runners.parse(output, code), "checked", seconds=seconds)
+
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        return list(pool.map(one, enumerate(todo)))
+
+
+def _record(
+    model: DemModel,
+    code: str,
+    case: Case,
+    result: tuple[float, float, float, float] | None,
+    status: str,
+    note: str = "",
+    seconds: float | None = None,
+) -> Record:
+    pair = model.pair(case.particle, case.target)
+    assert pair is not None
+    wall = model.type(case.target).is_wall
+    kind = "sphere-sphere" if not wall else ("oblique" if case.angle_deg else "normal")
+    base = dict(
+        code=code,
+        pair=f"{case.particle}/{case.target}",
+        kind=kind,
+        speed_m_s=case.speed,
+        angle_deg=case.angle_deg,
+        target_e=pair.restitution.value,
+    )
+    if result is None:
+        return Record(status=status, note=note, **base)  # type: ignore[arg-type]
+    vx1, vz1, wy1, vz2 = result
+    e = (vz1 - vz2) / case.v_normal  # relative normal velocity out over in (PHYSICS.md §9)
+    fields: dict[str, object] = dict(
+        achieved_e=e, e_rel_error=e / pair.restitution.value - 1.0, seconds=seconds
+    )
+    if kind == "oblique":
+        radius = model.type(case.particle).radius_m
+        v_t_out = vx1 - wy1 * radius  # contact point at −R ẑ: v + ω × r, x component
+        psi_in = case.v_tangential / case.v_normal
+        psi_out = v_t_out / case.v_normal
+        factor = float(gyration_factor())
+        mu = pair.friction.value
+        scales = model.contact(pair)
+        ratio = float(stiffness_ratio(scales.reduced_shear_modulus_pa, scales.reduced_modulus_pa))
+        regime = int(
+            tangential_regime(maw_psi(ratio, case.v_tangential, mu, case.v_normal), maw_chi(ratio))
+        )
+        achieved_mu = (psi_in - psi_out) / ((1.0 + e) * factor)
+        fields.update(
+            psi_in=psi_in,
+            psi_out=psi_out,
+            psi_out_walton=psi_in - mu * (1.0 + pair.restitution.value) * factor,
+            target_friction=mu,
+            achieved_friction=achieved_mu,
+            friction_rel_error=achieved_mu / mu - 1.0 if mu > 0 else math.nan,
+            regime=TANGENTIAL_REGIME_NAMES[regime],
+            note="" if regime == GROSS_SLIP else "not on the sliding branch: mu_f is a bound",
+        )
+    return Record(status=status, **base, **fields)  # type: ignore[arg-type]
+
+
+def table(records: Sequence[Record]) -> str:
+    """Records as a plain-text table (target against achieved), one line per run."""
+    head = (
+        f"{'code':9} {'pair':16} {'kind':13} {'V m/s':>6} {'angle':>5} {'e target':>9} "
+        f"{'e achieved':>10} {'err':>7} {'Psi_in':>7} {'Psi_out':>8} {'Walton':>8} "
+        f"{'mu':>6} {'mu ach.':>8} {'err':>7}"
+    )
+    rows = [head]
+    for r in records:
+        if r.status != "checked":
+            rows.append(
+                f"{r.code:9} {r.pair:16} {r.kind:13} {r.speed_m_s:6.2f} "
+                f"{r.angle_deg:5.0f} {r.target_e:9.4f} not checked ({r.note})"
+            )
+            continue
+        line = (
+            f"{r.code:9} {r.pair:16} {r.kind:13} {r.speed_m_s:6.2f} {r.angle_deg:5.0f} "
+            f"{r.target_e:9.4f} {r.achieved_e:10.5f} {r.e_rel_error:+7.2%}"
+        )
+        if r.psi_in is not None:
+            line += (
+                f" {r.psi_in:7.3f} {r.psi_out:8.4f} {r.psi_out_walton:8.4f} "
+                f"{r.target_friction:6.3f} {r.achieved_friction:8.4f} "
+                f"{r.friction_rel_error:+7.2%}"
+            )
+        rows.append(line)
+    return "\n".join(rows)

@@ -1,0 +1,61 @@
+"""Paper values (Joseph & Hunt 2004, table 1) as DEM models for the tests of granudb.dem."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from granudb.dem.spec import (
+    DemModel,
+    PairParameters,
+    ParticleType,
+    Value,
+    predicted_wet_restitution,
+)
+
+TABLE_1 = "Joseph & Hunt 2004 table 1"
+GLASS = ParticleType("glass", 60e9, 0.23, 2540.0, 12.7e-3)
+STEEL = ParticleType("steel", 190e9, 0.27, 7780.0, 12.7e-3)
+ZERODUR = ParticleType("zerodur", 91e9, 0.24, 2540.0, None, is_wall=True)
+E_DRY = Value(0.97, "Joseph & Hunt 2004 §3, mean dry e = 0.97 +- 0.02")
+MU_STEEL = Value(0.11, "Joseph & Hunt 2004 §3, steel on Zerodur 0.11 +- 0.003")
+MU_GLASS = Value(0.106, "Joseph & Hunt 2004 §3, glass on Zerodur 0.106 +- 0.008")
+#: 37 % and 78 % glycerol at 20 °C: viscosity [Pa s] (fluid densities ~1090 and ~1200 kg/m³).
+FLUIDS = {"glycerol37": 3e-3, "glycerol78": 48e-3}
+BINARIES = {"liggghts": "liggghts", "lammps": "lmp", "yade": "yade"}
+
+
+def dry_model() -> DemModel:
+    pairs = [
+        PairParameters("glass", "glass", E_DRY, MU_GLASS),
+        PairParameters("glass", "steel", E_DRY, MU_STEEL),
+        PairParameters("steel", "steel", E_DRY, MU_STEEL),
+        PairParameters("glass", "zerodur", E_DRY, MU_GLASS),
+        PairParameters("steel", "zerodur", E_DRY, MU_STEEL),
+    ]
+    return DemModel([GLASS, STEEL, ZERODUR], pairs, 0.3)
+
+
+def wet_model(fluid: str, speed: float = 0.3) -> DemModel:
+    """Immersed pairs: e predicted by e_dry exp(-35/St) at ``speed`` (Legendre et al. 2006)."""
+    mu = FLUIDS[fluid]
+    pairs = []
+    for particle, friction in ((GLASS, MU_GLASS), (STEEL, MU_STEEL)):
+        e, law = predicted_wet_restitution(E_DRY, particle, mu, speed)
+        pairs.append(PairParameters(particle.name, "zerodur", e, friction, wet=law))
+    e_gs, law_gs = predicted_wet_restitution(E_DRY, GLASS, mu, speed)
+    pairs += [
+        PairParameters("glass", "glass", e_gs, MU_GLASS, wet=law_gs),
+        PairParameters("glass", "steel", e_gs, MU_STEEL, wet=law_gs),
+        PairParameters(
+            "steel", "steel", predicted_wet_restitution(E_DRY, STEEL, mu, speed)[0], MU_STEEL
+        ),
+    ]
+    return DemModel([GLASS, STEEL, ZERODUR], pairs, speed)
+
+
+def require(code: str) -> None:
+    """Skip a run-test only when the code's binary is missing."""
+    if shutil.which(BINARIES[code]) is None:
+        pytest.skip(f"{BINARIES[code]} not installed")

@@ -1,0 +1,30 @@
+"""The damping maps: integrating the Hertz contact law gives the target e back."""
+
+from __future__ import annotations
+
+import pytest
+
+from granudb.dem import damping
+
+
+@pytest.mark.parametrize("e", [0.97, 0.8, 0.5, 0.2, 0.06])
+def test_liggghts_hertz_damping_is_exact(e: float) -> None:
+    assert damping.hertz_restitution(damping.hertz_damping(e)) == pytest.approx(e, abs=2e-5)
+
+
+@pytest.mark.parametrize("e", [0.97, 0.5, 0.2])
+def test_yade_clamped_damping_inverts(e: float) -> None:
+    c = damping.clamped_hertz_damping(e)
+    assert damping.hertz_restitution(c, clamp_attraction=True) == pytest.approx(e, abs=1e-4)
+
+
+def test_lammps_tsuji_polynomial_is_corrected() -> None:
+    # typed as is, 0.97 gives 0.979 (LAMMPS #2812); the corrected input gives 0.97
+    assert damping.hertz_restitution(damping.tsuji_alpha(0.97)) == pytest.approx(0.9794, abs=1e-3)
+    e_in = damping.lammps_tsuji_input(0.97, "x")
+    assert damping.hertz_restitution(damping.tsuji_alpha(e_in)) == pytest.approx(0.97, abs=2e-5)
+
+
+def test_lammps_tsuji_floor() -> None:
+    low, high = damping.lammps_tsuji_range()
+    assert 0.11 < low < 0.12 and 0.999 < high < 1.0

@@ -1,0 +1,103 @@
+"""What each writer produces, and what it refuses, without running a code."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+from dem.dem_cases import E_DRY, GLASS, MU_GLASS, ZERODUR, dry_model, wet_model
+
+from granudb.dem import lammps, liggghts, mercurydpm, yade
+from granudb.dem.spec import DemModel, PairParameters, ParticleType, Value
+from granudb.errors import ValidationError
+
+
+def low_e_model() -> DemModel:
+    """Glass in 78 % glycerol at 0.1 m/s: St = 7.5, e = 0.97 exp(-35/7.5) = 0.009."""
+    return wet_model("glycerol78", speed=0.1)
+
+
+def test_liggghts_matrices_are_full_and_commented() -> None:
+    text = liggghts.write(dry_model())
+    assert "hard_particles yes" in text
+    assert "coefficientRestitution peratomtypepair 3 &" in text
+    assert "fix granudb_youngsModulus all property/global youngsModulus peratomtype" in text
+    assert "2-3 steel/zerodur: coefficientFriction = 0.11 (Joseph & Hunt 2004" in text
+    assert "coefficientRollingFriction" not in text
+
+
+@pytest.mark.parametrize(
+    ("writer", "rule"),
+    [
+        (liggghts, "LIGGGHTS refuses e <= 0.05"),
+        (lammps, "LAMMPS damping tsuji reaches only 0.1136 <= e"),
+        (yade, "Yade Hertz-Mindlin with viscous damping: e < 0.01"),
+    ],
+)
+def test_unrepresentable_restitution_is_refused_in_one_line(writer: object, rule: str) -> None:
+    with pytest.raises(ValidationError) as info:
+        writer.write(low_e_model())  # type: ignore[attr-defined]
+    message = str(info.value)
+    assert "\n" not in message and rule in message and "--clamp" in message
+    assert message.startswith("restitution glass/")
+
+
+def test_liggghts_clamp_writes_the_floor_with_a_comment() -> None:
+    text = liggghts.write(low_e_model(), clamp=True)
+    assert "CLAMPED from 0.00893" in text and "\n    0.0501 0.0501 " in text
+
+
+def test_liggghts_soft_particles_below_its_floor() -> None:
+    soft = ParticleType("rubber", 1e6, 0.45, 1100.0, 0.01)
+    pairs = [
+        PairParameters("rubber", "rubber", Value(0.8, "assumed"), Value(0.5, "assumed")),
+        PairParameters("rubber", "zerodur", Value(0.8, "assumed"), Value(0.5, "assumed")),
+    ]
+    text = liggghts.write(DemModel([soft, ZERODUR], pairs, 1.0))
+    assert "soft_particles yes" in text
+
+
+def test_rolling_friction_switches_models() -> None:
+    model = dry_model()
+    pairs = [dataclasses.replace(p, rolling_friction=Value(0.002, "assumed")) for p in model.pairs]
+    model = DemModel(model.types, pairs, 0.3)
+    assert "coefficientRollingFriction peratomtypepair 3" in liggghts.write(model)
+    assert liggghts.pair_style(model).endswith("rolling_friction cdt")
+    assert "rolling sds" in lammps.write(model)
+    assert "setRollingFrictionCoefficient(0.002)" in mercurydpm.write(model)
+
+
+def test_lammps_writes_every_pair_and_wall_explicitly() -> None:
+    text = lammps.write(dry_model())
+    for i, j in ((1, 1), (1, 2), (2, 2)):
+        assert f"pair_coeff {i} {j} hertz " in text
+    assert text.count("wall/gran granular hertz") == 2
+    assert "${granudb_wall_zerodur}" in text and "damping tsuji" in text
+
+
+def test_yade_uses_matchmakers_for_every_pair() -> None:
+    text = yade.write(dry_model())
+    assert text.count("math.atan(") == 5 and "betan=MatchMaker" in text
+    compile(text, "fragment", "exec")
+
+
+def test_mercurydpm_uses_documented_api_names() -> None:
+    text = mercurydpm.write(dry_model())
+    for name in mercurydpm.API_NAMES:
+        if name != "setRollingFrictionCoefficient":
+            assert name in text, name
+    assert "LinearViscoelasticSlidingFrictionSpecies" in text
+    assert "getMixedObject(glass, zerodur)" in text
+
+
+def test_every_number_has_its_source() -> None:
+    model = DemModel(
+        [GLASS, ZERODUR],
+        [
+            PairParameters("glass", "glass", E_DRY, MU_GLASS),
+            PairParameters("glass", "zerodur", E_DRY, MU_GLASS),
+        ],
+        0.3,
+    )
+    for writer in (liggghts, lammps, yade, mercurydpm):
+        assert "Joseph & Hunt 2004 §3, glass on Zerodur" in writer.write(model)

@@ -1,0 +1,58 @@
+"""The model refuses what would let a code's mixing rule or a bad number through."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from dem.dem_cases import E_DRY, GLASS, MU_GLASS, STEEL, ZERODUR, dry_model
+
+from granudb.dem.spec import (
+    DemModel,
+    PairParameters,
+    ParticleType,
+    Value,
+    predicted_wet_restitution,
+)
+from granudb.errors import ValidationError
+
+
+def test_missing_pair_is_named() -> None:
+    pairs = [p for p in dry_model().pairs if {p.type_i, p.type_j} != {"glass", "steel"}]
+    with pytest.raises(ValidationError, match="pair glass/steel: missing must be given"):
+        DemModel([GLASS, STEEL, ZERODUR], pairs, 0.3)
+
+
+def test_duplicate_pair_is_refused() -> None:
+    pairs = list(dry_model().pairs) + [PairParameters("steel", "glass", E_DRY, MU_GLASS)]
+    with pytest.raises(ValidationError, match="given once"):
+        DemModel([GLASS, STEEL, ZERODUR], pairs, 0.3)
+
+
+def test_wall_needs_no_diameter_and_particles_need_one() -> None:
+    with pytest.raises(ValidationError, match="diameter"):
+        ParticleType("w", 1e9, 0.2, 1000.0, 0.01, is_wall=True)
+    with pytest.raises(ValidationError, match="poisson_ratio"):
+        ParticleType("p", 1e9, 0.6, 1000.0, 0.01)
+
+
+def test_value_needs_provenance() -> None:
+    with pytest.raises(ValidationError, match="provenance"):
+        Value(0.5, " ")
+
+
+def test_contact_scales_match_physics() -> None:
+    model = dry_model()
+    scales = model.contact(model.pair("steel", "zerodur"))
+    assert scales.reduced_modulus_pa == pytest.approx(65.64e9, rel=1e-3)
+    assert scales.radius_m == pytest.approx(6.35e-3)
+    assert scales.mass_kg == pytest.approx(8.344e-3, rel=1e-3)
+    assert 60e-6 < scales.contact_time_s < 80e-6
+
+
+def test_predicted_wet_restitution_states_its_stokes_number() -> None:
+    e, law = predicted_wet_restitution(E_DRY, GLASS, 48e-3, 0.3)
+    st = 2 * 2540 * 6.35e-3 * 0.3 / (9 * 48e-3)
+    assert e.value == pytest.approx(0.97 * math.exp(-35 / st))
+    assert f"St = {st:.3g}" in e.provenance and "Legendre" in e.provenance
+    assert law.restitution(st) == pytest.approx(e.value)
