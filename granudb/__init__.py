@@ -21,6 +21,8 @@ _API = {
     "fit_walton": "granudb.api.fits",
     "fit_restitution": "granudb.api.fits",
     "fit_gap_viscosity": "granudb.api.fits",
+    "dem_export": "granudb.api.dem",
+    "dem_verify": "granudb.api.dem",
 }
 
 __all__ = ["__version__", *_API]

@@ -13,7 +13,18 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from granudb.cli import collisions, dataset, db, fit, fluids, materials, pair, report, sources
+from granudb.cli import (
+    collisions,
+    dataset,
+    db,
+    dem,
+    fit,
+    fluids,
+    materials,
+    pair,
+    report,
+    sources,
+)
 from granudb.cli.common import DbOption
 from granudb.version import __version__
 
@@ -83,6 +94,7 @@ app.add_typer(dataset.app, name="dataset")
 app.command("pair")(pair.pair)
 app.command("report")(report.report)
 app.add_typer(db.app, name="db")
+app.add_typer(dem.app, name="dem")
 
 
 @app.command("datasette-metadata")
