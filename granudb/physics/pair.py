@@ -100,9 +100,11 @@ def walton_factor(
     >>> float(walton_factor(1.0, 2.0, 2.0))
     3.5
     """
-    return 1.0 + as_float(effective_mass) * (
-        1.0 / (as_float(particle_gyration) * as_float(particle_mass))
-        + 1.0 / (as_float(target_gyration) * as_float(target_mass))
+    m_eff = as_float(effective_mass)
+    return (
+        1.0
+        + (m_eff / as_float(particle_mass)) / as_float(particle_gyration)
+        + (m_eff / as_float(target_mass)) / as_float(target_gyration)
     )
 
 
