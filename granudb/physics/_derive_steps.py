@@ -26,15 +26,18 @@ def pair_properties(x: Arrays) -> Arrays:
     r1 = x["d"] / 2.0
     r2 = np.where(np.isnan(x["d2"]), np.inf, x["d2"] / 2.0)
     m1 = contact.sphere_mass(x["rho1"], x["d"])
-    m2 = np.where(free, contact.sphere_mass(x["rho2"], x["d2"]), np.inf)
+    any_free = bool(free.any())  # skip the target's terms for walls and fixed spheres
+    m2 = np.where(free, contact.sphere_mass(x["rho2"], x["d2"]), np.inf) if any_free else np.inf
     m_eff = contact.effective_mass(m1, m2)
-    r_spin = np.where(free, r2, 0.0)  # an immovable target does not spin
+    r_spin = np.where(free, r2, 0.0) if any_free else 0.0  # an immovable target does not spin
 
-    def before(name: str) -> np.ndarray:  # a free target's missing value: at rest
-        return np.where(free, np.nan_to_num(x[name]), 0.0)
+    def before(name: str) -> np.ndarray | float:  # a free target's missing value: at rest
+        if not any_free:
+            return 0.0
+        return np.where(free & ~np.isnan(x[name]), x[name], 0.0)
 
-    def after(name: str) -> np.ndarray:  # a free target's missing value: unknown
-        return np.where(free, x[name], 0.0)
+    def after(name: str) -> np.ndarray | float:  # a free target's missing value: unknown
+        return np.where(free, x[name], 0.0) if any_free else 0.0
 
     v_n = pair.relative_normal_velocity(x["vn"], before("w_vn"))
     v_t_centre = x["vt"] - before("w_vt")
@@ -85,7 +88,7 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
         "t_c": t_c,
         "c_wave": c_wave,
         "qs_ratio": ratio,
-        "qs_valid": (ratio < contact.QUASI_STATIC_LIMIT) & (state != "yield_exceeded"),
+        "qs_valid": (ratio < contact.QUASI_STATIC_LIMIT) & (state != limits.YIELD_EXCEEDED),
         "yield_speed": limits.yield_speed_from_pressure(v_n, p_max, y_soft),
         "elastic_state": state,
     }
@@ -156,7 +159,7 @@ def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> 
     cap = limits.friction_cap(*caps)
     film = f["immersed"] & ~f["rough"]
     state = lub["state"]
-    mu_used = np.where(~film, dry, np.where(state == "in_range", lub["mu_lub"], cap))
+    mu_used = np.where(~film, dry, np.where(state == limits.IN_RANGE, lub["mu_lub"], cap))
     ratio = impact.stiffness_ratio(p["g_star"], p["e_star"])
     chi = ratio * p["walton"]
     psi = impact.maw_psi(ratio, lub["u_abs"], mu_used, p["v_n"])
@@ -164,7 +167,7 @@ def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> 
     names = np.asarray(impact.TANGENTIAL_REGIME_NAMES, dtype=object)[code]
     # No coefficient: μ_f ≤ cap is all that is known, and a smaller μ_f only slips more;
     # the bound decides the regime only when it already gives gross slip.
-    open_ended = film & (state == "no_pressure_coefficient") & (code != impact.GROSS_SLIP)
+    open_ended = film & (state == limits.NO_PRESSURE_COEFFICIENT) & (code != impact.GROSS_SLIP)
     return {
         "mu_used": mu_used,
         "chi": chi,

@@ -5,11 +5,54 @@ vectorized pass (no per-row Python, no quadrature).
 properties, the fluid's state, the particle size and the velocities, and returns a dict of
 arrays under granudb's column names (their units and meanings are in
 ``granudb.vocabulary.DERIVED_TERMS``). A dry collision has ``viscosity_pa_s`` NaN: its
-fluid quantities are NaN, its roughness verdict False and rebound is expected. Where an
+fluid quantities are NaN, its roughness verdict False (``roughness_regime`` "dry") and
+rebound is expected. Where an
 input makes a quantity undefined (no measured rebound) that quantity is NaN, element by
 element; where a model is outside its range or lacks an input, a text state column names
 why (``elastic_state``, ``lubricated_friction_state``, ``roughness_regime``) so no NaN
 reaches a verdict silently. The steps live in ``granudb.physics._derive_steps``.
+
+**The target.** Particle (1), target (2). The normal n points from the particle to the
+target, the tangential axis t along the particle's incoming tangential motion; spins
+are about n × t, positive where the particle's spin moves its contact point along +t.
+The particle's ``v_n_in`` is along n (> 0) and its ``v_n_out`` along −n (≥ 0, away
+from the target), as granudb stores them. The target's ``wall_v_n_in``/``wall_v_n_out`` are
+along n (> 0 moving away from the particle), ``wall_v_t_*`` along t and
+``wall_omega_*`` about the same axis n × t (so a positive target spin moves its contact
+point along −t). All target velocities NaN: a flat wall (``wall_diameter_m`` NaN) or a
+fixed sphere (finite), immovable (m₂ = ∞) and at rest; ``wall_v_n_in`` given: a free
+sphere of the wall material (a missing tangential or spin input before impact is 0, a
+missing one after impact makes the collision parameters that need it NaN).
+Every collision parameter (e, β, Ψ_in, Ψ_out, μ_f) then comes from the relative
+velocities v_N = (v₁ − v₂)·n and v_T = (v₁ − v₂)·t + ω₁R₁ + ω₂R₂ of the contact point;
+Hertz, St, St_n, Re, x₁ and x₃ from m*, R* and v_N (Davis et al. 1986); Walton's (2.9)
+with B = 1 + m*(R₁²/I₁ + R₂²/I₂) (``walton_factor``, 7/2 for solid spheres).
+``incidence_angle_rad`` is ζ_in of the contact point's path, atan(|v_T,in|/v_N,in):
+spin counts (the measured set-up angle is a different, stored column).
+
+**Limits.** ``elastic_state`` compares p_max with 1.6 Y of the softer body (§11); the
+quasi-static verdict is False where yield is exceeded (Hertz no longer holds).
+``lubricated_friction_state``: (5.8) is "in_range", "above_limit" (above
+min(``dry_friction``, ``limiting_shear_slope``), Bair & Winer 1979),
+"no_pressure_coefficient" or "dry".
+
+**Friction for Maw's regime** (``friction_coefficient_used``): ``dry_friction`` where
+the collision is dry or σ > h_m (asperities touch, the paper's §4 argument; with the
+default h_m = x₁/3 a roughness in Davis's "uncertain" band x₁/4 < σ ≤ x₁/3 is still
+treated as a film, and ``roughness_regime`` says it is uncertain); else the film's:
+(5.8) when in range; the cap min(dry, γ_max) — a film at its limiting shear stress —
+when (5.8) is above it. For a fluid without a pressure–viscosity coefficient (water in
+the seed data) μ_f is not computed: water's viscosity *decreases* with pressure below
+~150 MPa at ≤ 30 °C (Eisenberg & Kauzmann 1969, quoted by Joseph & Hunt §5), so neither
+a borrowed coefficient nor (5.6)'s piezoviscous film applies, and C → 0 makes (5.6)'s
+film vanish (the isoviscous limit of (5.8) is not finite). The same cap is then used as
+an upper bound: the regime is "gross_slip" where the bound already gives it (a smaller
+μ_f only slips more) and "undetermined" otherwise.
+
+**Restitution.** ``predicted_restitution`` = ``dry_restitution`` × exp(−35/St) with
+Legendre et al.'s added-mass St of the pair's normal approach, 0 where rebound is not
+expected (St_n ≤ ``critical_stokes``), ``dry_restitution`` for dry rows, NaN for an
+immersed row without fluid density.
 """
 
 from __future__ import annotations
@@ -113,7 +156,7 @@ def _validate(x: dict[str, np.ndarray]) -> None:
         ~moving | np.isfinite(x["w_vn"]),
         "must be given for a free target (NaN with every target velocity NaN: a fixed target)",
     )
-    approach = x["vn"] - np.nan_to_num(x["w_vn"])
+    approach = x["vn"] - np.where(np.isnan(x["w_vn"]), 0.0, x["w_vn"])
     _check(
         "wall_v_n_in_m_s",
         x["w_vn"],
@@ -166,44 +209,8 @@ def derive(
     dry collision. NaN after-impact velocities: a scenario (per-collision parameters NaN).
     NaN yield stress: not known (``elastic_state`` "unknown" unless exceeded by the other).
 
-    **The target.** Particle (1), target (2). The normal n points from the particle to the
-    target, the tangential axis t along the particle's incoming tangential motion; spins
-    are about n × t, positive where the particle's spin moves its contact point along +t.
-    The particle's ``v_n_in`` is along n (> 0) and its ``v_n_out`` along −n (≥ 0, away
-    from the target), as stored today. The target's ``wall_v_n_in``/``wall_v_n_out`` are
-    along n (> 0 moving away from the particle), ``wall_v_t_*`` along t and
-    ``wall_omega_*`` about the same axis n × t (so a positive target spin moves its contact
-    point along −t). All target velocities NaN: a flat wall (``wall_diameter_m`` NaN) or a
-    fixed sphere (finite), immovable (m₂ = ∞) and at rest; ``wall_v_n_in`` given: a free
-    sphere of the wall material (a missing tangential or spin input before impact is 0, a
-    missing one after impact makes the collision parameters that need it NaN).
-    Every collision parameter (e, β, Ψ_in, Ψ_out, μ_f) then comes from the relative
-    velocities v_N = (v₁ − v₂)·n and v_T = (v₁ − v₂)·t + ω₁R₁ + ω₂R₂ of the contact point;
-    Hertz, St, St_n, Re, x₁ and x₃ from m*, R* and v_N (Davis et al. 1986); Walton's (2.9)
-    with B = 1 + m*(R₁²/I₁ + R₂²/I₂) (``walton_factor``, 7/2 for solid spheres).
-    ``incidence_angle_rad`` is ζ_in of the contact point's path, atan(|v_T,in|/v_N,in):
-    spin counts (the measured set-up angle is a different, stored column).
-
-    **Limits.** ``elastic_state`` compares p_max with 1.6 Y of the softer body (§11); the
-    quasi-static verdict is False where yield is exceeded (Hertz no longer holds).
-    ``lubricated_friction_state``: (5.8) is "in_range", "above_limit" (above
-    min(``dry_friction``, ``limiting_shear_slope``), Bair & Winer 1979),
-    "no_pressure_coefficient" or "dry".
-
-    **Friction for Maw's regime** (``friction_coefficient_used``): ``dry_friction`` where
-    the collision is dry or σ > h_m (asperities touch, the paper's §4 argument); else the
-    film's: (5.8) when in range; the cap min(dry, γ_max) — a film at its limiting shear
-    stress — when (5.8) is above it; and for a fluid without a pressure–viscosity
-    coefficient (water in the seed data: its viscosity *decreases* with pressure below
-    ~150 MPa at ≤ 30 °C, Eisenberg & Kauzmann 1969 via Joseph & Hunt §5, so neither a
-    borrowed coefficient nor (5.6)'s piezoviscous film applies, and C → 0 makes (5.6)'s
-    film vanish) the same cap as an upper bound: the regime is "gross_slip" where the
-    bound already gives it (a smaller μ_f only slips more) and "undetermined" otherwise.
-
-    **Restitution.** ``predicted_restitution`` = ``dry_restitution`` × exp(−35/St) with
-    Legendre et al.'s added-mass St of the pair's normal approach, 0 where rebound is not
-    expected (St_n ≤ ``critical_stokes``), ``dry_restitution`` for dry rows, NaN for an
-    immersed row without fluid density.
+    The conventions for a target sphere, the limits, the friction used for Maw's regime
+    and the predicted restitution are in the module docstring.
 
     Raises ``PhysicsInputError`` on unphysical input (non-positive size, speed, modulus,
     yield stress or pressure–viscosity coefficient, ν outside (−1, 0.5), a target that
@@ -262,7 +269,7 @@ def _columns(
         "quasi_static_ratio": h["qs_ratio"],
         "quasi_static_valid": h["qs_valid"],
         "yield_speed_m_s": h["yield_speed"],
-        "elastic_state": h["elastic_state"],
+        "elastic_state": limits.names(limits.ELASTIC_STATES, h["elastic_state"]),
         "elastic_length_m": f["x1"],
         "min_gap_m": f["h_m"],
         "eta_hat_pa_inv": f["eta_hat"],
@@ -270,14 +277,14 @@ def _columns(
         "composite_roughness_m": f["sigma"],
         "film_parameter": f["film"],
         "roughness_exceeds_gap": f["rough"],
-        "roughness_regime": f["roughness_regime"],
+        "roughness_regime": limits.names(limits.ROUGHNESS_REGIMES, f["roughness_regime"]),
         "rebound_expected": rebound,
         "predicted_restitution": predicted,
         "tangential_speed_m_s": p["u"],
         "traction_film_m": lub["h_film"],
         "friction_integral": lub["integral"],
         "lubricated_friction": lub["mu_lub"],
-        "lubricated_friction_state": lub["state"],
+        "lubricated_friction_state": limits.names(limits.FRICTION_STATES, lub["state"]),
         "shear_strain": lub["strain"],
         "friction_coefficient_used": tan["mu_used"],
         "maw_chi": tan["chi"],

@@ -19,6 +19,7 @@ YIELD_PRESSURE_FACTOR = 1.6
 YIELD_SPEED_CONSTANT = np.pi**4 * YIELD_PRESSURE_FACTOR**5 / 40.0
 
 ELASTIC_STATES = ("elastic", "yield_exceeded", "unknown")
+ELASTIC, YIELD_EXCEEDED, YIELD_UNKNOWN = 0, 1, 2
 
 #: Upper end of the limiting-shear slope γ in τ_L = τ_L0 + γ p, "about 0.05–0.1 for
 #: traction fluids" (Bair & Winer 1979, "A rheological model for elastohydrodynamic
@@ -29,6 +30,7 @@ LIMITING_SHEAR_SLOPE = 0.1
 
 #: States of the lubricated friction (5.8), see ``lubricated_friction_state``.
 FRICTION_STATES = ("in_range", "above_limit", "no_pressure_coefficient", "dry")
+IN_RANGE, ABOVE_LIMIT, NO_PRESSURE_COEFFICIENT, DRY = 0, 1, 2, 3
 
 #: Davis et al. (1986) give the EHD gap of a normal approach as h_m = x₁/4 … x₁/3.
 GAP_BAND = (0.25, 1.0 / 3.0)
@@ -91,7 +93,8 @@ def yield_speed_from_pressure(
 def elastic_state(
     max_pressure_pa: Numeric, particle_yield_stress: Numeric, wall_yield_stress: Numeric
 ) -> np.ndarray:
-    r"""Elastic state of the impact: ``"elastic"``, ``"yield_exceeded"`` or ``"unknown"``.
+    r"""Elastic state of the impact as a code into ``ELASTIC_STATES``: ``"elastic"``,
+    ``"yield_exceeded"`` or ``"unknown"`` (``names`` turns codes into text).
 
     Yield starts when p_max > 1.6 Y of the softer body (Johnson 1985 §11.4). NaN means
     a yield stress is not known. Exceeded when p_max exceeds 1.6 × any known Y (the softer
@@ -100,7 +103,8 @@ def elastic_state(
 
     Examples
     --------
-    >>> elastic_state(np.array([1e9, 4e9, 1e9]), 1.0e9, np.array([2e9, np.nan, np.nan])).tolist()
+    >>> code = elastic_state(np.array([1e9, 4e9, 1e9]), 1.0e9, np.array([2e9, np.nan, np.nan]))
+    >>> names(ELASTIC_STATES, code).tolist()
     ['elastic', 'yield_exceeded', 'unknown']
     """
     limit = YIELD_PRESSURE_FACTOR * np.fmin(
@@ -109,8 +113,7 @@ def elastic_state(
     p = as_float(max_pressure_pa)
     both = np.isfinite(as_float(particle_yield_stress)) & np.isfinite(as_float(wall_yield_stress))
     exceeded = np.isfinite(limit) & (p > limit)
-    code = np.where(exceeded, 1, np.where(both, 0, 2))
-    return np.asarray(ELASTIC_STATES, dtype=object)[code]
+    return np.where(exceeded, YIELD_EXCEEDED, np.where(both, ELASTIC, YIELD_UNKNOWN))
 
 
 def lubricated_friction_state(
@@ -120,7 +123,7 @@ def lubricated_friction_state(
     dry_friction: Numeric = 0.11,
     limiting_shear_slope: Numeric = LIMITING_SHEAR_SLOPE,
 ) -> np.ndarray:
-    r"""State of a lubricated μ_f from (5.8) (PHYSICS.md §12).
+    r"""State of a lubricated μ_f from (5.8) as a code into ``FRICTION_STATES`` (§12).
 
     ``"dry"`` no liquid; ``"no_pressure_coefficient"`` the fluid has no Barus coefficient,
     so (5.6) and (5.8) cannot be evaluated; ``"above_limit"`` μ_f exceeds the dry value
@@ -129,19 +132,21 @@ def lubricated_friction_state(
 
     Examples
     --------
-    >>> lubricated_friction_state(np.array([0.02, 169.0, np.nan, np.nan]),
-    ...                           np.array([True, True, True, False]),
-    ...                           np.array([True, True, False, False])).tolist()
+    >>> code = lubricated_friction_state(np.array([0.02, 169.0, np.nan, np.nan]),
+    ...                                  np.array([True, True, True, False]),
+    ...                                  np.array([True, True, False, False]))
+    >>> names(FRICTION_STATES, code).tolist()
     ['in_range', 'above_limit', 'no_pressure_coefficient', 'dry']
     """
     cap = friction_cap(dry_friction, limiting_shear_slope)
     mu = as_float(friction)
     immersed = np.asarray(immersed, dtype=bool)
     known = np.asarray(has_pressure_coefficient, dtype=bool)
-    code = np.where(
-        ~immersed, 3, np.where(~known, 2, np.where((mu > cap) | ~np.isfinite(mu), 1, 0))
+    return np.where(
+        ~immersed,
+        DRY,
+        np.where(~known, NO_PRESSURE_COEFFICIENT, np.where(mu <= cap, IN_RANGE, ABOVE_LIMIT)),
     )
-    return np.asarray(FRICTION_STATES, dtype=object)[code]
 
 
 def friction_cap(
@@ -158,7 +163,8 @@ def friction_cap(
 
 
 def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
-    r"""Three-state roughness verdict from Davis's band h_m = x₁/4 … x₁/3 (§4, §12).
+    r"""Three-state roughness verdict from Davis's band h_m = x₁/4 … x₁/3 (§4, §12), as a
+    code into ``ROUGHNESS_REGIMES``.
 
     ``"asperity_contact"`` σ > x₁/3 (above the largest gap), ``"uncertain"``
     x₁/4 < σ ≤ x₁/3, ``"film"`` σ ≤ x₁/4; ``"dry"`` where x₁ is NaN (no liquid).
@@ -166,8 +172,9 @@ def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
 
     Examples
     --------
-    >>> roughness_regime(np.array([10e-9, 30e-9, 40e-9, 1e-9]),
-    ...                  np.array([100e-9, 100e-9, 100e-9, np.nan])).tolist()
+    >>> code = roughness_regime(np.array([10e-9, 30e-9, 40e-9, 1e-9]),
+    ...                         np.array([100e-9, 100e-9, 100e-9, np.nan]))
+    >>> names(ROUGHNESS_REGIMES, code).tolist()
     ['film', 'uncertain', 'asperity_contact', 'dry']
     """
     sigma = as_float(roughness)
@@ -176,4 +183,15 @@ def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
     code = np.where(
         np.isnan(x1), 3, np.where(sigma > high * x1, 2, np.where(sigma > low * x1, 1, 0))
     )
-    return np.asarray(ROUGHNESS_REGIMES, dtype=object)[code]
+    return code
+
+
+def names(states: tuple[str, ...], code: Numeric) -> np.ndarray:
+    """Text states from the integer codes the verdict functions return (object array).
+
+    Examples
+    --------
+    >>> names(ELASTIC_STATES, np.array([0, 2])).tolist()
+    ['elastic', 'unknown']
+    """
+    return np.asarray(states, dtype=object)[np.asarray(code)]
