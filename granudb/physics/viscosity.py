@@ -297,5 +297,22 @@ class ReferencedViscosity:
         return self.model.density(temperature_c)
 
     def temperature_for_viscosity(self, viscosity: Numeric) -> Numeric:
-        """The temperature [°C] at which the referenced fluid has ``viscosity`` [Pa·s]."""
-        return self.model.temperature_for_viscosity(as_float(viscosity) / self.scale)
+        """The temperature [°C] at which the referenced fluid has ``viscosity`` [Pa·s].
+
+        The range is checked on the referenced viscosities, so a refusal quotes the
+        number the caller gave and the range it can have."""
+        mu = as_float(viscosity)
+        low = float(self.viscosity(self.high_c))
+        high = float(self.viscosity(self.low_c))
+        _check_range("viscosity_pa_s", np.atleast_1d(mu), low, high, "viscosity")
+        return self.model.temperature_for_viscosity(
+            np.clip(
+                mu / self.scale,
+                *sorted(
+                    (
+                        float(self.model.viscosity(self.high_c)),
+                        float(self.model.viscosity(self.low_c)),
+                    )
+                ),
+            )
+        )

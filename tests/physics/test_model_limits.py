@@ -258,3 +258,15 @@ def test_referenced_viscosity_passes_through_the_printed_value_and_is_continuous
     assert float(model.temperature_for_viscosity(model.viscosity(20.6))) == pytest.approx(20.6)
     cheng = viscosity.ReferencedViscosity(viscosity.GlycerolWater(0.45), 20.0, 4.5e-3)
     assert float(cheng.viscosity(20.0)) == pytest.approx(4.5e-3, rel=1e-14)
+
+
+def test_referenced_viscosity_refuses_with_the_callers_number() -> None:
+    table = viscosity.TabulatedViscosity(
+        GLYCEROL_45_POINTS[0], np.array(GLYCEROL_45_POINTS[1]) * 1e-3
+    )
+    model = viscosity.ReferencedViscosity(table, 20.0, 4.5e-3)
+    top = float(model.viscosity(10.0))
+    assert float(model.temperature_for_viscosity(top)) == pytest.approx(10.0)
+    with pytest.raises(viscosity.ViscosityRangeError) as info:
+        model.temperature_for_viscosity(0.02)
+    assert info.value.value == "0.02" and f"{top:g}" in str(info.value)

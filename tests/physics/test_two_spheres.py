@@ -167,3 +167,104 @@ def test_beta_of_a_normal_impact_is_nan_not_infinite() -> None:
     )
     assert np.isnan(out["rotational_restitution"])
     assert float(out["incidence_angle_rad"]) == 0.0
+
+
+def test_mixed_targets_vectorized_equal_row_by_row() -> None:
+    # flat walls, fixed spheres and free spheres (some with missing after-impact target
+    # velocities), with yield stresses known or not, in one call and one row at a time
+    rng = np.random.default_rng(13)
+    n = 60
+    kind = rng.integers(0, 3, n)  # 0 flat, 1 fixed sphere, 2 free sphere
+    free = kind == 2
+    vn = rng.uniform(0.05, 1.0, n)
+
+    def target(values: np.ndarray, missing: float = 0.0) -> np.ndarray:
+        values = np.where(free, values, np.nan)
+        return np.where(free & (rng.random(n) < missing), np.nan, values)
+
+    inputs = dict(
+        v_n_in_m_s=vn,
+        v_t_in_m_s=rng.uniform(0, 1, n),
+        omega_in_rad_s=rng.uniform(-30, 30, n),
+        v_n_out_m_s=rng.uniform(0, 0.5, n),
+        v_t_out_m_s=rng.uniform(-0.2, 0.5, n),
+        omega_out_rad_s=rng.uniform(-30, 30, n),
+        wall_diameter_m=np.where(kind == 0, np.nan, rng.uniform(5e-3, 3e-2, n)),
+        wall_v_n_in_m_s=target(rng.uniform(-0.5, 0.04, n)),
+        wall_v_t_in_m_s=target(rng.uniform(-0.5, 0.5, n), 0.2),
+        wall_omega_in_rad_s=target(rng.uniform(-30, 30, n), 0.2),
+        wall_v_n_out_m_s=target(rng.uniform(0, 0.5, n), 0.2),
+        wall_v_t_out_m_s=target(rng.uniform(-0.5, 0.5, n), 0.2),
+        wall_omega_out_rad_s=target(rng.uniform(-30, 30, n), 0.2),
+        particle_yield_stress_pa=np.where(rng.random(n) < 0.5, np.nan, 1e9),
+        wall_yield_stress_pa=np.where(rng.random(n) < 0.5, np.nan, 2e9),
+        viscosity_pa_s=np.where(rng.random(n) < 0.2, np.nan, rng.uniform(1e-3, 0.1, n)),
+        fluid_density_kg_m3=np.full(n, 1100.0),
+        pressure_viscosity_pa_inv=np.where(rng.random(n) < 0.3, np.nan, 6e-9),
+    )
+    together = derive(**GLASS_WALL, diameter_m=D, **inputs)
+    for i in range(n):
+        alone = derive(**GLASS_WALL, diameter_m=D, **{k: v[i] for k, v in inputs.items()})
+        for name, values in together.items():
+            a, b = np.asarray(values)[i], np.asarray(alone[name]).ravel()[0]
+            if np.asarray(values).dtype == object:
+                assert a == b, (name, i)
+            else:
+                np.testing.assert_allclose(a, b, rtol=1e-13, equal_nan=True, err_msg=name)
+    assert {"film", "uncertain", "asperity_contact", "dry"} >= set(together["roughness_regime"])
+    assert set(together["elastic_state"]) <= {"elastic", "yield_exceeded", "unknown"}
+
+
+@given(
+    st.floats(2e-3, 3e-2),
+    st.floats(2e-3, 3e-2),
+    st.floats(0.1, 1.0),
+    st.floats(-0.3, 0.05),
+    st.floats(-1.0, 1.0),
+    st.floats(-50, 50),
+    st.floats(-50, 50),
+    st.floats(0.3, 0.99),
+    st.floats(0.01, 0.3),
+)
+def test_sliding_impulse_of_a_free_pair_is_recovered(d1, d2, v1, v2, vt2, w1, w2, e, mu):
+    # Build a sliding collision of two unequal free spheres from the impulse balance
+    # (normal impulse m*(1+e)v_N, tangential μ_f times it against the slip, torques R × F
+    # about n × t) and check derive() gets e, μ_f and Ψ_out = Ψ_in − μ_f(1+e)B back:
+    # this pins the sign convention of the target's velocities and spin.
+    m1, m2 = (float(contact.sphere_mass(2540.0, d)) for d in (d1, d2))
+    r1, r2 = d1 / 2, d2 / 2
+    i1, i2 = 0.4 * m1 * r1**2, 0.4 * m2 * r2**2
+    m_eff = m1 * m2 / (m1 + m2)
+    vt1 = 0.8
+    v_n = v1 - v2
+    u = vt1 - vt2 + w1 * r1 + w2 * r2
+    j_n = m_eff * (1 + e) * v_n
+    j_t = mu * j_n * np.sign(u)
+    b = 1 + m_eff * (r1**2 / i1 + r2**2 / i2)
+    if abs(u) <= mu * (1 + e) * b * v_n:  # it would stick: not a sliding collision
+        return
+    out = derive(
+        **GLASS_GLASS,
+        diameter_m=d1,
+        wall_diameter_m=d2,
+        v_n_in_m_s=v1,
+        v_t_in_m_s=vt1,
+        omega_in_rad_s=w1,
+        v_n_out_m_s=-(v1 - j_n / m1),  # stored away from the target
+        v_t_out_m_s=vt1 - j_t / m1,
+        omega_out_rad_s=w1 - r1 * j_t / i1,
+        wall_v_n_in_m_s=v2,
+        wall_v_t_in_m_s=vt2,
+        wall_omega_in_rad_s=w2,
+        wall_v_n_out_m_s=v2 + j_n / m2,
+        wall_v_t_out_m_s=vt2 + j_t / m2,
+        wall_omega_out_rad_s=w2 - r2 * j_t / i2,
+    )
+    assert float(out["normal_restitution"]) == pytest.approx(e, rel=1e-9)
+    assert float(out["walton_factor"]) == pytest.approx(b, rel=1e-12)
+    # μ_f of (2.9) is signed with Ψ_in; the fits fold by the sign of v_T,in
+    assert float(out["sliding_friction"]) * np.sign(u) == pytest.approx(mu, rel=1e-7)
+    psi_in = float(out["effective_incidence"])
+    assert float(out["effective_rebound"]) == pytest.approx(
+        psi_in - np.sign(u) * mu * (1 + e) * b, rel=1e-7, abs=1e-9
+    )
