@@ -159,7 +159,10 @@ def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> 
     cap = limits.friction_cap(*caps)
     film = f["immersed"] & ~f["rough"]
     state = lub["state"]
-    mu_used = np.where(~film, dry, np.where(state == limits.IN_RANGE, lub["mu_lub"], cap))
+    # No tangential motion: nothing slips, and (5.8) gives 0; Maw's ψ_in = 0 with the dry
+    # value, as before issue 13 (a 0/0 here would read as gross slip).
+    still = lub["u_abs"] == 0.0
+    mu_used = np.where(~film | still, dry, np.where(state == limits.IN_RANGE, lub["mu_lub"], cap))
     ratio = impact.stiffness_ratio(p["g_star"], p["e_star"])
     chi = ratio * p["walton"]
     psi = impact.maw_psi(ratio, lub["u_abs"], mu_used, p["v_n"])
@@ -167,7 +170,9 @@ def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> 
     names = np.asarray(impact.TANGENTIAL_REGIME_NAMES, dtype=object)[code]
     # No coefficient: μ_f ≤ cap is all that is known, and a smaller μ_f only slips more;
     # the bound decides the regime only when it already gives gross slip.
-    open_ended = film & (state == limits.NO_PRESSURE_COEFFICIENT) & (code != impact.GROSS_SLIP)
+    open_ended = (
+        film & ~still & (state == limits.NO_PRESSURE_COEFFICIENT) & (code != impact.GROSS_SLIP)
+    )
     return {
         "mu_used": mu_used,
         "chi": chi,
@@ -183,8 +188,7 @@ UNDETERMINED = "undetermined"
 def collision(p: Arrays) -> Arrays:
     """e, β, Ψ_in, Ψ_out and μ_f from the relative contact-point velocities (§9)."""
     v_n, u, u_out = p["v_n"], p["u"], p["u_out"]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        beta = np.where(u == 0.0, np.nan, impact.rotational_restitution(u, u_out))
+    beta = impact.rotational_restitution(u, u_out)  # NaN for a normal impact
     e = impact.normal_restitution(v_n, p["v_n_out"])
     psi_in = impact.effective_incidence(u, v_n)
     psi_out = impact.effective_rebound(u_out, v_n)
