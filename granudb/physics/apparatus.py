@@ -53,3 +53,24 @@ def time_scale_ratio(
     2228974004
     """
     return np.sqrt(as_float(contact_stiffness) / as_float(string_stiffness)) / as_float(radius)
+
+
+def consistent_time_scale_ratio(
+    radius: Numeric, contact_stiffness: Numeric, string_stiffness: Numeric
+) -> Numeric:
+    r"""Dimensionless ratio of the string's to the collision's time scale,
+    √(κ I₀ / (m K_s)) = R √(0.4 κ / K_s) [-] (PHYSICS.md §14), with I₀ = (2/5) m R².
+
+    (A 2) as printed, (1/R)√(κ/K_s) (``time_scale_ratio``), has units of m⁻²; this is the
+    consistent form: the collision's tangential time scale is √(m/κ) and the string's
+    √(I₀/K_s). Parameters: ``radius`` R [m], ``contact_stiffness`` κ [N/m],
+    ``string_stiffness`` K_s [N·m].
+
+    Examples
+    --------
+    >>> round(float(consistent_time_scale_ratio(6.35e-3, 23.9e6, 1.193e-7)))
+    56844
+    """
+    return as_float(radius) * np.sqrt(
+        0.4 * as_float(contact_stiffness) / as_float(string_stiffness)
+    )

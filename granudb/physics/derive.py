@@ -5,9 +5,54 @@ vectorized pass (no per-row Python, no quadrature).
 properties, the fluid's state, the particle size and the velocities, and returns a dict of
 arrays under granudb's column names (their units and meanings are in
 ``granudb.vocabulary.DERIVED_TERMS``). A dry collision has ``viscosity_pa_s`` NaN: its
-fluid quantities are NaN, its roughness verdict False and rebound is expected. Where an
-input makes a quantity undefined (no pressure–viscosity coefficient, no measured rebound)
-that quantity is NaN, element by element.
+fluid quantities are NaN, its roughness verdict False (``roughness_regime`` "dry") and
+rebound is expected. Where an
+input makes a quantity undefined (no measured rebound) that quantity is NaN, element by
+element; where a model is outside its range or lacks an input, a text state column names
+why (``elastic_state``, ``lubricated_friction_state``, ``roughness_regime``) so no NaN
+reaches a verdict silently. The steps live in ``granudb.physics._derive_steps``.
+
+**The target.** Particle (1), target (2). The normal n points from the particle to the
+target, the tangential axis t along the particle's incoming tangential motion; spins
+are about n × t, positive where the particle's spin moves its contact point along +t.
+The particle's ``v_n_in`` is along n (> 0) and its ``v_n_out`` along −n (≥ 0, away
+from the target), as granudb stores them. The target's ``wall_v_n_in``/``wall_v_n_out`` are
+along n (> 0 moving away from the particle), ``wall_v_t_*`` along t and
+``wall_omega_*`` about the same axis n × t (so a positive target spin moves its contact
+point along −t). All target velocities NaN: a flat wall (``wall_diameter_m`` NaN) or a
+fixed sphere (finite), immovable (m₂ = ∞) and at rest; ``wall_v_n_in`` given: a free
+sphere of the wall material (a missing tangential or spin input before impact is 0, a
+missing one after impact makes the collision parameters that need it NaN).
+Every collision parameter (e, β, Ψ_in, Ψ_out, μ_f) then comes from the relative
+velocities v_N = (v₁ − v₂)·n and v_T = (v₁ − v₂)·t + ω₁R₁ + ω₂R₂ of the contact point;
+Hertz, St, St_n, Re, x₁ and x₃ from m*, R* and v_N (Davis et al. 1986); Walton's (2.9)
+with B = 1 + m*(R₁²/I₁ + R₂²/I₂) (``walton_factor``, 7/2 for solid spheres).
+``incidence_angle_rad`` is ζ_in of the contact point's path, atan(|v_T,in|/v_N,in):
+spin counts (the measured set-up angle is a different, stored column).
+
+**Limits.** ``elastic_state`` compares p_max with 1.6 Y of the softer body (§11); the
+quasi-static verdict is False where yield is exceeded (Hertz no longer holds).
+``lubricated_friction_state``: (5.8) is "in_range", "above_limit" (above
+min(``dry_friction``, ``limiting_shear_slope``), Bair & Winer 1979),
+"no_pressure_coefficient" or "dry".
+
+**Friction for Maw's regime** (``friction_coefficient_used``): ``dry_friction`` where
+the collision is dry or σ > h_m (asperities touch, the paper's §4 argument; with the
+default h_m = x₁/3 a roughness in Davis's "uncertain" band x₁/4 < σ ≤ x₁/3 is still
+treated as a film, and ``roughness_regime`` says it is uncertain); else the film's:
+(5.8) when in range; the cap min(dry, γ_max) — a film at its limiting shear stress —
+when (5.8) is above it. For a fluid without a pressure–viscosity coefficient (water in
+the seed data) μ_f is not computed: water's viscosity *decreases* with pressure below
+~150 MPa at ≤ 30 °C (Eisenberg & Kauzmann 1969, quoted by Joseph & Hunt §5), so neither
+a borrowed coefficient nor (5.6)'s piezoviscous film applies, and C → 0 makes (5.6)'s
+film vanish (the isoviscous limit of (5.8) is not finite). The same cap is then used as
+an upper bound: the regime is "gross_slip" where the bound already gives it (a smaller
+μ_f only slips more) and "undetermined" otherwise.
+
+**Restitution.** ``predicted_restitution`` = ``dry_restitution`` × exp(−35/St) with
+Legendre et al.'s added-mass St of the pair's normal approach, 0 where rebound is not
+expected (St_n ≤ ``critical_stokes``), ``dry_restitution`` for dry rows, NaN for an
+immersed row without fluid density.
 """
 
 from __future__ import annotations
@@ -16,12 +61,15 @@ from typing import Any
 
 import numpy as np
 
-from granudb.physics import contact, flow, impact, lubrication
+from granudb.physics import _derive_steps as steps
+from granudb.physics import flow, limits, lubrication, pair
 from granudb.physics._types import Numeric, PhysicsInputError
 
 #: Friction coefficient assumed where asperities touch or the collision is dry; the paper's
 #: dry fits give 0.11 (steel) and 0.106 (glass) on Zerodur (§3).
 DRY_FRICTION = 0.11
+#: Joseph & Hunt's mean dry restitution, ē_dry = 0.97 ± 0.02 (§3).
+DRY_RESTITUTION = 0.97
 
 
 def _check(name: str, values: np.ndarray, ok: np.ndarray, rule: str) -> None:
@@ -31,6 +79,90 @@ def _check(name: str, values: np.ndarray, ok: np.ndarray, rule: str) -> None:
         raise PhysicsInputError(
             name, f"{values.ravel()[index]:g}", rule, row=index + 1 if values.size > 1 else None
         )
+
+
+#: Inputs of ``derive`` in the order they are broadcast, with their short step names.
+_INPUTS = {
+    "particle_density_kg_m3": "rho1",
+    "particle_youngs_modulus_pa": "e1",
+    "particle_poisson_ratio": "nu1",
+    "particle_roughness_rms_m": "s1",
+    "particle_shear_modulus_pa": "g1",
+    "particle_yield_stress_pa": "y1",
+    "wall_density_kg_m3": "rho2",
+    "wall_youngs_modulus_pa": "e2",
+    "wall_poisson_ratio": "nu2",
+    "wall_roughness_rms_m": "s2",
+    "wall_shear_modulus_pa": "g2",
+    "wall_yield_stress_pa": "y2",
+    "wall_diameter_m": "d2",
+    "diameter_m": "d",
+    "v_n_in_m_s": "vn",
+    "v_t_in_m_s": "vt",
+    "omega_in_rad_s": "w",
+    "fluid_density_kg_m3": "rho_f",
+    "viscosity_pa_s": "mu",
+    "pressure_viscosity_pa_inv": "c_barus",
+    "v_n_out_m_s": "vn_out",
+    "v_t_out_m_s": "vt_out",
+    "omega_out_rad_s": "w_out",
+    "wall_v_n_in_m_s": "w_vn",
+    "wall_v_t_in_m_s": "w_vt",
+    "wall_omega_in_rad_s": "w_w",
+    "wall_v_n_out_m_s": "w_vn_out",
+    "wall_v_t_out_m_s": "w_vt_out",
+    "wall_omega_out_rad_s": "w_w_out",
+}
+_TARGET_VELOCITIES = ("w_vn", "w_vt", "w_w", "w_vn_out", "w_vt_out", "w_w_out")
+
+
+def _validate(x: dict[str, np.ndarray]) -> None:
+    """Refuse unphysical input in one line naming the field, the value and the rule."""
+    _check("diameter_m", x["d"], x["d"] > 0, "must be > 0")
+    _check("v_n_in_m_s", x["vn"], x["vn"] > 0, "must be > 0 (the normal speed towards the wall)")
+    _check("v_t_in_m_s", x["vt"], x["vt"] >= 0, "must be ≥ 0 (the tangential axis points along it)")
+    for name in ("particle_youngs_modulus_pa", "wall_youngs_modulus_pa"):
+        _check(name, x[_INPUTS[name]], x[_INPUTS[name]] > 0, "must be > 0")
+    for name in ("particle_density_kg_m3", "wall_density_kg_m3"):
+        _check(name, x[_INPUTS[name]], x[_INPUTS[name]] > 0, "must be > 0")
+    for name in ("particle_poisson_ratio", "wall_poisson_ratio"):
+        values = x[_INPUTS[name]]
+        _check(name, values, (values > -1) & (values < 0.5), "must be > -1 and < 0.5")
+    _check(
+        "viscosity_pa_s", x["mu"], np.isnan(x["mu"]) | (x["mu"] > 0), "must be > 0 (NaN for dry)"
+    )
+    c = x["c_barus"]
+    _check(
+        "pressure_viscosity_pa_inv",
+        c,
+        np.isnan(c) | (c > 0),
+        "must be > 0 (NaN where not known; C = 0 makes (5.6)'s film vanish and μ_f infinite)",
+    )
+    for name in ("particle_yield_stress_pa", "wall_yield_stress_pa"):
+        values = x[_INPUTS[name]]
+        _check(name, values, np.isnan(values) | (values > 0), "must be > 0 (NaN where not known)")
+    moving = np.zeros(x["d"].shape, dtype=bool)
+    for short in _TARGET_VELOCITIES:
+        moving |= np.isfinite(x[short])
+    _check(
+        "wall_diameter_m",
+        x["d2"],
+        ~moving | np.isfinite(x["d2"]),
+        "must be given when the target's velocities are (only a sphere can be a free target)",
+    )
+    _check(
+        "wall_v_n_in_m_s",
+        x["w_vn"],
+        ~moving | np.isfinite(x["w_vn"]),
+        "must be given for a free target (NaN with every target velocity NaN: a fixed target)",
+    )
+    approach = x["vn"] - np.where(np.isnan(x["w_vn"]), 0.0, x["w_vn"])
+    _check(
+        "wall_v_n_in_m_s",
+        x["w_vn"],
+        approach > 0,
+        "must be below v_n_in_m_s (the particle must approach the target)",
+    )
 
 
 def derive(
@@ -49,6 +181,8 @@ def derive(
     omega_in_rad_s: Numeric = 0.0,
     particle_shear_modulus_pa: Numeric = np.nan,
     wall_shear_modulus_pa: Numeric = np.nan,
+    particle_yield_stress_pa: Numeric = np.nan,
+    wall_yield_stress_pa: Numeric = np.nan,
     wall_diameter_m: Numeric = np.nan,
     fluid_density_kg_m3: Numeric = np.nan,
     viscosity_pa_s: Numeric = np.nan,
@@ -56,196 +190,111 @@ def derive(
     v_n_out_m_s: Numeric = np.nan,
     v_t_out_m_s: Numeric = np.nan,
     omega_out_rad_s: Numeric = np.nan,
+    wall_v_n_in_m_s: Numeric = np.nan,
+    wall_v_t_in_m_s: Numeric = np.nan,
+    wall_omega_in_rad_s: Numeric = np.nan,
+    wall_v_n_out_m_s: Numeric = np.nan,
+    wall_v_t_out_m_s: Numeric = np.nan,
+    wall_omega_out_rad_s: Numeric = np.nan,
     critical_stokes: float = flow.CRITICAL_STOKES_NUMBER,
     dry_friction: float = DRY_FRICTION,
     gap_fraction: float = lubrication.GAP_FRACTION,
+    dry_restitution: float = DRY_RESTITUTION,
+    limiting_shear_slope: float = limits.LIMITING_SHEAR_SLOPE,
 ) -> dict[str, np.ndarray]:
     """Derive every derived column (``granudb.vocabulary.DERIVED_TERMS``) for arrays of collisions.
 
     Inputs are SI and broadcast together. NaN shear modulus: derived from E and ν. NaN
     ``wall_diameter_m``: a flat wall (infinite radius and mass). NaN ``viscosity_pa_s``: a
     dry collision. NaN after-impact velocities: a scenario (per-collision parameters NaN).
-    The tangential regime uses ``dry_friction`` where the collision is dry or the roughness
-    exceeds the gap, else the lubricated friction (5.8) — the paper's regime argument (§4).
+    NaN yield stress: not known (``elastic_state`` "unknown" unless exceeded by the other).
 
-    Raises ``PhysicsInputError`` on unphysical input (non-positive size, speed or modulus,
-    ν outside (−1, 0.5), incidence outside [0°, 90°)).
+    The conventions for a target sphere, the limits, the friction used for Maw's regime
+    and the predicted restitution are in the module docstring.
+
+    Raises ``PhysicsInputError`` on unphysical input (non-positive size, speed, modulus,
+    yield stress or pressure–viscosity coefficient, ν outside (−1, 0.5), a target that
+    recedes faster than the particle approaches, target velocities without a target
+    diameter).
     """
-    arrays = np.broadcast_arrays(
-        *(
-            np.asarray(v, dtype=float)
-            for v in (
-                particle_density_kg_m3,
-                particle_youngs_modulus_pa,
-                particle_poisson_ratio,
-                particle_roughness_rms_m,
-                particle_shear_modulus_pa,
-                wall_density_kg_m3,
-                wall_youngs_modulus_pa,
-                wall_poisson_ratio,
-                wall_roughness_rms_m,
-                wall_shear_modulus_pa,
-                wall_diameter_m,
-                diameter_m,
-                v_n_in_m_s,
-                v_t_in_m_s,
-                omega_in_rad_s,
-                fluid_density_kg_m3,
-                viscosity_pa_s,
-                pressure_viscosity_pa_inv,
-                v_n_out_m_s,
-                v_t_out_m_s,
-                omega_out_rad_s,
-            )
-        )
-    )
-    (
-        rho1,
-        e1,
-        nu1,
-        s1,
-        g1,
-        rho2,
-        e2,
-        nu2,
-        s2,
-        g2,
-        d2,
-        d,
-        vn,
-        vt,
-        w,
-        rho_f,
-        mu,
-        c_barus,
-        vn_out,
-        vt_out,
-        w_out,
-    ) = arrays
+    given = locals()
+    arrays = np.broadcast_arrays(*(np.asarray(given[name], dtype=float) for name in _INPUTS))
+    x = dict(zip(_INPUTS.values(), arrays, strict=True))
+    _validate(x)
+    caps = (dry_friction, limiting_shear_slope)
+    p = steps.pair_properties(x)
+    h = steps.hertz(x, p)
+    f = steps.fluid_numbers(x, p, gap_fraction)
+    lub = steps.lubricated(x, p, h, f, caps)
+    tan = steps.tangential(p, f, lub, caps)
+    col = steps.collision(p)
+    return _columns(p, h, f, lub, tan, col, critical_stokes, dry_restitution)
 
-    _check("diameter_m", d, d > 0, "must be > 0")
-    _check("v_n_in_m_s", vn, vn > 0, "must be > 0 (the normal speed towards the wall)")
-    _check("v_t_in_m_s", vt, vt >= 0, "must be ≥ 0 (the tangential axis points along it)")
-    for name, values in (
-        ("particle_youngs_modulus_pa", e1),
-        ("wall_youngs_modulus_pa", e2),
-        ("particle_density_kg_m3", rho1),
-        ("wall_density_kg_m3", rho2),
-    ):
-        _check(name, values, values > 0, "must be > 0")
-    for name, values in (("particle_poisson_ratio", nu1), ("wall_poisson_ratio", nu2)):
-        _check(name, values, (values > -1) & (values < 0.5), "must be > -1 and < 0.5")
-    _check("viscosity_pa_s", mu, np.isnan(mu) | (mu > 0), "must be > 0 (NaN for dry)")
 
-    g1 = np.where(np.isnan(g1), contact.shear_modulus(e1, nu1), g1)
-    g2 = np.where(np.isnan(g2), contact.shear_modulus(e2, nu2), g2)
-    flat = np.isnan(d2)
-    radius = d / 2.0
-    e_star = contact.reduced_modulus(e1, nu1, e2, nu2)
-    g_star = contact.reduced_shear_modulus(g1, nu1, g2, nu2)
-    r_eff = contact.effective_radius(radius, np.where(flat, np.inf, d2 / 2.0))
-    m1 = contact.sphere_mass(rho1, d)
-    m_eff = contact.effective_mass(m1, np.where(flat, np.inf, contact.sphere_mass(rho2, d2)))
-    speed = np.hypot(vn, vt)
-
-    load = contact.peak_impact_force(m_eff, vn, e_star, r_eff)
-    a = contact.max_contact_radius(r_eff, load, e_star)
-    p_max = contact.max_pressure(load, a)
-    delta = contact.max_approach(m_eff, vn, e_star, r_eff)
-    t_c = contact.contact_time(m_eff, r_eff, e_star, vn)
-    c_wave = np.minimum(contact.wave_speed(e1, rho1), contact.wave_speed(e2, rho2))
-    qs_ratio = contact.quasi_static_ratio(a, c_wave, t_c)
-
-    immersed = ~np.isnan(mu)
-    re = flow.reynolds_number(rho_f, radius, speed, mu)
-    st = flow.stokes_number(rho1, radius, speed, mu)
-    st_n = flow.normal_stokes_number(rho1, radius, vn, mu)
-    x1 = lubrication.davis_elastic_length(mu, vn, r_eff, e_star)
-    h_m = lubrication.ehd_min_gap(x1, gap_fraction)
-    eta_hat = lubrication.chu_cameron_coefficient(c_barus)
-    x3 = lubrication.piezoviscous_length(eta_hat, mu, vn, r_eff)
-    sigma = contact.composite_roughness(s1, s2)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        film = np.where(immersed, h_m / sigma, np.nan)
-    rough = immersed & (sigma > h_m)
-
-    u = impact.contact_point_velocity(vt, w, radius)
-    u_abs = np.abs(u)
-    h_film = lubrication.traction_film_thickness(r_eff, mu, u_abs, eta_hat, load, e_star)
-    integral = lubrication.friction_integral(eta_hat * p_max)
-    mu_lub = lubrication.lubricated_friction(mu, u_abs, load, h_film, a, eta_hat, p_max)
-    mu_lub = np.where(immersed & ~np.isnan(eta_hat), mu_lub, np.nan)
-    strain = lubrication.shear_strain(mu, u_abs, e_star, r_eff)
-
-    full_film = immersed & ~rough & np.isfinite(mu_lub) & (mu_lub > 0)
-    mu_used = np.where(full_film, mu_lub, dry_friction)
-    ratio = impact.stiffness_ratio(g_star, e_star)
-    chi = impact.maw_chi(ratio)
-    psi_maw = impact.maw_psi(ratio, u_abs, mu_used, vn)
-    regime = np.asarray(impact.TANGENTIAL_REGIME_NAMES, dtype=object)[
-        impact.tangential_regime(psi_maw, chi)
-    ]
-
-    e = impact.normal_restitution(vn, vn_out)
-    u_out = impact.contact_point_velocity(vt_out, w_out, radius)
-    beta = impact.rotational_restitution(u, u_out)
-    psi_in = impact.effective_incidence(u, vn)
-    psi_out = impact.effective_rebound(u_out, vn)
-    mu_f = impact.sliding_friction(psi_in, psi_out, e)
-
-    nan = np.full(d.shape, np.nan)
-    fluid = {  # dry rows: NaN
-        "reynolds_number": re,
-        "stokes_number": st,
-        "normal_stokes_number": st_n,
-        "elastic_length_m": x1,
-        "min_gap_m": h_m,
-        "piezoviscous_length_m": x3,
-        "traction_film_m": h_film,
-        "shear_strain": strain,
-    }
-    fluid = {k: np.where(immersed, v, nan) for k, v in fluid.items()}
+def _columns(
+    p: dict[str, np.ndarray],
+    h: dict[str, np.ndarray],
+    f: dict[str, np.ndarray],
+    lub: dict[str, np.ndarray],
+    tan: dict[str, np.ndarray],
+    col: dict[str, np.ndarray],
+    critical_stokes: float,
+    dry_restitution: float,
+) -> dict[str, np.ndarray]:
+    """The derived columns under granudb's names (``DERIVED_TERMS``)."""
+    rebound = ~f["immersed"] | (f["st_n"] > critical_stokes)
+    predicted = flow.predicted_restitution(f["st_am"], dry_restitution, critical_stokes)
+    predicted = np.where(f["immersed"] & ~rebound, 0.0, predicted)
+    predicted = np.where(f["immersed"] & np.isnan(f["st_am"]), np.nan, predicted)
     return {
-        "reduced_modulus_pa": e_star,
-        "reduced_shear_modulus_pa": g_star,
-        "effective_radius_m": r_eff,
-        "particle_mass_kg": m1,
-        "effective_mass_kg": m_eff,
-        "impact_speed_m_s": speed,
-        "incidence_angle_rad": np.arctan2(vt, vn),
-        "reynolds_number": fluid["reynolds_number"],
-        "stokes_number": fluid["stokes_number"],
-        "normal_stokes_number": fluid["normal_stokes_number"],
-        "impact_load_n": load,
-        "contact_radius_m": a,
-        "max_pressure_pa": p_max,
-        "max_approach_m": delta,
-        "contact_time_s": t_c,
-        "wave_speed_m_s": c_wave,
-        "quasi_static_ratio": qs_ratio,
-        "quasi_static_valid": qs_ratio < contact.QUASI_STATIC_LIMIT,
-        "elastic_length_m": fluid["elastic_length_m"],
-        "min_gap_m": fluid["min_gap_m"],
-        "eta_hat_pa_inv": eta_hat,
-        "piezoviscous_length_m": fluid["piezoviscous_length_m"],
-        "composite_roughness_m": sigma,
-        "film_parameter": film,
-        "roughness_exceeds_gap": rough,
-        "rebound_expected": ~immersed | (st_n > critical_stokes),
-        "tangential_speed_m_s": u,
-        "traction_film_m": np.where(np.isnan(eta_hat), nan, fluid["traction_film_m"]),
-        "friction_integral": np.where(np.isnan(eta_hat), nan, integral),
-        "lubricated_friction": mu_lub,
-        "shear_strain": fluid["shear_strain"],
-        "friction_coefficient_used": mu_used,
-        "maw_chi": chi,
-        "maw_psi_in": psi_maw,
-        "tangential_regime": regime,
-        "normal_restitution": e,
-        "rotational_restitution": beta,
-        "effective_incidence": psi_in,
-        "effective_rebound": psi_out,
-        "sliding_friction": mu_f,
+        "reduced_modulus_pa": p["e_star"],
+        "reduced_shear_modulus_pa": p["g_star"],
+        "effective_radius_m": p["r_eff"],
+        "particle_mass_kg": p["m1"],
+        "effective_mass_kg": p["m_eff"],
+        "walton_factor": p["walton"],
+        "impact_speed_m_s": p["speed"],
+        "normal_speed_m_s": p["v_n"],
+        "incidence_angle_rad": pair.contact_incidence_angle(p["u"], p["v_n"]),
+        "reynolds_number": f["re"],
+        "stokes_number": f["st"],
+        "normal_stokes_number": f["st_n"],
+        "added_mass_stokes_number": f["st_am"],
+        "impact_load_n": h["load"],
+        "contact_radius_m": h["a"],
+        "max_pressure_pa": h["p_max"],
+        "max_approach_m": h["delta"],
+        "contact_time_s": h["t_c"],
+        "wave_speed_m_s": h["c_wave"],
+        "quasi_static_ratio": h["qs_ratio"],
+        "quasi_static_valid": h["qs_valid"],
+        "yield_speed_m_s": h["yield_speed"],
+        "elastic_state": limits.names(limits.ELASTIC_STATES, h["elastic_state"]),
+        "elastic_length_m": f["x1"],
+        "min_gap_m": f["h_m"],
+        "eta_hat_pa_inv": f["eta_hat"],
+        "piezoviscous_length_m": f["x3"],
+        "composite_roughness_m": f["sigma"],
+        "film_parameter": f["film"],
+        "roughness_exceeds_gap": f["rough"],
+        "roughness_regime": limits.names(limits.ROUGHNESS_REGIMES, f["roughness_regime"]),
+        "rebound_expected": rebound,
+        "predicted_restitution": predicted,
+        "tangential_speed_m_s": p["u"],
+        "traction_film_m": lub["h_film"],
+        "friction_integral": lub["integral"],
+        "lubricated_friction": lub["mu_lub"],
+        "lubricated_friction_state": limits.names(limits.FRICTION_STATES, lub["state"]),
+        "shear_strain": lub["strain"],
+        "friction_coefficient_used": tan["mu_used"],
+        "maw_chi": tan["chi"],
+        "maw_psi_in": tan["psi"],
+        "tangential_regime": tan["regime"],
+        "normal_restitution": col["e"],
+        "rotational_restitution": col["beta"],
+        "effective_incidence": col["psi_in"],
+        "effective_rebound": col["psi_out"],
+        "sliding_friction": col["mu_f"],
     }
 
 

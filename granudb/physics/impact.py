@@ -50,15 +50,19 @@ def contact_point_velocity(v_t: Numeric, omega: Numeric, radius: Numeric) -> Num
 def rotational_restitution(v_T_in: Numeric, v_T_out: Numeric) -> Numeric:
     r"""Rotational (tangential) restitution β = −v_T,out / v_T,in (2.8).
 
-    −1 pure sliding, 0 rolling, +1 full recoil.
+    −1 pure sliding, 0 rolling, +1 full recoil. Undefined (NaN, never ±inf) for a normal
+    impact, v_T,in = 0.
 
     Examples
     --------
     >>> float(rotational_restitution(0.1, -0.034))
     0.34
+    >>> float(rotational_restitution(0.0, 0.001))
+    nan
     """
+    v_in = as_float(v_T_in)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return -as_float(v_T_out) / as_float(v_T_in)
+        return np.where(v_in == 0.0, np.nan, -as_float(v_T_out) / v_in)
 
 
 def effective_incidence(v_T_in: Numeric, v_n_in: Numeric) -> Numeric:

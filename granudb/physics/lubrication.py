@@ -21,8 +21,19 @@ GAP_FRACTION = 1.0 / 3.0
 CHU_CAMERON_EXPONENT = 16
 #: Gohar's traction-film prefactor in (5.6).
 GOHAR_FILM_FACTOR = 4.3384
-#: The rounded constant of the dimensionless friction (5.10).
-DIMENSIONLESS_FRICTION_FACTOR = 0.87
+#: The constant of the dimensionless friction (5.10) as the paper prints it (rounded).
+PRINTED_FRICTION_FACTOR = 0.87
+#: The exact constant of (5.10), from (5.6), (5.8), (2.1) and (2.2):
+#: (2π/4.3384) (3/4)^{2/3} (4/3)^{−2/7} (5π/4)^{−6/35} = 0.871008… (see
+#: ``lubricated_friction_dimensionless``). (5.10) with it equals (5.8) to rounding.
+DIMENSIONLESS_FRICTION_FACTOR = (
+    2.0
+    * np.pi
+    / GOHAR_FILM_FACTOR
+    * 0.75 ** (2.0 / 3.0)
+    * (4.0 / 3.0) ** (-2.0 / 7.0)
+    * (1.25 * np.pi) ** (-6.0 / 35.0)
+)
 
 # A(c) = ∫₀¹ s (1 + c s)^16 ds = Σ_k C(16, k) c^k / (k + 2): coefficients, lowest power first.
 _A_COEFFICIENTS = np.array(
@@ -208,21 +219,35 @@ def lubricated_friction_dimensionless(
     particle_density: Numeric,
     normal_speed: Numeric,
     integral: Numeric,
+    factor: float = DIMENSIONLESS_FRICTION_FACTOR,
 ) -> Numeric:
     r"""The dimensionless form of (5.8) (5.10):
-    μ_f = 0.87 (μ₀U/(E*R))^{2/7} (1/(η̂E*))^{5/7} (ρ_pV²/E*)^{−6/35} A.
+    μ_f = K (μ₀U/(E*R))^{2/7} (1/(η̂E*))^{5/7} (ρ_pV²/E*)^{−6/35} A [-].
 
-    Agrees with ``lubricated_friction`` to about 0.2 % (0.87 is rounded).
+    Derivation: with S = μ₀U/(E*R), w = W/(E*R²) and q = ρ_pV²/E*, (2.2) gives
+    w = (4/3)(5π/4)^{3/5} q^{3/5}, (2.1) gives a² = R²(3w/4)^{2/3} and (5.6) gives
+    h = 4.3384 R (S η̂E*)^{5/7} w^{−1/21}; then (5.8) is
+    μ_f = (2π/4.3384)(3/4)^{2/3} S^{2/7} (η̂E*)^{−5/7} w^{−2/7} A, so
+    K = (2π/4.3384)(3/4)^{2/3}(4/3)^{−2/7}(5π/4)^{−6/35} = 0.8710080… exactly
+    (``DIMENSIONLESS_FRICTION_FACTOR``); the paper prints it rounded as 0.87
+    (``PRINTED_FRICTION_FACTOR``, pass it as ``factor`` to reproduce the printed form).
+    With the exact K this equals ``lubricated_friction`` (with W from (2.2)) to rounding.
+
+    Parameters
+    ----------
+    viscosity : μ₀ [Pa·s]; tangential_speed : U [m/s]; reduced_modulus_pa : E* [Pa];
+    radius : R [m]; eta_hat : η̂ [1/Pa]; particle_density : ρ_p [kg/m³];
+    normal_speed : V = v_N,in [m/s]; integral : A(η̂ p_max) [-]
 
     Examples
     --------
     >>> round(float(lubricated_friction_dimensionless(1e-3, 0.1, 65.64e9, 6.35e-3, 375e-12,
     ...                                               7780.0, 0.3, 121.68)), 4)
-    0.0619
+    0.062
     """
     e_star = as_float(reduced_modulus_pa)
     return (
-        DIMENSIONLESS_FRICTION_FACTOR
+        factor
         * shear_strain(viscosity, tangential_speed, e_star, radius)
         * (1.0 / (as_float(eta_hat) * e_star)) ** (5.0 / 7.0)
         * (as_float(particle_density) * as_float(normal_speed) ** 2 / e_star) ** (-6.0 / 35.0)
@@ -256,22 +281,25 @@ def viscosity_for_friction(
     particle_density: Numeric,
     normal_speed: Numeric,
     integral: Numeric,
+    factor: float = DIMENSIONLESS_FRICTION_FACTOR,
 ) -> Numeric:
     r"""Invert (5.10) for the gap viscosity μ₀ that gives a measured friction μ_f [Pa·s].
 
-    μ_f ∝ μ₀^{2/7}, so μ₀ = (E*R/U) (μ_f / (0.87 (1/(η̂E*))^{5/7} (ρ_pV²/E*)^{−6/35} A))^{7/2}.
+    μ_f ∝ μ₀^{2/7}, so μ₀ = (E*R/U) (μ_f / (K (1/(η̂E*))^{5/7} (ρ_pV²/E*)^{−6/35} A))^{7/2}.
     The paper fits μ₀ this way (figure 14) to find the temperature in the gap (table 2).
+    K is the exact constant (``DIMENSIONLESS_FRICTION_FACTOR``) unless ``factor`` says
+    otherwise.
 
     Examples
     --------
-    >>> mu = viscosity_for_friction(0.06194, 0.1, 65.64e9, 6.35e-3, 375e-12, 7780.0, 0.3,
+    >>> mu = viscosity_for_friction(0.062008, 0.1, 65.64e9, 6.35e-3, 375e-12, 7780.0, 0.3,
     ...                             121.68)
     >>> round(float(mu) * 1e3, 3)
     1.0
     """
     e_star = as_float(reduced_modulus_pa)
     rest = (
-        DIMENSIONLESS_FRICTION_FACTOR
+        factor
         * (1.0 / (as_float(eta_hat) * e_star)) ** (5.0 / 7.0)
         * (as_float(particle_density) * as_float(normal_speed) ** 2 / e_star) ** (-6.0 / 35.0)
         * as_float(integral)

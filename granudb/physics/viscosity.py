@@ -9,7 +9,10 @@ Two models, one interface (``viscosity(T)``, ``density(T)``, ``temperature_for_v
 - ``TabulatedViscosity``: measured (temperature, viscosity[, density]) points,
   interpolated as ln μ linear in 1/T (Andrade's law between neighbouring points).
 
-Both refuse temperatures outside their range with ``ViscosityRangeError`` instead of
+``ReferencedViscosity`` wraps either so that it passes exactly through a fluid's printed
+reference viscosity at its reference temperature while staying continuous in T.
+
+All refuse temperatures outside their range with ``ViscosityRangeError`` instead of
 extrapolating silently.
 """
 
@@ -239,3 +242,77 @@ class TabulatedViscosity:
         order = np.argsort(self._y)
         x = np.interp(y, self._y[order], self._x[order])
         return 1.0 / x - KELVIN
+
+
+class ReferencedViscosity:
+    """A temperature model scaled to pass through a printed reference point.
+
+    μ(T) = μ_ref × μ_model(T) / μ_model(T_ref): continuous (and as smooth as the model)
+    in T, exactly the printed μ_ref at the printed T_ref, and with the model's temperature
+    dependence everywhere. The printed value is the anchor; the model (a correlation or
+    Andrade-interpolated measured points) supplies only the ratio μ(T)/μ(T_ref). This
+    replaces "the printed value within ±0.5 °C of T_ref, the model outside", which jumps
+    at ±0.5 °C (glycerol-45: 4.500 cP at 20.5 °C, 4.552 at 20.6 °C, 4.490 at 21 °C).
+    Density comes from the model unscaled. The range is the model's.
+
+    Examples
+    --------
+    >>> table = TabulatedViscosity([10, 20, 30], [1.307e-3, 1.002e-3, 0.798e-3])
+    >>> water = ReferencedViscosity(table, 20.0, 1.0e-3)
+    >>> float(water.viscosity(20.0))
+    0.001
+    >>> round(float(water.temperature_for_viscosity(water.viscosity(25.0))), 6)
+    25.0
+    """
+
+    def __init__(
+        self,
+        model: GlycerolWater | TabulatedViscosity,
+        reference_temperature_c: float,
+        reference_viscosity_pa_s: float,
+    ) -> None:
+        if not reference_viscosity_pa_s > 0:
+            raise PhysicsInputError(
+                "viscosity_pa_s", f"{reference_viscosity_pa_s:g}", "must be > 0"
+            )
+        self.model = model
+        self.reference_temperature_c = float(reference_temperature_c)
+        self.reference_viscosity_pa_s = float(reference_viscosity_pa_s)
+        self.scale = self.reference_viscosity_pa_s / float(
+            model.viscosity(self.reference_temperature_c)
+        )
+
+    @property
+    def low_c(self) -> float:
+        return float(self.model.low_c)
+
+    @property
+    def high_c(self) -> float:
+        return float(self.model.high_c)
+
+    def viscosity(self, temperature_c: Numeric) -> Numeric:
+        return self.scale * self.model.viscosity(temperature_c)
+
+    def density(self, temperature_c: Numeric) -> Numeric:
+        return self.model.density(temperature_c)
+
+    def temperature_for_viscosity(self, viscosity: Numeric) -> Numeric:
+        """The temperature [°C] at which the referenced fluid has ``viscosity`` [Pa·s].
+
+        The range is checked on the referenced viscosities, so a refusal quotes the
+        number the caller gave and the range it can have."""
+        mu = as_float(viscosity)
+        low = float(self.viscosity(self.high_c))
+        high = float(self.viscosity(self.low_c))
+        _check_range("viscosity_pa_s", np.atleast_1d(mu), low, high, "viscosity")
+        return self.model.temperature_for_viscosity(
+            np.clip(
+                mu / self.scale,
+                *sorted(
+                    (
+                        float(self.model.viscosity(self.high_c)),
+                        float(self.model.viscosity(self.low_c)),
+                    )
+                ),
+            )
+        )

@@ -77,7 +77,9 @@ RULES: dict[str, Rule] = {
     "viscosity_pa_s": POSITIVE,
     "reference_temperature_c": ABOVE_ABSOLUTE_ZERO,
     "temperature_c": ABOVE_ABSOLUTE_ZERO,
-    "pressure_viscosity_pa_inv": NON_NEGATIVE,
+    # C = 0 makes Gohar's film (5.6) vanish and the lubricated friction (5.8) infinite;
+    # a fluid whose coefficient is not known leaves it empty.
+    "pressure_viscosity_pa_inv": POSITIVE,
     "diameter_m": POSITIVE,
     "wall_diameter_m": POSITIVE,
     "nominal_angle_rad": Rule(0.0, math.pi / 2, max_inclusive=False),

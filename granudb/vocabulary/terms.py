@@ -216,16 +216,36 @@ DERIVED_TERMS: dict[str, Term] = {
     ),
     "particle_mass_kg": _derived("Particle mass", "kg", "m₁", "m₁ = ρ π d³/6"),
     "effective_mass_kg": _derived("Effective mass", "kg", "m*", "m, effective mass (wall: m₂ = ∞)"),
+    "walton_factor": _derived(
+        "Walton factor",
+        None,
+        "B",
+        "B = 1 + m*(R₁²/I₁ + R₂²/I₂) of the Walton relations (§9; 7/2 for solid spheres)",
+    ),
     "impact_speed_m_s": _derived(
-        "Impact speed", "m/s", "V", "V = √(v_n² + v_t²), speed of the centre"
+        "Impact speed", "m/s", "V", "V = √(v_N² + v_t²), relative speed of the centres"
+    ),
+    "normal_speed_m_s": _derived(
+        "Normal approach speed", "m/s", "v_N,in", "v_N,in = (v₁ − v₂)·n, relative (§9)"
     ),
     "incidence_angle_rad": _derived(
-        "Incidence angle", "rad", "ζ_in", "angle of the centre's path to the normal, atan(v_t/v_n)"
+        "Incidence angle",
+        "rad",
+        "ζ_in",
+        "ζ_in of the contact point's path, atan(|v_T,in|/v_N,in): spin counts",
     ),
     "reynolds_number": _derived("Reynolds number", None, "Re", "Re = 2ρ_f R V / μ (§1)"),
-    "stokes_number": _derived("Stokes number", None, "St", "St = 2ρ_p R V / (9μ) (§1)"),
+    "stokes_number": _derived(
+        "Stokes number", None, "St", "St = m*V/(6πμR*²), Davis's pair form (wall: 2ρ_p R V/(9μ))"
+    ),
     "normal_stokes_number": _derived(
-        "Normal stokes number", None, "St_n", "St_n = 2ρ_p R v_N,in / (9μ) (§4)"
+        "Normal stokes number", None, "St_n", "St_n = m* v_N,in/(6πμR*²) (§4, §9)"
+    ),
+    "added_mass_stokes_number": _derived(
+        "Added-mass Stokes number",
+        None,
+        "St_am",
+        "St_n (1 + C_M ρ_f/ρ_p), C_M = 1/2 (Legendre et al. 2006; wall: (ρ_p+ρ_f/2)2Rv_N/(9μ))",
     ),
     "impact_load_n": _derived(
         "Impact load", "N", "W", "W, peak Hertz load at v_N,in ((2.2) for a wall)"
@@ -241,7 +261,22 @@ DERIVED_TERMS: dict[str, Term] = {
         "Quasi static ratio", None, "a/(c t_c)", "a/(c t_c): Hertz holds when ≪ 1 (thesis (3.18))"
     ),
     "quasi_static_valid": _derived(
-        "Quasi static valid", None, "quasi-static", "quasi_static_ratio < 0.1"
+        "Quasi static valid",
+        None,
+        "quasi-static",
+        "quasi_static_ratio < 0.1 and yield not exceeded (elastic_state)",
+    ),
+    "yield_speed_m_s": _derived(
+        "Yield speed",
+        "m/s",
+        "V_y",
+        "v_N,in at which p_max = 1.6 Y of the softer known body (§11); NaN: no Y known",
+    ),
+    "elastic_state": _derived(
+        "Elastic state",
+        None,
+        "yield",
+        "elastic / yield_exceeded (p_max > 1.6 Y) / unknown (a Y not known: not 'safe')",
     ),
     "elastic_length_m": _derived(
         "Elastic length", "m", "x₁", "x₁ = (4μv₀R^{3/2}/(πE*))^{2/5} (§1, Davis et al.)"
@@ -258,32 +293,59 @@ DERIVED_TERMS: dict[str, Term] = {
     "roughness_exceeds_gap": _derived(
         "Roughness exceeds gap", None, "σ > h_m", "σ > h_m: asperities touch through the film"
     ),
+    "roughness_regime": _derived(
+        "Roughness regime",
+        None,
+        "σ vs h_m",
+        "asperity_contact (σ > x₁/3) / uncertain (x₁/4 < σ ≤ x₁/3) / film (σ ≤ x₁/4) / dry",
+    ),
     "rebound_expected": _derived("Rebound expected", None, "rebound", "St_n > St_c (dry: always)"),
+    "predicted_restitution": _derived(
+        "Predicted restitution",
+        None,
+        "e_pred",
+        "e_dry exp(−35/St_am) (Legendre et al. 2006); 0 without rebound; dry: e_dry",
+    ),
     "tangential_speed_m_s": _derived(
         "Tangential speed", "m/s", "v_T,in", "U = v_T,in = v_t + ωR, contact point's speed"
     ),
     "traction_film_m": _derived("Traction film", "m", "h_film", "Gohar's traction film (5.6)"),
     "friction_integral": _derived("Friction integral", None, "A", "A(η̂ p_max) (5.9)"),
     "lubricated_friction": _derived(
-        "Lubricated friction", None, "μ_f (5.8)", "μ_f of the smooth lubricated contact (5.8)"
+        "Lubricated friction",
+        None,
+        "μ_f (5.8)",
+        "μ_f of the smooth lubricated contact (5.8); read with lubricated_friction_state",
+    ),
+    "lubricated_friction_state": _derived(
+        "Lubricated friction state",
+        None,
+        "(5.8) range",
+        "in_range / above_limit (> min(μ_dry, 0.1), Bair & Winer 1979) / "
+        "no_pressure_coefficient / dry",
     ),
     "shear_strain": _derived("Shear strain", None, "γ_s", "(μ₀U/(E*R))^{2/7}, figure 15's axis"),
     "friction_coefficient_used": _derived(
         "Friction coefficient used",
         None,
         "μ_f (Maw)",
-        "μ_f for Maw: dry value unless a full film is expected",
+        "μ_f for Maw: dry if asperities touch; (5.8) in range; else the cap min(μ_dry, 0.1)",
     ),
-    "maw_chi": _derived("Maw chi", None, "χ", "χ = (2G*/E*)(1 + 1/K²) (2.3)"),
+    "maw_chi": _derived("Maw chi", None, "χ", "χ = (2G*/E*) B (2.3)"),
     "maw_psi_in": _derived(
         "Maw psi in", None, "ψ_in", "ψ_in = 2(2G*/E*) v_T,in / (μ_f v_N,in) (2.4)"
     ),
     "tangential_regime": _derived(
-        "Tangential regime", None, "regime", "stick / slip_then_stick / gross_slip (Maw)"
+        "Tangential regime",
+        None,
+        "regime",
+        "stick / slip_then_stick / gross_slip (Maw); undetermined: μ_f only bounded",
     ),
-    "normal_restitution": _derived("Normal restitution", None, "e", "e = v_n_out / v_n_in"),
+    "normal_restitution": _derived(
+        "Normal restitution", None, "e", "e = −v_N,out / v_N,in, relative (§9)"
+    ),
     "rotational_restitution": _derived(
-        "Rotational restitution", None, "β", "β = −v_T,out / v_T,in (2.8)"
+        "Rotational restitution", None, "β", "β = −v_T,out / v_T,in (2.8); NaN if v_T,in = 0"
     ),
     "effective_incidence": _derived(
         "Effective incidence", None, "Ψ_in", "Ψ_in = v_T,in / v_N,in (2.5)"
@@ -292,7 +354,7 @@ DERIVED_TERMS: dict[str, Term] = {
         "Effective rebound", None, "Ψ_out", "Ψ_out = v_T,out / v_N,in (2.5)"
     ),
     "sliding_friction": _derived(
-        "Sliding friction", None, "μ_f", "μ_f = (Ψ_in − Ψ_out)/((1+e)(1+1/K²)) (2.9)"
+        "Sliding friction", None, "μ_f", "μ_f = (Ψ_in − Ψ_out)/((1+e)B) (2.9)"
     ),
 }
 

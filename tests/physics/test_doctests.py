@@ -7,7 +7,17 @@ import importlib
 
 import pytest
 
-MODULES = ["contact", "flow", "lubrication", "impact", "apparatus", "viscosity", "derive"]
+MODULES = [
+    "contact",
+    "flow",
+    "lubrication",
+    "impact",
+    "apparatus",
+    "viscosity",
+    "derive",
+    "pair",
+    "limits",
+]
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -1,0 +1,197 @@
+"""Where the models stop: yield (PHYSICS.md §11), the bounds of the lubricated friction
+(5.8) (§12) and the uncertain band of the EHD gap (§12).
+
+Each verdict is a small set of named states (text), never a NaN a reader could mistake
+for "safe": an unknown yield stress gives ``"unknown"``, not ``"elastic"``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from granudb.physics._types import Numeric, as_float
+
+#: Yield starts below the surface when p_max = 1.6 Y (Y in tension of the softer body;
+#: Johnson 1985, *Contact Mechanics*, §11.4 and §6.2).
+YIELD_PRESSURE_FACTOR = 1.6
+#: ρ_p V_y² / Y = YIELD_SPEED_CONSTANT (Y/E*)⁴ with the constant π⁴ 1.6⁵ / 40 = 25.5352…,
+#: from (5.5) with p_max = 1.6 Y (PHYSICS.md §11).
+YIELD_SPEED_CONSTANT = np.pi**4 * YIELD_PRESSURE_FACTOR**5 / 40.0
+
+ELASTIC_STATES = ("elastic", "yield_exceeded", "unknown")
+ELASTIC, YIELD_EXCEEDED, YIELD_UNKNOWN = 0, 1, 2
+
+#: Upper end of the limiting-shear slope γ in τ_L = τ_L0 + γ p, "about 0.05–0.1 for
+#: traction fluids" (Bair & Winer 1979, "A rheological model for elastohydrodynamic
+#: contacts based on primary laboratory data", J. Lubr. Technol. 101(3), 258–264,
+#: doi:10.1115/1.3453342). A film at its limiting shear stress carries at most
+#: τ_L/p ≈ γ of the pressure, so a lubricated μ_f above γ_max is outside the model.
+LIMITING_SHEAR_SLOPE = 0.1
+
+#: States of the lubricated friction (5.8), see ``lubricated_friction_state``.
+FRICTION_STATES = ("in_range", "above_limit", "no_pressure_coefficient", "dry")
+IN_RANGE, ABOVE_LIMIT, NO_PRESSURE_COEFFICIENT, DRY = 0, 1, 2, 3
+
+#: Davis et al. (1986) give the EHD gap of a normal approach as h_m = x₁/4 … x₁/3.
+GAP_BAND = (0.25, 1.0 / 3.0)
+ROUGHNESS_REGIMES = ("film", "uncertain", "asperity_contact", "dry")
+
+
+def yield_speed(
+    particle_density: Numeric, yield_stress: Numeric, reduced_modulus_pa: Numeric
+) -> Numeric:
+    r"""Normal impact speed at the onset of yield, from ρ_p V_y²/Y = (π⁴ 1.6⁵/40)(Y/E*)⁴
+    [m/s] (PHYSICS.md §11: (5.5) with p_max = 1.6 Y, Johnson 1985 §11.4).
+
+    Parameters
+    ----------
+    particle_density : ρ_p [kg/m³] (a sphere on a flat wall)
+    yield_stress : Y of the softer body, in tension [Pa]
+    reduced_modulus_pa : E* [Pa]
+
+    Examples
+    --------
+    >>> round(float(YIELD_SPEED_CONSTANT), 4)
+    25.5352
+
+    Steel with an assumed Y = 1 GPa on Zerodur (E* = 65.64 GPa):
+
+    >>> round(float(yield_speed(7780.0, 1.0e9, 65.64e9)), 4)
+    0.4205
+    """
+    y = as_float(yield_stress)
+    return np.sqrt(
+        YIELD_SPEED_CONSTANT
+        * (y / as_float(reduced_modulus_pa)) ** 4
+        * y
+        / as_float(particle_density)
+    )
+
+
+def yield_speed_from_pressure(
+    normal_speed: Numeric, max_pressure_pa: Numeric, yield_stress: Numeric
+) -> Numeric:
+    r"""V_y = V (1.6 Y / p_max)^{5/2} [m/s], for any pair (p_max ∝ V^{2/5} in Hertz impact).
+
+    Equals ``yield_speed`` for a sphere on a flat wall; for two spheres it uses the
+    p_max computed with m* and R*. ``normal_speed`` V [m/s] is the speed p_max was
+    computed at, ``max_pressure_pa`` [Pa], ``yield_stress`` Y [Pa].
+
+    Examples
+    --------
+    >>> from granudb.physics.contact import max_pressure_from_impact
+    >>> p = max_pressure_from_impact(7780.0, 0.3, 65.64e9)
+    >>> round(float(yield_speed_from_pressure(0.3, p, 1.0e9)), 4)
+    0.4205
+    """
+    return (
+        as_float(normal_speed)
+        * (YIELD_PRESSURE_FACTOR * as_float(yield_stress) / as_float(max_pressure_pa)) ** 2.5
+    )
+
+
+def elastic_state(
+    max_pressure_pa: Numeric, particle_yield_stress: Numeric, wall_yield_stress: Numeric
+) -> np.ndarray:
+    r"""Elastic state of the impact as a code into ``ELASTIC_STATES``: ``"elastic"``,
+    ``"yield_exceeded"`` or ``"unknown"`` (``names`` turns codes into text).
+
+    Yield starts when p_max > 1.6 Y of the softer body (Johnson 1985 §11.4). NaN means
+    a yield stress is not known. Exceeded when p_max exceeds 1.6 × any known Y (the softer
+    body yields no later); elastic only when both Y are known and neither is reached;
+    otherwise unknown — never read as safe.
+
+    Examples
+    --------
+    >>> code = elastic_state(np.array([1e9, 4e9, 1e9]), 1.0e9, np.array([2e9, np.nan, np.nan]))
+    >>> names(ELASTIC_STATES, code).tolist()
+    ['elastic', 'yield_exceeded', 'unknown']
+    """
+    limit = YIELD_PRESSURE_FACTOR * np.fmin(
+        as_float(particle_yield_stress), as_float(wall_yield_stress)
+    )
+    p = as_float(max_pressure_pa)
+    both = np.isfinite(as_float(particle_yield_stress)) & np.isfinite(as_float(wall_yield_stress))
+    exceeded = np.isfinite(limit) & (p > limit)
+    return np.where(exceeded, YIELD_EXCEEDED, np.where(both, ELASTIC, YIELD_UNKNOWN))
+
+
+def lubricated_friction_state(
+    friction: Numeric,
+    immersed: Numeric,
+    has_pressure_coefficient: Numeric,
+    dry_friction: Numeric = 0.11,
+    limiting_shear_slope: Numeric = LIMITING_SHEAR_SLOPE,
+) -> np.ndarray:
+    r"""State of a lubricated μ_f from (5.8) as a code into ``FRICTION_STATES`` (§12).
+
+    ``"dry"`` no liquid; ``"no_pressure_coefficient"`` the fluid has no Barus coefficient,
+    so (5.6) and (5.8) cannot be evaluated; ``"above_limit"`` μ_f exceeds the dry value
+    or the limiting-shear cap γ_max (Bair & Winer 1979): the model is outside its range,
+    not a prediction; ``"in_range"`` otherwise.
+
+    Examples
+    --------
+    >>> code = lubricated_friction_state(np.array([0.02, 169.0, np.nan, np.nan]),
+    ...                                  np.array([True, True, True, False]),
+    ...                                  np.array([True, True, False, False]))
+    >>> names(FRICTION_STATES, code).tolist()
+    ['in_range', 'above_limit', 'no_pressure_coefficient', 'dry']
+    """
+    cap = friction_cap(dry_friction, limiting_shear_slope)
+    mu = as_float(friction)
+    immersed = np.asarray(immersed, dtype=bool)
+    known = np.asarray(has_pressure_coefficient, dtype=bool)
+    return np.where(
+        ~immersed,
+        DRY,
+        np.where(~known, NO_PRESSURE_COEFFICIENT, np.where(mu <= cap, IN_RANGE, ABOVE_LIMIT)),
+    )
+
+
+def friction_cap(
+    dry_friction: Numeric = 0.11, limiting_shear_slope: Numeric = LIMITING_SHEAR_SLOPE
+) -> Numeric:
+    r"""The largest lubricated μ_f the film model may give: min(μ_dry, γ_max) [-] (§12).
+
+    Examples
+    --------
+    >>> float(friction_cap(0.11))
+    0.1
+    """
+    return np.minimum(as_float(dry_friction), as_float(limiting_shear_slope))
+
+
+def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
+    r"""Three-state roughness verdict from Davis's band h_m = x₁/4 … x₁/3 (§4, §12), as a
+    code into ``ROUGHNESS_REGIMES``.
+
+    ``"asperity_contact"`` σ > x₁/3 (above the largest gap), ``"uncertain"``
+    x₁/4 < σ ≤ x₁/3, ``"film"`` σ ≤ x₁/4; ``"dry"`` where x₁ is NaN (no liquid).
+    ``roughness`` σ [m], ``elastic_length`` x₁ [m].
+
+    Examples
+    --------
+    >>> code = roughness_regime(np.array([10e-9, 30e-9, 40e-9, 1e-9]),
+    ...                         np.array([100e-9, 100e-9, 100e-9, np.nan]))
+    >>> names(ROUGHNESS_REGIMES, code).tolist()
+    ['film', 'uncertain', 'asperity_contact', 'dry']
+    """
+    sigma = as_float(roughness)
+    x1 = as_float(elastic_length)
+    low, high = GAP_BAND
+    code = np.where(
+        np.isnan(x1), 3, np.where(sigma > high * x1, 2, np.where(sigma > low * x1, 1, 0))
+    )
+    return code
+
+
+def names(states: tuple[str, ...], code: Numeric) -> np.ndarray:
+    """Text states from the integer codes the verdict functions return (object array).
+
+    Examples
+    --------
+    >>> names(ELASTIC_STATES, np.array([0, 2])).tolist()
+    ['elastic', 'unknown']
+    """
+    return np.asarray(states, dtype=object)[np.asarray(code)]
