@@ -164,7 +164,8 @@ def test_temperature_interpolates_the_fluid_points(cli, db: str) -> None:
         "30 degC",
     )
     assert data["fluid"]["viscosity_pa_s"] == pytest.approx(0.797e-3, rel=0.01)
-    assert "interpolated at 30 °C" in data["fluid"]["viscosity_basis"]
+    assert "at 30 °C" in data["fluid"]["viscosity_basis"]
+    assert "scaled through the printed" in data["fluid"]["viscosity_basis"]
     override = _json(
         cli,
         db,

@@ -18,7 +18,7 @@ import numpy as np
 from granudb.analysis._errors import physics_refusal
 from granudb.analysis.fluid_state import fluid_states_per_row
 from granudb.errors import ValidationError
-from granudb.vocabulary import COLLISION_MEASURED, MATERIAL_PROPERTIES, term
+from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TARGET, MATERIAL_PROPERTIES, term
 
 #: What ``collisions list`` shows by default, in every format: one line per run.
 DEFAULT_COLUMNS = [
@@ -193,7 +193,6 @@ def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) 
         for p in ("particle", "wall")
         for name in _MATERIAL
     }
-    props.pop("particle_yield_stress_pa"), props.pop("wall_yield_stress_pa")
     barus = (
         pd.Series(fluid_ids)
         .map({i: f.pressure_viscosity_pa_inv for i, f in fluids.items()})
@@ -204,6 +203,7 @@ def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) 
             **props,
             **{k: c[k] for k in ("diameter_m", "wall_diameter_m", "v_n_in_m_s", "v_t_in_m_s")},
             **{k: c[k] for k in ("v_n_out_m_s", "v_t_out_m_s")},
+            **{k: c[k] for k in COLLISION_TARGET},
             omega_in_rad_s=np.nan_to_num(c["omega_in_rad_s"], nan=0.0),
             omega_out_rad_s=c["omega_out_rad_s"],
             fluid_density_kg_m3=density,

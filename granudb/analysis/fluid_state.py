@@ -1,10 +1,12 @@
 """A fluid at a temperature: its viscosity and density, and where each number came from.
 
 With no temperature the fluid's reference values are used exactly as the source printed
-them. At a temperature, viscosity and density come from the fluid's measured (or
-correlated) points, interpolated by ``TabulatedViscosity`` (Andrade's law between
-neighbouring points). Nothing is extrapolated: a temperature outside a fluid's data is
-refused, naming the range that is covered.
+them. At a temperature, one continuous model: the fluid's measured (or correlated) points,
+interpolated by ``TabulatedViscosity`` (Andrade's law between neighbouring points) and
+scaled by ``ReferencedViscosity`` so that it passes exactly through the printed value at
+the reference temperature (the points supply only how viscosity changes with
+temperature). Nothing is extrapolated: a temperature outside a fluid's data is refused,
+naming the range that is covered.
 """
 
 from __future__ import annotations
@@ -16,9 +18,7 @@ import numpy as np
 from granudb.analysis._errors import physics_refusal
 from granudb.db.models import Fluid
 from granudb.errors import ValidationError
-from granudb.physics.viscosity import TabulatedViscosity
-
-REFERENCE_TOLERANCE_C = 0.5  # a temperature this close to the reference uses the printed value
+from granudb.physics.viscosity import ReferencedViscosity, TabulatedViscosity
 
 
 @dataclass
@@ -33,15 +33,19 @@ class FluidState:
     basis: str
 
 
-def fluid_model(fluid: Fluid) -> TabulatedViscosity | None:
-    """The fluid's viscosity–temperature model, or None when it has fewer than two points."""
+def fluid_model(fluid: Fluid) -> TabulatedViscosity | ReferencedViscosity | None:
+    """The fluid's viscosity–temperature model (None with fewer than two points), anchored
+    to the printed reference value when the reference temperature lies inside the data."""
     points = sorted(fluid.points, key=lambda p: p.temperature_c)
     if len(points) < 2:
         return None
     densities = [p.density_kg_m3 if p.density_kg_m3 is not None else np.nan for p in points]
-    return TabulatedViscosity(
+    table = TabulatedViscosity(
         [p.temperature_c for p in points], [p.viscosity_pa_s for p in points], densities
     )
+    if not table.low_c <= fluid.reference_temperature_c <= table.high_c:
+        return table
+    return ReferencedViscosity(table, fluid.reference_temperature_c, fluid.reference_viscosity_pa_s)
 
 
 def _printed(fluid: Fluid) -> str:
@@ -63,14 +67,12 @@ def fluid_state(
     its options.
     """
     density = fluid.reference_density_kg_m3
-    if temperature_c is None or abs(temperature_c - fluid.reference_temperature_c) <= (
-        REFERENCE_TOLERANCE_C
-    ):
-        temperature = fluid.reference_temperature_c if temperature_c is None else temperature_c
+    model = fluid_model(fluid)
+    if temperature_c is None or (model is None and temperature_c == fluid.reference_temperature_c):
+        temperature = fluid.reference_temperature_c
         viscosity = fluid.reference_viscosity_pa_s
         basis = _printed(fluid)
     else:
-        model = fluid_model(fluid)
         if model is None:
             raise ValidationError(
                 "temperature",
@@ -82,12 +84,14 @@ def fluid_state(
         temperature = temperature_c
         with physics_refusal("--temperature"):
             viscosity = float(model.viscosity(temperature_c))
-            if model.density_kg_m3 is not None:
+            if _has_density(model):
                 density = float(model.density(temperature_c))
         point_source = next((p.source.key for p in fluid.points if p.source), "no source")
+        anchored = isinstance(model, ReferencedViscosity)
         basis = (
-            f"interpolated at {temperature_c:g} °C from {len(fluid.points)} points "
-            f"({model.low_c:g}–{model.high_c:g} °C, {point_source})"
+            f"at {temperature_c:g} °C: {len(fluid.points)} points ({model.low_c:g}–"
+            f"{model.high_c:g} °C, {point_source}), Andrade-interpolated"
+            + (f", scaled through the printed {_printed(fluid)}" if anchored else "")
         )
     if viscosity_pa_s is not None:
         viscosity = viscosity_pa_s
@@ -117,10 +121,11 @@ def fluid_states_per_row(
         viscosity[rows] = fluid.reference_viscosity_pa_s
         density[rows] = fluid.reference_density_kg_m3
         measured = rows & ~np.isnan(temperatures)
-        measured &= np.abs(temperatures - fluid.reference_temperature_c) > REFERENCE_TOLERANCE_C
         if not measured.any():
             continue
         model = fluid_model(fluid)
+        if model is None:  # only the printed point: usable at exactly its temperature
+            measured &= temperatures != fluid.reference_temperature_c
         low, high = (model.low_c, model.high_c) if model else (np.nan, np.nan)
         outside = measured & ~((temperatures >= low) & (temperatures <= high))
         if outside.any():
@@ -133,6 +138,11 @@ def fluid_states_per_row(
         inside = measured & ~outside
         if inside.any():
             viscosity[inside] = model.viscosity(temperatures[inside])
-            if model.density_kg_m3 is not None:
+            if _has_density(model):
                 density[inside] = model.density(temperatures[inside])
     return viscosity, density, reason
+
+
+def _has_density(model: TabulatedViscosity | ReferencedViscosity) -> bool:
+    table = model.model if isinstance(model, ReferencedViscosity) else model
+    return getattr(table, "density_kg_m3", None) is not None

@@ -40,6 +40,9 @@ def material_inputs(prefix: str, material: Material) -> dict[str, Any]:
         f"{prefix}_shear_modulus_pa": (
             np.nan if material.shear_modulus_pa is None else material.shear_modulus_pa
         ),
+        f"{prefix}_yield_stress_pa": (
+            np.nan if material.yield_stress_pa is None else material.yield_stress_pa
+        ),
     }
 
 

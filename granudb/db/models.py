@@ -194,8 +194,8 @@ class Fluid(Timestamped, Base):
             "reference_temperature_c > -273.15", name="reference_temperature_above_zero_k"
         ),
         CheckConstraint(
-            "pressure_viscosity_pa_inv IS NULL OR pressure_viscosity_pa_inv >= 0",
-            name="pressure_viscosity_non_negative",
+            "pressure_viscosity_pa_inv IS NULL OR pressure_viscosity_pa_inv > 0",
+            name="pressure_viscosity_positive",
         ),
     )
 

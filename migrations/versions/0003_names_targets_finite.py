@@ -106,6 +106,12 @@ def upgrade() -> None:
         batch.create_check_constraint(
             op.f("ck_fluids_viscosity_positive"), "reference_viscosity_pa_s > 0"
         )
+        # C = 0 would make the lubricated friction infinite: unknown is NULL, not 0.
+        batch.drop_constraint(op.f("ck_fluids_pressure_viscosity_non_negative"), type_="check")
+        batch.create_check_constraint(
+            op.f("ck_fluids_pressure_viscosity_positive"),
+            "pressure_viscosity_pa_inv IS NULL OR pressure_viscosity_pa_inv > 0",
+        )
         _add_finite(batch, "fluids", FLOATS["fluids"])
 
     with op.batch_alter_table("fluid_points") as batch:
@@ -182,6 +188,11 @@ def downgrade() -> None:
         batch.alter_column("reference_viscosity_pa_s", new_column_name="viscosity_pa_s")
         batch.create_check_constraint(op.f("ck_fluids_density_positive"), "density_kg_m3 > 0")
         batch.create_check_constraint(op.f("ck_fluids_viscosity_positive"), "viscosity_pa_s > 0")
+        batch.drop_constraint(op.f("ck_fluids_pressure_viscosity_positive"), type_="check")
+        batch.create_check_constraint(
+            op.f("ck_fluids_pressure_viscosity_non_negative"),
+            "pressure_viscosity_pa_inv IS NULL OR pressure_viscosity_pa_inv >= 0",
+        )
 
     with op.batch_alter_table("materials") as batch:
         _drop_finite(batch, "materials", [*FLOATS["materials"], "yield_stress_pa"])
