@@ -9,9 +9,13 @@ models compete:
 - ``sliding``: every run on Ψ_out = Ψ_in − μ_f c_i with c_i = (1+e_i) B_i (slope one);
 - ``split``: runs [0, k) stick and [k, n) slide, k chosen by least squares.
 
-Each model's residual sum of squares S gives, with a common Gaussian scatter, the Bayesian
-information criterion BIC = n ln(S/n) + p ln n with p = 2 (sticking: β, σ), 2 (sliding:
-μ_f, σ) and 4 (split: β, μ_f, the split point k, σ). BIC rather than AIC because its
+The lines are fitted by least squares within the physical bounds 0 ≤ β ≤ 1 (a run that
+sticks has its contact point stopped or reversed: β < 0 means it slipped, Joseph & Hunt
+(2.8)) and μ_f ≥ 0; without them a "sticking" line of negative β fits sliding runs whose μ_f
+varies with speed (lubricated runs) and wins. Each model's residual sum of squares S
+gives, with a common Gaussian scatter, the Bayesian information criterion
+BIC = n ln(S/n) + p ln n with p = 2 (sticking: β, σ), 2 (sliding: μ_f, σ) and 4
+(split: β, μ_f, the split point k, σ). BIC rather than AIC because its
 penalty grows with n, so a split carved out of one line by chance loses at every n (AIC's
 constant penalty lets the best of n−4 chance splits win too often). The smallest BIC wins;
 a tie goes to the simpler model.
@@ -82,8 +86,11 @@ def decide(weights: np.ndarray, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: 
     distinct = _prefix((w > 0).astype(float), np.ones(n))
     tcc, tdc, tdd = scc[:, -1:] - scc, sdc[:, -1:] - sdc, sdd[:, -1:] - sdd
     with np.errstate(invalid="ignore", divide="ignore"):
-        stick = np.where(sxx > 0, syy - sxy**2 / sxx, syy)
-        slide = np.where(tcc > 0, tdd - tdc**2 / tcc, tdd)
+        beta_all = np.clip(np.where(sxx > 0, -sxy / sxx, 0.0), 0.0, 1.0)
+        friction_all = np.maximum(np.where(tcc > 0, tdc / tcc, 0.0), 0.0)
+    # S(β) = Σy² + 2βΣxy + β²Σx² at the bounded β; S(μ) = Σd² − 2μΣdc + μ²Σc²
+    stick = syy + 2 * beta_all * sxy + beta_all**2 * sxx
+    slide = tdd - 2 * friction_all * tdc + friction_all**2 * tcc
     total = np.maximum(stick + slide, 0.0)
     runs = count[:, -1]
     scale = np.maximum(syy[:, -1] + sdd[:, -1], 1e-300) * SSE_FLOOR
@@ -106,10 +113,9 @@ def decide(weights: np.ndarray, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: 
     k_chosen = np.select([model == 0, model == 1], [n, 0], split)
     n_stick = distinct[rows, k_chosen]
     n_slide = distinct[:, -1] - n_stick
-    with np.errstate(invalid="ignore", divide="ignore"):
-        beta = -sxy[rows, k_chosen] / sxx[rows, k_chosen]
-        friction = tdc[rows, k_chosen] / tcc[rows, k_chosen]
-        restitution = (w @ e) / runs
+    beta = beta_all[rows, k_chosen]
+    friction = friction_all[rows, k_chosen]
+    restitution = (w @ e) / runs
     beta = np.where(n_stick >= MIN_RUNS_FOR_PARAMETER, beta, np.nan)
     friction = np.where(n_slide >= MIN_RUNS_FOR_PARAMETER, friction, np.nan)
     return Decision(model, k_chosen, beta, friction, restitution, bic)
