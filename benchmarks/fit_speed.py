@@ -61,7 +61,8 @@ def main() -> None:
         f"{fast_rate:,.0f} run-resamples/s"
     )
     print(
-        f"naive per-resample loop ({args.naive} resamples): {slow:.2f} s, {slow_rate:,.0f} run-resamples/s"
+        f"naive per-resample loop ({args.naive} resamples): {slow:.2f} s, "
+        f"{slow_rate:,.0f} run-resamples/s"
     )
     print(f"ratio (per run-resample): {fast_rate / slow_rate:.1f}×")
     print(
