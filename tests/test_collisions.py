@@ -346,7 +346,9 @@ def test_fit_commands(cli, db: str) -> None:
     cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db)
     walton = json.loads(cli("fit", "walton", "--fluid", "dry", "--format", "json", db=db).stdout)
     assert walton[0]["rotational_restitution"] == pytest.approx(0.34, abs=1e-3)
-    assert walton[0]["sliding_friction"] == pytest.approx(0.11, abs=1e-4)
+    # two sliding runs decide the split but give no μ_f (fewer than 3 runs on the line)
+    assert walton[0]["sliding_friction"] is None
+    assert "2 sliding runs" in walton[0]["reason"]
     assert walton[0]["n_sliding"] == 2 and walton[0]["n_sticking"] == 4
     for model in ("threshold", "exponential"):
         out = cli("fit", "restitution", "--model", model, "--format", "json", db=db)

@@ -1,16 +1,15 @@
 """Fits of measured collisions: Walton's β and μ_f, restitution against Stokes number, and
-the gap viscosity of smooth sliding collisions (Joseph & Hunt §3–§5).
+the gap viscosity of smooth sliding collisions (Joseph & Hunt §3–§5; PHYSICS.md §14).
 
-All fits take the DataFrame of ``granudb.analysis.query.select_collisions`` and work per group
-(dataset × particle × wall × fluid).
+All fits take the DataFrame of ``granudb.analysis.query.select_collisions`` (or any frame
+with the columns they read) and work per group (dataset × particle × wall × fluid). The
+fitting cores live in ``walton``, ``gap_viscosity_fit`` and ``restitution_fit``; this module
+groups the runs and names the results.
 
-Walton split rule (documented in README): on the Ψ_out–Ψ_in plane, sticking runs lie on
-Ψ_out = −βΨ_in and sliding runs on Ψ_out = Ψ_in − μ_f(1+e)(1+1/K²). Runs are sorted by
-Ψ_in and every split point is tried: runs below it are fitted by a line through the origin,
-runs above it by a line of slope one; the split with the least total squared residual wins
-(O(n) with cumulative sums). β is minus the slope of the first line; μ_f is the sliding
-intercept divided by (1+ē)(7/2), ē the sliding runs' mean restitution — the same as the
-mean of (2.9) over the sliding runs.
+Walton fit: runs folded by the sign of v_T,in, three models (all sticking, all sliding,
+split) chosen by BIC (see ``granudb.analysis.walton``), β only from a sticking line and μ_f
+only from a sliding line of at least three runs, and bootstrap percentile intervals over
+runs (model and split re-decided in every resample).
 """
 
 from __future__ import annotations
@@ -20,39 +19,100 @@ from typing import Any
 
 import numpy as np
 
-from granudb.physics.impact import gyration_factor
+from granudb.analysis import walton as core
+from granudb.analysis.gap_viscosity_fit import gap_viscosity
+from granudb.analysis.restitution_fit import (
+    RESTITUTION_MODELS,
+    restitution,
+    restitution_curve,
+)
+
+__all__ = [
+    "GROUP",
+    "RESTITUTION_MODELS",
+    "WALTON_COLUMNS",
+    "WALTON_KEYS",
+    "gap_viscosity",
+    "restitution",
+    "restitution_curve",
+    "walton",
+    "walton_arrays",
+]
 
 GROUP = ["dataset", "particle", "wall", "fluid"]
-MIN_RUNS_PER_LINE = 2
+DEFAULT_RESAMPLES = 1000
+DEFAULT_SEED = 0
+CONFIDENCE_LEVEL = 0.95
+SPHERE_ON_WALL_FACTOR = 3.5  # B = 1 + 1/K², K² = 2/5 (PHYSICS.md §9)
+
+#: Every key of a ``walton`` result and what it means.
+WALTON_KEYS = {
+    "dataset, particle, wall, fluid": "the group ('dry' when no fluid)",
+    "n_runs": "runs with finite Ψ_in, Ψ_out and e",
+    "n_folded": "runs with v_T,in < 0, whose Ψ_in and Ψ_out were negated before fitting",
+    "model": "'sticking', 'sliding' or 'split' (smallest BIC), or None with fewer than 3 runs",
+    "model_reason": "the BIC values behind the choice, in words",
+    "bic_sticking, bic_sliding, bic_split": "BIC = n ln(S/n) + p ln n, p = 2, 2, 4",
+    "model_support_sticking, _sliding, _split": "share of bootstrap resamples choosing it",
+    "n_sticking, n_sliding": "runs on each line of the chosen model",
+    "split_effective_incidence": "folded Ψ_in of the first sliding run of a split, else NaN",
+    "rotational_restitution": "β from the sticking line (NaN unless it has ≥ 3 runs)",
+    "rotational_restitution_low, _high": "bootstrap percentile interval of β",
+    "rotational_restitution_stderr": "bootstrap standard deviation of β",
+    "rotational_restitution_determined": "share of resamples in which β was determined",
+    "sliding_friction": "μ_f from the sliding line (NaN unless it has ≥ 3 runs)",
+    "sliding_friction_low, _high, _stderr, _determined": "as for β",
+    "sliding_friction_lower_bound": "all sticking: μ_f ≥ (1+β)Ψ_in/((1+e)B) at the largest "
+    "Ψ_in (2.10): a bound, not a value",
+    "normal_restitution_mean": "ē over all runs of the group",
+    "normal_restitution_low, _high": "bootstrap percentile interval of ē",
+    "normal_restitution_std": "standard deviation of e over the runs",
+    "walton_factor": "mean B used (7/2 unless the frame has walton_factor)",
+    "confidence_level, bootstrap_resamples, bootstrap_seed": "how the intervals were made",
+    "reason": "why β or μ_f is absent ('' when both are given)",
+}
 
 WALTON_COLUMNS = [
     "dataset",
     "particle",
     "wall",
     "fluid",
+    "model",
     "rotational_restitution",
-    "rotational_restitution_stderr",
+    "rotational_restitution_low",
+    "rotational_restitution_high",
     "sliding_friction",
-    "sliding_friction_stderr",
+    "sliding_friction_low",
+    "sliding_friction_high",
+    "sliding_friction_lower_bound",
     "normal_restitution_mean",
-    "normal_restitution_std",
-    "n_sliding",
+    "normal_restitution_low",
+    "normal_restitution_high",
     "n_sticking",
-    "split_effective_incidence",
+    "n_sliding",
+    "reason",
 ]
+# (the CLI prints these; JSON consumers of ``walton`` get every key of WALTON_KEYS)
 
-RESTITUTION_MODELS = {
-    # name: (formula, citation)
-    "threshold": (
-        "e = e_dry (1 − St_c/St_n) for St_n > St_c, else 0",
-        "Davis, Serayssol & Hinch (1986) J. Fluid Mech. 163, 479; the scaling used by "
-        "Joseph et al. (2001) J. Fluid Mech. 433, 329",
-    ),
-    "exponential": (
-        "e = e_dry exp(−k/St_n)",
-        "Legendre, Zenit, Daniel & Guiraud (2006) Chem. Eng. Sci. 61, 3543",
-    ),
-}
+
+_NUMBERS = [
+    f"{name}{suffix}"
+    for name in ("rotational_restitution", "sliding_friction")
+    for suffix in ("", "_low", "_high", "_stderr", "_determined")
+] + [
+    "bic_sticking",
+    "bic_sliding",
+    "bic_split",
+    "model_support_sticking",
+    "model_support_sliding",
+    "model_support_split",
+    "split_effective_incidence",
+    "sliding_friction_lower_bound",
+    "normal_restitution_mean",
+    "normal_restitution_low",
+    "normal_restitution_high",
+    "normal_restitution_std",
+]
 
 
 def _groups(frame: Any) -> Any:
@@ -60,198 +120,106 @@ def _groups(frame: Any) -> Any:
     return keyed.groupby(GROUP, sort=True, dropna=False)
 
 
-def walton_split(psi_in: np.ndarray, psi_out: np.ndarray) -> int:
-    """Index k (in Ψ_in order) such that runs [0, k) stick and [k, n) slide."""
-    n = len(psi_in)
-    x, y = psi_in, psi_out
-    d = x - y
-    # prefix sums for the sticking line through the origin: SSE = Σy² − (Σxy)²/Σx²
-    sxx = np.concatenate([[0.0], np.cumsum(x * x)])
-    sxy = np.concatenate([[0.0], np.cumsum(x * y)])
-    syy = np.concatenate([[0.0], np.cumsum(y * y)])
-    with np.errstate(invalid="ignore", divide="ignore"):
-        stick = np.where(sxx > 0, syy - sxy**2 / sxx, syy)
-    # suffix sums for the sliding line of slope one: SSE = Σd² − (Σd)²/m
-    sd = np.concatenate([np.cumsum(d[::-1])[::-1], [0.0]])
-    sdd = np.concatenate([np.cumsum((d * d)[::-1])[::-1], [0.0]])
-    m = n - np.arange(n + 1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        slide = np.where(m > 0, sdd - sd**2 / np.maximum(m, 1), 0.0)
-    total = stick + slide
-    k = np.arange(n + 1)
-    allowed = ((k == 0) | (k >= MIN_RUNS_PER_LINE)) & ((m == 0) | (m >= MIN_RUNS_PER_LINE))
-    total = np.where(allowed, total, np.inf)
-    return int(np.argmin(total))
+def walton_arrays(group: Any) -> tuple[np.ndarray, ...]:
+    """Folded, Ψ_in-sorted (x, y, c = (1+e)B, e, n_folded, order) of one group's finite runs;
+    ``order`` indexes the group's rows."""
+    psi_in = group["effective_incidence"].to_numpy(dtype=float)
+    psi_out = group["effective_rebound"].to_numpy(dtype=float)
+    e = group["normal_restitution"].to_numpy(dtype=float)
+    v_t = (
+        group["tangential_speed_m_s"].to_numpy(dtype=float)
+        if "tangential_speed_m_s" in group
+        else psi_in
+    )
+    factor = (
+        group["walton_factor"].to_numpy(dtype=float)
+        if "walton_factor" in group
+        else np.full(len(group), SPHERE_ON_WALL_FACTOR)
+    )
+    factor = np.where(np.isfinite(factor), factor, SPHERE_ON_WALL_FACTOR)
+    finite = np.isfinite(psi_in) & np.isfinite(psi_out) & np.isfinite(e)
+    x, y = core.fold(psi_in, psi_out, v_t)
+    rows = np.flatnonzero(finite)
+    order = rows[np.argsort(x[rows], kind="stable")]
+    folded = int(np.sum((v_t < 0) & finite))
+    return x[order], y[order], (1 + e[order]) * factor[order], e[order], folded, order, factor
 
 
-def walton(frame: Any) -> list[dict[str, Any]]:
-    """β and μ_f with standard errors per group, and ē ± std (Joseph & Hunt figures 4, 6, 9)."""
-    factor = float(gyration_factor())
-    results = []
-    for key, group in _groups(frame):
-        group = group[
-            np.isfinite(group["effective_incidence"]) & np.isfinite(group["effective_rebound"])
-        ]
-        if group.empty:
-            continue
-        order = np.argsort(group["effective_incidence"].to_numpy(), kind="stable")
-        x = group["effective_incidence"].to_numpy()[order]
-        y = group["effective_rebound"].to_numpy()[order]
-        e = group["normal_restitution"].to_numpy()[order]
-        k = walton_split(x, y)
-        beta = beta_se = mu = mu_se = math.nan
-        if k >= 1 and np.sum(x[:k] ** 2) > 0:
-            sxx = float(np.sum(x[:k] ** 2))
-            beta = -float(np.sum(x[:k] * y[:k])) / sxx
-            if k > 1:
-                residual = y[:k] + beta * x[:k]
-                beta_se = math.sqrt(float(np.sum(residual**2)) / (k - 1) / sxx)
-        if k < len(x):
-            friction = (x[k:] - y[k:]) / ((1.0 + e[k:]) * factor)
-            mu = float(np.mean(friction))
-            if len(friction) > 1:
-                mu_se = float(np.std(friction, ddof=1)) / math.sqrt(len(friction))
-        results.append(
-            {
-                **dict(zip(GROUP, key, strict=True)),
-                "rotational_restitution": beta,
-                "rotational_restitution_stderr": beta_se,
-                "sliding_friction": mu,
-                "sliding_friction_stderr": mu_se,
-                "normal_restitution_mean": float(np.mean(e)),
-                "normal_restitution_std": float(np.std(e, ddof=1)) if len(e) > 1 else math.nan,
-                "n_sliding": int(len(x) - k),
-                "n_sticking": int(k),
-                "split_effective_incidence": float(x[k]) if k < len(x) else math.nan,
-            }
+def _interval(row: dict, name: str, values: np.ndarray, point: float) -> None:
+    low, high, share = core.percentile_interval(values, CONFIDENCE_LEVEL)
+    determined = not math.isnan(point)
+    row[f"{name}_low"] = low if determined else math.nan
+    row[f"{name}_high"] = high if determined else math.nan
+    finite = values[np.isfinite(values)]
+    row[f"{name}_stderr"] = (
+        float(np.std(finite, ddof=1)) if determined and finite.size > 1 else math.nan
+    )
+    row[f"{name}_determined"] = share
+
+
+def _reason(model: str, n_stick: int, n_slide: int) -> str:
+    parts = []
+    if model == "sliding":
+        parts.append("all runs slide: β is not determined by sliding runs")
+    elif n_stick < core.MIN_RUNS_FOR_PARAMETER:
+        parts.append(f"{n_stick} sticking runs (< {core.MIN_RUNS_FOR_PARAMETER}): no β")
+    if model == "sticking":
+        parts.append(
+            "all runs stick: μ_f is not determined (sliding_friction_lower_bound is a bound)"
         )
-    return results
+    elif n_slide < core.MIN_RUNS_FOR_PARAMETER:
+        parts.append(f"{n_slide} sliding runs (< {core.MIN_RUNS_FOR_PARAMETER}): no μ_f")
+    return "; ".join(parts)
 
 
-def restitution_curve(model: str, stokes: np.ndarray, e_dry: float, parameter: float) -> np.ndarray:
-    """e(St_n) of ``model`` ("threshold": parameter St_c; "exponential": parameter k)."""
-    st = np.asarray(stokes, dtype=float)
-    if model == "threshold":
-        return np.where(st > parameter, e_dry * (1.0 - parameter / st), 0.0)
-    if model == "exponential":
-        return e_dry * np.exp(-parameter / st)
-    raise KeyError(model)
+def _walton_group(key: tuple, group: Any, resamples: int, seed: int) -> dict[str, Any]:
+    x, y, c, e, folded, _, factor = walton_arrays(group)
+    n = len(x)
+    row: dict[str, Any] = {**dict(zip(GROUP, key, strict=True)), "n_runs": n, "n_folded": folded}
+    row.update(confidence_level=CONFIDENCE_LEVEL, bootstrap_resamples=resamples)
+    row.update(bootstrap_seed=seed, walton_factor=float(np.mean(factor)) if n else math.nan)
+    row.update(dict.fromkeys(_NUMBERS, math.nan), model=None, model_reason="")
+    row.update(n_sticking=0, n_sliding=0)
+    if n < core.MIN_RUNS_FOR_PARAMETER:
+        row["normal_restitution_mean"] = float(np.mean(e)) if n else math.nan
+        row["reason"] = f"{n} runs: a Walton fit needs at least {core.MIN_RUNS_FOR_PARAMETER}"
+        return row
+    fit = core.decide(np.ones((1, n)), x, y, c, e)
+    boot = core.bootstrap(x, y, c, e, resamples, seed)
+    model = core.MODELS[int(fit.model[0])]
+    k = int(fit.split[0])
+    bic = dict(zip(core.MODELS, fit.bic[0].tolist(), strict=True))
+    row.update({f"bic_{name}": value for name, value in bic.items()})
+    row.update(
+        {f"model_support_{m}": float(np.mean(boot.model == i)) for i, m in enumerate(core.MODELS)}
+    )
+    ranked = sorted(bic, key=bic.get)
+    row["model"] = model
+    row["model_reason"] = (
+        f"{model}: smallest BIC {bic[model]:.4g} (next {ranked[1]} {bic[ranked[1]]:.4g}; "
+        "BIC = n ln(S/n) + p ln n, p = 2 sticking, 2 sliding, 4 split)"
+    )
+    row.update(n_sticking=k, n_sliding=n - k)
+    row["split_effective_incidence"] = float(x[k]) if model == "split" else math.nan
+    row["rotational_restitution"] = float(fit.beta[0])
+    _interval(row, "rotational_restitution", boot.beta, row["rotational_restitution"])
+    row["sliding_friction"] = float(fit.friction[0])
+    _interval(row, "sliding_friction", boot.friction, row["sliding_friction"])
+    bound = math.nan
+    if model == "sticking" and not math.isnan(row["rotational_restitution"]):
+        bound = float((1 + row["rotational_restitution"]) * x[-1] / c[-1])
+    row["sliding_friction_lower_bound"] = bound
+    row["normal_restitution_mean"] = float(np.mean(e))
+    low, high, _ = core.percentile_interval(boot.restitution, CONFIDENCE_LEVEL)
+    row.update(normal_restitution_low=low, normal_restitution_high=high)
+    row["normal_restitution_std"] = float(np.std(e, ddof=1))
+    row["reason"] = _reason(model, k, n - k)
+    return row
 
 
-def restitution(frame: Any, model: str = "threshold") -> list[dict[str, Any]]:
-    """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
-    (figure 5): the dry limit e_dry and St_c (threshold) or k (exponential)."""
-    from scipy.optimize import curve_fit
-
-    from granudb.errors import ValidationError
-
-    if model not in RESTITUTION_MODELS:
-        raise ValidationError("--model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}")
-    immersed = frame[
-        np.isfinite(frame["normal_stokes_number"]) & np.isfinite(frame["normal_restitution"])
-    ]
-    results = []
-    for key, group in immersed.groupby(["dataset", "particle", "wall"], sort=True):
-        st = group["normal_stokes_number"].to_numpy()
-        e = group["normal_restitution"].to_numpy()
-        row: dict[str, Any] = {
-            "dataset": key[0],
-            "particle": key[1],
-            "wall": key[2],
-            "model": model,
-            "formula": RESTITUTION_MODELS[model][0],
-            "citation": RESTITUTION_MODELS[model][1],
-            "n_runs": len(st),
-            "e_dry": math.nan,
-            "e_dry_stderr": math.nan,
-            "parameter": math.nan,
-            "parameter_stderr": math.nan,
-            "parameter_name": "critical_stokes" if model == "threshold" else "k",
-        }
-        # A two-parameter curve needs St_n to vary: at least 3 distinct values spanning a
-        # factor of 2; otherwise the fit is left empty rather than made up.
-        if len(np.unique(st)) >= 3 and float(np.max(st)) >= 2.0 * float(np.min(st)):
-            guess = (min(1.0, float(np.max(e)) * 1.05), max(1.0, float(np.min(st)) * 0.5))
-            try:
-                values, covariance = curve_fit(
-                    lambda s, a, b: restitution_curve(model, s, a, b),
-                    st,
-                    e,
-                    p0=guess,
-                    bounds=([0.0, 0.0], [1.2, np.inf]),
-                    maxfev=20000,
-                )
-                errors = np.sqrt(np.diag(covariance))
-                row.update(
-                    e_dry=float(values[0]),
-                    e_dry_stderr=float(errors[0]),
-                    parameter=float(values[1]),
-                    parameter_stderr=float(errors[1]),
-                )
-            except (RuntimeError, ValueError):
-                pass  # not enough spread in St_n to fit: left as NaN, n_runs says why
-        results.append(row)
-    return results
-
-
-def gap_viscosity(frame: Any, fluids: dict[str, Any]) -> list[dict[str, Any]]:
-    """The gap viscosity μ₀ that makes (5.10) match each smooth sliding run's μ_f, and the
-    gap temperature it implies through the fluid's μ(T) (figure 14, table 2).
-
-    Uses immersed runs in gross slip whose roughness is within the gap (a full film), per
-    (dataset, particle, wall, fluid). ``fluids`` maps fluid name to its viscosity model
-    (with ``temperature_for_viscosity``) or None.
-    """
-    from granudb.physics import contact, lubrication
-
-    smooth = frame[
-        frame["fluid"].notna()
-        & (frame["tangential_regime"] == "gross_slip")
-        & ~frame["roughness_exceeds_gap"].astype(bool)
-        & np.isfinite(frame["sliding_friction"])
-        & (frame["sliding_friction"] > 0)
-    ]
-    results = []
-    for key, group in smooth.groupby(GROUP, sort=True):
-        eta_hat = group["eta_hat_pa_inv"].to_numpy()
-        e_star = group["reduced_modulus_pa"].to_numpy()
-        radius = group["effective_radius_m"].to_numpy()
-        vn = group["v_n_in_m_s"].to_numpy()
-        density = group["particle_density_kg_m3"].to_numpy()
-        load = contact.hertz_impact_load(radius, e_star, density, vn)
-        a = contact.max_contact_radius(radius, load, e_star)
-        integral = lubrication.friction_integral(eta_hat * contact.max_pressure(load, a))
-        mu0 = lubrication.viscosity_for_friction(
-            group["sliding_friction"].to_numpy(),
-            np.abs(group["tangential_speed_m_s"]),
-            e_star,
-            radius,
-            eta_hat,
-            density,
-            vn,
-            integral,
-        )
-        mu0 = mu0[np.isfinite(mu0)]
-        if mu0.size == 0:
-            continue
-        mean = float(np.mean(mu0))
-        model = fluids.get(key[3])
-        temperature = math.nan
-        note = ""
-        if model is not None:
-            try:
-                temperature = float(model.temperature_for_viscosity(mean))
-            except ValueError as exc:
-                note = str(exc)
-        results.append(
-            {
-                **dict(zip(GROUP, key, strict=True)),
-                "gap_viscosity_pa_s": mean,
-                "gap_viscosity_std_pa_s": float(np.std(mu0, ddof=1)) if mu0.size > 1 else math.nan,
-                "ambient_viscosity_pa_s": float(np.mean(group["viscosity_pa_s"])),
-                "gap_temperature_c": temperature,
-                "n_runs": int(mu0.size),
-                "note": note,
-            }
-        )
-    return results
+def walton(
+    frame: Any, *, resamples: int = DEFAULT_RESAMPLES, seed: int = DEFAULT_SEED
+) -> list[dict[str, Any]]:
+    """β, μ_f and ē per group with model selection and bootstrap intervals (Joseph & Hunt
+    figures 4, 6, 9). Keys: ``WALTON_KEYS``."""
+    return [_walton_group(key, group, resamples, seed) for key, group in _groups(frame)]

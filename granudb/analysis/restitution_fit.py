@@ -1,0 +1,139 @@
+"""Restitution against the normal Stokes number, e(St_n), per (dataset, particle, wall)
+(Joseph & Hunt 2004 figure 5; PHYSICS.md §10).
+
+Why this shape: e_dry is a restitution, so it is bounded by 1; when the group has dry runs
+their mean e is the measured dry limit and is used (fixed) instead of being fitted, and
+the result says which. The threshold form's St_c is the *fitted* no-rebound threshold of
+these runs, named ``fitted_critical_stokes``: it is not the default St_c of the rebound
+verdict. Every empty fit says why in ``reason``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+RESTITUTION_MODELS = {
+    # name: (formula, citation)
+    "threshold": (
+        "e = e_dry (1 − St_c/St_n) for St_n > St_c, else 0 (St_c: the fitted threshold)",
+        "an empirical form for the no-rebound threshold, as used by Joseph et al. (2001) "
+        "J. Fluid Mech. 433, 329 and Gondret, Lance & Petit (2002) Phys. Fluids 14, 643",
+    ),
+    "exponential": (
+        "e = e_dry exp(−k/St_n)",
+        "Legendre, Zenit, Daniel & Guiraud (2006) Chem. Eng. Sci. 61, 3543",
+    ),
+}
+PARAMETER_NAMES = {"threshold": "fitted_critical_stokes", "exponential": "k"}
+E_DRY_MAX = 1.0
+
+
+def restitution_curve(model: str, stokes: np.ndarray, e_dry: float, parameter: float) -> np.ndarray:
+    """e(St_n) of ``model`` ("threshold": parameter St_c; "exponential": parameter k)."""
+    st = np.asarray(stokes, dtype=float)
+    if model == "threshold":
+        return np.where(st > parameter, e_dry * (1.0 - parameter / st), 0.0)
+    if model == "exponential":
+        return e_dry * np.exp(-parameter / st)
+    raise KeyError(model)
+
+
+def _fit(model: str, st: np.ndarray, e: np.ndarray, e_dry: float | None) -> tuple:
+    """(e_dry, e_dry_stderr, parameter, parameter_stderr) by bounded least squares; e_dry is
+    fixed (stderr NaN) when given."""
+    from scipy.optimize import curve_fit
+
+    start = max(1.0, float(np.min(st)) * 0.5)
+    if e_dry is None:
+        values, covariance = curve_fit(
+            lambda s, a, b: restitution_curve(model, s, a, b),
+            st,
+            e,
+            p0=(min(0.99, float(np.max(e)) * 1.05), start),
+            bounds=([0.0, 0.0], [E_DRY_MAX, np.inf]),
+            maxfev=20000,
+        )
+        errors = np.sqrt(np.diag(covariance))
+        return float(values[0]), float(errors[0]), float(values[1]), float(errors[1])
+    values, covariance = curve_fit(
+        lambda s, b: restitution_curve(model, s, e_dry, b),
+        st,
+        e,
+        p0=(start,),
+        bounds=([0.0], [np.inf]),
+        maxfev=20000,
+    )
+    return e_dry, math.nan, float(values[0]), float(np.sqrt(covariance[0, 0]))
+
+
+def _group_row(model: str, key: tuple, group: Any, dry_e: np.ndarray) -> dict[str, Any]:
+    st = group["normal_stokes_number"].to_numpy(dtype=float)
+    e = group["normal_restitution"].to_numpy(dtype=float)
+    fixed = float(min(np.mean(dry_e), E_DRY_MAX)) if dry_e.size else None
+    row: dict[str, Any] = {
+        "dataset": key[0],
+        "particle": key[1],
+        "wall": key[2],
+        "model": model,
+        "formula": RESTITUTION_MODELS[model][0],
+        "citation": RESTITUTION_MODELS[model][1],
+        "n_runs": len(st),
+        "n_dry_runs": int(dry_e.size),
+        "e_dry": math.nan,
+        "e_dry_stderr": math.nan,
+        "e_dry_source": (
+            f"mean e of the group's {dry_e.size} dry runs (fixed)"
+            if fixed is not None
+            else "fitted, bounded 0 ≤ e_dry ≤ 1"
+        ),
+        "parameter_name": PARAMETER_NAMES[model],
+        "parameter": math.nan,
+        "parameter_stderr": math.nan,
+        "stokes_number": "St_n = ρ_p v_n,in 2R / (9μ) of the particle (as stored)",
+        "reason": "",
+    }
+    needed = 2 if fixed is not None else 3
+    if len(np.unique(st)) < needed or float(np.max(st)) < 2.0 * float(np.min(st)):
+        row["reason"] = (
+            f"St_n must take ≥ {needed} distinct values spanning a factor of 2 "
+            f"({len(np.unique(st))} values from {np.min(st):.3g} to {np.max(st):.3g})"
+        )
+    else:
+        try:
+            e_dry, e_dry_se, parameter, parameter_se = _fit(model, st, e, fixed)
+            row.update(e_dry=e_dry, e_dry_stderr=e_dry_se, parameter=parameter)
+            row["parameter_stderr"] = parameter_se
+        except (RuntimeError, ValueError) as exc:
+            row["reason"] = f"least squares did not converge ({type(exc).__name__})"
+    if model == "threshold":
+        row["fitted_critical_stokes"] = row["parameter"]
+    return row
+
+
+def restitution(frame: Any, model: str = "threshold") -> list[dict[str, Any]]:
+    """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
+    (figure 5).
+
+    Keys: the group; ``model``, ``formula``, ``citation``; ``n_runs`` (immersed) and
+    ``n_dry_runs``; ``e_dry`` (≤ 1) with ``e_dry_stderr`` (asymptotic, NaN when fixed) and
+    ``e_dry_source`` (fitted, or the dry runs' mean); ``parameter_name``
+    ('fitted_critical_stokes' or 'k'), ``parameter``, ``parameter_stderr`` (asymptotic);
+    ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
+    ``reason`` (why the fit is empty, else '').
+    """
+    from granudb.errors import ValidationError
+
+    if model not in RESTITUTION_MODELS:
+        raise ValidationError("--model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}")
+    finite_e = np.isfinite(frame["normal_restitution"])
+    immersed = frame[np.isfinite(frame["normal_stokes_number"]) & finite_e]
+    dry = frame[frame["fluid"].isna() & finite_e] if "fluid" in frame else frame.iloc[0:0]
+    results = []
+    for key, group in immersed.groupby(["dataset", "particle", "wall"], sort=True):
+        same = (dry["dataset"] == key[0]) & (dry["particle"] == key[1]) & (dry["wall"] == key[2])
+        dry_e = dry.loc[same, "normal_restitution"].to_numpy(dtype=float)
+        results.append(_group_row(model, key, group, dry_e))
+    return results
