@@ -1,7 +1,14 @@
-"""``granudb report``: an HTML or Markdown lab report for a pair or for stored runs."""
+"""``granudb report``: an HTML or Markdown lab report for a pair or for stored runs.
+
+``--pair`` takes the scenario options of ``granudb pair`` (diameter, velocity, angle,
+temperature, viscosity, second-sphere diameter); a diameter or velocity not given is
+assumed and the report says so at the top. The collision filters are those of
+``collisions list``.
+"""
 
 from __future__ import annotations
 
+import math
 import shlex
 from pathlib import Path
 from typing import Annotated
@@ -31,16 +38,26 @@ def report(
         str | None, typer.Option("--angle-range", help="Incidence angles, '10..40 deg'.")
     ] = None,
     diameter: Annotated[
-        str, typer.Option("--diameter", help="Pair scenario: particle diameter.")
-    ] = "12.7 mm",
+        str | None,
+        typer.Option("--diameter", help='Pair: particle diameter, "12.7 mm" (assumed if omitted).'),
+    ] = None,
     velocity: Annotated[
-        str, typer.Option("--velocity", help="Pair scenario: impact speed.")
-    ] = "0.3 m/s",
+        str | None,
+        typer.Option("--velocity", help='Pair: impact speed, "0.3 m/s" (assumed if omitted).'),
+    ] = None,
     angle: Annotated[
-        str, typer.Option("--angle", help="Pair scenario: incidence angle.")
-    ] = "0 deg",
-    temperature: Annotated[str | None, typer.Option("--temperature")] = None,
-    viscosity: Annotated[str | None, typer.Option("--viscosity")] = None,
+        str | None, typer.Option("--angle", help='Pair: incidence angle, "30 deg" (default 0°).')
+    ] = None,
+    temperature: Annotated[
+        str | None, typer.Option("--temperature", help="Pair: fluid temperature.")
+    ] = None,
+    viscosity: Annotated[
+        str | None, typer.Option("--viscosity", help="Pair: override the fluid viscosity.")
+    ] = None,
+    wall_diameter: Annotated[
+        str | None,
+        typer.Option("--wall-diameter", help="Pair: diameter of a second sphere (default: wall)."),
+    ] = None,
     critical_stokes: Annotated[float, typer.Option("--critical-stokes")] = 10.0,
     fmt: Annotated[str, typer.Option("--format", "-f", help="html or md.")] = "html",
     output: Annotated[
@@ -49,24 +66,28 @@ def report(
             "--output", "-o", help="File to write (default: named after the title, here)."
         ),
     ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="Overwrite the --output file if it exists.")
+    ] = False,
     title: Annotated[str | None, typer.Option("--title")] = None,
     db: DbOption = None,
 ) -> None:
     """Write a lab report: properties with sources, derived quantities, verdicts with the
     roughness flag, fits next to published values, figures and methods."""
     from granudb.analysis.query import CollisionQuery
-    from granudb.cli.collisions import _angle_range
     from granudb.cli.common import open_db
     from granudb.cli.output import say
-    from granudb.cli.pair import _angle
     from granudb.errors import ValidationError
     from granudb.report.build import dataset_report, pair_report
-    from granudb.report.write import write_report
+    from granudb.report.write import check_output, write_report
 
     if fmt not in {"html", "md"}:
         raise ValidationError("--format", fmt, "must be html or md")
     if title is not None and (len(title) > 300 or any(ord(c) < 32 for c in title)):
         raise ValidationError("--title", title[:40], "must be ≤ 300 printable characters")
+    if not critical_stokes > 0:
+        raise ValidationError("--critical-stokes", f"{critical_stokes:g}", "must be > 0")
+    check_output(output, force=force)
     asked = _asked(ctx)
     database = open_db(db)
     with database.session() as session:
@@ -81,10 +102,12 @@ def report(
                 fluid=None if fluid in (None, "dry") else fluid,
                 diameter_m=quantity(diameter, "diameter_m", "--diameter"),
                 speed_m_s=quantity(velocity, "v_n_in_m_s", "--velocity"),
-                angle_rad=_angle(angle),
+                angle_rad=_angle(angle or "0 deg"),
                 temperature_c=quantity(temperature, "temperature_c", "--temperature"),
                 viscosity_pa_s=quantity(viscosity, "viscosity_pa_s", "--viscosity"),
+                wall_diameter_m=quantity(wall_diameter, "wall_diameter_m", "--wall-diameter"),
                 critical_stokes=critical_stokes,
+                assumed=set() if angle is not None else {"incidence_angle_rad"},
             )
         else:
             query = CollisionQuery(
@@ -102,8 +125,38 @@ def report(
             report_data = dataset_report(
                 session, title=title, query_text=asked, database=database.display_url, query=query
             )
-    path = write_report(report_data, fmt, output)
+    path = write_report(report_data, fmt, output, force=force)
     say(f"wrote {path}")
+
+
+def _angle(text: str) -> float:
+    """An incidence angle from the normal, 0 ≤ ζ < 90°, as ``granudb pair`` takes it."""
+    from granudb.errors import ValidationError
+    from granudb.io.units import parse_quantity
+
+    value = parse_quantity(text, "rad", "--angle")
+    if not 0.0 <= value < math.pi / 2:
+        raise ValidationError("--angle", text, "must be ≥ 0° and < 90°")
+    return value
+
+
+def _angle_range(text: str) -> tuple[float, float]:
+    """``LOW..HIGH`` with one unit for both ("20..60 deg"), as ``collisions list`` takes it."""
+    from granudb.errors import ValidationError
+    from granudb.io.units import parse_quantity
+
+    low, sep, high = text.partition("..")
+    if not sep:
+        raise ValidationError("--angle-range", text, "must be LOW..HIGH, e.g. '10..40 deg'")
+    high = high.strip()
+    unit = high.lstrip("0123456789.eE+- ").strip()
+    low = low.strip()
+    if unit and low and low.replace(".", "", 1).isdigit():
+        low = f"{low} {unit}"
+    return (
+        parse_quantity(low, "rad", "--angle-range"),
+        parse_quantity(high, "rad", "--angle-range"),
+    )
 
 
 def _asked(ctx: typer.Context) -> str:
@@ -111,7 +164,7 @@ def _asked(ctx: typer.Context) -> str:
     parts = ["granudb", "report"]
     for param in ctx.command.params:
         value = ctx.params.get(param.name)
-        if value is None or value == param.default or param.name == "db":
+        if value is None or value == param.default or param.name in {"db", "force"}:
             continue
         flag = max(param.opts, key=len)
         if isinstance(value, tuple):
