@@ -45,8 +45,14 @@ def group_cell(fit: Mapping[str, Any], colours: Mapping[str, str]) -> dict[str, 
 
 def published_for(published: list[dict[str, Any]], fit: Mapping[str, Any]) -> str:
     """The values the paper printed for exactly this group: same particle, wall and
-    fluid (a dry fit only matches dry rows)."""
+    fluid (a dry fit only matches dry rows). A row stored without a fluid counts as dry
+    only when its condition says so, so an older database whose immersed rows still lack
+    their fluid never puts immersed values on the dry group."""
     fluid = fluid_name(fit.get("fluid"))
+
+    def dry_row(p: dict[str, Any]) -> bool:
+        return p["fluid"] is not None or "dry" in (p.get("condition") or "dry")
+
     matches = [
         p
         for p in published
@@ -54,6 +60,7 @@ def published_for(published: list[dict[str, Any]], fit: Mapping[str, Any]) -> st
         and p["wall"] == fit["wall"]
         and fluid_name(p["fluid"]) == fluid
         and p["quantity"] in WALTON_PUBLISHED
+        and dry_row(p)
     ]
     return (
         "; ".join(
