@@ -85,6 +85,31 @@ def _legend(ax: Any, handles: Sequence[Any] | None = None) -> None:
     ax.legend(**kwargs)
 
 
+def _power_of_ten(value: float, _position: Any = None) -> str:
+    """A log-axis tick as Unicode (``10⁻³``): mathtext is off, so no ``$10^{-3}$``."""
+    from granudb.report.format import superscript
+
+    if value <= 0 or not np.isfinite(value):
+        return ""
+    exponent = np.log10(value)
+    if abs(exponent - round(exponent)) > 1e-9:
+        return ""
+    exponent = int(round(exponent))
+    return f"{10.0**exponent:g}" if -2 <= exponent <= 3 else f"10{superscript(str(exponent))}"
+
+
+def _log(ax: Any, *axes: str) -> None:
+    """Log scale on ``axes`` ("x", "y") with Unicode tick labels at the decades."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    for name in axes:
+        getattr(ax, f"set_{name}scale")("log")
+        axis = getattr(ax, f"{name}axis")
+        axis.set_major_locator(LogLocator(base=10))
+        axis.set_major_formatter(FuncFormatter(_power_of_ten))
+        axis.set_minor_formatter(NullFormatter())
+
+
 def _honest_limits(ax: Any, values: np.ndarray) -> None:
     """Widen a linear y-axis around a tiny spread, so noise does not fill the figure."""
     finite = np.asarray(values, float)
@@ -206,7 +231,7 @@ def restitution_vs_stokes(
         ax.axvline(
             critical_stokes, color="grey", ls="--", lw=1.0, label=f"St_c = {critical_stokes:g}"
         )
-    ax.set_xscale("log")
+    _log(ax, "x")
     ax.set_xlabel("normal Stokes number St_n = 2ρ_p R v_N,in / (9μ)  (–)")
     ax.set_ylabel("normal restitution e  (–)")
     ax.set_title("Restitution against Stokes number")
@@ -227,7 +252,7 @@ def friction_vs_shear_strain(
     y = np.asarray(friction, float)
     _scatter_groups(ax, np.asarray(strain, float), y, groups, colours)
     _honest_limits(ax, y)
-    ax.set_xscale("log")
+    _log(ax, "x")
     ax.set_xlabel("shear strain (μ₀U / (E*R))²⁄⁷  (–)")
     ax.set_ylabel("friction coefficient μ_f  (–)")
     ax.set_title("Friction against shear strain")
@@ -297,8 +322,7 @@ def regime_map(
             [point[0]], [point[1] * 1e3], "*", color="crimson", ms=12, label="this collision"
         )
         handles.append(marker)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
+    _log(ax, "x", "y")
     ax.set_xlim(float(np.min(velocity_m_s)), float(np.max(velocity_m_s)))
     ax.set_ylim(float(np.min(mu_axis)), float(np.max(mu_axis)))
     ax.set_xlabel("normal impact velocity v_N,in  (m/s)")
