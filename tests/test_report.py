@@ -152,8 +152,23 @@ def test_output_is_deterministic_but_for_the_timestamp(cli, db, tmp_path) -> Non
         return re.sub(r'<p class="meta" id="generated">.*?</p>', "", text)
 
     first = strip(_pair(cli, db, tmp_path).read_text("utf-8"))
-    second = strip(_pair(cli, db, tmp_path).read_text("utf-8"))
+    second = strip(_pair(cli, db, tmp_path, "html", "--force").read_text("utf-8"))
     assert first == second
+
+
+def test_output_is_not_overwritten_without_force(cli, db, tmp_path) -> None:
+    out = tmp_path / "kept.html"
+    out.write_text("the copy I handed in", encoding="utf-8")
+    args = ("report", "--pair", "steel", "Zerodur", "--output", str(out))
+    refused = cli(*args, db=db)
+    assert refused.exit_code == 1 and refused.stdout == ""
+    assert refused.stderr.strip() == (
+        f"Error: --output: {out} exists (use --force to overwrite it)"
+    )
+    assert out.read_text(encoding="utf-8") == "the copy I handed in"
+    forced = cli(*args, "--force", db=db)
+    assert forced.exit_code == 0, forced.stderr
+    assert "<!DOCTYPE html>" in out.read_text(encoding="utf-8")
 
 
 def test_default_output_name_in_the_current_folder(cli, db, tmp_path, monkeypatch) -> None:

@@ -1,4 +1,10 @@
-"""``granudb report``: an HTML or Markdown lab report for a pair or for stored runs."""
+"""``granudb report``: an HTML or Markdown lab report for a pair or for stored runs.
+
+``--pair`` takes the scenario options of ``granudb pair`` (diameter, velocity, angle,
+temperature, viscosity, second-sphere diameter); a diameter or velocity not given is
+assumed and the report says so at the top. The collision filters are those of
+``collisions list``.
+"""
 
 from __future__ import annotations
 
@@ -8,6 +14,7 @@ from typing import Annotated
 
 import typer
 
+from granudb.cli import options
 from granudb.cli.common import DbOption, quantity
 
 
@@ -20,28 +27,38 @@ def report(
     fluid: Annotated[
         str | None, typer.Option("--fluid", help="Fluid of the pair, or 'dry' as a filter.")
     ] = None,
-    dataset: Annotated[str | None, typer.Option("--dataset")] = None,
-    version: Annotated[str | None, typer.Option("--version")] = None,
-    particle: Annotated[str | None, typer.Option("--particle")] = None,
-    wall: Annotated[str | None, typer.Option("--wall")] = None,
-    min_st: Annotated[float | None, typer.Option("--min-st")] = None,
-    max_st: Annotated[float | None, typer.Option("--max-st")] = None,
-    regime: Annotated[str | None, typer.Option("--regime")] = None,
-    angle_range: Annotated[
-        str | None, typer.Option("--angle-range", help="Incidence angles, '10..40 deg'.")
-    ] = None,
+    dataset: options.Dataset = None,
+    version: options.Version = None,
+    particle: options.Particle = None,
+    wall: options.Wall = None,
+    min_normal_stokes: options.MinNormalStokes = None,
+    max_normal_stokes: options.MaxNormalStokes = None,
+    regime: options.Regime = None,
+    roughness_exceeds_gap: options.RoughnessExceedsGap = None,
+    rebound_expected: options.ReboundExpected = None,
+    angle_range: options.AngleRange = None,
     diameter: Annotated[
-        str, typer.Option("--diameter", help="Pair scenario: particle diameter.")
-    ] = "12.7 mm",
+        str | None,
+        typer.Option("--diameter", help='Pair: particle diameter, "12.7 mm" (assumed if omitted).'),
+    ] = None,
     velocity: Annotated[
-        str, typer.Option("--velocity", help="Pair scenario: impact speed.")
-    ] = "0.3 m/s",
+        str | None,
+        typer.Option("--velocity", help='Pair: impact speed, "0.3 m/s" (assumed if omitted).'),
+    ] = None,
     angle: Annotated[
-        str, typer.Option("--angle", help="Pair scenario: incidence angle.")
-    ] = "0 deg",
-    temperature: Annotated[str | None, typer.Option("--temperature")] = None,
-    viscosity: Annotated[str | None, typer.Option("--viscosity")] = None,
-    critical_stokes: Annotated[float, typer.Option("--critical-stokes")] = 10.0,
+        str | None, typer.Option("--angle", help='Pair: incidence angle, "30 deg" (default 0°).')
+    ] = None,
+    temperature: Annotated[
+        str | None, typer.Option("--temperature", help="Pair: fluid temperature.")
+    ] = None,
+    viscosity: Annotated[
+        str | None, typer.Option("--viscosity", help="Pair: override the fluid viscosity.")
+    ] = None,
+    wall_diameter: Annotated[
+        str | None,
+        typer.Option("--wall-diameter", help="Pair: diameter of a second sphere (default: wall)."),
+    ] = None,
+    critical_stokes: options.CriticalStokes = 10.0,
     fmt: Annotated[str, typer.Option("--format", "-f", help="html or md.")] = "html",
     output: Annotated[
         Path | None,
@@ -49,24 +66,29 @@ def report(
             "--output", "-o", help="File to write (default: named after the title, here)."
         ),
     ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="Overwrite the --output file if it exists.")
+    ] = False,
     title: Annotated[str | None, typer.Option("--title")] = None,
     db: DbOption = None,
 ) -> None:
     """Write a lab report: properties with sources, derived quantities, verdicts with the
     roughness flag, fits next to published values, figures and methods."""
-    from granudb.analysis.collisions import CollisionQuery
-    from granudb.api._inputs import angle as _angle
-    from granudb.api._inputs import angle_range as _angle_range
+    from granudb.api import _inputs
+    from granudb.api.collisions import collision_query
     from granudb.cli.common import open_db
     from granudb.cli.output import say
     from granudb.errors import ValidationError
     from granudb.report.build import dataset_report, pair_report
-    from granudb.report.write import write_report
+    from granudb.report.write import check_output, write_report
 
     if fmt not in {"html", "md"}:
         raise ValidationError("--format", fmt, "must be html or md")
     if title is not None and (len(title) > 300 or any(ord(c) < 32 for c in title)):
         raise ValidationError("--title", title[:40], "must be ≤ 300 printable characters")
+    if not critical_stokes > 0:
+        raise ValidationError("--critical-stokes", f"{critical_stokes:g}", "must be > 0")
+    check_output(output, force=force)
     asked = _asked(ctx)
     database = open_db(db)
     with database.session() as session:
@@ -80,30 +102,33 @@ def report(
                 wall=pair[1],
                 fluid=None if fluid in (None, "dry") else fluid,
                 diameter_m=quantity(diameter, "diameter_m", "--diameter"),
-                speed_m_s=quantity(velocity, "v_n_in_m_s", "--velocity"),
-                angle_rad=_angle(angle),
+                speed_m_s=quantity(velocity, "impact_speed_m_s", "--velocity"),
+                angle_rad=_inputs.angle(angle or "0 deg"),
                 temperature_c=quantity(temperature, "temperature_c", "--temperature"),
                 viscosity_pa_s=quantity(viscosity, "viscosity_pa_s", "--viscosity"),
+                wall_diameter_m=quantity(wall_diameter, "wall_diameter_m", "--wall-diameter"),
                 critical_stokes=critical_stokes,
+                assumed=set() if angle is not None else {"incidence_angle_rad"},
             )
         else:
-            query = CollisionQuery(
+            query = collision_query(
                 dataset=dataset,
                 version=version,
                 particle=particle,
                 wall=wall,
                 fluid=fluid,
-                min_normal_stokes=min_st,
-                max_normal_stokes=max_st,
-                angle_range=_angle_range(angle_range),
-                regime=None if regime == "rough" else regime,
-                roughness_exceeds_gap=True if regime == "rough" else None,
+                min_normal_stokes=min_normal_stokes,
+                max_normal_stokes=max_normal_stokes,
+                angle_range=angle_range,
+                regime=regime,
+                roughness_exceeds_gap=roughness_exceeds_gap,
+                rebound_expected=rebound_expected,
                 critical_stokes=critical_stokes,
             )
             report_data = dataset_report(
                 session, title=title, query_text=asked, database=database.display_url, query=query
             )
-    path = write_report(report_data, fmt, output)
+    path = write_report(report_data, fmt, output, force=force)
     say(f"wrote {path}")
 
 
@@ -112,7 +137,7 @@ def _asked(ctx: typer.Context) -> str:
     parts = ["granudb", "report"]
     for param in ctx.command.params:
         value = ctx.params.get(param.name)
-        if value is None or value == param.default or param.name == "db":
+        if value is None or value == param.default or param.name in {"db", "force"}:
             continue
         flag = max(param.opts, key=len)
         if isinstance(value, tuple):

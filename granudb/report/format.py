@@ -60,3 +60,113 @@ def display(value: Any, column: str) -> str:
     if shown in _PREFIXABLE:
         return engineering(float(value), shown)
     return f"{value:.4g} {shown}"
+
+
+def _decimals_for(error: float) -> int:
+    """Decimal places that keep 1–2 significant digits of ``error``: two when the
+    leading digit is 1 or 2 (rounding 0.14 to 0.1 would lose a third of it), else one."""
+    exponent = math.floor(math.log10(abs(error)))
+    leading = abs(error) / 10**exponent
+    digits = 2 if leading < 3 else 1
+    return digits - 1 - exponent
+
+
+def _fixed(value: float, decimals: int) -> str:
+    if decimals > 0:
+        return f"{value:.{decimals}f}"
+    step = 10 ** (-decimals)
+    return f"{round(value / step) * step:.0f}"
+
+
+def plus_minus(value: Any, error: Any, *, exact_below: float = 1e-9) -> str:
+    """``value ± error`` to the precision the uncertainty supports.
+
+    The uncertainty keeps one or two significant digits and the value is rounded to the
+    same decimal place, so ``0.34 ± 3.2e-05`` reads ``0.34000 ± 0.00003``. An uncertainty
+    below ``exact_below`` × |value| is floating-point noise of a perfect fit, shown as
+    ``± 0`` rather than ``± 1.4e-17``.
+
+    >>> plus_minus(0.10999999, 1.4e-17)
+    '0.11 ± 0 (exact fit)'
+    >>> plus_minus(0.3412, 0.0712)
+    '0.34 ± 0.07'
+    >>> plus_minus(0.97, 0.0123)
+    '0.970 ± 0.012'
+    """
+    if not _number(value):
+        return "—"
+    value = float(value)
+    if not _number(error):
+        return f"{value:.3g}"
+    error = abs(float(error))
+    if error <= exact_below * max(abs(value), 1e-300) or error == 0:
+        return f"{value:.3g} ± 0 (exact fit)"
+    decimals = _decimals_for(error)
+    if error >= 1e4 or abs(value) >= 1e6 or (error < 1e-4 and abs(value) < 1e-3):
+        exponent = math.floor(math.log10(abs(value) if value else error))
+        scale = 10.0**exponent
+        shown = plus_minus(value / scale, error / scale, exact_below=exact_below)
+        return f"({shown}) × 10{superscript(str(exponent))}"
+    return f"{_fixed(value, decimals)} ± {_fixed(error, decimals)}"
+
+
+def interval(value: Any, low: Any, high: Any) -> str:
+    """A value with an asymmetric interval, ``0.34 [0.30, 0.39]``, rounded like
+    ``plus_minus`` on the larger half-width."""
+    if not _number(value):
+        return "—"
+    if not (_number(low) and _number(high)):
+        return f"{float(value):.3g}"
+    half = max(abs(float(high) - float(value)), abs(float(value) - float(low)))
+    if half == 0:
+        return f"{float(value):.3g} [exact]"
+    decimals = max(_decimals_for(half), 0)
+    return (
+        f"{_fixed(float(value), decimals)} "
+        f"[{_fixed(float(low), decimals)}, {_fixed(float(high), decimals)}]"
+    )
+
+
+def _number(value: Any) -> bool:
+    return (
+        isinstance(value, int | float)
+        and not isinstance(value, bool)
+        and math.isfinite(float(value))
+    )
+
+
+_SUPERSCRIPT = str.maketrans("0123456789+-−=()n/.", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁻⁼⁽⁾ⁿ⁄·")
+_SUBSCRIPT = str.maketrans("0123456789+-=()", "₀₁₂₃₄₅₆₇₈₉₊₋₌₍₎")
+
+
+def superscript(text: str) -> str:
+    """``text`` in Unicode superscript characters (digits, signs, the fraction slash)."""
+    return text.translate(_SUPERSCRIPT)
+
+
+def unicode_math(text: Any) -> str:
+    """Formulas without TeX source: ``R^{3/2}`` becomes ``R³⁄²``, ``x_{1}`` ``x₁``.
+
+    Exponents the Unicode superscripts cannot spell are kept readable in parentheses
+    (``^(a+b)``) rather than as TeX braces.
+
+    >>> unicode_math("(μ₀U/(E*R))^{2/7} and a^{1/3}")
+    '(μ₀U/(E*R))²⁄⁷ and a¹⁄³'
+    """
+    import re
+
+    def sup(match: re.Match[str]) -> str:
+        body = match.group(1)
+        if re.fullmatch(r"[0-9+\-−=()n/.]+", body):
+            return superscript(body)
+        return f"^({body})"
+
+    def sub(match: re.Match[str]) -> str:
+        body = match.group(1)
+        if re.fullmatch(r"[0-9+\-=()]+", body):
+            return body.translate(_SUBSCRIPT)
+        return f"_{body}"
+
+    out = re.sub(r"\^\{([^{}]*)\}", sup, "" if text is None else str(text))
+    out = re.sub(r"\^([0-9])", lambda m: superscript(m.group(1)), out)
+    return re.sub(r"_\{([^{}]*)\}", sub, out)

@@ -4,19 +4,29 @@ Each function takes plain arrays and returns an SVG string with axis labels, uni
 legend. Output is byte-identical for the same input: matplotlib's SVG ids are seeded
 (``svg.hashsalt``), the date metadata is dropped, and dense data is thinned with a fixed
 random seed so 100,000 runs still make a figure of a few hundred kilobytes.
+
+Three rules keep the figures honest and consistent with the tables:
+- colours come from the caller (``granudb.report.groups``), one per group for the whole
+  report, and a group's fit lines share its points' colour;
+- legends sit below the axes, never over the data;
+- text is never parsed as mathtext (``text.parse_math`` off), so a material called
+  ``$\\frac{a}{b}$`` is drawn as typed instead of crashing the report, and a linear axis
+  never shows an offset or inflates a spread of 3×10⁻⁴ into the whole height.
 """
 
 from __future__ import annotations
 
 import io
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
 MAX_POINTS = 1500  # per series; more points add bytes, not information, to a scatter plot
-FIGSIZE = (6.0, 4.2)
-COLOURS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf"]
+FIGSIZE = (7.0, 4.2)
+#: A linear y-axis spans at least this fraction of the data's magnitude.
+MIN_RELATIVE_SPAN = 0.25
+GAMMA = "(–)"
 
 
 def _pyplot() -> Any:
@@ -32,6 +42,9 @@ def _pyplot() -> Any:
             "font.size": 10,
             "axes.grid": True,
             "grid.alpha": 0.3,
+            "text.usetex": False,
+            "text.parse_math": False,  # names are data, never mathtext
+            "axes.formatter.useoffset": False,
         }
     )
     return plt
@@ -58,17 +71,73 @@ def thin(*arrays: np.ndarray, limit: int = MAX_POINTS) -> tuple[np.ndarray, ...]
     return tuple(np.asarray(a)[keep] for a in arrays)
 
 
-def _scatter_groups(ax: Any, x: np.ndarray, y: np.ndarray, groups: Sequence[str]) -> None:
+def _legend(ax: Any, handles: Sequence[Any] | None = None) -> None:
+    """The legend below the axes, outside the data."""
+    kwargs: dict[str, Any] = {
+        "loc": "upper center",
+        "bbox_to_anchor": (0.5, -0.16),
+        "fontsize": 8,
+        "frameon": False,
+        "ncol": 2,
+    }
+    if handles is not None:
+        kwargs["handles"] = list(handles)
+    ax.legend(**kwargs)
+
+
+def _power_of_ten(value: float, _position: Any = None) -> str:
+    """A log-axis tick as Unicode (``10⁻³``): mathtext is off, so no ``$10^{-3}$``."""
+    from granudb.report.format import superscript
+
+    if value <= 0 or not np.isfinite(value):
+        return ""
+    exponent = np.log10(value)
+    if abs(exponent - round(exponent)) > 1e-9:
+        return ""
+    exponent = int(round(exponent))
+    return f"{10.0**exponent:g}" if -2 <= exponent <= 3 else f"10{superscript(str(exponent))}"
+
+
+def _log(ax: Any, *axes: str) -> None:
+    """Log scale on ``axes`` ("x", "y") with Unicode tick labels at the decades."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    for name in axes:
+        getattr(ax, f"set_{name}scale")("log")
+        axis = getattr(ax, f"{name}axis")
+        axis.set_major_locator(LogLocator(base=10))
+        axis.set_major_formatter(FuncFormatter(_power_of_ten))
+        axis.set_minor_formatter(NullFormatter())
+
+
+def _honest_limits(ax: Any, values: np.ndarray) -> None:
+    """Widen a linear y-axis around a tiny spread, so noise does not fill the figure."""
+    finite = np.asarray(values, float)
+    finite = finite[np.isfinite(finite)]
+    if finite.size == 0:
+        return
+    low, high = float(finite.min()), float(finite.max())
+    centre = (low + high) / 2
+    span = max(high - low, MIN_RELATIVE_SPAN * abs(centre), 1e-12)
+    if high - low < span:
+        ax.set_ylim(centre - span / 2 * 1.2, centre + span / 2 * 1.2)
+
+
+def _scatter_groups(
+    ax: Any, x: np.ndarray, y: np.ndarray, groups: Sequence[str], colours: Mapping[str, str]
+) -> None:
     labels = np.asarray(groups, dtype=object)
-    for index, name in enumerate(sorted(set(labels.tolist()))):
+    for name in sorted(set(labels.tolist())):
         mask = labels == name
         gx, gy = thin(x[mask], y[mask])
-        ax.scatter(
+        ax.plot(
             gx,
             gy,
-            s=14,
-            alpha=0.75,
-            color=COLOURS[index % len(COLOURS)],
+            "o",
+            ls="none",
+            ms=4.5,
+            alpha=0.8,
+            color=colours[name],
             label=f"{name} ({int(mask.sum())} runs)",
         )
 
@@ -78,72 +147,68 @@ def walton_plot(
     psi_out: np.ndarray,
     groups: Sequence[str],
     fits: Sequence[dict[str, Any]],
+    colours: Mapping[str, str],
     figure_id: str = "fig-walton",
 ) -> str:
     """Ψ_out against Ψ_in with the fitted Walton lines (Joseph & Hunt figures 4, 6, 9).
 
-    ``fits``: one dict per group with ``label``, ``rotational_restitution`` (β),
-    ``sliding_friction`` (μ_f), ``normal_restitution_mean`` (ē): sticking line
-    Ψ_out = −βΨ_in, sliding line Ψ_out = Ψ_in − μ_f(1+ē)(1 + 1/K²), K² = 2/5.
+    ``fits``: one dict per group with ``label`` (a key of ``colours``),
+    ``rotational_restitution`` (β), ``sliding_friction`` (μ_f) and
+    ``normal_restitution_mean`` (ē): sticking line Ψ_out = −βΨ_in, sliding line
+    Ψ_out = Ψ_in − μ_f(1+ē)(1 + 1/K²), K² = 2/5.
     """
+    from granudb.physics.impact import gyration_factor
+
     plt = _pyplot()
     figure, ax = plt.subplots(figsize=FIGSIZE)
     x, y = np.asarray(psi_in, float), np.asarray(psi_out, float)
-    _scatter_groups(ax, x, y, groups)
+    _scatter_groups(ax, x, y, groups, colours)
     top = float(np.nanmax(x)) if x.size else 1.0
     line = np.linspace(0.0, top, 50)
-    for index, fit in enumerate(fits):
-        colour = COLOURS[index % len(COLOURS)]
+    factor = float(gyration_factor())
+    for fit in fits:
+        colour = colours[fit["label"]]
         beta = fit.get("rotational_restitution")
         mu = fit.get("sliding_friction")
         e = fit.get("normal_restitution_mean")
-        if beta is not None and np.isfinite(beta):
-            ax.plot(
-                line,
-                -beta * line,
-                "--",
-                color=colour,
-                lw=1.2,
-                label=f"{fit['label']}: −βΨ_in, β = {beta:.3g}",
-            )
-        if mu is not None and e is not None and np.isfinite(mu) and np.isfinite(e):
-            ax.plot(
-                line,
-                line - mu * (1 + e) * 3.5,
-                "-",
-                color=colour,
-                lw=1.2,
-                label=f"{fit['label']}: sliding, μ_f = {mu:.3g}",
-            )
+        if _finite(beta):
+            ax.plot(line, -beta * line, "--", color=colour, lw=1.2,
+                    label=f"{fit['label']}: sticking, β = {beta:.2g}")  # fmt: skip
+        if _finite(mu) and _finite(e):
+            ax.plot(line, line - mu * (1 + e) * factor, "-", color=colour, lw=1.2,
+                    label=f"{fit['label']}: sliding, μ_f = {mu:.2g}")  # fmt: skip
     ax.axhline(0.0, color="black", lw=0.6)
     ax.set_xlabel("Ψ_in = v_T,in / v_N,in  (–)")
     ax.set_ylabel("Ψ_out = v_T,out / v_N,in  (–)")
     ax.set_title("Tangential rebound (Walton model)")
-    ax.legend(fontsize=7, loc="best")
+    _legend(ax)
     return _svg(figure, figure_id)
+
+
+def _finite(value: Any) -> bool:
+    return isinstance(value, int | float) and bool(np.isfinite(value))
 
 
 def against_incidence(
     psi_in: np.ndarray,
     values: np.ndarray,
     groups: Sequence[str],
+    colours: Mapping[str, str],
     *,
     ylabel: str,
     title: str,
     figure_id: str,
-    reference: float | None = None,
-    reference_label: str = "",
 ) -> str:
     """A per-collision parameter (β or μ_f) against Ψ_in (figures 7, 8, 10, 11)."""
     plt = _pyplot()
     figure, ax = plt.subplots(figsize=FIGSIZE)
-    _scatter_groups(ax, np.asarray(psi_in, float), np.asarray(values, float), groups)
-    if reference is not None and np.isfinite(reference):
-        ax.axhline(reference, color="black", ls=":", lw=1.0, label=reference_label)
+    y = np.asarray(values, float)
+    _scatter_groups(ax, np.asarray(psi_in, float), y, groups, colours)
+    _honest_limits(ax, y)
     ax.set_xlabel("Ψ_in = v_T,in / v_N,in  (–)")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
-    ax.legend(fontsize=7, loc="best")
+    _legend(ax)
     return _svg(figure, figure_id)
 
 
@@ -151,6 +216,7 @@ def restitution_vs_stokes(
     stokes: np.ndarray,
     restitution: np.ndarray,
     groups: Sequence[str],
+    colours: Mapping[str, str],
     curve: tuple[np.ndarray, np.ndarray, str] | None = None,
     critical_stokes: float | None = None,
     figure_id: str = "fig-restitution",
@@ -158,18 +224,18 @@ def restitution_vs_stokes(
     """e against the normal Stokes number, with the fitted curve (figure 5)."""
     plt = _pyplot()
     figure, ax = plt.subplots(figsize=FIGSIZE)
-    _scatter_groups(ax, np.asarray(stokes, float), np.asarray(restitution, float), groups)
+    _scatter_groups(ax, np.asarray(stokes, float), np.asarray(restitution, float), groups, colours)
     if curve is not None:
-        ax.plot(curve[0], curve[1], "-", color="black", lw=1.2, label=curve[2])
+        ax.plot(curve[0], curve[1], "-", color="#555555", lw=1.2, label=curve[2])
     if critical_stokes is not None:
         ax.axvline(
             critical_stokes, color="grey", ls="--", lw=1.0, label=f"St_c = {critical_stokes:g}"
         )
-    ax.set_xscale("log")
+    _log(ax, "x")
     ax.set_xlabel("normal Stokes number St_n = 2ρ_p R v_N,in / (9μ)  (–)")
     ax.set_ylabel("normal restitution e  (–)")
     ax.set_title("Restitution against Stokes number")
-    ax.legend(fontsize=7, loc="best")
+    _legend(ax)
     return _svg(figure, figure_id)
 
 
@@ -177,91 +243,111 @@ def friction_vs_shear_strain(
     strain: np.ndarray,
     friction: np.ndarray,
     groups: Sequence[str],
+    colours: Mapping[str, str],
     figure_id: str = "fig-shear-strain",
 ) -> str:
-    """μ_f against the shear strain (μ₀U/(E*R))^{2/7} (figure 15)."""
+    """μ_f against the shear strain (μ₀U/(E*R))²⁄⁷ (figure 15)."""
     plt = _pyplot()
     figure, ax = plt.subplots(figsize=FIGSIZE)
-    _scatter_groups(ax, np.asarray(strain, float), np.asarray(friction, float), groups)
-    ax.set_xscale("log")
-    ax.set_xlabel("shear strain (μ₀U / (E*R))^{2/7}  (–)")
+    y = np.asarray(friction, float)
+    _scatter_groups(ax, np.asarray(strain, float), y, groups, colours)
+    _honest_limits(ax, y)
+    _log(ax, "x")
+    ax.set_xlabel("shear strain (μ₀U / (E*R))²⁄⁷  (–)")
     ax.set_ylabel("friction coefficient μ_f  (–)")
     ax.set_title("Friction against shear strain")
-    ax.legend(fontsize=7, loc="best")
+    _legend(ax)
     return _svg(figure, figure_id)
 
 
 REGIME_COLOURS = {
     "no rebound": "#d9d9d9",
-    "rebound, asperity contact (σ > h_m)": "#fdae6b",
-    "rebound, full film (σ ≤ h_m)": "#9ecae1",
+    "rebound, asperity contact (σ > h_m)": "#fdd9b5",
+    "rebound, film (σ ≤ h_m)": "#cfe3f2",
 }
+#: Marker per measured regime of a run on the regime map.
+RUN_MARKERS = {"sticking": "o", "sliding": "^", "no rebound": "x", "normal impact": "s"}
 
 
 def regime_map(
     velocity_m_s: np.ndarray,
     viscosity_pa_s: np.ndarray,
     regime: np.ndarray,
-    gap_line: tuple[np.ndarray, np.ndarray] | None,
-    stokes_line: tuple[np.ndarray, np.ndarray] | None,
+    gap_ratio: np.ndarray,
+    stokes: np.ndarray,
+    critical_stokes: float,
+    *,
     point: tuple[float, float] | None = None,
+    runs: Sequence[dict[str, Any]] = (),
+    colours: Mapping[str, str] | None = None,
     figure_id: str = "fig-regime-map",
-    runs: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> str:
-    """Impact velocity × viscosity plane shaded by regime, with h_m = σ and St = St_c.
+    """Impact velocity × viscosity plane shaded by regime, with h_m = σ and St_n = St_c.
 
-    ``regime`` is a 2-D array of labels (keys of ``REGIME_COLOURS``) on the grid
-    ``viscosity_pa_s`` (rows) × ``velocity_m_s`` (columns).
+    ``regime``, ``gap_ratio`` (h_m/σ) and ``stokes`` (St_n) are 2-D arrays on the grid
+    ``viscosity_pa_s`` (rows) × ``velocity_m_s`` (columns), all from
+    ``granudb.physics.derive``; the two lines are their level sets. ``runs``: dicts with
+    ``v`` and ``mu`` arrays, a ``fluid`` (key of ``colours``) and a measured ``regime``
+    (key of ``RUN_MARKERS``).
     """
     from matplotlib.colors import ListedColormap
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     plt = _pyplot()
     names = list(REGIME_COLOURS)
     codes = np.vectorize(names.index)(regime)
-    figure, ax = plt.subplots(figsize=FIGSIZE)
+    figure, ax = plt.subplots(figsize=(FIGSIZE[0], FIGSIZE[1] + 0.6))
+    mu_axis = viscosity_pa_s * 1e3
     # contourf draws one polygon per region (a few kB); pcolormesh one per cell (~0.5 MB).
     ax.contourf(
         velocity_m_s,
-        viscosity_pa_s * 1e3,
+        mu_axis,
         codes,
         levels=np.arange(len(names) + 1) - 0.5,
         cmap=ListedColormap([REGIME_COLOURS[n] for n in names]),
     )
-    handles = [Patch(color=REGIME_COLOURS[n], label=n) for n in names]
-    if gap_line is not None:
-        (line,) = ax.plot(
-            gap_line[0], gap_line[1] * 1e3, "-", color="black", lw=1.4, label="h_m = σ"
-        )
-        handles.append(line)
-    if stokes_line is not None:
-        (line,) = ax.plot(
-            stokes_line[0], stokes_line[1] * 1e3, "--", color="black", lw=1.2, label="St_n = St_c"
-        )
-        handles.append(line)
-    if runs is not None and len(runs[0]):
-        rv, rmu = thin(np.asarray(runs[0], float), np.asarray(runs[1], float))
-        (dots,) = ax.plot(
-            rv,
-            rmu * 1e3,
-            ".",
-            color="black",
-            ms=3,
-            alpha=0.6,
-            label=f"measured runs ({len(runs[0])})",
-        )
-        handles.append(dots)
+    handles: list[Any] = [Patch(color=REGIME_COLOURS[n], label=n) for n in names]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if np.isfinite(gap_ratio).any():
+            ax.contour(velocity_m_s, mu_axis, np.log(gap_ratio), levels=[0.0],
+                       colors="black", linewidths=1.4)  # fmt: skip
+            handles.append(Line2D([], [], color="black", lw=1.4, label="h_m = σ"))
+        ax.contour(velocity_m_s, mu_axis, np.log(stokes / critical_stokes), levels=[0.0],
+                   colors="black", linewidths=1.2, linestyles="--")  # fmt: skip
+    handles.append(Line2D([], [], color="black", lw=1.2, ls="--", label="St_n = St_c"))
+    handles += _draw_runs(ax, runs, colours or {})
     if point is not None:
         (marker,) = ax.plot(
             [point[0]], [point[1] * 1e3], "*", color="crimson", ms=12, label="this collision"
         )
         handles.append(marker)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
+    _log(ax, "x", "y")
     ax.set_xlim(float(np.min(velocity_m_s)), float(np.max(velocity_m_s)))
-    ax.set_ylim(float(np.min(viscosity_pa_s)) * 1e3, float(np.max(viscosity_pa_s)) * 1e3)
+    ax.set_ylim(float(np.min(mu_axis)), float(np.max(mu_axis)))
     ax.set_xlabel("normal impact velocity v_N,in  (m/s)")
     ax.set_ylabel("fluid viscosity μ  (mPa·s)")
     ax.set_title("Regime map")
-    ax.legend(handles=handles, fontsize=7, loc="lower right")
+    _legend(ax, handles)
     return _svg(figure, figure_id)
+
+
+def _draw_runs(ax: Any, runs: Sequence[dict[str, Any]], colours: Mapping[str, str]) -> list[Any]:
+    """Measured runs: colour by fluid, marker by measured regime; one legend entry each."""
+    handles = []
+    for series in runs:
+        v, mu = thin(np.asarray(series["v"], float), np.asarray(series["mu"], float))
+        marker = RUN_MARKERS.get(series["regime"], "o")
+        (dots,) = ax.plot(
+            v,
+            mu * 1e3,
+            marker,
+            ls="none",
+            ms=6,
+            mew=1.3,
+            color=colours.get(series["fluid"], "#000000"),
+            markerfacecolor="none" if marker != "x" else None,
+            label=f"{series['fluid']}: {series['regime']} ({len(series['v'])} runs)",
+        )
+        handles.append(dots)
+    return handles

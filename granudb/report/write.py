@@ -1,5 +1,9 @@
 """Writing a report to disk: one self-contained HTML file, or Markdown with SVG files
-beside it (linked relatively, so the folder can be moved or committed as it is)."""
+beside it (linked relatively, so the folder can be moved or committed as it is).
+
+An existing file is never overwritten unless the caller says so (``force``): a report is
+often handed in, and regenerating it by accident must not destroy the copy.
+"""
 
 from __future__ import annotations
 
@@ -16,7 +20,21 @@ def default_name(report: dict[str, Any], fmt: str) -> str:
     return f"{slug}.{'html' if fmt == 'html' else 'md'}"
 
 
-def write_report(report: dict[str, Any], fmt: str, output: Path | None) -> Path:
+def check_output(path: Path | None, *, force: bool = False) -> None:
+    """Refuse, before any work, an output in a missing folder or an existing file
+    (unless ``force``). A folder is accepted: the file name is chosen later."""
+    if path is None or Path(path).is_dir():
+        return
+    path = Path(path)
+    if not path.parent.is_dir():
+        raise ValidationError("--output", str(path), "is in a folder that does not exist")
+    if path.exists() and not force:
+        raise ValidationError("--output", str(path), "exists (use --force to overwrite it)")
+
+
+def write_report(
+    report: dict[str, Any], fmt: str, output: Path | None, *, force: bool = False
+) -> Path:
     """Write ``report`` as ``fmt`` ("html" or "md") to ``output`` (default: a name made
     from the title, in the current folder); returns the path written."""
     if fmt not in {"html", "md"}:
@@ -24,8 +42,7 @@ def write_report(report: dict[str, Any], fmt: str, output: Path | None) -> Path:
     path = Path(output) if output is not None else Path.cwd() / default_name(report, fmt)
     if path.is_dir():
         path = path / default_name(report, fmt)
-    if not path.parent.is_dir():
-        raise ValidationError("--output", str(path), "is in a folder that does not exist")
+    check_output(path, force=force)
     if fmt == "md":
         folder = path.with_name(path.stem + "_figures")
         if report["figures"]:

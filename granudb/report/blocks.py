@@ -1,0 +1,208 @@
+"""The report's text blocks: property tables with sources, the scenario, derived
+quantities with symbols and units, and the roughness flag.
+
+Labels are for people (``E*, reduced modulus``) and keep the machine name beside them
+(``reduced_modulus_pa``, shown small and as a tooltip), so a reader can find the same
+number in JSON or CSV output.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from granudb.report.format import display, engineering, unicode_math
+from granudb.report.verdicts import GAP_DEFINITION, roughness_verdict
+from granudb.vocabulary import DERIVED_TERMS, TERMS
+
+PROPERTY_COLUMNS = [
+    "density_kg_m3",
+    "youngs_modulus_pa",
+    "poisson_ratio",
+    "roughness_rms_m",
+    "correlation_length_m",
+    "shear_modulus_pa",
+]
+
+
+def _title(column: str) -> str:
+    term = TERMS.get(column) or DERIVED_TERMS.get(column)
+    return term.title if term else column.replace("_", " ")
+
+
+def _source(record: dict[str, Any]) -> str:
+    key = record.get("source")
+    if not key:
+        return "—"
+    where = f", {record['source_locator']}" if record.get("source_locator") else ""
+    return f"{key}{where}"  # the full citation is in the references
+
+
+def _row(label: str, value: str, source: str, name: str | None = None) -> dict[str, Any]:
+    return {"label": label, "value": value, "source": source, "name": name, "symbol": None}
+
+
+def material_block(role: str, record: dict[str, Any]) -> dict[str, Any]:
+    """A material's stored properties, each with where it comes from."""
+    source = _source(record)
+    rows = []
+    for column in PROPERTY_COLUMNS:
+        note = source
+        if column == "shear_modulus_pa" and record.get("shear_modulus_derived"):
+            note = "derived: G = E / (2(1 + ν))"
+        rows.append(_row(_title(column), display(record.get(column), column), note, column))
+    return {"heading": f"{role}: {record['name']}", "rows": rows}
+
+
+def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, Any]:
+    """A fluid's properties; with ``state``, the viscosity and density actually used."""
+    source = _source(record)
+    rows = []
+    if state is not None:
+        rows += [
+            _row("Viscosity used", display(state.viscosity_pa_s, "viscosity_pa_s"), state.basis),
+            _row(
+                "Density used",
+                display(state.density_kg_m3, "density_kg_m3"),
+                record.get("density_source") or source,
+            ),
+            _row(
+                "Temperature",
+                display(state.temperature_c, "temperature_c"),
+                "given" if state.basis.startswith("interpolated") else "reference",
+            ),
+        ]
+    else:
+        rows += [
+            _row(
+                "Density",
+                display(record.get("reference_density_kg_m3"), "density_kg_m3"),
+                record.get("density_source") or source,
+            ),
+            _row(
+                "Reference temperature",
+                display(record.get("reference_temperature_c"), "temperature_c"),
+                source,
+            ),
+        ]
+    rows += [
+        _row(
+            "Reference viscosity",
+            display(record["reference_viscosity_pa_s"], "viscosity_pa_s"),
+            source,
+        ),
+        _row(
+            "Pressure–viscosity coefficient C",
+            display(record.get("pressure_viscosity_pa_inv"), "pressure_viscosity_pa_inv"),
+            record.get("pressure_viscosity_source") or "—",
+        ),
+        _row(
+            "Glycerol mass fraction",
+            display(record.get("glycerol_mass_fraction"), "glycerol_mass_fraction"),
+            source,
+        ),
+    ]
+    return {"heading": f"Fluid: {record['name']}", "rows": rows}
+
+
+def unit_label(name: str) -> str:
+    """The unit a person reads for a derived column (``GPa`` is in the value; here the
+    SI unit or "–" for a number)."""
+    term = DERIVED_TERMS.get(name)
+    return term.unit if term and term.unit else "–"
+
+
+def derived_rows(derived: dict[str, Any]) -> list[dict[str, Any]]:
+    """Every derived quantity present, as symbol, title, value with unit and relation."""
+    rows = []
+    for name, term in DERIVED_TERMS.items():
+        if name not in derived or name == "incidence_angle_rad":
+            continue
+        rows.append(
+            {
+                "symbol": term.symbol or name,
+                "label": f"{term.symbol}, {term.title.lower()}" if term.symbol else term.title,
+                "title": term.title.lower(),
+                "name": name,
+                "unit": unit_label(name),
+                "value": display(derived[name], name),
+                "relation": unicode_math(term.description),
+            }
+        )
+    return rows
+
+
+def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, Any]]:
+    """The scenario's inputs, each marked given or assumed (not given: a default)."""
+    rows = []
+    for name, label, column in (
+        ("diameter_m", "Particle diameter", "diameter_m"),
+        ("wall_diameter_m", "Second sphere diameter", "diameter_m"),
+        ("impact_speed_m_s", "Impact speed", "impact_speed_m_s"),
+        ("incidence_angle_rad", "Incidence angle", "incidence_angle_rad"),
+    ):
+        value = inputs.get(name)
+        if value is None and name == "wall_diameter_m":
+            continue
+        how = "assumed (not given; granudb's default)" if name in assumed else "given"
+        rows.append(
+            {
+                "symbol": None,
+                "label": label,
+                "name": name,
+                "unit": "",
+                "value": display(value, column),
+                "relation": how,
+            }  # fmt: skip
+        )
+    return rows
+
+
+def pair_flag(derived: dict[str, Any], immersed: bool) -> dict[str, Any]:
+    """The prominent flag of a scenario: σ against h_m, with the definition used and Λ."""
+    verdict = roughness_verdict(derived, immersed)
+    headline = (
+        "Roughness exceeds the EHD gap (σ > h_m): asperity contact, dry-like friction expected"
+        if verdict.raised
+        else verdict.name
+    )
+    return {"id": "roughness-flag", "raised": verdict.raised, "headline": headline,
+            "detail": verdict.text}  # fmt: skip
+
+
+def dataset_flag(frame: Any) -> dict[str, Any]:
+    """The prominent flag of a set of runs: how many immersed runs have σ > h_m."""
+    rough = frame[frame["roughness_exceeds_gap"].astype(bool) & frame["fluid"].notna()]
+    immersed = frame[frame["fluid"].notna()]
+    raised = not rough.empty
+    if immersed.empty:
+        detail = "All runs are dry."
+    else:
+        sigma = immersed["composite_roughness_m"]
+        detail = (
+            f"{len(rough)} of {len(immersed)} immersed runs have σ > h_m ({GAP_DEFINITION}); "
+            f"median Λ = h_m/σ = {float(np.nanmedian(immersed['film_parameter'])):.2g}, σ from "
+            f"{engineering(float(sigma.min()), 'm', 3)} to "
+            f"{engineering(float(sigma.max()), 'm', 3)}. "
+            + (
+                "Asperities touch through the film in those runs: expect dry-like friction."
+                if raised
+                else "The film separates the surfaces in every immersed run."
+            )
+        )
+    headline = (
+        f"Roughness exceeds the EHD gap (σ > h_m) in {len(rough)} runs: asperity contact"
+        if raised
+        else "Roughness within the EHD gap"
+    )
+    return {"id": "roughness-flag", "raised": raised, "headline": headline, "detail": detail}
+
+
+def no_runs_flag(description: str) -> dict[str, Any]:
+    return {
+        "id": "no-runs",
+        "raised": False,
+        "headline": "No stored collisions match",
+        "detail": f"Query: {description}.",
+    }

@@ -1,0 +1,259 @@
+"""The report's figures as dicts (id, SVG, caption): the regime map of a pair and the
+figures of a set of runs.
+
+The regime map is computed by ``granudb.physics.derive`` on a velocity × viscosity grid;
+its two lines are level sets of what derive returns (h_m/σ = 1, St_n = St_c), so no
+relation is re-derived here.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from granudb.report import plots
+from granudb.report.format import display
+from granudb.report.groups import fluid_colours, fluid_name, group_label
+
+#: Dry runs are drawn at the viscosity of air at 20 °C, so they appear on the map.
+AIR_VISCOSITY_PA_S = 1.8e-5
+_MATERIAL_KEYS = ("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m")
+
+
+def _regime_grid(
+    particle: dict[str, Any],
+    wall: dict[str, Any],
+    diameter_m: float,
+    fluid_density: float,
+    critical_stokes: float,
+    lowest_viscosity: float,
+) -> dict[str, Any]:
+    from granudb.physics.derive import derive
+
+    velocity = np.geomspace(1e-3, 3.0, 120)
+    viscosity = np.geomspace(lowest_viscosity, 1.0, 100)
+    v_grid, mu_grid = np.meshgrid(velocity, viscosity)
+    inputs = {f"particle_{k}": particle[k] for k in _MATERIAL_KEYS}
+    inputs.update({f"wall_{k}": wall[k] for k in _MATERIAL_KEYS})
+    out = derive(
+        **inputs,
+        diameter_m=diameter_m,
+        v_n_in_m_s=v_grid,
+        viscosity_pa_s=mu_grid,
+        fluid_density_kg_m3=fluid_density,
+        critical_stokes=critical_stokes,
+    )
+    regime = np.where(
+        ~out["rebound_expected"],
+        "no rebound",
+        np.where(
+            out["roughness_exceeds_gap"],
+            "rebound, asperity contact (σ > h_m)",
+            "rebound, film (σ ≤ h_m)",
+        ),
+    ).astype(object)
+    return {
+        "velocity": velocity,
+        "viscosity": viscosity,
+        "regime": regime,
+        "gap_ratio": np.asarray(out["film_parameter"], float),
+        "stokes": np.asarray(out["normal_stokes_number"], float),
+    }
+
+
+def regime_map_figure(
+    particle: dict[str, Any],
+    wall: dict[str, Any],
+    diameter_m: float,
+    fluid_density: float,
+    critical_stokes: float,
+    *,
+    point: tuple[float, float] | None = None,
+    runs: Sequence[dict[str, Any]] = (),
+    colours: Mapping[str, str] | None = None,
+    figure_id: str = "fig-regime-map",
+) -> dict[str, Any]:
+    """Impact velocity × viscosity plane for the pair, shaded by regime, with runs."""
+    has_dry = any(r["fluid"] == "dry" for r in runs)
+    grid = _regime_grid(
+        particle,
+        wall,
+        diameter_m,
+        fluid_density,
+        critical_stokes,
+        AIR_VISCOSITY_PA_S / 2 if has_dry else 1e-4,
+    )
+    svg = plots.regime_map(
+        grid["velocity"],
+        grid["viscosity"],
+        grid["regime"],
+        grid["gap_ratio"],
+        grid["stokes"],
+        critical_stokes,
+        point=point,
+        runs=runs,
+        colours=colours,
+        figure_id=figure_id,
+    )
+    caption = (
+        f"Regime map for {particle['name']} on {wall['name']}, d = "
+        f"{display(diameter_m, 'diameter_m')}: above the solid line h_m > σ (film); right of "
+        "the dashed line St_n > St_c (rebound)."
+    )
+    if runs:
+        count = sum(len(r["v"]) for r in runs)
+        caption += (
+            f" Markers: the {count} measured runs of this pair, coloured by fluid, shaped by "
+            "measured regime"
+            + (" (dry runs drawn at the viscosity of air, 0.018 mPa·s)." if has_dry else ".")
+        )
+    return {"id": figure_id, "svg": svg, "file": f"{figure_id}.svg", "caption": caption}
+
+
+def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> list[str]:
+    """Each run's measured regime: no rebound, normal impact, or sticking/sliding by the
+    Walton split of its group (runs at or above the split Ψ_in slide)."""
+    splits = {
+        (f["dataset"], f["particle"], f["wall"], fluid_name(f.get("fluid"))): f.get(
+            "split_effective_incidence", math.nan
+        )
+        for f in walton
+    }
+    out = []
+    for row in frame[["dataset", "particle", "wall", "fluid", "effective_incidence",
+                      "normal_restitution"]].itertuples(index=False):  # fmt: skip
+        dataset, particle, wall, fluid, psi, e = row
+        split = splits.get((dataset, particle, wall, fluid_name(fluid)), math.nan)
+        if not (isinstance(e, float) and e > 0):
+            out.append("no rebound")
+        elif not (isinstance(psi, float) and math.isfinite(psi) and psi > 0):
+            out.append("normal impact")
+        elif isinstance(split, float) and math.isfinite(split) and psi >= split:
+            out.append("sliding")
+        elif isinstance(split, float) and math.isfinite(split):
+            out.append("sticking")
+        else:
+            out.append("sticking")  # every run of the group on the sticking line
+    return out
+
+
+def pair_maps(
+    session: Any, frame: Any, walton: Sequence[Mapping[str, Any]], critical_stokes: float
+) -> list[dict[str, Any]]:
+    """One regime map per particle/wall pair, with every run of that pair on it."""
+    from granudb.db import catalog
+
+    regimes = np.asarray(measured_regimes(frame, walton), dtype=object)
+    fluids = np.asarray([fluid_name(f) for f in frame["fluid"]], dtype=object)
+    colours = fluid_colours(fluids.tolist())
+    densities = {f.name: f.reference_density_kg_m3 for f in catalog.list_fluids(session)}
+    figures = []
+    pairs = sorted({(p, w) for p, w in zip(frame["particle"], frame["wall"], strict=True)})
+    for index, (particle, wall) in enumerate(pairs):
+        mask = ((frame["particle"] == particle) & (frame["wall"] == wall)).to_numpy()
+        runs = _run_series(frame[mask], fluids[mask], regimes[mask])
+        wet = [densities[f] for f in set(fluids[mask].tolist()) if f in densities]
+        figure = regime_map_figure(
+            catalog.material_record(catalog.get_material(session, particle)),
+            catalog.material_record(catalog.get_material(session, wall)),
+            float(np.nanmedian(frame.loc[mask, "diameter_m"].to_numpy(float))),
+            float(np.median(wet)) if wet else math.nan,
+            critical_stokes,
+            runs=runs,
+            colours=colours,
+            figure_id="fig-regime-map" if index == 0 else f"fig-regime-map-{index + 1}",
+        )
+        figures.append(figure)
+    return figures
+
+
+def _run_series(frame: Any, fluids: np.ndarray, regimes: np.ndarray) -> list[dict[str, Any]]:
+    v = frame["v_n_in_m_s"].to_numpy(float)
+    mu = frame["viscosity_pa_s"].to_numpy(float)
+    mu = np.where(np.isfinite(mu), mu, AIR_VISCOSITY_PA_S)
+    series = []
+    for fluid in sorted(set(fluids.tolist()), key=lambda n: (n != "dry", n)):
+        for regime in plots.RUN_MARKERS:
+            keep = (fluids == fluid) & (regimes == regime)
+            if keep.any():
+                series.append({"v": v[keep], "mu": mu[keep], "fluid": fluid, "regime": regime})
+    return series
+
+
+def dataset_figures(
+    frame: Any,
+    labels: Sequence[str],
+    colours: Mapping[str, str],
+    walton: Sequence[Mapping[str, Any]],
+    restitution: Sequence[Mapping[str, Any]],
+    critical_stokes: float,
+) -> list[dict[str, Any]]:
+    """The Walton, β, μ_f, restitution and shear-strain figures of a set of runs."""
+    psi_in = frame["effective_incidence"].to_numpy(dtype=float)
+    lines = [{**r, "label": group_label(r["particle"], r["wall"], r.get("fluid"))} for r in walton]
+    figures = [
+        _figure("fig-walton", "Ψ_out against Ψ_in with the fitted Walton lines (figures 4, 6, 9).",
+                plots.walton_plot(psi_in, frame["effective_rebound"].to_numpy(float), labels,
+                                  lines, colours)),  # fmt: skip
+        _figure("fig-beta", "Rotational restitution β against Ψ_in (figures 7, 10).",
+                plots.against_incidence(psi_in, frame["rotational_restitution"].to_numpy(float),
+                                        labels, colours, ylabel="β = −v_T,out / v_T,in  (–)",
+                                        title="Rotational restitution", figure_id="fig-beta")),
+        _figure("fig-friction",
+                "Friction from one collision, μ_f (2.9), against Ψ_in (figures 8, 11).",
+                plots.against_incidence(psi_in, frame["sliding_friction"].to_numpy(float),
+                                        labels, colours, ylabel="μ_f (2.9)  (–)",
+                                        title="Friction coefficient", figure_id="fig-friction")),
+    ]  # fmt: skip
+    immersed = frame["normal_stokes_number"].notna().to_numpy()
+    if not immersed.any():
+        return figures
+    wet_labels = [g for g, m in zip(labels, immersed, strict=True) if m]
+    st_n = frame["normal_stokes_number"].to_numpy(float)[immersed]
+    e = frame["normal_restitution"].to_numpy(float)[immersed]
+    figures.append(
+        _figure(
+            "fig-restitution",
+            "Normal restitution against the normal Stokes number (figure 5).",
+            plots.restitution_vs_stokes(
+                st_n, e, wet_labels, colours, _restitution_curve(restitution, st_n),
+                critical_stokes,
+            ),
+        )
+    )  # fmt: skip
+    strain = frame["shear_strain"].to_numpy(float)[immersed]
+    figures.append(
+        _figure(
+            "fig-shear-strain",
+            "μ_f against the shear strain (μ₀U/(E*R))²⁄⁷ (figure 15).",
+            plots.friction_vs_shear_strain(
+                strain, frame["sliding_friction"].to_numpy(float)[immersed], wet_labels, colours
+            ),
+        )
+    )
+    return figures
+
+
+def _restitution_curve(
+    restitution: Sequence[Mapping[str, Any]], st_n: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, str] | None:
+    from granudb.analysis import fits
+
+    fitted = [r for r in restitution if _finite(r.get("parameter")) and _finite(r.get("e_dry"))]
+    if not fitted:
+        return None
+    r = fitted[0]
+    grid = np.geomspace(max(1.0, float(np.nanmin(st_n)) * 0.5), float(np.nanmax(st_n)) * 2, 200)
+    curve = fits.restitution_curve("threshold", grid, r["e_dry"], r["parameter"])
+    return grid, curve, f"threshold fit, St_c = {r['parameter']:.2g}"
+
+
+def _finite(value: Any) -> bool:
+    return isinstance(value, int | float) and math.isfinite(value)
+
+
+def _figure(figure_id: str, caption: str, svg: str) -> dict[str, Any]:
+    return {"id": figure_id, "file": f"{figure_id}.svg", "caption": caption, "svg": svg}

@@ -1,0 +1,66 @@
+"""One label and one colour per group of runs, shared by every figure and table of a
+report.
+
+A group is particle/wall in a fluid; a dry run's fluid is missing in the database (None,
+or NaN once pandas has had it), and it is called "dry" everywhere — never "nan". Colours
+are assigned once per report from the sorted labels, so the same group has the same
+colour in the Walton plot, the β and μ_f plots, the restitution plot and the tables.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from typing import Any
+
+#: Colour-blind-safe palette (Okabe & Ito), then a few more distinct hues.
+PALETTE = [
+    "#0072b2",
+    "#d55e00",
+    "#009e73",
+    "#cc79a7",
+    "#e69f00",
+    "#56b4e9",
+    "#000000",
+    "#8c564b",
+    "#7f7f7f",
+    "#bcbd22",
+]
+DRY = "dry"
+
+
+def fluid_name(fluid: Any) -> str:
+    """The fluid as people read it: its name, or "dry" for a missing fluid."""
+    if fluid is None or (isinstance(fluid, float) and math.isnan(fluid)):
+        return DRY
+    text = str(fluid)
+    return DRY if text.lower() in {"", "nan", "none", DRY} else text
+
+
+def is_dry(fluid: Any) -> bool:
+    return fluid_name(fluid) == DRY
+
+
+def group_label(particle: Any, wall: Any, fluid: Any) -> str:
+    """``steel/Zerodur glycerol-37``; ``steel/Zerodur dry`` for a dry group."""
+    return f"{particle}/{wall} {fluid_name(fluid)}"
+
+
+def labels_of(frame: Any) -> list[str]:
+    """The group label of every row of a collisions DataFrame."""
+    return [
+        group_label(p, w, f)
+        for p, w, f in zip(frame["particle"], frame["wall"], frame["fluid"], strict=True)
+    ]
+
+
+def colours(labels: Iterable[str]) -> dict[str, str]:
+    """A colour per distinct label, in sorted order (so two reports of the same groups
+    agree)."""
+    return {label: PALETTE[i % len(PALETTE)] for i, label in enumerate(sorted(set(labels)))}
+
+
+def fluid_colours(fluids: Iterable[Any]) -> dict[str, str]:
+    """A colour per fluid name for the regime maps (colour by fluid), dry first."""
+    names = sorted({fluid_name(f) for f in fluids}, key=lambda n: (n != DRY, n))
+    return {name: PALETTE[i % len(PALETTE)] for i, name in enumerate(names)}
