@@ -7,12 +7,12 @@ This package sits at the bottom of the layers: it imports nothing of granudb but
 ``granudb.errors``.
 """
 
+from granudb.vocabulary.derived import DERIVED_TERMS
 from granudb.vocabulary.rules import RULES, Rule, check_record, check_value
 from granudb.vocabulary.terms import (
     COLLISION_MEASURED,
     COLLISION_TARGET,
     COLLISION_TEXT,
-    DERIVED_TERMS,
     FLUID_PROPERTIES,
     MATERIAL_PROPERTIES,
     TABLES,
