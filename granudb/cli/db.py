@@ -103,17 +103,32 @@ def history(fmt: FormatOption = Format.table) -> None:
 
 
 @app.command()
-def seed(db: DbOption = None) -> None:
-    """Reload the shipped seed data: adds what is missing, updates what changed, says what."""
-    from granudb.api.database import load_seed
+def seed(
+    overwrite_edits: Annotated[
+        bool,
+        typer.Option(
+            "--overwrite-edits",
+            help="Revert values you changed to the seed's (says which, and asks first).",
+        ),
+    ] = False,
+    yes: YesOption = False,
+    db: DbOption = None,
+) -> None:
+    """Reload the shipped seed data: adds what is missing, updates what the seed changed,
+    keeps (and reports) every value you changed, unless --overwrite-edits."""
+    from granudb.api.seeding import reseed, seed_reverts
     from granudb.cli.common import open_db
+    from granudb.cli.confirm import confirm
     from granudb.cli.output import say
 
     database = open_db(db)
     if database.created:
         lines = database.seed_report
     else:
-        with database.session(write=True) as session:
-            lines = load_seed(session)
+        accepted = None
+        if overwrite_edits:
+            accepted = seed_reverts(database)
+            confirm("db seed --overwrite-edits", accepted, yes)
+        lines = reseed(database, overwrite_edits=overwrite_edits, accepted=accepted)
     for line in lines:
         say(line)
