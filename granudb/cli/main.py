@@ -100,7 +100,7 @@ def _usage_error(exc: Any) -> NoReturn:
 _FILE_PROBLEMS = {
     FileNotFoundError: "does not exist",
     IsADirectoryError: "is a folder, not a file",
-    NotADirectoryError: "has a part that is not a folder",
+    NotADirectoryError: "is not a folder (or lies inside a file)",
     FileExistsError: "already exists",
     PermissionError: "cannot be read or written (permission denied)",
 }

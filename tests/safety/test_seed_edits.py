@@ -35,7 +35,8 @@ def test_reseed_keeps_a_users_edit_and_reports_it(cli, db: str) -> None:
 def test_an_edit_made_by_another_tool_is_kept_too(cli, db: str) -> None:
     execute(
         db,
-        "UPDATE fluid_points SET viscosity_pa_s = 0.5 WHERE id = (SELECT min(id) FROM fluid_points)",
+        "UPDATE fluid_points SET viscosity_pa_s = 0.5 "
+        "WHERE id = (SELECT min(id) FROM fluid_points)",
     )
     before = dump_hash(db)
     lines = reseed(db)
