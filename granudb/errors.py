@@ -64,3 +64,8 @@ class SchemaError(GranudbError):
 
 class DatabaseAccessError(GranudbError):
     """The database cannot be opened or written (missing directory, read-only, full)."""
+
+
+class ConfirmationNeeded(GranudbError):
+    """A destructive change was asked for without the person's consent (``--yes`` or a
+    "y" at the prompt); nothing was changed."""

@@ -96,7 +96,7 @@ def test_add_show_update_remove_a_material(cli, db: str) -> None:
     same = cli("materials", "update", "PTFE", "--youngs-modulus", "550 MPa", db=db)
     assert "unchanged" in same.stdout
 
-    assert cli("materials", "remove", "PTFE", db=db).exit_code == 0
+    assert cli("materials", "remove", "PTFE", "--yes", db=db).exit_code == 0
     gone = cli("materials", "show", "PTFE", db=db)
     assert gone.exit_code == 1
     assert "known: glass, steel, Zerodur" in gone.stderr
@@ -131,7 +131,7 @@ def test_add_update_remove_a_fluid(cli, db: str) -> None:
         db=db,
     )
     assert "name 'silicone oil' → 'PDMS 10 cSt'" in updated.stdout
-    assert cli("fluids", "remove", "pdms 10 cst", db=db).exit_code == 0
+    assert cli("fluids", "remove", "pdms 10 cst", "--yes", db=db).exit_code == 0
 
 
 def test_removing_a_material_in_use_says_by_what(cli, db: str) -> None:

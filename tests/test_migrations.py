@@ -58,7 +58,9 @@ def test_upgrade_downgrade_upgrade_with_data(cli, db: str) -> None:
     database = open_database(path)
     with database.session() as session:
         assert session.scalar(select(func.count()).select_from(Material)) == 4
-    before, after = migration.downgrade(database, "base")
+    losses = migration.plan_downgrade(database, "base")
+    assert "table materials: all 4 rows" in losses
+    before, after = migration.downgrade(database, "base", accepted=losses)
     assert (before, after) == (migration.head_revision(), None)
     with database.engine.connect() as connection:
         assert migration.current_revision(connection) is None
@@ -84,7 +86,10 @@ def test_db_upgrade_on_current_database_says_so(cli, db: str) -> None:
 
 
 def test_cli_downgrade_and_upgrade(cli, db: str) -> None:
-    result = cli("db", "downgrade", "base", db=db)
+    refused = cli("db", "downgrade", "base", db=db)
+    assert refused.exit_code == 1 and "--yes" in refused.stderr
+    assert "glass" in cli("materials", "list", db=db).stdout
+    result = cli("db", "downgrade", "base", "--yes", db=db)
     assert result.exit_code == 0, result.stderr
     assert "→ empty" in result.stdout
     current = cli("db", "current", "--format", "json", db=db)

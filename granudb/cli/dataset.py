@@ -167,3 +167,6 @@ def import_(
         f"(content hash {result.content_hash[:16]}…); reused {len(result.reused)}, added "
         f"{len(result.added)} materials/fluids/sources"
     )
+
+
+from granudb.cli import dataset_lifecycle  # noqa: E402, F401 - registers remove, edit, release, …

@@ -7,6 +7,7 @@ from typing import Annotated
 import typer
 
 from granudb.cli.common import DbOption, Format, FormatOption
+from granudb.cli.confirm import YesOption
 
 app = typer.Typer(
     help="Schema migrations (Alembic) and the shipped seed data.", no_args_is_help=True
@@ -49,13 +50,24 @@ def upgrade(
 @app.command()
 def downgrade(
     revision: Annotated[str, typer.Argument(help='Target revision, or "base" to drop all.')],
+    yes: YesOption = False,
     db: DbOption = None,
 ) -> None:
-    """Migrate the database back to an older revision (may drop data of newer tables)."""
+    """Migrate the database back to an older revision.
+
+    Says first which tables and columns would lose values (and how many) and asks, or needs
+    --yes; a downgrade that loses nothing runs at once.
+    """
+    from granudb.cli.confirm import confirm
     from granudb.cli.output import say
     from granudb.db import migration
 
-    before, after = migration.downgrade(_open(db), revision)
+    database = _open(db)
+    losses = migration.plan_downgrade(database, revision)
+    confirm(f"db downgrade {revision}", losses, yes)
+    before, after = migration.downgrade(database, revision, accepted=losses)
+    for line in losses:
+        say(f"lost {line}")
     say(f"schema: {before or 'empty'} → {after or 'empty'}")
 
 
@@ -91,17 +103,32 @@ def history(fmt: FormatOption = Format.table) -> None:
 
 
 @app.command()
-def seed(db: DbOption = None) -> None:
-    """Reload the shipped seed data: adds what is missing, updates what changed, says what."""
-    from granudb.api.database import load_seed
+def seed(
+    overwrite_edits: Annotated[
+        bool,
+        typer.Option(
+            "--overwrite-edits",
+            help="Revert values you changed to the seed's (says which, and asks first).",
+        ),
+    ] = False,
+    yes: YesOption = False,
+    db: DbOption = None,
+) -> None:
+    """Reload the shipped seed data: adds what is missing, updates what the seed changed,
+    keeps (and reports) every value you changed, unless --overwrite-edits."""
+    from granudb.api.seeding import reseed, seed_reverts
     from granudb.cli.common import open_db
+    from granudb.cli.confirm import confirm
     from granudb.cli.output import say
 
     database = open_db(db)
     if database.created:
         lines = database.seed_report
     else:
-        with database.session(write=True) as session:
-            lines = load_seed(session)
+        accepted = None
+        if overwrite_edits:
+            accepted = seed_reverts(database)
+            confirm("db seed --overwrite-edits", accepted, yes)
+        lines = reseed(database, overwrite_edits=overwrite_edits, accepted=accepted)
     for line in lines:
         say(line)

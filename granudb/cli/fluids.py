@@ -7,6 +7,7 @@ from typing import Annotated
 import typer
 
 from granudb.cli.common import DbOption, Format, FormatOption, given, open_db, quantities
+from granudb.cli.confirm import YesOption
 
 app = typer.Typer(
     help="Fluids: density, viscosity and how it varies with temperature.", no_args_is_help=True
@@ -154,12 +155,16 @@ def update(
 
 
 @app.command()
-def remove(name: Name, db: DbOption = None) -> None:
-    """Remove a fluid (with its points) that no collision or published value uses."""
+def remove(name: Name, yes: YesOption = False, db: DbOption = None) -> None:
+    """Remove a fluid (with its points) that no collision or published value uses; asks first."""
+    from granudb.cli.confirm import confirm
     from granudb.cli.output import say
     from granudb.db import catalog
 
     database = open_db(db)
+    with database.session() as session:
+        losses = catalog.fluid_removal(session, name)
+    confirm(f"fluids remove {name}", losses, yes)
     with database.session(write=True) as session:
         fluid = catalog.remove_fluid(session, name)
     say(f"removed fluid {fluid.name}")

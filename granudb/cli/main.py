@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Any
+from typing import Any, NoReturn
 
+import click
 import typer
 from typer.core import TyperGroup
 
@@ -30,7 +31,23 @@ from granudb.version import __version__
 
 
 class GranudbGroup(TyperGroup):
-    """Turns granudb's refusals into a one-line error and a non-zero exit."""
+    """Turns granudb's refusals into a one-line error and a non-zero exit.
+
+    Three kinds of refusal, none of them a bug: a usage error (missing option or argument,
+    unknown option or command, a value outside a choice) is one line with the usage hint
+    and exit 2, click's usage code; a ``GranudbError`` is one line and its exit code (1);
+    a file-system error (unreadable, a folder for a file, not a folder, exists) is one line
+    naming the path and exit 1. Only what is left is reported as an internal error.
+    """
+
+    def make_context(self, *args: Any, **kwargs: Any) -> Any:
+        # The top-level options are parsed here, outside ``invoke``.
+        try:
+            return super().make_context(*args, **kwargs)
+        except _NO_ARGS:
+            raise
+        except _USAGE as exc:
+            _usage_error(exc)
 
     def invoke(self, ctx: typer.Context) -> Any:
         from granudb.errors import GranudbError, ValidationError
@@ -42,8 +59,16 @@ class GranudbGroup(TyperGroup):
             message = shown.replace("\n", " ")
             typer.echo(f"Error: {message}", err=True)
             raise typer.Exit(exc.exit_code) from None
+        except _NO_ARGS:
+            raise
+        except _USAGE as exc:
+            _usage_error(exc)
         except (typer.Exit, typer.Abort, KeyboardInterrupt, BrokenPipeError):
             raise
+        except OSError as exc:
+            if os.environ.get("GRANUDB_DEBUG") or exc.filename is None:
+                raise
+            _file_error(exc)
         except Exception as exc:
             if os.environ.get("GRANUDB_DEBUG"):
                 raise
@@ -55,6 +80,52 @@ class GranudbGroup(TyperGroup):
                 err=True,
             )
             raise typer.Exit(2) from None
+
+
+def _click_classes(name: str) -> tuple[type[Exception], ...]:
+    """click's exception class ``name``, and Typer's vendored copy of it (Typer ≥ 0.20
+    ships its own click, whose exceptions are not click's)."""
+    classes: list[type[Exception]] = [getattr(click.exceptions, name)]
+    try:
+        from typer._click import exceptions as vendored
+    except ImportError:  # a Typer that uses click itself
+        return tuple(classes)
+    classes.append(getattr(vendored, name))
+    return tuple(classes)
+
+
+_USAGE = _click_classes("UsageError")
+_NO_ARGS = _click_classes("NoArgsIsHelpError")
+
+
+def _usage_error(exc: Any) -> NoReturn:
+    """One line: what is wrong, then the command's usage and where to read more."""
+    message = " ".join(exc.format_message().split())
+    hint = ""
+    if exc.ctx is not None:
+        usage = " ".join(exc.ctx.get_usage().split())
+        hint = f" ({usage}; '{exc.ctx.command_path} --help' explains every option)"
+    typer.echo(f"Error: {message}{hint}", err=True)
+    raise typer.Exit(exc.exit_code)
+
+
+_FILE_PROBLEMS = {
+    FileNotFoundError: "does not exist",
+    IsADirectoryError: "is a folder, not a file",
+    NotADirectoryError: "is not a folder (or lies inside a file)",
+    FileExistsError: "already exists",
+    PermissionError: "cannot be read or written (permission denied)",
+}
+
+
+def _file_error(exc: OSError) -> NoReturn:
+    """A file-system refusal (bad path from outside) as one line naming the path."""
+    rule = next(
+        (text for kind, text in _FILE_PROBLEMS.items() if isinstance(exc, kind)),
+        exc.strerror or "cannot be used",
+    )
+    typer.echo(f"Error: {exc.filename}: {rule}; nothing was changed", err=True)
+    raise typer.Exit(1)
 
 
 app = typer.Typer(

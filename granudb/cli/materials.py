@@ -7,6 +7,7 @@ from typing import Annotated
 import typer
 
 from granudb.cli.common import DbOption, Format, FormatOption, given, open_db, quantities
+from granudb.cli.confirm import YesOption
 
 app = typer.Typer(help="Particle and wall materials (ρ, E, ν, roughness).", no_args_is_help=True)
 
@@ -143,12 +144,16 @@ def update(
 
 
 @app.command()
-def remove(name: Name, db: DbOption = None) -> None:
-    """Remove a material no collision or published value refers to."""
+def remove(name: Name, yes: YesOption = False, db: DbOption = None) -> None:
+    """Remove a material no collision or published value refers to; asks first."""
+    from granudb.cli.confirm import confirm
     from granudb.cli.output import say
     from granudb.db import catalog
 
     database = open_db(db)
+    with database.session() as session:
+        losses = catalog.material_removal(session, name)
+    confirm(f"materials remove {name}", losses, yes)
     with database.session(write=True) as session:
         material = catalog.remove_material(session, name)
     say(f"removed material {material.name}")

@@ -257,8 +257,21 @@ def _usage(session: Session, column: Any, *, role: str) -> list[str]:
     return [f"{n} collisions in dataset {d} {v} (as {role})" for d, v, n in rows]
 
 
+def material_removal(session: Session, name: str) -> list[str]:
+    """What removing the material deletes (for the confirmation); refuses one in use."""
+    material = _unused_material(session, name)
+    return [f"material {material.name}"]
+
+
 def remove_material(session: Session, name: str) -> Material:
     """Delete a material that nothing refers to; otherwise say what refers to it."""
+    material = _unused_material(session, name)
+    session.delete(material)
+    session.flush()
+    return material
+
+
+def _unused_material(session: Session, name: str) -> Material:
     material = get_material(session, name)
     uses = _usage(session, Collision.particle_id == material.id, role="particle")
     uses += _usage(session, Collision.wall_id == material.id, role="wall")
@@ -275,8 +288,6 @@ def remove_material(session: Session, name: str) -> Material:
         raise ConflictError(
             f"material: {material.name!r} is still used by {'; '.join(uses)}; remove those first"
         )
-    session.delete(material)
-    session.flush()
     return material
 
 
@@ -362,8 +373,21 @@ def update_fluid(
     return change
 
 
+def fluid_removal(session: Session, name: str) -> list[str]:
+    """What removing the fluid deletes (for the confirmation); refuses one in use."""
+    fluid = _unused_fluid(session, name)
+    return [f"fluid {fluid.name} with its {len(fluid.points)} viscosity points"]
+
+
 def remove_fluid(session: Session, name: str) -> Fluid:
     """Delete a fluid (and its viscosity points) that no collision or published value uses."""
+    fluid = _unused_fluid(session, name)
+    session.delete(fluid)
+    session.flush()
+    return fluid
+
+
+def _unused_fluid(session: Session, name: str) -> Fluid:
     fluid = get_fluid(session, name)
     uses = _usage(session, Collision.fluid_id == fluid.id, role="fluid")
     published = session.scalar(
@@ -375,8 +399,6 @@ def remove_fluid(session: Session, name: str) -> Fluid:
         raise ConflictError(
             f"fluid: {fluid.name!r} is still used by {'; '.join(uses)}; remove those first"
         )
-    session.delete(fluid)
-    session.flush()
     return fluid
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 from sqlalchemy import func, select
@@ -10,7 +11,7 @@ from sqlalchemy.orm import Session, aliased
 from granudb.db.datasets import COLUMNS
 from granudb.db.models import Collision, Dataset, Fluid, Material
 
-DATASET_COLUMNS = ["name", "version", "title", "runs", "content_hash", "license", "source"]
+DATASET_COLUMNS = ["name", "version", "state", "title", "runs", "content_hash", "license", "source"]
 COMPARED = ["particle_id", "wall_id", "fluid_id", *COLUMNS, "notes"]
 
 
@@ -27,6 +28,7 @@ def dataset_records(session: Session) -> list[dict[str, Any]]:
         {
             "name": d.name,
             "version": d.version,
+            "state": d.state,
             "title": d.title,
             "runs": runs.get(d.id, 0),
             "content_hash": d.content_hash,
@@ -50,6 +52,11 @@ def dataset_record(session: Session, dataset: Dataset) -> dict[str, Any]:
         "title": dataset.title,
         "description": dataset.description,
         "license": dataset.license,
+        "state": dataset.state,
+        "released_at": dataset.released_at,
+        "doi": dataset.doi,
+        "authors": json.loads(dataset.authors) if dataset.authors else [],
+        "keywords": json.loads(dataset.keywords) if dataset.keywords else [],
         "source": dataset.source.key if dataset.source else None,
         "citation": dataset.source.citation if dataset.source else None,
         "content_hash": dataset.content_hash,

@@ -76,6 +76,10 @@ def make_engine(url: str) -> Engine:
 
 def _check_sqlite_location(path: Path, is_default: bool) -> None:
     folder = path.parent
+    if path.is_dir():
+        raise DatabaseAccessError(f"database: {path} is a folder, not a database file")
+    if folder.exists() and not folder.is_dir():
+        raise DatabaseAccessError(f"database: {folder} is not a folder (choose another --db)")
     if not folder.exists():
         if is_default:
             folder.mkdir(parents=True, exist_ok=True)

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from sqlalchemy import inspect, text
 from sqlalchemy.engine import Connection
 
-from granudb.errors import SchemaError
+from granudb.errors import ConfirmationNeeded, SchemaError
 from granudb.resources import shipped_dir
 
 if TYPE_CHECKING:
@@ -147,18 +147,126 @@ def upgrade(database: Database, revision: str = "head") -> tuple[str | None, str
     return _run(database, "upgrade", revision)
 
 
-def downgrade(database: Database, revision: str) -> tuple[str | None, str | None]:
-    """Migrate back to ``revision`` ("base" drops every granudb table)."""
-    return _run(database, "downgrade", revision)
+def downgrade(
+    database: Database, revision: str, *, accepted: list[str] | None = None
+) -> tuple[str | None, str | None]:
+    """Migrate back to ``revision`` ("base" drops every granudb table).
+
+    A downgrade that would drop or change stored values (``downgrade_losses``) is refused
+    unless ``accepted`` is exactly the list of losses the person agreed to: recomputed
+    inside the schema transaction, so rows written after they agreed are never dropped
+    without their consent.
+    """
+    return _run(database, "downgrade", revision, accepted=accepted or [])
 
 
-def _run(database: Database, action: str, revision: str) -> tuple[str | None, str | None]:
+#: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
+#: rows that lose something, what happens to them). Checked constraints are not data.
+_STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
+    "0004": [
+        ("datasets", "authors", "authors IS NOT NULL", "dropped"),
+        ("datasets", "keywords", "keywords IS NOT NULL", "dropped"),
+        ("datasets", "state", "state <> 'draft'", "dropped (released versions become drafts)"),
+        ("datasets", "released_at", "released_at IS NOT NULL", "dropped"),
+    ],
+    "0003": [
+        ("materials", "yield_stress_pa", "yield_stress_pa IS NOT NULL", "dropped"),
+        *(
+            ("collisions", c, f"{c} IS NOT NULL", "dropped")
+            for c in (
+                "wall_v_n_in_m_s",
+                "wall_v_t_in_m_s",
+                "wall_omega_in_rad_s",
+                "wall_v_n_out_m_s",
+                "wall_v_t_out_m_s",
+                "wall_omega_out_rad_s",
+            )
+        ),
+        ("collisions", "omega_in_rad_s", "omega_in_rad_s IS NULL", "not measured, become 0.0"),
+        ("collisions", "omega_out_rad_s", "omega_out_rad_s IS NULL", "not measured, become 0.0"),
+        (
+            "collisions",
+            "nominal_angle_rad",
+            "nominal_angle_rad IS NULL",
+            "not recorded, become the centre's path angle",
+        ),
+    ],
+    "0002": [("datasets", "doi", "doi IS NOT NULL", "dropped")],
+}
+
+
+def _steps(connection: Connection, current: str | None, target: str) -> list[str] | None:
+    """The revisions whose downgrades run, newest first; None for "all of them" (base)."""
+    order = [r["revision"] for r in reversed(history())]
+    if current is None:
+        return []
+    if target == "base":
+        return None
+    at = order.index(current)
+    if target.startswith("-") and target[1:].isdigit():
+        below = at - int(target[1:])
+        if below < 0:
+            return None
+        target = order[below]
+    if target not in order:
+        raise SchemaError(
+            f"revision: {target!r} is not a revision to go back to (use base, -N or one "
+            f"of {', '.join(order)})"
+        )
+    return list(reversed(order[order.index(target) + 1 : at + 1]))
+
+
+def downgrade_losses(connection: Connection, revision: str) -> list[str]:
+    """What going back to ``revision`` would drop or alter, one phrase per table or column
+    with its row count (nothing listed: nothing is lost). Bookkeeping that granudb can do
+    without (``seed_records``, ``alembic_version``) is not counted."""
+    current = current_revision(connection)
+    steps = _steps(connection, current, revision)
+    if steps is None:
+        tables = sorted(set(inspect(connection).get_table_names()) - {"alembic_version"})
+        counts = {
+            t: connection.execute(text(f'SELECT count(*) FROM "{t}"')).scalar() for t in tables
+        }
+        return [f"table {t}: all {n} rows" for t, n in counts.items() if n and t != "seed_records"]
+    losses = []
+    for step in steps:
+        for table, column, condition, what in _STEP_LOSSES.get(step, []):
+            count = connection.execute(
+                text(f'SELECT count(*) FROM "{table}" WHERE {condition}')
+            ).scalar()
+            if count:
+                losses.append(f"{table}.{column}: {count} values {what}")
+    return losses
+
+
+def plan_downgrade(database: Database, revision: str) -> list[str]:
+    """``downgrade_losses`` for the database as it is now (read only)."""
+    with database.engine.connect() as connection:
+        check_revision(current_revision(connection), connection)
+        losses = downgrade_losses(connection, revision)
+        connection.rollback()
+    return losses
+
+
+def _run(
+    database: Database, action: str, revision: str, *, accepted: list[str] | None = None
+) -> tuple[str | None, str | None]:
     from alembic import command
     from alembic.util.exc import CommandError
 
     with schema_transaction(database) as connection:
         before = current_revision(connection)
         check_revision(before, connection)
+        if action == "downgrade":
+            losses = downgrade_losses(connection, revision)
+            if losses != (accepted or []):
+                raise ConfirmationNeeded(
+                    f"db downgrade {revision}: loses {'; '.join(losses)}; not confirmed, "
+                    "nothing was changed"
+                    if losses
+                    else f"db downgrade {revision}: the data changed since you confirmed; "
+                    "nothing was changed"
+                )
         try:
             getattr(command, action)(alembic_config(connection), revision)
         except CommandError as exc:

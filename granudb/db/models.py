@@ -243,13 +243,36 @@ class Dataset(Timestamped, Base):
     content_hash: Mapped[str | None] = mapped_column(String(80))
     #: The dataset's own DOI (e.g. a Zenodo version DOI), once it has been published.
     doi: Mapped[str | None] = mapped_column(String(200))
+    #: JSON list of people: {"given_names", "family_names", "orcid", "affiliation"}.
+    authors: Mapped[str | None] = mapped_column(Text)
+    #: JSON list of keywords.
+    keywords: Mapped[str | None] = mapped_column(Text)
+    #: draft (editable) → released (immutable) → superseded (a newer version was released).
+    state: Mapped[str] = mapped_column(String(20), default="draft", server_default="draft")
+    released_at: Mapped[datetime | None] = mapped_column(DateTime(timezone=True))
 
     source: Mapped[Source | None] = relationship(lazy="joined")
 
     __table_args__ = (
         UniqueConstraint("name", "version"),
         CheckConstraint("length(name) > 0", name="name_not_empty"),
+        CheckConstraint("state IN ('draft', 'released', 'superseded')", name="state_known"),
     )
+
+
+class SeedRecord(Base):
+    """The values ``db seed`` last wrote to one row (JSON), so a re-seed can tell a value
+    the user changed (it differs from this record) from one the seed changed, and leave the
+    user's edit alone. ``seed_key`` is the row's natural key in the seed files."""
+
+    __tablename__ = "seed_records"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    table_name: Mapped[str] = mapped_column(String(40))
+    seed_key: Mapped[str] = mapped_column(String(500))
+    seeded_values: Mapped[str] = mapped_column(Text)
+
+    __table_args__ = (UniqueConstraint("table_name", "seed_key"),)
 
 
 class Collision(Base):

@@ -1,21 +1,35 @@
 """Writing the seed data: idempotent upserts by natural key, every change reported.
 
 A second load changes nothing; a changed value updates its row and is reported field by
-field. Rows are never deleted by a load, so nothing a user added is lost. The records come
+field. Rows are never deleted by a load, so nothing a user added is lost, and a value the
+user changed is never reverted: each seeded row's values are recorded in
+``seed_records``, and a value that differs from what the seed last wrote (or from a row
+with no record, as in a database seeded before records existed) is the user's. It is
+kept and the difference reported, unless ``overwrite_edits`` is set; a seeded row the
+user removed or renamed is not added back either. The records come
 from ``granudb.io.seed.read_seed`` (the files people edit); the caller decides when to
 load them (first use, ``granudb db seed``).
 """
 
 from __future__ import annotations
 
+import json
 from collections import Counter
 from typing import Any
 
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from granudb.db.models import Fluid, FluidPoint, Material, PublishedValue, Source, name_key
-from granudb.db.upsert import Change, upsert
+from granudb.db.models import (
+    Fluid,
+    FluidPoint,
+    Material,
+    PublishedValue,
+    SeedRecord,
+    Source,
+    name_key,
+)
+from granudb.db.upsert import Change, same_value
 from granudb.errors import ValidationError
 
 
@@ -39,18 +53,36 @@ class _Resolver:
         found = self.session.scalars(select(model.id).filter_by(name_key=name_key(name)))
         row = found.one_or_none()
         if row is None:
+            row = self._renamed(model, name)
+        if row is None:
             raise ValidationError(where, name, f"names no {model.__tablename__[:-1]}")
         return row
 
+    def _renamed(self, model: type, name: str) -> int | None:
+        """The id of a seeded row the user renamed since (its seed record remembers it)."""
+        record = self.session.scalars(
+            select(SeedRecord).filter_by(
+                table_name=model.__tablename__, seed_key=_seed_key(model, {"k": name_key(name)})
+            )
+        ).one_or_none()
+        row_id = json.loads(record.seeded_values).get("_id") if record is not None else None
+        return row_id if row_id is not None and self.session.get(model, row_id) else None
 
-def apply_seed(session: Session, data: Any) -> list[str]:
+
+def apply_seed(session: Session, data: Any, *, overwrite_edits: bool = False) -> list[str]:
     """Write the seed records (``granudb.io.seed.SeedData``) by natural key.
 
-    Returns one line per change plus a summary line; raises ``ValidationError`` (and the
-    caller's transaction rolls back) if a record refers to something missing.
+    Returns one line per change (and per user edit kept or reverted) plus a summary line;
+    raises ``ValidationError`` (and the caller's transaction rolls back) if a record
+    refers to something missing.
     """
     resolve = _Resolver(session)
     changes: list[Change] = []
+
+    def upsert(
+        session: Session, model: type, key: dict[str, Any], values: dict[str, Any], label: str
+    ) -> tuple[None, Change]:
+        return None, _seed_row(session, model, key, values, label, overwrite_edits)
 
     for entry in data.sources:
         values = {k: entry.get(k) for k in ("citation", "doi", "url", "year", "notes")}
@@ -110,12 +142,86 @@ def apply_seed(session: Session, data: Any) -> list[str]:
     return summarize(changes)
 
 
+def _seed_key(model: type, key: dict[str, Any]) -> str:
+    return json.dumps([key[k] for k in sorted(key)], ensure_ascii=False)
+
+
+def _seed_row(
+    session: Session,
+    model: type,
+    key: dict[str, Any],
+    values: dict[str, Any],
+    label: str,
+    overwrite_edits: bool,
+) -> Change:
+    """Insert or update one seeded row, keeping every value the user changed."""
+    table = model.__tablename__
+    record = session.scalars(
+        select(SeedRecord).filter_by(table_name=table, seed_key=_seed_key(model, key))
+    ).one_or_none()
+    row = session.scalars(select(model).filter_by(**key)).one_or_none()
+    change: Change
+    if row is None and record is not None and not overwrite_edits:
+        return Change("kept", label, [("(row)", "removed or renamed by you", "seeded")])
+    if row is None:
+        row = model(**key, **values)
+        session.add(row)
+        session.flush()
+        change = Change("reverted" if record is not None else "added", label)
+        if record is not None:
+            change.diffs.append(("(row)", "removed or renamed by you", "added again"))
+    else:
+        recorded = json.loads(record.seeded_values) if record is not None else {}
+        applied, kept = [], []
+        for name, new in values.items():
+            old = getattr(row, name)
+            if same_value(old, new):
+                continue
+            edited = name not in recorded or not same_value(old, recorded[name])
+            if edited and not overwrite_edits:
+                kept.append((name, old, new))
+                continue
+            applied.append((name, old, new, edited))
+            setattr(row, name, new)
+        if any(edited for *_, edited in applied):
+            change = Change("reverted", label, [a[:3] for a in applied])
+        elif applied:
+            change = Change("updated", label, [a[:3] for a in applied])
+        else:
+            change = Change("kept" if kept else "unchanged", label, kept)
+        if kept and change.action != "kept":
+            change.diffs += [(f"{n} (kept)", o, v) for n, o, v in kept]
+    seeded = json.dumps({**values, "_id": row.id}, ensure_ascii=False, default=str)
+    if record is None:
+        session.add(
+            SeedRecord(table_name=table, seed_key=_seed_key(model, key), seeded_values=seeded)
+        )
+    else:
+        record.seeded_values = seeded
+    session.flush()
+    return change
+
+
+def _describe(change: Change) -> str:
+    parts = ", ".join(f"{name} {old!r} → {new!r}" for name, old, new in change.diffs)
+    if change.action == "kept":
+        shown = ", ".join(f"{n} {o!r} (seed: {v!r})" for n, o, v in change.diffs)
+        return (
+            f"kept your edit of {change.label}: {shown}; `granudb db seed "
+            "--overwrite-edits` takes the seed's"
+        )
+    if change.action == "reverted":
+        return f"reverted your edit of {change.label}: {parts}"
+    return f"updated {change.label}: {parts}"
+
+
 def summarize(changes: list[Change]) -> list[str]:
-    """One line per update, then a count of what was added, updated and left alone."""
-    lines = [c.describe() for c in changes if c.action == "updated"]
+    """One line per update, kept edit and reverted edit, then the counts."""
+    lines = [_describe(c) for c in changes if c.action in {"updated", "kept", "reverted"}]
     counts = Counter(c.action for c in changes)
+    extra = "".join(f", {counts[a]} of your edits {a}" for a in ("kept", "reverted") if counts[a])
     lines.append(
         f"seed: {counts['added']} added, {counts['updated']} updated, "
-        f"{counts['unchanged']} unchanged"
+        f"{counts['unchanged']} unchanged{extra}"
     )
     return lines
