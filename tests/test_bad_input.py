@@ -66,7 +66,7 @@ CASES = [
     ),
     (["materials", "add", "m", *MATERIAL[:-2]], "--roughness: (missing) is required"),
     (["materials", "add", "GLASS", *MATERIAL], "material: 'GLASS' already exists as 'glass'"),
-    (["materials", "add", " ", *MATERIAL], "material name:   must not be empty"),
+    (["materials", "add", " ", *MATERIAL], "material name: ' ' must not be empty"),
     (
         ["materials", "add", "m", *MATERIAL, "--source", "nobody-1999"],
         "source: 'nobody-1999' is not in the database",

@@ -199,3 +199,63 @@ def test_the_readme_one_liner(db: str) -> None:
     )
     assert result["reduced_modulus_pa"] == pytest.approx(65.64e9, rel=1e-4)
     assert granudb.materials(db=db).set_index("name").loc["glass", "youngs_modulus_pa"] == 6.0e10
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (
+            [
+                "fluids",
+                "add",
+                "Dry",
+                "--reference-viscosity",
+                "1 cP",
+                "--reference-density",
+                "1000 kg/m^3",
+            ],
+            "fluid name: Dry is reserved",
+        ),
+        (
+            [
+                "materials",
+                "add",
+                "st\u202eeel",
+                "--density",
+                "1 kg/m^3",
+                "--youngs-modulus",
+                "1 GPa",
+                "--poisson-ratio",
+                "0.3",
+                "--roughness",
+                "1 nm",
+            ],
+            "must not contain U+202E",
+        ),
+        (
+            [
+                "materials",
+                "add",
+                "zero\u200bwidth",
+                "--density",
+                "1 kg/m^3",
+                "--youngs-modulus",
+                "1 GPa",
+                "--poisson-ratio",
+                "0.3",
+                "--roughness",
+                "1 nm",
+            ],
+            "must not contain U+200B",
+        ),
+    ],
+)
+def test_catalogue_names_follow_the_shared_rules(cli, db: str, argv, expected) -> None:
+    """One set of name rules for CLI, CSV and packages (``vocabulary/text.py``); "dry" is
+    no fluid's name, because it means no fluid everywhere."""
+    from support import dump_hash
+
+    before = dump_hash(db)
+    out = cli(*argv, db=db)
+    assert out.exit_code == 1 and expected in out.stderr and out.stderr.count("\n") == 1
+    assert dump_hash(db) == before

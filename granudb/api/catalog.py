@@ -26,10 +26,11 @@ def materials(db: Any = None) -> Any:
     60000000000.0
     """
     from granudb.db import catalog
+    from granudb.vocabulary import columns
 
     with opened(db) as database, database.session() as session:
         records = [catalog.material_record(m) for m in catalog.list_materials(session)]
-    return _frame(records, catalog.MATERIAL_COLUMNS)
+    return _frame(records, columns.MATERIAL_COLUMNS)
 
 
 def fluids(db: Any = None) -> Any:
@@ -41,7 +42,8 @@ def fluids(db: Any = None) -> Any:
     0.0045
     """
     from granudb.db import catalog
+    from granudb.vocabulary import columns
 
     with opened(db) as database, database.session() as session:
         records = [catalog.fluid_record(f) for f in catalog.list_fluids(session)]
-    return _frame(records, catalog.FLUID_COLUMNS)
+    return _frame(records, columns.FLUID_COLUMNS)

@@ -28,10 +28,10 @@ VALUE_SOURCES = ("published", "dataset", "predicted")
 
 
 def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dict[str, Any]:
-    from granudb.db import catalog
+    from granudb.db import sources
 
     found: dict[str, Any] = {}
-    for row in catalog.published_records(session):
+    for row in sources.published_records(session):
         same_pair = (row["particle"], row["wall"]) == (particle, wall)
         if not same_pair or row["quantity"] not in ("normal_restitution_mean", "sliding_friction"):
             continue

@@ -60,13 +60,14 @@ def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """List every fluid (``points`` counts its viscosity–temperature points)."""
     from granudb.cli.output import emit
     from granudb.db import catalog
+    from granudb.vocabulary import columns
 
     database = open_db(db)
     with database.session() as session:
         records = [catalog.fluid_record(f) for f in catalog.list_fluids(session)]
     emit(
         records,
-        catalog.FLUID_TABLE_COLUMNS if fmt is Format.table else catalog.FLUID_COLUMNS,
+        columns.FLUID_TABLE_COLUMNS if fmt is Format.table else columns.FLUID_COLUMNS,
         fmt,
         title="Fluids",
     )
@@ -77,6 +78,7 @@ def show(name: Name, db: DbOption = None, fmt: FormatOption = Format.table) -> N
     """Show one fluid with its sources and its viscosity–temperature points."""
     from granudb.cli.output import emit, emit_one
     from granudb.db import catalog
+    from granudb.vocabulary import columns
 
     database = open_db(db)
     with database.session() as session:
@@ -87,11 +89,11 @@ def show(name: Name, db: DbOption = None, fmt: FormatOption = Format.table) -> N
     if fmt is Format.table:
         emit_one(record, fmt, title=f"Fluid {record['name']}")
         if points:
-            emit(points, catalog.POINT_COLUMNS, fmt, title="Viscosity–temperature points")
+            emit(points, columns.POINT_COLUMNS, fmt, title="Viscosity–temperature points")
     elif fmt is Format.json:
         emit_one(record, fmt, extra={"points": points})
     else:
-        emit(points, catalog.POINT_COLUMNS, fmt)
+        emit(points, columns.POINT_COLUMNS, fmt)
 
 
 @app.command()

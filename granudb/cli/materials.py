@@ -48,13 +48,14 @@ def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """List every material with its properties (SI in json/csv)."""
     from granudb.cli.output import emit
     from granudb.db import catalog
+    from granudb.vocabulary import columns
 
     database = open_db(db)
     with database.session() as session:
         records = [catalog.material_record(m) for m in catalog.list_materials(session)]
     emit(
         records,
-        catalog.MATERIAL_TABLE_COLUMNS if fmt is Format.table else catalog.MATERIAL_COLUMNS,
+        columns.MATERIAL_TABLE_COLUMNS if fmt is Format.table else columns.MATERIAL_COLUMNS,
         fmt,
         title="Materials",
     )

@@ -17,16 +17,16 @@ app = typer.Typer(
 def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """List every source."""
     from granudb.cli.output import emit
-    from granudb.db import catalog
+    from granudb.db import sources
 
     database = open_db(db)
     with database.session() as session:
-        records = [catalog.source_record(s) for s in catalog.list_sources(session)]
+        records = [sources.source_record(s) for s in sources.list_sources(session)]
     emit(
         records,
         ["key", "year", "kind", "citation", "doi"]
         if fmt is Format.table
-        else catalog.SOURCE_COLUMNS,
+        else sources.SOURCE_COLUMNS,
         fmt,
         title="Sources",
     )
@@ -40,14 +40,14 @@ def show(
 ) -> None:
     """Show a source, what cites it, and the published values it holds."""
     from granudb.cli.output import emit, emit_one
-    from granudb.db import catalog
+    from granudb.db import sources
 
     database = open_db(db)
     with database.session() as session:
-        source = catalog.get_source(session, key)
-        record = catalog.source_record(source)
-        usage = catalog.source_usage(session, source)
-        published = catalog.published_records(session, source)
+        source = sources.get_source(session, key)
+        record = sources.source_record(source)
+        usage = sources.source_usage(session, source)
+        published = sources.published_records(session, source)
     if fmt is Format.json:
         emit_one(record, fmt, extra={"cited_by": usage, "published_values": published})
     elif fmt is Format.csv:

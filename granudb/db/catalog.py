@@ -20,90 +20,14 @@ from granudb.db.models import (
     FluidPoint,
     Material,
     PublishedValue,
-    Source,
     name_key,
 )
+from granudb.db.sources import _key, get_source
 from granudb.db.upsert import Change, same_value
 from granudb.errors import ConflictError, NotFoundError, ValidationError
+from granudb.vocabulary.columns import FLUID_FIELDS, MATERIAL_FIELDS
 from granudb.vocabulary.rules import check_record
-
-MATERIAL_COLUMNS = [
-    "name",
-    "description",
-    "density_kg_m3",
-    "youngs_modulus_pa",
-    "poisson_ratio",
-    "roughness_rms_m",
-    "correlation_length_m",
-    "shear_modulus_pa",
-    "shear_modulus_derived",
-    "yield_stress_pa",
-    "source",
-    "source_locator",
-]
-MATERIAL_TABLE_COLUMNS = [
-    "name",
-    "density_kg_m3",
-    "youngs_modulus_pa",
-    "poisson_ratio",
-    "roughness_rms_m",
-    "shear_modulus_pa",
-    "source",
-]
-FLUID_COLUMNS = [
-    "name",
-    "description",
-    "glycerol_mass_fraction",
-    "reference_density_kg_m3",
-    "reference_viscosity_pa_s",
-    "reference_temperature_c",
-    "pressure_viscosity_pa_inv",
-    "source",
-    "source_locator",
-    "density_source",
-    "pressure_viscosity_source",
-    "points",
-]
-FLUID_TABLE_COLUMNS = [
-    "name",
-    "glycerol_mass_fraction",
-    "reference_density_kg_m3",
-    "reference_viscosity_pa_s",
-    "reference_temperature_c",
-    "pressure_viscosity_pa_inv",
-    "points",
-    "source",
-]
-POINT_COLUMNS = ["temperature_c", "viscosity_pa_s", "density_kg_m3", "source"]
-SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
-
-MATERIAL_FIELDS = {
-    "description",
-    "density_kg_m3",
-    "youngs_modulus_pa",
-    "poisson_ratio",
-    "roughness_rms_m",
-    "correlation_length_m",
-    "shear_modulus_pa",
-    "yield_stress_pa",
-    "source_locator",
-}
-FLUID_FIELDS = {
-    "description",
-    "glycerol_mass_fraction",
-    "reference_density_kg_m3",
-    "reference_viscosity_pa_s",
-    "reference_temperature_c",
-    "pressure_viscosity_pa_inv",
-    "source_locator",
-}
-
-
-def _key(source: Source | None) -> str | None:
-    return source.key if source is not None else None
-
-
-# --- materials -------------------------------------------------------------------------
+from granudb.vocabulary.text import check_name
 
 
 def material_record(material: Material) -> dict[str, Any]:
@@ -139,14 +63,6 @@ def get_material(session: Session, name: str) -> Material:
     if found is None:
         known = ", ".join(m.name for m in list_materials(session)) or "none yet"
         raise NotFoundError(f"material: {name!r} is not in the database (known: {known})")
-    return found
-
-
-def get_source(session: Session, key: str) -> Source:
-    found = session.scalars(select(Source).filter_by(key=key)).one_or_none()
-    if found is None:
-        known = ", ".join(s.key for s in list_sources(session)) or "none yet"
-        raise NotFoundError(f"source: {key!r} is not in the database (known: {known})")
     return found
 
 
@@ -422,70 +338,9 @@ def add_fluid_points(
     return len(points)
 
 
-# --- sources ---------------------------------------------------------------------------
-
-
-def source_record(source: Source) -> dict[str, Any]:
-    return {column: getattr(source, column) for column in SOURCE_COLUMNS}
-
-
-def list_sources(session: Session) -> list[Source]:
-    return list(session.scalars(select(Source).order_by(Source.key)))
-
-
-def source_usage(session: Session, source: Source) -> dict[str, int]:
-    """How many rows of each kind cite ``source``."""
-    counts = {}
-    for label, model in (
-        ("materials", Material),
-        ("fluids", Fluid),
-        ("published_values", PublishedValue),
-        ("datasets", Dataset),
-    ):
-        counts[label] = (
-            session.scalar(
-                select(func.count()).select_from(model).where(model.source_id == source.id)
-            )
-            or 0
-        )
-    return counts
-
-
-def published_records(session: Session, source: Source | None = None) -> list[dict[str, Any]]:
-    query = select(PublishedValue).order_by(PublishedValue.id)
-    if source is not None:
-        query = query.where(PublishedValue.source_id == source.id)
-    return [
-        {
-            "source": pv.source.key,
-            "source_locator": pv.source_locator,
-            "label": pv.label,
-            "quantity": pv.quantity,
-            "value": pv.value,
-            "uncertainty": pv.uncertainty,
-            "value_as_printed": pv.value_as_printed,
-            "particle": pv.particle.name if pv.particle else None,
-            "wall": pv.wall.name if pv.wall else None,
-            "fluid": pv.fluid.name if pv.fluid else None,
-            "condition": pv.condition,
-        }
-        for pv in session.scalars(query)
-    ]
-
-
-# --- shared ----------------------------------------------------------------------------
-
-MAX_NAME_LENGTH = 200
-
-
 def _check_name(kind: str, name: str) -> None:
-    if not name or not name.strip():
-        raise ValidationError(f"{kind} name", name, "must not be empty")
-    if name != name.strip():
-        raise ValidationError(f"{kind} name", repr(name), "must not start or end with spaces")
-    if len(name) > MAX_NAME_LENGTH:
-        raise ValidationError(
-            f"{kind} name", name[:20] + "…", f"must be at most {MAX_NAME_LENGTH} characters"
-        )
-    if any(ord(ch) < 32 for ch in name):
-        raise ValidationError(f"{kind} name", repr(name), "must not contain control characters")
+    """The shared name rules (``granudb.vocabulary.text``), named for this kind of row;
+    ``dry`` is reserved for fluids: it means "no fluid" everywhere."""
+    check_name(f"{kind} name", name)
+    if kind == "fluid" and name.casefold() == "dry":
+        raise ValidationError("fluid name", name, "is reserved: 'dry' means no fluid")

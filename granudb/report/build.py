@@ -153,7 +153,7 @@ def dataset_report(
 
 def _properties(session: Any, frame: Any) -> tuple[list[dict[str, Any]], dict[str, str]]:
     """Property blocks of every material and fluid the runs use, and their citations."""
-    from granudb.db import catalog
+    from granudb.db import catalog, sources
 
     blocks_out, keys = [], set()
     particles = sorted(set(frame["particle"]))
@@ -170,7 +170,7 @@ def _properties(session: Any, frame: Any) -> tuple[list[dict[str, Any]], dict[st
                  record.get("pressure_viscosity_source")}  # fmt: skip
     citations = {}
     for key in sorted(k for k in keys if k):
-        citations[key] = catalog.get_source(session, key).citation
+        citations[key] = sources.get_source(session, key).citation
     return blocks_out, citations
 
 
@@ -180,7 +180,7 @@ def add_collisions(session: Any, report: dict[str, Any], query: Any, *, pair: bo
     from granudb.analysis import fits
     from granudb.analysis.collisions import select_collisions
     from granudb.analysis.fluid_state import fluid_model
-    from granudb.db import catalog
+    from granudb.db import catalog, sources
 
     frame = select_collisions(session, query)
     if frame.empty:
@@ -195,7 +195,7 @@ def add_collisions(session: Any, report: dict[str, Any], query: Any, *, pair: bo
     palette = colours(labels)
     walton = fits.walton(frame)
     report["tables"].append(
-        tables.walton_table(walton, catalog.published_records(session), palette)
+        tables.walton_table(walton, sources.published_records(session), palette)
     )
     restitution = fits.restitution(frame, "threshold")
     if restitution:
