@@ -17,16 +17,49 @@ import typer
 from granudb.cli import options
 from granudb.cli.common import DbOption, quantity
 
+PairOption = Annotated[
+    tuple[str, str] | None,
+    typer.Option("--pair", help="PARTICLE WALL: a scenario report (plus their stored runs)."),
+]
+FluidOption = Annotated[
+    str | None, typer.Option("--fluid", help="Fluid of the pair, or 'dry' as a filter.")
+]
+DiameterOption = Annotated[
+    str | None,
+    typer.Option("--diameter", help='Pair: particle diameter, "12.7 mm" (assumed if omitted).'),
+]
+VelocityOption = Annotated[
+    str | None,
+    typer.Option("--velocity", help='Pair: impact speed, "0.3 m/s" (assumed if omitted).'),
+]
+AngleOption = Annotated[
+    str | None, typer.Option("--angle", help='Pair: incidence angle, "30 deg" (default 0°).')
+]
+TemperatureOption = Annotated[
+    str | None, typer.Option("--temperature", help="Pair: fluid temperature.")
+]
+ViscosityOption = Annotated[
+    str | None, typer.Option("--viscosity", help="Pair: override the fluid viscosity.")
+]
+WallDiameterOption = Annotated[
+    str | None,
+    typer.Option("--wall-diameter", help="Pair: diameter of a second sphere (default: wall)."),
+]
+FormatOption = Annotated[str, typer.Option("--format", "-f", help="html or md.")]
+OutputOption = Annotated[
+    Path | None,
+    typer.Option("--output", "-o", help="File to write (default: named after the title, here)."),
+]
+ForceOption = Annotated[
+    bool, typer.Option("--force", help="Overwrite the --output file if it exists.")
+]
+TitleOption = Annotated[str | None, typer.Option("--title")]
+
 
 def report(
     ctx: typer.Context,
-    pair: Annotated[
-        tuple[str, str] | None,
-        typer.Option("--pair", help="PARTICLE WALL: a scenario report (plus their stored runs)."),
-    ] = None,
-    fluid: Annotated[
-        str | None, typer.Option("--fluid", help="Fluid of the pair, or 'dry' as a filter.")
-    ] = None,
+    pair: PairOption = None,
+    fluid: FluidOption = None,
     dataset: options.Dataset = None,
     version: options.Version = None,
     particle: options.Particle = None,
@@ -37,39 +70,17 @@ def report(
     roughness_exceeds_gap: options.RoughnessExceedsGap = None,
     rebound_expected: options.ReboundExpected = None,
     angle_range: options.AngleRange = None,
-    diameter: Annotated[
-        str | None,
-        typer.Option("--diameter", help='Pair: particle diameter, "12.7 mm" (assumed if omitted).'),
-    ] = None,
-    velocity: Annotated[
-        str | None,
-        typer.Option("--velocity", help='Pair: impact speed, "0.3 m/s" (assumed if omitted).'),
-    ] = None,
-    angle: Annotated[
-        str | None, typer.Option("--angle", help='Pair: incidence angle, "30 deg" (default 0°).')
-    ] = None,
-    temperature: Annotated[
-        str | None, typer.Option("--temperature", help="Pair: fluid temperature.")
-    ] = None,
-    viscosity: Annotated[
-        str | None, typer.Option("--viscosity", help="Pair: override the fluid viscosity.")
-    ] = None,
-    wall_diameter: Annotated[
-        str | None,
-        typer.Option("--wall-diameter", help="Pair: diameter of a second sphere (default: wall)."),
-    ] = None,
+    diameter: DiameterOption = None,
+    velocity: VelocityOption = None,
+    angle: AngleOption = None,
+    temperature: TemperatureOption = None,
+    viscosity: ViscosityOption = None,
+    wall_diameter: WallDiameterOption = None,
     critical_stokes: options.CriticalStokes = 10.0,
-    fmt: Annotated[str, typer.Option("--format", "-f", help="html or md.")] = "html",
-    output: Annotated[
-        Path | None,
-        typer.Option(
-            "--output", "-o", help="File to write (default: named after the title, here)."
-        ),
-    ] = None,
-    force: Annotated[
-        bool, typer.Option("--force", help="Overwrite the --output file if it exists.")
-    ] = False,
-    title: Annotated[str | None, typer.Option("--title")] = None,
+    fmt: FormatOption = "html",
+    output: OutputOption = None,
+    force: ForceOption = False,
+    title: TitleOption = None,
     db: DbOption = None,
 ) -> None:
     """Write a lab report: properties with sources, derived quantities, verdicts with the
