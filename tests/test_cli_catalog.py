@@ -92,7 +92,7 @@ def test_add_show_update_remove_a_material(cli, db: str) -> None:
 
     updated = cli("materials", "update", "Ptfe", "--youngs-modulus", "0.55 GPa", db=db)
     assert updated.exit_code == 0
-    assert "youngs_modulus_pa 500000000.0 → 550000000.0" in updated.stdout
+    assert "youngs_modulus_pa 500 MPa → 550 MPa" in updated.stdout
     same = cli("materials", "update", "PTFE", "--youngs-modulus", "550 MPa", db=db)
     assert "unchanged" in same.stdout
 

@@ -259,3 +259,10 @@ def test_catalogue_names_follow_the_shared_rules(cli, db: str, argv, expected) -
     out = cli(*argv, db=db)
     assert out.exit_code == 1 and expected in out.stderr and out.stderr.count("\n") == 1
     assert dump_hash(db) == before
+
+
+def test_human_messages_use_engineering_notation(cli, db: str) -> None:
+    """``materials update`` said ``roughness_rms_m 2e-07 → 1.8e-07``: raw SI for a person."""
+    out = cli("materials", "update", "glass", "--roughness", "120 nm", db=db)
+    assert out.exit_code == 0, out.stderr
+    assert "roughness_rms_m 130.5 nm → 120 nm" in out.stdout

@@ -143,7 +143,7 @@ def update(
     db: DbOption = None,
 ) -> None:
     """Change some properties of a fluid; prints each change (old → new)."""
-    from granudb.cli.output import say
+    from granudb.cli.output import say_change
     from granudb.db import catalog
 
     values: dict[str, object] = _values(
@@ -153,7 +153,7 @@ def update(
     database = open_db(db)
     with database.session(write=True) as session:
         change = catalog.update_fluid(session, name, values, source=source, new_name=rename)
-    say(change.describe())
+    say_change(change)
 
 
 @app.command()

@@ -131,7 +131,7 @@ def update(
     db: DbOption = None,
 ) -> None:
     """Change some properties of a material; prints each change (old → new)."""
-    from granudb.cli.output import say
+    from granudb.cli.output import say_change
     from granudb.db import catalog
 
     values: dict[str, object] = _values(
@@ -141,7 +141,7 @@ def update(
     database = open_db(db)
     with database.session(write=True) as session:
         change = catalog.update_material(session, name, values, source=source, new_name=rename)
-    say(change.describe())
+    say_change(change)
 
 
 @app.command()

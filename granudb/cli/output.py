@@ -141,3 +141,19 @@ def emit_one(
     for column, value in record.items():
         table.add_row(label(column), Text(display(value, column)))
     console().print(table)
+
+
+def human(column: str, value: Any) -> str:
+    """A value as a person reads it: ``200 nm`` for ``roughness_rms_m`` 2e-07, ``80 °C``."""
+    from granudb.report.format import display
+
+    if value is None:
+        return "(none)"
+    if isinstance(value, str):
+        return repr(value)
+    return display(value, column)
+
+
+def say_change(change: Any) -> None:
+    """What an update did, field by field, in engineering notation with units."""
+    say(change.describe(human))

@@ -7,6 +7,7 @@ in a seed file updates its row and is reported field by field, never silently.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -29,10 +30,15 @@ class Change:
     label: str
     diffs: list[tuple[str, Any, Any]] = field(default_factory=list)
 
-    def describe(self) -> str:
+    def describe(self, shown: Callable[[str, Any], str] | None = None) -> str:
+        """One line; ``shown(column, value)`` formats a value for people (default: the SI
+        value as Python writes it), e.g. ``granudb.cli.output.human``."""
         if self.action != "updated":
             return f"{self.action} {self.label}"
-        parts = ", ".join(f"{name} {old!r} → {new!r}" for name, old, new in self.diffs)
+        show = shown or (lambda _column, value: repr(value))
+        parts = ", ".join(
+            f"{name} {show(name, old)} → {show(name, new)}" for name, old, new in self.diffs
+        )
         return f"updated {self.label}: {parts}"
 
 
