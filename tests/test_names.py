@@ -266,3 +266,15 @@ def test_human_messages_use_engineering_notation(cli, db: str) -> None:
     out = cli("materials", "update", "glass", "--roughness", "120 nm", db=db)
     assert out.exit_code == 0, out.stderr
     assert "roughness_rms_m 130.5 nm → 120 nm" in out.stdout
+
+
+def test_collisions_list_fits_100_columns(cli, db: str, monkeypatch) -> None:
+    """The default table: symbol headers, one line per run, nothing cut, at 100 columns."""
+    cli("collisions", "import", str(EXAMPLE), "--dataset", "ex", db=db)
+    monkeypatch.setenv("COLUMNS", "100")
+    out = cli("collisions", "list", db=db).stdout
+    lines = out.splitlines()
+    assert max(len(line.rstrip()) for line in lines) <= 100
+    assert "…" not in out
+    assert lines[1].split()[:4] == ["run", "pair", "fluid", "v_n,in"]
+    assert len([line for line in lines if line.startswith(("glass-", "steel-"))]) == 12

@@ -27,7 +27,6 @@ DEFAULT_COLUMNS = [
     "wall",
     "fluid",
     "v_n_in_m_s",
-    "incidence_angle_rad",
     "normal_restitution",
     "rotational_restitution",
     "effective_incidence",

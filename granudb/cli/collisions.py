@@ -160,5 +160,9 @@ def list_(
     records = frame.to_dict("records")
     if fmt is Format.table:
         for record in records:
-            record["fluid"] = record.get("fluid") or "dry"
+            if not isinstance(record.get("fluid"), str):
+                record["fluid"] = "dry"
+            record["pair"] = f"{record['particle']}/{record['wall']}"
+        if shown[1:3] == ["particle", "wall"]:
+            shown = ["run", "pair", *shown[3:]]  # one column: the narrow table fits 100
     emit(records, shown, fmt, title=f"Collisions ({len(records)} runs)", symbols=True)

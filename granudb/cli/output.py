@@ -85,6 +85,10 @@ def header(column: str, symbols: bool) -> str:
     return label(column)
 
 
+#: How Maw's regimes read in a narrow table (JSON and CSV keep the machine values).
+SHORT_WORDS = {"slip_then_stick": "slip→stick", "gross_slip": "gross slip"}
+
+
 def emit(
     records: Sequence[dict[str, Any]],
     columns: Sequence[str],
@@ -104,16 +108,26 @@ def emit(
         for row in rows:
             writer.writerow({k: "" if _clean(v) is None else _clean(v) for k, v in row.items()})
     else:
+        from rich import box
         from rich.table import Table
         from rich.text import Text
 
         from granudb.report.format import display
 
-        table = Table(title=Text(title) if title else None, title_justify="left")
+        narrow = {"box": box.SIMPLE_HEAD, "padding": (0, 0), "show_edge": False}
+        narrow = narrow if symbols else {}
+        table = Table(title=Text(title) if title else None, title_justify="left", **narrow)
         for column in columns:
             table.add_column(header(column, symbols), overflow="ellipsis", no_wrap=symbols)
+        digits = 3 if symbols else 4
         for row in rows:
-            table.add_row(*(Text(display(row[c], c)) for c in columns))
+            cells = (
+                SHORT_WORDS.get(v, v) if symbols and isinstance(v, str) else v
+                for v in (row[c] for c in columns)
+            )
+            table.add_row(
+                *(Text(display(v, c, digits)) for v, c in zip(cells, columns, strict=True))
+            )
         console().print(table)
 
 

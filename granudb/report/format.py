@@ -35,31 +35,37 @@ def engineering(value: float, unit: str, digits: int = 4) -> str:
     return f"{text} {_PREFIXES[exponent]}{unit}".strip()
 
 
-def display(value: Any, column: str) -> str:
-    """How a table shows the SI ``value`` of ``column`` to a person."""
+def display(value: Any, column: str, digits: int = 4) -> str:
+    """How a table shows the SI ``value`` of ``column`` to a person (``digits``
+    significant digits; a narrow terminal table uses 3)."""
     if value is None:
         return "—"
     if isinstance(value, bool):
         return "yes" if value else "no"
+    if hasattr(value, "item") and not isinstance(value, str):
+        value = value.item()  # a numpy scalar
     if not isinstance(value, int | float):
         return str(value)
     if isinstance(value, float) and math.isnan(value):
         return "—"
     unit = unit_of_column(column)
     shown = unit.display
+    g = f".{digits}g"
     if shown is None:
-        return f"{value:.4g}"
+        if 10**digits <= abs(value) < 1e7:
+            return f"{value:.0f}"  # 1098, not 1.1e+03: a Stokes number reads as a number
+        return format(value, g)
     if unit.suffix == "pa_s":
-        return f"{value * 1e3:.4g} mPa·s"
+        return f"{format(value * 1e3, g)} mPa·s"
     if unit.suffix == "rad":
-        return f"{math.degrees(value):.4g}°"
+        return f"{format(math.degrees(value), g)}°"
     if unit.suffix == "kg":
-        return engineering(value * 1e3, "g") if abs(value) < 1 else f"{value:.4g} kg"
+        return engineering(value * 1e3, "g", digits) if abs(value) < 1 else f"{value:{g}} kg"
     if unit.suffix == "fraction":
-        return f"{value * 100:.4g} %"
+        return f"{format(value * 100, g)} %"
     if shown in _PREFIXABLE:
-        return engineering(float(value), shown)
-    return f"{value:.4g} {shown}"
+        return engineering(float(value), shown, digits)
+    return f"{format(value, g)} {shown}"
 
 
 def _decimals_for(error: float) -> int:
