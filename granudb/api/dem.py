@@ -56,9 +56,12 @@ def _pair_values(
     from granudb.dem import Value, predicted_wet_restitution
 
     derived = _predicted(session, particle.name, wall, fluid.name if fluid else None, scenario)
+    lubricated = derived.get("lubricated_friction_state") == "in_range" and fluid is not None
     friction = Value(
         float(derived["friction_coefficient_used"]),
-        f"predicted: Maw's μ_f for {particle.name}/{wall} ({derived['tangential_regime']})",
+        f"predicted: lubricated μ_f (5.8) of {particle.name}/{wall} at the stated speed"
+        if lubricated
+        else "assumed: the dry friction 0.11 of Joseph & Hunt 2004 §3 (no value for this pair)",
     )
     dry = Value(DRY_RESTITUTION, "Joseph & Hunt 2004 §3: ē_dry = 0.97 ± 0.02 (assumed)")
     if values == "published":
@@ -92,8 +95,14 @@ def _dataset_values(
         mu = fit.get("sliding_friction")
         if mu is not None and mu == mu:
             low, high = fit.get("sliding_friction_low"), fit.get("sliding_friction_high")
-            interval = f", interval {low:.3g}–{high:.3g}" if low is not None else ""
+            interval = f", 95 % interval {low:.3g}–{high:.3g}" if low is not None else ""
             friction = Value(float(mu), f"dataset {dataset}: Walton fit{interval}")
+        elif fit.get("reason"):
+            friction = Value(
+                friction.value,
+                f"{friction.provenance}; dataset {dataset} does not determine μ_f "
+                f"({fit['reason']})",
+            )
         e = fit.get("normal_restitution_mean")
         if e is not None and e == e and fluid is None:
             dry = Value(min(float(e), 1.0), f"dataset {dataset}: mean e of the dry runs")
