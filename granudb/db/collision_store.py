@@ -79,7 +79,7 @@ def store_collisions(
     progress: Callable[[int], None] | None = None,
 ) -> int:
     """Write every frame of ``frames`` into ``target`` in one write transaction."""
-    from granudb.db.catalog import get_source
+    from granudb.db.sources import get_source
 
     rows = 0
     with database.session(write=True) as session:

@@ -498,7 +498,7 @@ class _Merger:
     def sources(self, rows: list[dict[str, Any]]) -> None:
         from sqlalchemy import select
 
-        from granudb.db.catalog import source_record
+        from granudb.db.sources import source_record
         from granudb.db.models import Source
 
         for row in rows:
