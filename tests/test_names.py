@@ -278,3 +278,21 @@ def test_collisions_list_fits_100_columns(cli, db: str, monkeypatch) -> None:
     assert "…" not in out
     assert lines[1].split()[:4] == ["run", "pair", "fluid", "v_n,in"]
     assert len([line for line in lines if line.startswith(("glass-", "steel-"))]) == 12
+
+
+def test_a_yield_stress_reaches_the_verdict(cli, db: str) -> None:
+    """A stored yield stress gives the yield speed and, above it, the elastic state."""
+    assert cli("materials", "update", "steel", "--yield-stress", "1.7 GPa", db=db).exit_code == 0
+    import granudb
+
+    # with the wall's yield stress unknown, "elastic" cannot be claimed
+    one_known = granudb.pair("steel", "Zerodur", diameter="12.7 mm", velocity="0.3 m/s", db=db)
+    assert one_known["elastic_state"] == "unknown"
+    assert cli("materials", "update", "Zerodur", "--yield-stress", "5 GPa", db=db).exit_code == 0
+
+    slow = granudb.pair("steel", "Zerodur", diameter="12.7 mm", velocity="0.3 m/s", db=db)
+    fast = granudb.pair("steel", "Zerodur", diameter="12.7 mm", velocity="5 m/s", db=db)
+    assert slow["yield_speed_m_s"] > 0.3 and slow["elastic_state"] == "elastic"
+    assert fast["elastic_state"] == "yield_exceeded" and not fast["quasi_static_valid"]
+    unknown = granudb.pair("glass", "Zerodur", diameter="12.7 mm", velocity="5 m/s", db=db)
+    assert unknown["elastic_state"] == "unknown"

@@ -30,7 +30,18 @@ Locator = Annotated[
 ]
 
 
-def _values(density, youngs, poisson, roughness, correlation, shear) -> dict[str, float]:
+YieldStress = Annotated[
+    str | None,
+    typer.Option(
+        "--yield-stress",
+        help='Yield stress in tension, "1.7 GPa" (with a --source: yield starts at 1.6 Y).',
+    ),
+]
+
+
+def _values(
+    density, youngs, poisson, roughness, correlation, shear, yield_stress=None
+) -> dict[str, float]:
     return quantities(
         {
             "density_kg_m3": (density, "--density"),
@@ -39,6 +50,7 @@ def _values(density, youngs, poisson, roughness, correlation, shear) -> dict[str
             "roughness_rms_m": (roughness, "--roughness"),
             "correlation_length_m": (correlation, "--correlation-length"),
             "shear_modulus_pa": (shear, "--shear-modulus"),
+            "yield_stress_pa": (yield_stress, "--yield-stress"),
         }
     )
 
@@ -86,6 +98,7 @@ def add(
     roughness: Roughness = None,
     correlation_length: Correlation = None,
     shear_modulus: Shear = None,
+    yield_stress: YieldStress = None,
     description: Description = None,
     source: SourceKey = None,
     source_locator: Locator = None,
@@ -106,7 +119,13 @@ def add(
         if value is None:
             raise ValidationError(option, "(missing)", "is required to add a material")
     values: dict[str, object] = _values(
-        density, youngs_modulus, poisson_ratio, roughness, correlation_length, shear_modulus
+        density,
+        youngs_modulus,
+        poisson_ratio,
+        roughness,
+        correlation_length,
+        shear_modulus,
+        yield_stress,
     )
     values.update(given(description=description, source_locator=source_locator))
     database = open_db(db)
@@ -124,6 +143,7 @@ def update(
     roughness: Roughness = None,
     correlation_length: Correlation = None,
     shear_modulus: Shear = None,
+    yield_stress: YieldStress = None,
     description: Description = None,
     source: SourceKey = None,
     source_locator: Locator = None,
@@ -135,7 +155,13 @@ def update(
     from granudb.db import catalog
 
     values: dict[str, object] = _values(
-        density, youngs_modulus, poisson_ratio, roughness, correlation_length, shear_modulus
+        density,
+        youngs_modulus,
+        poisson_ratio,
+        roughness,
+        correlation_length,
+        shear_modulus,
+        yield_stress,
     )
     values.update(given(description=description, source_locator=source_locator))
     database = open_db(db)

@@ -14,25 +14,12 @@ from typing import Any
 
 from granudb.io.tables import convert_frame, map_headers
 from granudb.resources import shipped_dir
+from granudb.vocabulary import FLUID_PROPERTIES, MATERIAL_PROPERTIES
 from granudb.vocabulary.rules import check_record
 
-MATERIAL_NUMERIC = [
-    "density_kg_m3",
-    "youngs_modulus_pa",
-    "poisson_ratio",
-    "roughness_rms_m",
-    "correlation_length_m",
-    "shear_modulus_pa",
-    "yield_stress_pa",
-]
+MATERIAL_NUMERIC = list(MATERIAL_PROPERTIES)
 MATERIAL_TEXT = ["name", "description", "source", "source_locator"]
-FLUID_NUMERIC = [
-    "glycerol_mass_fraction",
-    "reference_density_kg_m3",
-    "reference_viscosity_pa_s",
-    "reference_temperature_c",
-    "pressure_viscosity_pa_inv",
-]
+FLUID_NUMERIC = list(FLUID_PROPERTIES)
 FLUID_TEXT = [
     "name",
     "description",
