@@ -296,3 +296,30 @@ def test_a_yield_stress_reaches_the_verdict(cli, db: str) -> None:
     assert fast["elastic_state"] == "yield_exceeded" and not fast["quasi_static_valid"]
     unknown = granudb.pair("glass", "Zerodur", diameter="12.7 mm", velocity="5 m/s", db=db)
     assert unknown["elastic_state"] == "unknown"
+
+
+def test_listed_csv_cannot_run_as_a_spreadsheet_formula(cli, db: str) -> None:
+    for name in ('=HYPERLINK("http://x")', "+1+1", "@SUM(A1)"):
+        out = cli(
+            "materials",
+            "add",
+            name,
+            "--density",
+            "1 kg/m^3",
+            "--youngs-modulus",
+            "1 GPa",
+            "--poisson-ratio",
+            "0.3",
+            "--roughness",
+            "1 nm",
+            db=db,
+        )
+        assert out.exit_code == 0, out.stderr
+    rows = list(
+        csv.DictReader(io.StringIO(cli("materials", "list", "--format", "csv", db=db).stdout))
+    )
+    names = {r["name"] for r in rows}
+    assert {'\'=HYPERLINK("http://x")', "'+1+1", "'@SUM(A1)"} <= names
+    shown = json.loads(cli("materials", "list", "--format", "json", db=db).stdout)
+    assert '=HYPERLINK("http://x")' in {m["name"] for m in shown}  # stored as typed
+    assert all(not r["density_kg_m3"].startswith("'") for r in rows)
