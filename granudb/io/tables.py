@@ -2,8 +2,14 @@
 
 One rule for every table granudb reads (seed files, collision CSVs, data packages): a header
 is either granudb's own column name (``youngs_modulus_pa``, SI already) or the column's base
-name with a unit in brackets (``youngs_modulus [GPa]``, ``v_n_in [mm/s]``,
-``temperature [degC]``), converted with Pint once per column and then vectorized.
+name with a unit in brackets or parentheses (``youngs_modulus [GPa]``, ``v_n_in (mm/s)``,
+``temperature [degC]``, ``density [kg/m3]``), names matched case-insensitively, converted
+with Pint once per column (through ``granudb.io.units``' checks) and then vectorized.
+
+Files are read defensively before anything else happens: the header line with a size
+limit, at most ``MAX_HEADERS`` columns, every header problem reported in one line, every
+row's cell count checked; a semicolon- or tab-delimited file read as comma-delimited is
+refused with the options that read it.
 """
 
 from __future__ import annotations
