@@ -169,7 +169,7 @@ BAD = [
     ([_with(v_t_out="")], "row 2: v_t_out [mm/s]: (empty) is required"),
     ([GOOD, GOOD], "row 3: run: 'r1' appears twice"),
     ([_with(run="x" * 201)], "row 2: run: 'xxxxxxxxxxxxxxxxxxxx…' must be at most 200"),
-    ([_with(run="a\x01b")], "row 2: run: 'a\\x01b' must not contain control characters"),
+    ([_with(run="a\x01b")], "row 2: run: 'a\\x01b' must not contain U+0001 (control"),
     ([_with(temperature="-300")], "row 2: temperature [degC]: -300 must be > -273.15"),
     ([_with(diameter="0")], "row 2: diameter [mm]: 0 must be > 0"),
 ]

@@ -32,6 +32,13 @@ def import_(
     license: Annotated[
         str | None, typer.Option("--license", help="License of a new dataset, e.g. CC-BY-4.0.")
     ] = None,
+    delimiter: Annotated[
+        str, typer.Option("--delimiter", help="Cell separator: ',' (default), ';' or 'tab'.")
+    ] = ",",
+    decimal: Annotated[
+        str,
+        typer.Option("--decimal", help="Decimal separator: '.' (default) or ',' (with ';')."),
+    ] = ".",
     db: DbOption = None,
 ) -> None:
     """Import a CSV of collisions: all rows or none; a file is never imported twice."""
@@ -39,8 +46,20 @@ def import_(
 
     from granudb.cli.output import say
     from granudb.io.collisions_csv import import_collisions
+    from granudb.vocabulary.text import check_name
 
+    check_name("--dataset", dataset)
+    check_name("--version", version)
     database = open_db(db)
+    options = dict(
+        dataset=dataset,
+        version=version,
+        source=source,
+        title=title,
+        license=license,
+        delimiter=delimiter,
+        decimal=decimal,
+    )
     size = file.stat().st_size if file.is_file() else 0
     if size > PROGRESS_ABOVE_BYTES and sys.stderr.isatty():
         from rich.progress import BarColumn, Progress, TextColumn
@@ -53,25 +72,10 @@ def import_(
         ) as bar:
             task = bar.add_task("import", total=None)
             result = import_collisions(
-                database,
-                file,
-                dataset=dataset,
-                version=version,
-                source=source,
-                title=title,
-                license=license,
-                progress=lambda n: bar.update(task, completed=n),
+                database, file, progress=lambda n: bar.update(task, completed=n), **options
             )
     else:
-        result = import_collisions(
-            database,
-            file,
-            dataset=dataset,
-            version=version,
-            source=source,
-            title=title,
-            license=license,
-        )
+        result = import_collisions(database, file, **options)
     say(
         f"imported {result.rows:,} runs into dataset {result.dataset} {result.version} "
         f"(file sha256 {result.sha256[:12]}…)"

@@ -14,10 +14,17 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from sqlalchemy import select
+from sqlalchemy import func, select
 
 from granudb.db import datasets
-from granudb.db.models import Collision, CollisionImport, Fluid, Material, name_key
+from granudb.db.models import (
+    Collision,
+    CollisionImport,
+    Fluid,
+    FluidPoint,
+    Material,
+    name_key,
+)
 from granudb.errors import ConflictError, ValidationError
 from granudb.vocabulary import COLLISION_MEASURED
 
@@ -71,6 +78,80 @@ class NameIndex:
         return ids
 
 
+#: A run this close to its fluid's reference temperature is derived with the printed
+#: reference values; must equal ``granudb.analysis.derivation.REFERENCE_TOLERANCE_C``
+#: (tested), which this layer cannot import.
+REFERENCE_TOLERANCE_C = 0.5
+
+
+class FluidRanges:
+    """Which temperatures each fluid's stored data can serve, so no run is imported that
+    every later read (listing, fits, reports) would then fail to derive.
+
+    A run's viscosity is the printed reference value within ``REFERENCE_TOLERANCE_C`` of
+    the reference temperature, and otherwise interpolated between the fluid's points;
+    nothing is extrapolated. This mirrors ``granudb.analysis.derivation`` exactly.
+    """
+
+    def __init__(self, session: Any) -> None:
+        spans = {
+            fluid_id: (low, high, count)
+            for fluid_id, low, high, count in session.execute(
+                select(
+                    FluidPoint.fluid_id,
+                    func.min(FluidPoint.temperature_c),
+                    func.max(FluidPoint.temperature_c),
+                    func.count(),
+                ).group_by(FluidPoint.fluid_id)
+            )
+        }
+        self.fluids = {
+            name_key(name): (name, reference, *spans.get(fluid_id, (None, None, 0)))
+            for fluid_id, name, reference in session.execute(
+                select(Fluid.id, Fluid.name, Fluid.reference_temperature_c)
+            )
+        }
+
+    def check(self, frame: Any, dataset: str) -> None:
+        """Refuse the first row whose temperature its fluid's data does not cover."""
+        temperatures = frame["temperature_c"].to_numpy(dtype=float)
+        fluids = frame["fluid"]
+        given = ~np.isnan(temperatures) & fluids.notna().to_numpy()
+        if not given.any():
+            return
+        bad = np.zeros(len(frame), dtype=bool)
+        rules: dict[str, str] = {}
+        for name in fluids[given].unique():
+            known = self.fluids.get(name_key(str(name)))
+            if known is None:
+                continue  # refused as unknown when names are resolved
+            shown, reference, low, high, count = known
+            rows = given & (fluids == name).to_numpy()
+            t = temperatures
+            off = rows & (np.abs(t - reference) > REFERENCE_TOLERANCE_C)
+            if count < 2:
+                rules[name] = (
+                    f"differs from fluid {shown}'s reference temperature ({reference:g} °C) "
+                    "and the fluid has no viscosity–temperature points"
+                )
+            else:
+                off &= (t < low) | (t > high)
+                rules[name] = (
+                    f"is outside fluid {shown}'s viscosity data ({low:g}–{high:g} °C), which "
+                    "granudb does not extrapolate"
+                )
+            bad |= off
+        if bad.any():
+            pos = _first(bad)
+            header = frame.attrs.get("headers", {}).get("temperature_c", "temperature_c")
+            raise ValidationError(
+                header,
+                f"{temperatures[pos]:g} °C",
+                f"{rules[fluids.iloc[pos]]}; nothing was imported into dataset {dataset}",
+                row=int(frame.attrs.get("first_row", 2)) + pos,
+            )
+
+
 def store_collisions(
     database: Any,
     target: ImportTarget,
@@ -102,8 +183,10 @@ def store_collisions(
                 "rows); nothing was imported again"
             )
         names = NameIndex(session)
+        ranges = FluidRanges(session)
         seen = set(session.scalars(select(Collision.run).filter_by(dataset_id=dataset.id)))
         for frame in frames:
+            ranges.check(frame, target.dataset)
             rows += _store_frame(session, dataset.id, frame, names, seen)
             if progress is not None:
                 progress(rows)

@@ -189,12 +189,13 @@ def _read_descriptor(root: Path) -> dict[str, Any]:
 
 
 def _same_unit(declared: str, expected: str) -> bool:
-    from granudb.io.units import registry
+    from granudb.io.units import check_unit_expression, registry
 
     try:
+        spelled = check_unit_expression(declared)  # bounded cost: m**(9**9**9) never reaches Pint
         ureg = registry()
-        factor = ureg.Quantity(1.0, declared.replace("µ", "u")).to(expected).magnitude
-        offset = ureg.Quantity(0.0, declared.replace("µ", "u")).to(expected).magnitude
+        factor = ureg.Quantity(1.0, spelled).to(expected).magnitude
+        offset = ureg.Quantity(0.0, spelled).to(expected).magnitude
     except Exception:  # noqa: BLE001 - any Pint failure means "not the same unit"
         return False
     return math.isclose(factor - offset, 1.0, rel_tol=1e-12) and abs(offset) < 1e-12

@@ -1,10 +1,28 @@
-"""Units at the edges: parse what people type.
+"""Units at the edges: parse what people type, with bounded cost and no guessing.
 
 Inside granudb every number is SI and every name carries its unit
-(``youngs_modulus_pa``). People type ``"190 GPa"`` or ``"4.5 cP"``; this module turns that
-into a float in the column's unit with Pint, refusing a wrong dimension by field name,. Formatting
-for people (``60 GPa``, ``130.5 nm``) is ``granudb.report.format``; the unit table both read
-is ``granudb.vocabulary.units``.
+(``youngs_modulus_pa``). People type ``"190 GPa"`` or ``"4.5 cP"``, and files carry units
+in their headers (``v_n_in [mm/s]``); this module turns both into a float in the column's
+unit with Pint, refusing a wrong dimension by field name. Formatting for people
+(``60 GPa``, ``130.5 nm``) is ``granudb.report.format``; the unit table both read is
+``granudb.vocabulary.units``.
+
+Every unit expression, from any door (an option, a CSV header, a package schema), first
+goes through ``check_unit_expression``: a short allow-list grammar (names, ``*``, ``/``,
+small literal exponents, at most three levels of parentheses, at most 60 characters).
+Pint evaluates what it parses as Python-like arithmetic, so ``m**(9**9**9)`` would
+otherwise run for ever (holding whatever lock the caller holds); after this check Pint
+only ever sees a few tokens with exponents of at most 12.
+
+Three readings Pint would make silently are refused or made explicit here:
+
+- a comma inside a number (``"2,5 g/cm^3"``: Pint drops it and reads 25) is refused with
+  the number written with a decimal point;
+- radians are dimensionless to Pint, so ``%`` would be an angle and ``deg`` a fraction:
+  an angle needs an angle unit (deg, rad, …) and a fraction must not be one;
+- a frequency in an angular-velocity column: ``Hz`` (and kHz, …) is read as revolutions
+  per second and converted with 2π (10 Hz = 62.83 rad/s), as ``rpm`` already is; a bare
+  inverse time (``1/s``) is refused as ambiguous (rad/s or rev/s?).
 
 Pint is imported lazily (one registry for the whole program) so ``granudb --help`` stays fast.
 """
@@ -13,11 +31,19 @@ from __future__ import annotations
 
 import math
 import re
-from functools import cache
+from functools import cache, lru_cache
 from typing import Any
 
 from granudb.errors import ValidationError
 from granudb.vocabulary.units import UNITS, Unit
+
+#: Longest quantity (``"12.7 mm"``) and unit expression (``"kg/m^3"``) read, in characters.
+MAX_QUANTITY_CHARS = 100
+MAX_UNIT_CHARS = 60
+#: Largest exponent magnitude (``m^3``, ``s^-2``; no physical unit needs more) and
+#: parenthesis depth in a unit expression.
+MAX_EXPONENT = 12
+MAX_DEPTH = 3
 
 
 @cache
@@ -30,7 +56,200 @@ def registry() -> Any:
     return ureg
 
 
-_NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
+class UnitSyntaxError(ValueError):
+    """A unit expression outside the allowed grammar; ``str()`` is the rule broken."""
+
+
+_SUPERSCRIPT = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789-+")
+#: One token of a unit expression, tried in this order at each position.
+_TOKEN = re.compile(
+    r"(?P<space>\s+)"
+    r"|(?P<power>\*\*|\^)"
+    r"|(?P<op>[*/·⋅×])"
+    r"|(?P<open>\()|(?P<close>\))"
+    r"|(?P<name>[A-Za-z_°µμΩ]+|%|‰)(?P<implicit>-?[0-9]+(?![0-9.]))?(?P<sup>[⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺]+)?"
+    r"|(?P<number>[0-9]+(?:\.[0-9]+)?(?:[eE][-+]?[0-9]{1,3})?(?![0-9]))"
+)
+#: What may follow ``^`` or ``**``: a small number, or a fraction in parentheses.
+_EXPONENT = re.compile(
+    r"\s*(?:(?P<plain>[-+]?[0-9]{1,2}(?:\.[0-9]{1,3})?(?![0-9A-Za-z_.]))"
+    r"|\(\s*(?P<num>[-+]?[0-9]{1,2}(?:\.[0-9]{1,3})?)\s*(?:/\s*(?P<den>[0-9]{1,2})\s*)?\))"
+)
+
+
+def _exponent(text: str) -> str:
+    """A checked exponent as Pint should read it (``3``, ``-1``, ``(1/2)``)."""
+    try:
+        value = float(text.strip("()").split("/")[0])
+    except ValueError:
+        raise UnitSyntaxError(f"has an exponent {text!r} that is not a number") from None
+    if abs(value) > MAX_EXPONENT:
+        raise UnitSyntaxError(f"has an exponent {text} larger than {MAX_EXPONENT}")
+    return text.replace(" ", "")
+
+
+def _name(match: re.Match[str]) -> str:
+    name = match["name"].replace("µ", "u").replace("μ", "u")
+    name = {"%": "percent", "‰": "permille"}.get(name, name)
+    power = match["implicit"] or (match["sup"] or "").translate(_SUPERSCRIPT)
+    # m3, s-1, m³: the exponent written straight after the name, as lab files do.
+    return f"{name}**{_exponent(power)}" if power else name
+
+
+def check_unit_expression(text: str) -> str:
+    """``text`` rewritten for Pint, or ``UnitSyntaxError`` naming what is not allowed.
+
+    The one gate every unit string passes before Pint sees it, so parsing costs at most a
+    few dozen tokens whatever the input. ``kg/m3``, ``m s-1`` and ``m³`` are accepted
+    (exponents straight after a name), and numbers as factors (``1/Pa``,
+    ``cSt * 0.96 g/cm^3``); an exponent that is not a literal of at most ``MAX_EXPONENT``,
+    more than ``MAX_DEPTH`` nested parentheses or any other character is refused.
+
+    >>> check_unit_expression("kg/m3")
+    'kg/m**3'
+    """
+    text = text.strip()
+    if len(text) > MAX_UNIT_CHARS:
+        raise UnitSyntaxError(f"is longer than {MAX_UNIT_CHARS} characters")
+    out: list[str] = []
+    depth = position = 0
+    while position < len(text):
+        match = _TOKEN.match(text, position)
+        if match is None:
+            raise UnitSyntaxError(_bad_character(text[position]))
+        position = match.end()
+        kind = match.lastgroup if match.lastgroup not in {"implicit", "sup"} else "name"
+        if kind == "power":
+            exponent = _EXPONENT.match(text, position)
+            if exponent is None:
+                raise UnitSyntaxError(
+                    f"has an exponent that is not a small number (write e.g. m^3, s^-2, "
+                    f"m^(1/2); at most {MAX_EXPONENT})"
+                )
+            position = exponent.end()
+            out.append("**" + _exponent(exponent.group().strip()))
+        elif kind == "name":
+            out.append(_name(match))
+        elif kind == "number":
+            out.append(match.group())  # a factor: "10 cSt * 0.96 g/cm^3", "1/Pa"
+        elif kind == "open":
+            depth += 1
+            if depth > MAX_DEPTH:
+                raise UnitSyntaxError(f"nests parentheses deeper than {MAX_DEPTH}")
+            out.append("(")
+        elif kind == "close":
+            depth -= 1
+            if depth < 0:
+                raise UnitSyntaxError("has a ')' without its '('")
+            out.append(")")
+        elif kind == "op":
+            out.append("/" if match.group() == "/" else "*")
+        else:
+            out.append(" ")
+    if depth:
+        raise UnitSyntaxError("has a '(' without its ')'")
+    return "".join(out).strip()
+
+
+def _bad_character(character: str) -> str:
+    if character == ",":
+        return "has a comma: use a decimal point, and no thousands separators"
+    code = f"U+{ord(character):04X}"
+    shown = f"{character!r} ({code})" if character.isprintable() else code
+    return f"has the character {shown}, which no unit holds"
+
+
+#: Units of an angle and of a fraction, as Pint's root units (radian is dimensionless to
+#: Pint, so its exponent is what tells an angle from a percentage).
+_ANGULAR = {"rad", "rad_s"}
+_PURE = {"fraction", ""}
+
+
+def _angle_rule(units: Any, to: Unit) -> tuple[float, str | None]:
+    """An extra factor for ``units`` → ``to`` (2π for Hz), or the rule it breaks."""
+    ureg = registry()
+    _, root = ureg.get_root_units(units)
+    radians = dict(root._units).get("radian", 0)
+    if to.suffix == "rad" and radians != 1:
+        return 1.0, "is not an angle: an angle needs deg or rad (e.g. '30 deg')"
+    if to.suffix in _PURE and radians != 0:
+        return 1.0, f"is an angle, not {to.dimension} (e.g. '{to.example}')"
+    if to.suffix == "rad_s" and radians != 1:
+        if radians == 0 and any(name.endswith("hertz") for name in units._units):
+            return 2.0 * math.pi, None  # revolutions per second, as rpm is per minute
+        return 1.0, (
+            "is not an angular velocity: write rad/s, deg/s, rpm, or Hz (revolutions per "
+            "second); a bare 1/s is ambiguous"
+        )
+    return 1.0, None
+
+
+@lru_cache(maxsize=1024)
+def _conversion(spelled: str, suffix: str) -> tuple[float, float]:
+    """``(scale, offset)`` from a checked expression to ``UNITS[suffix]``; raises
+    ``UnitSyntaxError`` with the rule."""
+    import pint
+
+    to = UNITS[suffix]
+    ureg = registry()
+    try:
+        parsed = ureg.parse_expression(spelled)
+        units = parsed.units if isinstance(parsed, ureg.Quantity) else ureg.dimensionless
+        factor = float(parsed.magnitude) if isinstance(parsed, ureg.Quantity) else float(parsed)
+        zero = float(ureg.Quantity(0.0, units).to(to.pint).magnitude)
+        one = float(ureg.Quantity(1.0, units).to(to.pint).magnitude)
+    except pint.DimensionalityError:
+        raise UnitSyntaxError(
+            f"is not {to.dimension} (expected a unit like '{to.example}')"
+        ) from None
+    except Exception as exc:  # noqa: BLE001 - Pint's parser raises many types (TokenError…)
+        raise UnitSyntaxError(f"is not a unit Pint knows ({_first_line(exc)})") from None
+    if zero != 0.0 and factor != 1.0:
+        raise UnitSyntaxError("scales a temperature with an offset (write degC, K or degF)")
+    if to.suffix in _ANGULAR | _PURE:
+        extra, rule = _angle_rule(units, to)
+        if rule:
+            raise UnitSyntaxError(rule)
+        factor *= extra
+    scale = (one - zero) * factor
+    if not (math.isfinite(scale) and math.isfinite(zero)) or scale == 0.0:
+        raise UnitSyntaxError("is not a usable unit (its scale is zero or not finite)")
+    return scale, zero
+
+
+def _first_line(exc: Exception) -> str:
+    text = str(exc).strip()
+    return text.splitlines()[0][:80] if text else type(exc).__name__
+
+
+def _spelled(text: str) -> str:
+    """The unit text checked and rewritten, with the spellings of "no unit" made one."""
+    stripped = text.strip()
+    if stripped in {"", "-", "1"}:
+        return "dimensionless"
+    return check_unit_expression(stripped)
+
+
+def conversion(from_unit: str, to: Unit) -> tuple[float, float]:
+    """``(scale, offset)`` such that ``value_in_to = scale * value + offset``.
+
+    Used for CSV columns whose header names a unit: one Pint call per column, then a
+    vectorized multiply, instead of one Pint call per cell. Raises ``ValidationError``
+    (field ``unit``) when ``from_unit`` is not allowed, unknown or of the wrong dimension.
+    """
+    try:
+        return _conversion(_spelled(from_unit), to.suffix)
+    except UnitSyntaxError as exc:
+        raise ValidationError("unit", f"[{from_unit}]", str(exc)) from None
+
+
+#: A number at the start of a quantity; what follows is the unit.
+_LEADING_NUMBER = re.compile(r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
+_NOT_FINITE = re.compile(r"[-+]?(?:nan|inf|infinity)\b", re.IGNORECASE)
+_COMMA_IN_NUMBER = re.compile(r"[0-9],[0-9]")
+#: A unit part that starts with a number other than the 1 of "1/Pa": "1 000 Pa", "2 3 m".
+_SECOND_NUMBER = re.compile(r"(?!1\s*/)[0-9.]")
+_THOUSANDS = re.compile(r"^[-+]?[0-9]{1,3}(?:,[0-9]{3})+(?![0-9])")
 
 
 def _finite(field: str, text: str, value: float) -> float:
@@ -41,12 +260,29 @@ def _finite(field: str, text: str, value: float) -> float:
     return float(f"{value:.15g}")
 
 
+def _refuse_commas(field: str, raw: str) -> None:
+    """Pint drops a comma inside a number ("2,5" is 25): refuse it, saying how to write it."""
+    if not _COMMA_IN_NUMBER.search(raw):
+        return
+    pointed = raw.replace(",", ".", 1) if raw.count(",") == 1 else None
+    if _THOUSANDS.match(raw):
+        plain = _THOUSANDS.sub(lambda m: m.group().replace(",", ""), raw)
+        rule = f"has a comma in the number: write {plain!r} (no thousands separators)"
+        if pointed:
+            rule += f", or {pointed!r} if the comma is a decimal comma"
+        raise ValidationError(field, raw, rule)
+    example = f": {pointed}" if pointed else ""
+    raise ValidationError(field, raw, f"has a decimal comma: use a decimal point{example}")
+
+
 def parse_quantity(text: str | float, unit: Unit | str, field: str) -> float:
     """Parse ``"190 GPa"`` into a float in ``unit`` (SI), refusing the wrong dimension.
 
     A bare number is accepted only for dimensionless quantities (ratios, fractions):
     for anything with a dimension, ``"2540"`` is ambiguous and refused with an example.
-    ``"45 %"`` and ``"0.45"`` are the same fraction.
+    ``"45 %"`` and ``"0.45"`` are the same fraction. The number is read by granudb and
+    only the unit by Pint (through ``conversion``'s checks), so what any quantity costs
+    to parse is bounded.
     """
     unit = UNITS[unit] if isinstance(unit, str) else unit
     if isinstance(text, int | float):
@@ -56,52 +292,30 @@ def parse_quantity(text: str | float, unit: Unit | str, field: str) -> float:
     raw = str(text).strip()
     if not raw:
         raise ValidationError(field, "''", "is empty")
-    if _NUMBER.match(raw):
+    if len(raw) > MAX_QUANTITY_CHARS:
+        raise ValidationError(
+            field, repr(raw[:20] + "…"), f"is longer than {MAX_QUANTITY_CHARS} characters"
+        )
+    _refuse_commas(field, raw)
+    if _NOT_FINITE.match(raw):
+        raise ValidationError(field, raw, "must be a finite number")
+    number = _LEADING_NUMBER.match(raw)
+    if number is None:
+        raise ValidationError(field, raw, f"needs a number and a unit, e.g. '{unit.example}'")
+    unit_text = raw[number.end() :].strip()
+    if not unit_text:
         if unit.pint != "dimensionless":
             raise ValidationError(field, raw, f"needs a unit, e.g. '{unit.example}'")
-        return _finite(field, raw, float(raw))
-    import pint
-
-    ureg = registry()
+        return _finite(field, raw, float(number.group()))
+    if _SECOND_NUMBER.match(unit_text):
+        raise ValidationError(
+            field, raw, "has a space inside the number or two numbers: write e.g. 1000 Pa"
+        )
     try:
-        quantity = ureg.Quantity(raw.replace("µ", "u").replace("μ", "u"))
-        value = float(quantity.to(unit.pint).magnitude)
-    except pint.DimensionalityError:
-        raise ValidationError(
-            field, raw, f"is not {unit.dimension} (expected a unit like '{unit.example}')"
-        ) from None
-    except Exception as exc:  # noqa: BLE001 - Pint's parser raises many types (TokenError…)
-        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise ValidationError(
-            field, raw, f"is not a quantity Pint understands ({detail})"
-        ) from None
-    return _finite(field, raw, value)
-
-
-@cache
-def conversion(from_unit: str, to: Unit) -> tuple[float, float]:
-    """``(scale, offset)`` such that ``value_in_to = scale * value + offset``.
-
-    Used for CSV columns whose header names a unit: one Pint call per column, then a
-    vectorized multiply, instead of one Pint call per cell. Raises ``ValidationError``
-    (field ``unit``) when ``from_unit`` is unknown or has the wrong dimension.
-    """
-    import pint
-
-    ureg = registry()
-    spelled = from_unit.strip().replace("µ", "u").replace("μ", "u")
-    if spelled in {"", "-", "1"}:
-        spelled = "dimensionless"
-    try:
-        zero = float(ureg.Quantity(0.0, spelled).to(to.pint).magnitude)
-        one = float(ureg.Quantity(1.0, spelled).to(to.pint).magnitude)
-    except pint.DimensionalityError:
-        raise ValidationError(
-            "unit", f"[{from_unit}]", f"is not {to.dimension} (expected e.g. [{to.pint}])"
-        ) from None
-    except Exception:  # noqa: BLE001 - Pint's parser raises many types (TokenError…)
-        raise ValidationError("unit", f"[{from_unit}]", "is not a unit Pint knows") from None
-    return one - zero, zero
+        scale, offset = _conversion(_spelled(unit_text), unit.suffix)
+    except UnitSyntaxError as exc:
+        raise ValidationError(field, raw, str(exc)) from None
+    return _finite(field, raw, float(number.group()) * scale + offset)
 
 
 def round_significant(values: Any, digits: int = 15) -> Any:

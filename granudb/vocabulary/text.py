@@ -84,3 +84,19 @@ def name_pattern() -> str:
         f"^[^\\s{_CONTROL}{_BIDI}{_INVISIBLE}](?:[^\t\n\r{_CONTROL}{_BIDI}{_INVISIBLE}]*"
         f"[^\\s{_CONTROL}{_BIDI}{_INVISIBLE}])?$"
     )
+
+
+def name_forbidden_pattern() -> str:
+    """The characters no name may hold, as a regular expression.
+
+    For vectorized checks of many names at once (a million run labels through pandas'
+    ``str.contains``); the first value it flags is then passed to ``check_name`` for the
+    message, so both paths apply the same rule.
+    """
+    return _NAME_FORBIDDEN.pattern
+
+
+def text_forbidden_pattern() -> str:
+    """The characters no free text may hold, as a regular expression (see
+    ``name_forbidden_pattern``; the message comes from ``check_text``)."""
+    return _TEXT_FORBIDDEN.pattern
