@@ -79,18 +79,17 @@ class NameIndex:
 
 
 #: A run this close to its fluid's reference temperature is derived with the printed
-#: reference values; must equal ``granudb.analysis.derivation.REFERENCE_TOLERANCE_C``
-#: (tested), which this layer cannot import.
-REFERENCE_TOLERANCE_C = 0.5
 
 
 class FluidRanges:
     """Which temperatures each fluid's stored data can serve, so no run is imported that
     every later read (listing, fits, reports) would then fail to derive.
 
-    A run's viscosity is the printed reference value within ``REFERENCE_TOLERANCE_C`` of
-    the reference temperature, and otherwise interpolated between the fluid's points;
-    nothing is extrapolated. This mirrors ``granudb.analysis.derivation`` exactly.
+    A run's viscosity comes from the fluid's points (two or more), anchored to the printed
+    reference value, anywhere between the lowest and highest point; a fluid with fewer
+    points has a viscosity only at its reference temperature. Nothing is extrapolated.
+    This mirrors ``granudb.analysis.fluid_state.fluid_states_per_row`` (a test imports
+    runs at the edges and checks every read derives them).
     """
 
     def __init__(self, session: Any) -> None:
@@ -128,14 +127,14 @@ class FluidRanges:
             shown, reference, low, high, count = known
             rows = given & (fluids == name).to_numpy()
             t = temperatures
-            off = rows & (np.abs(t - reference) > REFERENCE_TOLERANCE_C)
             if count < 2:
+                off = rows & (t != reference)
                 rules[name] = (
                     f"differs from fluid {shown}'s reference temperature ({reference:g} °C) "
                     "and the fluid has no viscosity–temperature points"
                 )
             else:
-                off &= (t < low) | (t > high)
+                off = rows & ((t < low) | (t > high))
                 rules[name] = (
                     f"is outside fluid {shown}'s viscosity data ({low:g}–{high:g} °C), which "
                     "granudb does not extrapolate"

@@ -499,8 +499,8 @@ class _Merger:
     def sources(self, rows: list[dict[str, Any]]) -> None:
         from sqlalchemy import select
 
-        from granudb.db.sources import source_record
         from granudb.db.models import Source
+        from granudb.db.sources import source_record
 
         for row in rows:
             existing = self.session.scalars(select(Source).filter_by(key=row["key"])).first()

@@ -87,7 +87,7 @@ def stored(db: str, column: str) -> list:
 def imported(cli, db: str, path: Path, *options: str) -> list[dict]:
     result = cli("collisions", "import", str(path), "--dataset", "d", *options, db=db)
     assert result.exit_code == 0, result.stderr
-    listed = cli("collisions", "list", "--dataset", "d", "--format", "json", db=db)
+    listed = cli("collisions", "list", "--dataset", "d", "--wide", "--format", "json", db=db)
     assert listed.exit_code == 0, listed.stderr
     return json.loads(listed.stdout)
 
@@ -309,11 +309,17 @@ def test_a_run_inside_the_fluids_data_imports(cli, db: str, tmp_path: Path) -> N
     assert rows[0]["temperature_c"] == 55.0
 
 
-def test_store_uses_the_same_reference_tolerance_as_the_reads() -> None:
-    from granudb.analysis.derivation import REFERENCE_TOLERANCE_C as reads
-    from granudb.db.collision_store import REFERENCE_TOLERANCE_C as imports
+def test_what_an_import_accepts_every_read_derives(cli, db: str, tmp_path: Path) -> None:
+    """The import's temperature rule and the reads' fluid state agree at the edges."""
+    temps = ["10", "20", "20.3", "59.9", "60"]
+    lines = [row(run=f"w{i}", fluid="water", temperature=t) for i, t in enumerate(temps)]
+    rows = imported(cli, db, write(tmp_path / "edges.csv", lines))
+    assert len(rows) == len(temps)
+    import granudb
 
-    assert imports == reads
+    frame = granudb.collisions(db=db, fluid="water")
+    assert frame["derivation_note"].isna().all()
+    assert frame["normal_stokes_number"].notna().all()
 
 
 # 8. Names and text -----------------------------------------------------------------------
