@@ -192,6 +192,14 @@ def test_pair_report_shows_predicted_restitution_and_three_state_map(
     assert "Predicted restitution:</strong>" in html and "Legendre" in html
     assert "uncertain (x₁/4 &lt; σ ≤ x₁/3" in html  # the regime map's legend and caption
     assert "full film" not in html and "mixed lubrication" not in html
+    references = html[html.index("<h3>References</h3>") :]
+    for doi in (
+        "10.1016/j.ces.2005.12.018",
+        "10.1115/1.3453342",
+        "10.1017/CBO9781139171731",
+        "10.1017/S0022112086002392",
+    ):  # Legendre, Bair & Winer, Johnson, Davis
+        assert references.count(doi) == 1, doi
 
 
 # --- the dataset report: fits said honestly ------------------------------------------
