@@ -12,6 +12,7 @@ def print_pair(document: dict[str, Any], critical_stokes: float) -> None:
 
     from granudb.cli.output import console
     from granudb.report.format import display
+    from granudb.report.values import qualified_value
     from granudb.report.verdicts import verdicts
     from granudb.vocabulary import DERIVED_TERMS, term
 
@@ -38,12 +39,19 @@ def print_pair(document: dict[str, Any], critical_stokes: float) -> None:
             continue
         label = f"{described.symbol} ({described.title.lower()})"
         derived.add_row(
-            Text(label), Text(display(document[name], name)), Text(described.description)
+            Text(label), Text(qualified_value(document, name)), Text(described.description)
         )
     out.print(derived)
 
     out.print("[bold]Verdicts[/bold]")
-    for verdict in verdicts(document, critical_stokes, immersed=document["fluid"] is not None):
+    fluid = document["fluid"]
+    for verdict in verdicts(
+        document,
+        critical_stokes,
+        immersed=fluid is not None,
+        materials=(particle, wall),
+        fluid_name=fluid["name"] if fluid else None,
+    ):
         style = "bold red" if verdict.raised else "green"
         line = Text(f"{'⚠' if verdict.raised else '•'} {verdict.name}: ", style=style)
         line.append(verdict.text, style="default")

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 
 from granudb.report.format import display, engineering, unicode_math
+from granudb.report.values import qualified_value
 from granudb.report.verdicts import GAP_DEFINITION, roughness_verdict
 from granudb.vocabulary import DERIVED_TERMS, TERMS
 
@@ -126,7 +127,7 @@ def derived_rows(derived: dict[str, Any]) -> list[dict[str, Any]]:
                 "title": term.title.lower(),
                 "name": name,
                 "unit": unit_label(name),
-                "value": display(derived[name], name),
+                "value": qualified_value(derived, name),
                 "relation": unicode_math(term.description),
             }
         )
@@ -160,42 +161,67 @@ def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, A
 
 
 def pair_flag(derived: dict[str, Any], immersed: bool) -> dict[str, Any]:
-    """The prominent flag of a scenario: σ against h_m, with the definition used and Λ."""
+    """The prominent flag of a scenario: σ against Davis's band of the gap, with Λ."""
     verdict = roughness_verdict(derived, immersed)
-    headline = (
-        "Roughness exceeds the EHD gap (σ > h_m): asperity contact, dry-like friction expected"
-        if verdict.raised
-        else verdict.name
-    )
-    return {"id": "roughness-flag", "raised": verdict.raised, "headline": headline,
+    headlines = {
+        "Roughness exceeds the gap: asperity contact": (
+            "Roughness exceeds the EHD gap (σ > x₁/3): asperity contact, dry-like friction expected"
+        ),
+        "Roughness within the gap's uncertainty: uncertain": (
+            "Roughness within the uncertainty of the EHD gap (x₁/4 < σ ≤ x₁/3): asperity "
+            "contact uncertain"
+        ),
+    }
+    return {"id": "roughness-flag", "raised": verdict.raised,
+            "headline": headlines.get(verdict.name, verdict.name),
             "detail": verdict.text}  # fmt: skip
 
 
+def _regimes(frame: Any) -> np.ndarray:
+    """Each run's roughness regime (three states); older frames: from σ > h_m."""
+    if "roughness_regime" in frame:
+        return frame["roughness_regime"].astype(object).to_numpy()
+    rough = frame["roughness_exceeds_gap"].fillna(False).astype(bool).to_numpy()
+    return np.where(rough, "asperity_contact", "film").astype(object)
+
+
 def dataset_flag(frame: Any) -> dict[str, Any]:
-    """The prominent flag of a set of runs: how many immersed runs have σ > h_m."""
-    rough = frame[frame["roughness_exceeds_gap"].astype(bool) & frame["fluid"].notna()]
-    immersed = frame[frame["fluid"].notna()]
-    raised = not rough.empty
+    """The prominent flag of a set of runs: how many immersed runs are in asperity contact
+    or uncertain (Davis's band h_m = x₁/4 … x₁/3)."""
+    wet = frame["fluid"].notna().to_numpy()
+    regimes = _regimes(frame)[wet]
+    rough = int(np.sum(regimes == "asperity_contact"))
+    unsure = int(np.sum(regimes == "uncertain"))
+    raised = bool(rough or unsure)
+    immersed = frame[wet]
     if immersed.empty:
         detail = "All runs are dry."
     else:
         sigma = immersed["composite_roughness_m"]
+        film = immersed["film_parameter"].to_numpy(float)
+        median = f"{float(np.nanmedian(film)):.2g}" if np.isfinite(film).any() else "not computed"
         detail = (
-            f"{len(rough)} of {len(immersed)} immersed runs have σ > h_m ({GAP_DEFINITION}); "
-            f"median Λ = h_m/σ = {float(np.nanmedian(immersed['film_parameter'])):.2g}, σ from "
-            f"{engineering(float(sigma.min()), 'm', 3)} to "
+            f"Of {len(immersed)} immersed runs, {rough} are in asperity contact "
+            f"(σ > x₁/3, Λ < 1), {unsure} uncertain (x₁/4 < σ ≤ x₁/3, 1 ≤ Λ < 4/3) and "
+            f"{len(immersed) - rough - unsure} in film (σ ≤ x₁/4, Λ ≥ 4/3), with "
+            f"{GAP_DEFINITION} and Davis et al.'s band h_m = x₁/4 … x₁/3; median Λ = h_m/σ = "
+            f"{median}, σ from {engineering(float(sigma.min()), 'm', 3)} to "
             f"{engineering(float(sigma.max()), 'm', 3)}. "
             + (
-                "Asperities touch through the film in those runs: expect dry-like friction."
+                "Asperities touch through the film in the runs in asperity contact: expect "
+                "dry-like friction there; in the uncertain runs they may."
                 if raised
                 else "The film separates the surfaces in every immersed run."
             )
         )
-    headline = (
-        f"Roughness exceeds the EHD gap (σ > h_m) in {len(rough)} runs: asperity contact"
-        if raised
-        else "Roughness within the EHD gap"
-    )
+    if rough:
+        headline = f"Roughness exceeds the EHD gap (σ > x₁/3) in {rough} runs: asperity contact" + (
+            f"; uncertain in {unsure}" if unsure else ""
+        )
+    elif unsure:
+        headline = f"Roughness within the uncertainty of the EHD gap in {unsure} runs: uncertain"
+    else:
+        headline = "Roughness within the EHD gap: film"
     return {"id": "roughness-flag", "raised": raised, "headline": headline, "detail": detail}
 
 

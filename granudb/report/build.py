@@ -94,8 +94,14 @@ def pair_report(
     immersed = result.fluid_state is not None
     report["flags"].append(blocks.pair_flag(result.derived, immersed))
     report["verdicts"] = [
-        {"name": v.name, "text": v.text}
-        for v in verdicts(result.derived, critical_stokes, immersed)
+        {"name": v.name, "text": v.text, "raised": v.raised}
+        for v in verdicts(
+            result.derived,
+            critical_stokes,
+            immersed,
+            materials=(result.particle, result.wall),
+            fluid_name=result.fluid["name"] if result.fluid else None,
+        )
     ]
     report["properties"] = [
         blocks.material_block("Particle", result.particle),

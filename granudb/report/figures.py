@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.report import plots
+from granudb.report import plots, plots_extra
 from granudb.report.format import display
 from granudb.report.groups import fluid_colours, fluid_name, group_label
 
@@ -46,20 +46,14 @@ def _regime_grid(
         fluid_density_kg_m3=fluid_density,
         critical_stokes=critical_stokes,
     )
-    regime = np.where(
-        ~out["rebound_expected"],
-        "no rebound",
-        np.where(
-            out["roughness_exceeds_gap"],
-            "rebound, asperity contact (σ > h_m)",
-            "rebound, film (σ ≤ h_m)",
-        ),
-    ).astype(object)
+    regime = plots_extra.regime_names(out["rebound_expected"], out["roughness_regime"])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sigma_over_x1 = np.asarray(out["composite_roughness_m"] / out["elastic_length_m"], float)
     return {
         "velocity": velocity,
         "viscosity": viscosity,
         "regime": regime,
-        "gap_ratio": np.asarray(out["film_parameter"], float),
+        "sigma_over_x1": sigma_over_x1,
         "stokes": np.asarray(out["normal_stokes_number"], float),
     }
 
@@ -86,11 +80,11 @@ def regime_map_figure(
         critical_stokes,
         AIR_VISCOSITY_PA_S / 2 if has_dry else 1e-4,
     )
-    svg = plots.regime_map(
+    svg = plots_extra.regime_map(
         grid["velocity"],
         grid["viscosity"],
         grid["regime"],
-        grid["gap_ratio"],
+        grid["sigma_over_x1"],
         grid["stokes"],
         critical_stokes,
         point=point,
@@ -100,8 +94,10 @@ def regime_map_figure(
     )
     caption = (
         f"Regime map for {particle['name']} on {wall['name']}, d = "
-        f"{display(diameter_m, 'diameter_m')}: above the solid line h_m > σ (film); right of "
-        "the dashed line St_n > St_c (rebound)."
+        f"{display(diameter_m, 'diameter_m')}, shaded by the roughness verdict with Davis et "
+        "al.'s band h_m = x₁/4 … x₁/3: asperity contact below the solid line σ = x₁/3 "
+        "(Λ = h_m/σ < 1 with h_m = x₁/3), uncertain between it and the dotted line σ = x₁/4, "
+        "film above (Λ ≥ 4/3); right of the dashed line St_n > St_c (rebound)."
     )
     if runs:
         count = sum(len(r["v"]) for r in runs)
@@ -212,18 +208,8 @@ def dataset_figures(
     if not immersed.any():
         return figures
     wet_labels = [g for g, m in zip(labels, immersed, strict=True) if m]
-    st_n = frame["normal_stokes_number"].to_numpy(float)[immersed]
-    e = frame["normal_restitution"].to_numpy(float)[immersed]
-    figures.append(
-        _figure(
-            "fig-restitution",
-            "Normal restitution against the normal Stokes number (figure 5).",
-            plots.restitution_vs_stokes(
-                st_n, e, wet_labels, colours, _restitution_curve(restitution, st_n),
-                critical_stokes,
-            ),
-        )
-    )  # fmt: skip
+    figures.append(restitution_figure(frame[immersed], wet_labels, colours, restitution,
+                                      critical_stokes))  # fmt: skip
     strain = frame["shear_strain"].to_numpy(float)[immersed]
     figures.append(
         _figure(
@@ -237,6 +223,63 @@ def dataset_figures(
     return figures
 
 
+def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) -> list[dict]:
+    """Per group, the predicted e(St_n) = e_dry exp(−35/St) of Legendre et al. (2006) with
+    St the group's added-mass Stokes number (St_am = St_n (1 + ρ_f/(2ρ_p)), its median
+    ratio in the group), 0 where St_n ≤ St_c, as ``derive``'s ``predicted_restitution``."""
+    from granudb.physics import flow
+    from granudb.physics.derive import DRY_RESTITUTION
+
+    if "added_mass_stokes_number" not in frame:
+        return []
+    st_n = frame["normal_stokes_number"].to_numpy(float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = frame["added_mass_stokes_number"].to_numpy(float) / st_n
+    names = np.asarray(labels, dtype=object)
+    curves = []
+    for label in sorted(set(names.tolist())):
+        mask = (names == label) & np.isfinite(ratio) & np.isfinite(st_n) & (st_n > 0)
+        if not mask.any():
+            continue
+        low, high = float(np.min(st_n[mask])), float(np.max(st_n[mask]))
+        grid = np.geomspace(max(min(low / 2, critical_stokes / 2), 0.1), high * 2, 200)
+        e = flow.predicted_restitution(grid * float(np.median(ratio[mask])), DRY_RESTITUTION,
+                                       critical_stokes)  # fmt: skip
+        curves.append({"label": label, "st_n": grid, "e": np.where(grid > critical_stokes, e, 0.0)})
+    return curves
+
+
+def restitution_figure(
+    wet: Any,
+    labels: Sequence[str],
+    colours: Mapping[str, str],
+    restitution: Sequence[Mapping[str, Any]],
+    critical_stokes: float,
+) -> dict[str, Any]:
+    """Measured e(St_n) of the immersed runs against the predicted curves (§10), with the
+    threshold fit when there is one (its St_c labelled as fitted)."""
+    st_n = wet["normal_stokes_number"].to_numpy(float)
+    curves = predicted_curves(wet, labels, critical_stokes)
+    svg = plots_extra.restitution_with_prediction(
+        st_n, wet["normal_restitution"].to_numpy(float), labels, colours, curves,
+        critical_stokes, _restitution_curve(restitution, st_n),
+    )  # fmt: skip
+    caption = (
+        "Measured normal restitution against the normal Stokes number St_n = m* v_N,in / "
+        "(6πμR*²) (figure 5)"
+        + (
+            ", with each group's predicted curve (dotted, in the group's colour): e = e_dry "
+            "exp(−35/St), Legendre et al. (2006), St = (ρ_p + ρ_f/2) 2R* v_N,in / (9μ) the "
+            f"added-mass Stokes number, e_dry = 0.97, 0 for St_n ≤ St_c = {critical_stokes:g}"
+            if curves
+            else ""
+        )
+        + ". The grey line, where drawn, is the threshold fit of these runs; its St_c is "
+        "fitted, not the verdict's St_c."
+    )
+    return _figure("fig-restitution", caption, svg)
+
+
 def _restitution_curve(
     restitution: Sequence[Mapping[str, Any]], st_n: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, str] | None:
@@ -248,7 +291,7 @@ def _restitution_curve(
     r = fitted[0]
     grid = np.geomspace(max(1.0, float(np.nanmin(st_n)) * 0.5), float(np.nanmax(st_n)) * 2, 200)
     curve = fits.restitution_curve("threshold", grid, r["e_dry"], r["parameter"])
-    return grid, curve, f"threshold fit, St_c = {r['parameter']:.2g}"
+    return grid, curve, f"threshold fit, fitted St_c = {r['parameter']:.2g}"
 
 
 def _finite(value: Any) -> bool:

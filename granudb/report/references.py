@@ -37,7 +37,7 @@ WORKS = [
     ),
     Work(
         "davis-serayssol-hinch-1986",
-        ("Davis et al. (1986)", "Davis, Serayssol & Hinch (1986)"),
+        ("Davis et al. (1986)", "Davis, Serayssol & Hinch (1986)", "Davis et al. 1986"),
         "Davis, R. H., Serayssol, J.-M. & Hinch, E. J. (1986). The elastohydrodynamic "
         "collision of two spheres. J. Fluid Mech. 163, 479–497.",
         "10.1017/S0022112086002392",
@@ -51,13 +51,18 @@ WORKS = [
     ),
     Work(
         "johnson-1985",
-        ("Johnson (1985)", "johnson-1985"),
+        ("Johnson (1985)", "johnson-1985", "Johnson 1985"),
         "Johnson, K. L. (1985). Contact Mechanics. Cambridge University Press.",
         "10.1017/CBO9781139171731",
     ),
     Work(
         "legendre-et-al-2006",
-        ("Legendre et al. (2006)", "Legendre, Zenit, Daniel & Guiraud (2006)"),
+        (
+            "Legendre et al. (2006)",
+            "Legendre, Zenit, Daniel & Guiraud (2006)",
+            "Legendre, Zenit, Daniel & Guiraud 2006",
+            "Legendre et al. 2006",
+        ),
         "Legendre, D., Zenit, R., Daniel, C. & Guiraud, P. (2006). A note on the modelling "
         "of the bouncing of spherical drops or solid spheres on a wall in viscous fluid. "
         "Chem. Eng. Sci. 61, 3543–3549.",
@@ -115,7 +120,27 @@ METHODS = [
         f"{J_H} §1 after Davis et al. (1986)",
     ),
     ("piezoviscous length", "x₃ = (η̂μ₀v₀R)¹⁄², η̂ = C/16", f"{J_H} §1, §5"),
-    ("roughness against gap", "σ = √(σ₁²+σ₂²); flag when σ > h_m; Λ = h_m/σ", f"{J_H} §4"),
+    (
+        "roughness against gap",
+        "σ = √(σ₁²+σ₂²), Λ = h_m/σ; asperity contact σ > x₁/3, uncertain x₁/4 < σ ≤ x₁/3, "
+        "film σ ≤ x₁/4",
+        f"{J_H} §4; band h_m = x₁/4 … x₁/3 of Davis et al. (1986)",
+    ),
+    (
+        "predicted wet restitution",
+        "e = e_dry exp(−35/St), St = (ρ_p + ρ_f/2) 2R* v_N,in/(9μ); 0 for St_n ≤ St_c",
+        "Legendre et al. (2006); e_dry = 0.97 from " + J_H + " §3",
+    ),
+    (
+        "onset of yield",
+        "p_max = 1.6 Y of the softer body; ρ_p V_y²/Y = (π⁴ 1.6⁵/40)(Y/E*)⁴",
+        "Johnson (1985) §11.4",
+    ),
+    (
+        "bound of the lubricated friction",
+        "(5.8) above min(μ_dry, γ_max = 0.1): outside the model's range, not used",
+        "Bair & Winer (1979)",
+    ),
     (
         "rebound",
         "expected when St_n > St_c (default 10)",

@@ -1,9 +1,11 @@
 """The fit tables of a dataset report, with published values on the right group.
 
 A cell is a string, or a dict ``{"text", "colour"}`` for a group name shown with the
-colour its points have in every figure. Fit dicts may carry more keys than the ones
-used here (intervals, model choice, limits): an interval is shown when present, other
-keys are ignored.
+colour its points have in every figure. The fits say what their data determine
+(PHYSICS.md §14): a parameter that is not determined is shown as "not determined by these
+runs" with the reason, never as a number; a μ_f lower bound is labelled as a bound;
+intervals are granudb's bootstrap intervals (how they were made is said once, in the
+table's note), and the paper's ± is shown as printed beside them.
 """
 
 from __future__ import annotations
@@ -70,23 +72,108 @@ def published_for(published: list[dict[str, Any]], fit: Mapping[str, Any]) -> st
     )
 
 
+NOT_DETERMINED = "not determined by these runs"
+
+
+def _reason_for(reason: str, symbol: str) -> str:
+    """The part of a fit's reason about ``symbol`` (β or μ_f); all of it if none is."""
+    reason = reason.replace("(sliding_friction_lower_bound is a bound)", "(a lower bound is shown)")
+    parts = [p for p in reason.split("; ") if p]
+    mine = [p for p in parts if symbol in p]
+    return "; ".join(mine or parts)
+
+
+def parameter_cell(fit: Mapping[str, Any], name: str, symbol: str) -> str:
+    """β or μ_f with its bootstrap interval, or "not determined by these runs" and why."""
+    value = fit.get(name)
+    if _finite(value):
+        text = interval(value, fit.get(f"{name}_low"), fit.get(f"{name}_high"))
+        share = fit.get(f"{name}_determined")
+        if _finite(share) and share < 0.995:
+            text += f" (determined in {share:.0%} of resamples)"
+        return text
+    text = NOT_DETERMINED
+    why = _reason_for(str(fit.get("reason") or ""), symbol)
+    if why:
+        text += f": {why}"
+    bound = fit.get("sliding_friction_lower_bound")
+    if name == "sliding_friction" and _finite(bound):
+        text += (
+            f". Lower bound (2.10) at the largest Ψ_in: μ_f ≥ {bound:.2g} (a bound, not a value)"
+        )
+    return text
+
+
+def model_cell(fit: Mapping[str, Any]) -> str:
+    """The Walton model chosen and why (BIC), with its bootstrap support."""
+    model = fit.get("model")
+    if not model:
+        return f"none: {fit.get('reason') or 'too few runs'}"
+    bic = {m: fit.get(f"bic_{m}") for m in ("sticking", "sliding", "split")}
+    others = [f"{m} {bic[m]:.4g}" for m in bic if m != model and _finite(bic[m])]
+    text = f"{model}: smallest BIC, {bic[model]:.4g}" if _finite(bic[model]) else str(model)
+    if others:
+        text += f" (vs {', '.join(others)})"
+    support = fit.get(f"model_support_{model}")
+    if _finite(support):
+        text += f"; chosen in {support:.0%} of resamples"
+    return text
+
+
+def _finite(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def bootstrap_note(fits: list[dict[str, Any]]) -> str:
+    """How the intervals were made, said once: level, resamples and seed."""
+    made = sorted(
+        {(f.get("confidence_level"), f.get("bootstrap_resamples"), f.get("bootstrap_seed"))
+         for f in fits if f.get("bootstrap_resamples")}
+    )  # fmt: skip
+    if not made:
+        return ""
+    words = "; ".join(
+        f"{level:.0%} bootstrap percentile intervals over runs, {resamples} resamples, seed {seed}"
+        for level, resamples, seed in made
+    )
+    return f"Intervals in brackets: {words}."
+
+
 def walton_table(
     walton: list[dict[str, Any]], published: list[dict[str, Any]], colours: Mapping[str, str]
 ) -> dict[str, Any]:
     return {
         "id": "walton-fits",
         "heading": "Walton fits (figures 4, 6, 9)",
-        "note": "β from the sticking runs (Ψ_out = −βΨ_in), μ_f from the sliding runs, each "
-        "± its standard error (or its interval, where the fit gives one); ē ± std over all "
-        "runs of the group. Published: the values Joseph & Hunt (2004) printed for the same "
-        "particle, wall and fluid.",
-        "columns": ["group", "β", "μ_f", "ē", "sticking / sliding runs", "published"],
+        "note": "Runs folded by the sign of v_T,in; the model (all sticking: Ψ_out = −βΨ_in; "
+        "all sliding: Ψ_out = Ψ_in − μ_f(1+e)B; or a split) is the one of smallest BIC = "
+        "n ln(S/n) + p ln n (p = 2, 2, 4), and only what it determines is given: β from a "
+        "sticking line and μ_f from a sliding line of at least 3 runs each. "
+        + bootstrap_note(walton)
+        + " The model and split are re-decided in every resample. ē: mean e over all runs "
+        "of the group. Published: the values Joseph & Hunt (2004) printed for the same "
+        "particle, wall and fluid, as printed (their ± are correlation values of the line "
+        "fits, not granudb's intervals).",
+        "columns": [
+            "group",
+            "model (why)",
+            "β",
+            "μ_f",
+            "ē",
+            "sticking / sliding runs",
+            "published, as printed",
+        ],  # fmt: skip
         "rows": [
             [
                 group_cell(r, colours),
-                fit_cell(r, "rotational_restitution"),
-                fit_cell(r, "sliding_friction"),
-                fit_cell(r, "normal_restitution_mean", "normal_restitution_std"),
+                model_cell(r),
+                parameter_cell(r, "rotational_restitution", "β"),
+                parameter_cell(r, "sliding_friction", "μ_f"),
+                interval(
+                    r.get("normal_restitution_mean"),
+                    r.get("normal_restitution_low"),
+                    r.get("normal_restitution_high"),
+                ),
                 f"{r.get('n_sticking', '—')} / {r.get('n_sliding', '—')}",
                 published_for(published, r),
             ]
@@ -95,43 +182,69 @@ def walton_table(
     }
 
 
+def _restitution_cells(r: Mapping[str, Any]) -> tuple[str, str]:
+    if not _finite(r.get("e_dry")):
+        why = r.get("reason") or "the fit gave no value"
+        return f"{NOT_DETERMINED}: {why}", NOT_DETERMINED
+    source = r.get("e_dry_source") or "fitted"
+    if _finite(r.get("e_dry_stderr")):
+        e_dry = f"{plus_minus(r['e_dry'], r['e_dry_stderr'])}: {source}"
+    else:
+        e_dry = f"{r['e_dry']:.3g}: {source}"
+    return e_dry, fit_cell(r, "parameter")
+
+
 def restitution_table(restitution: list[dict[str, Any]], formula: str, source: str) -> dict:
+    first = restitution[0] if restitution else {}
+    stokes = first.get("stokes_number") or "the normal Stokes number St_n"
     return {
         "id": "restitution-fit",
         "heading": "Restitution against Stokes number (figure 5)",
-        "note": f"Threshold form {formula} ({source}).",
-        "columns": ["group", "e_dry", "St_c", "runs"],
+        "note": f"Threshold form {formula} ({source}); Stokes number: {stokes}. The fitted St_c "
+        "is the no-rebound threshold of these runs, not the St_c of the rebound verdict; "
+        "e_dry ≤ 1, fixed to the mean e of the group's dry runs where it has any. ± is the "
+        "asymptotic standard error of the least squares.",
+        "columns": ["group", "e_dry (source)", "fitted St_c", "runs"],
         "rows": [
             [
                 f"{r['dataset']}: {r['particle']}/{r['wall']}",
-                fit_cell(r, "e_dry"),
-                fit_cell(r, "parameter"),
+                *_restitution_cells(r),
                 str(r.get("n_runs", "—")),
             ]
             for r in restitution
-        ],
+        ],  # fmt: skip
     }
 
 
-def gap_table(gap: list[dict[str, Any]], colours: Mapping[str, str]) -> dict[str, Any]:
-    def temperature(r: Mapping[str, Any]) -> str:
-        value = r.get("gap_temperature_c")
-        if isinstance(value, int | float) and not math.isnan(value):
-            return display(value, "temperature_c")
-        return r.get("note") or "—"
+def _gap_cells(r: Mapping[str, Any]) -> tuple[str, str]:
+    reason = r.get("reason") or r.get("note") or "not computed"
+    mu0 = r.get("gap_viscosity_pa_s")
+    if not _finite(mu0):
+        return f"{NOT_DETERMINED}: {reason}", "not determined"
+    low, high = r.get("gap_viscosity_low_pa_s"), r.get("gap_viscosity_high_pa_s")
+    scaled = [v * 1e3 if _finite(v) else v for v in (mu0, low, high)]
+    viscosity = f"{interval(*scaled)} mPa·s"
+    t = r.get("gap_temperature_c")
+    if not _finite(t):
+        return viscosity, f"not determined: {reason}"
+    low_t, high_t = r.get("gap_temperature_low_c"), r.get("gap_temperature_high_c")
+    return viscosity, f"{interval(t, low_t, high_t)} °C"
 
+
+def gap_table(gap: list[dict[str, Any]], colours: Mapping[str, str]) -> dict[str, Any]:
+    method = next((r["method"] for r in gap if r.get("method")), "least squares of (5.8)")
     return {
         "id": "gap-viscosity",
         "heading": "Gap viscosity and temperature (figure 14, table 2)",
-        "note": "μ₀ that makes (5.10) match each smooth sliding run's μ_f; the gap "
-        "temperature follows from the fluid's μ(T).",
-        "columns": ["group", "μ₀", "ambient μ", "gap temperature", "runs"],
+        "note": f"μ₀ by {method}; the gap temperature from the fluid's μ(T) (the interval's "
+        "ends swap: a higher μ₀ is a lower temperature). " + bootstrap_note(gap),
+        "columns": ["group", "μ₀", "ambient μ", "gap temperature", "sliding runs used"],
         "rows": [
             [
                 group_cell(r, colours),
-                display(r.get("gap_viscosity_pa_s"), "viscosity_pa_s"),
+                _gap_cells(r)[0],
                 display(r.get("ambient_viscosity_pa_s"), "viscosity_pa_s"),
-                temperature(r),
+                _gap_cells(r)[1],
                 str(r.get("n_runs", "—")),
             ]
             for r in gap

@@ -1,14 +1,41 @@
-"""The regime verdicts in words, for the terminal and the reports alike."""
+"""The regime verdicts in words, for the terminal (``granudb pair``) and the reports alike.
+
+Every verdict reads the named states of ``granudb.physics.derive`` (``roughness_regime``,
+``lubricated_friction_state``, ``tangential_regime``, ``elastic_state``), never a bare NaN:
+a number that is missing is said in words (``_number``), so no "nan" reaches a sentence.
+The roughness words are the ones of the derived-quantities table (``film_parameter``) and
+of the regime map (``ROUGHNESS_WORDS``): asperity contact Λ < 1, uncertain 1 ≤ Λ < 4/3
+(Davis et al.'s band h_m = x₁/4 … x₁/3), film Λ ≥ 4/3, with h_m = x₁/3.
+"""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from granudb.report.format import engineering
+from granudb.physics import flow, limits
+from granudb.physics.derive import DRY_FRICTION, DRY_RESTITUTION
+from granudb.report.format import display, engineering
 
 GAP_DEFINITION = "h_m = x₁/3, the EHD minimum gap of the normal approach (Joseph & Hunt §1, §4)"
+#: The three roughness states in words, shared by verdicts, tables and the regime map.
+ROUGHNESS_WORDS = {
+    "asperity_contact": "asperity contact (σ > x₁/3, Λ < 1)",
+    "uncertain": "uncertain (x₁/4 < σ ≤ x₁/3, 1 ≤ Λ < 4/3)",
+    "film": "film (σ ≤ x₁/4, Λ ≥ 4/3)",
+    "dry": "dry (no liquid)",
+}
+PREDICTION_FORM = (
+    f"e = e_dry exp(−{flow.LEGENDRE_BETA:g}/St) (Legendre, Zenit, Daniel & Guiraud 2006), "
+    f"St = (ρ_p + ρ_f/2) 2R* v_N,in / (9μ) the added-mass Stokes number of the pair's normal "
+    f"approach, e_dry = {DRY_RESTITUTION:g} (Joseph & Hunt §3); 0 where St_n ≤ St_c"
+)
+BRITTLE_NOTE = (
+    "Brittle bodies (glasses, ceramics, glass-ceramics) do not yield: they fail by "
+    "Hertzian cone cracks, which granudb does not predict (a note, not a number)."
+)
 
 
 @dataclass(frozen=True)
@@ -20,111 +47,319 @@ class Verdict:
 
 
 def _finite(value: Any) -> bool:
-    return isinstance(value, int | float) and math.isfinite(value)
+    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _number(value: Any, unit: str = "", missing: str = "not known") -> str:
+    """A number for a sentence (3 significant digits, engineering prefix with a unit), or
+    the words ``missing`` when it is NaN or absent."""
+    if not _finite(value):
+        return missing
+    return engineering(float(value), unit, 3) if unit else f"{float(value):.3g}"
+
+
+def friction_cap() -> float:
+    return float(limits.friction_cap(DRY_FRICTION, limits.LIMITING_SHEAR_SLOPE))
 
 
 def verdicts(
-    derived: dict[str, Any], critical_stokes: float = 10.0, immersed: bool = True
+    derived: Mapping[str, Any],
+    critical_stokes: float = 10.0,
+    immersed: bool = True,
+    materials: Sequence[Mapping[str, Any]] = (),
+    fluid_name: str | None = None,
 ) -> list[Verdict]:
-    """Rebound, roughness against gap, Maw's tangential regime and Hertz validity."""
-    out: list[Verdict] = []
+    """Rebound and predicted restitution, roughness against gap, the lubricated friction,
+    Maw's tangential regime, Hertz validity and yield. ``materials`` (particle, wall
+    records) name the bodies whose yield stress is not known; ``fluid_name`` the fluid."""
+    return [
+        rebound_verdict(derived, critical_stokes, immersed),
+        restitution_verdict(derived, critical_stokes, immersed),
+        roughness_verdict(derived, immersed),
+        friction_verdict(derived, immersed, fluid_name),
+        tangential_verdict(derived),
+        quasi_static_verdict(derived),
+        yield_verdict(derived, materials),
+    ]
+
+
+def rebound_verdict(derived: Mapping[str, Any], critical_stokes: float, immersed: bool) -> Verdict:
     st_n = derived.get("normal_stokes_number")
-    if not immersed or not _finite(st_n):
-        out.append(
-            Verdict(
-                "rebound_expected",
-                "Rebound",
-                "expected: a dry collision rebounds "
-                "(restitution set by the solids, ē ≈ 0.97 on Zerodur).",
-            )
+    if not immersed:
+        text = (
+            "expected: a dry collision rebounds "
+            f"(restitution set by the solids, ē ≈ {DRY_RESTITUTION:g} on Zerodur)."
         )
-    elif derived["rebound_expected"]:
-        out.append(
-            Verdict(
-                "rebound_expected",
-                "Rebound",
-                f"expected: normal Stokes number {st_n:.3g} > St_c = {critical_stokes:g}.",
-            )
-        )
-    else:
-        out.append(
-            Verdict(
-                "rebound_expected",
-                "Rebound",
-                f"not expected: normal Stokes number {st_n:.3g} ≤ St_c = "
-                f"{critical_stokes:g}; the fluid absorbs the impact.",
-                raised=True,
-            )
-        )
-    out.append(roughness_verdict(derived, immersed))
-    regime = derived.get("tangential_regime")
-    words = {
-        "stick": "stick — the contact point sticks, micro-slip only at the rim (ψ_in ≤ 1)",
-        "slip_then_stick": "slip, then stick (1 < ψ_in < 4χ − 1)",
-        "gross_slip": "gross slip throughout the contact (ψ_in ≥ 4χ − 1)",
-    }
-    psi, chi, mu = (derived.get(k) for k in ("maw_psi_in", "maw_chi", "friction_coefficient_used"))
-    detail = (
-        f" ψ_in = {psi:.3g}, χ = {chi:.3g}, with μ_f = {mu:.3g}."
-        if _finite(psi)
-        else " No tangential motion (normal impact)."
-    )
-    out.append(
-        Verdict(
-            "tangential_regime",
-            "Tangential regime (Maw)",
-            words.get(str(regime), str(regime)) + "." + detail,
-        )
-    )
-    ratio = derived.get("quasi_static_ratio")
-    if derived.get("quasi_static_valid"):
-        out.append(
-            Verdict(
-                "quasi_static_valid",
-                "Hertz quasi-static",
-                f"valid: contact radius / wavelength = {ratio:.2g} ≪ 1.",
-            )
-        )
-    else:
-        out.append(
-            Verdict(
-                "quasi_static_valid",
-                "Hertz quasi-static",
-                f"questionable: contact radius / wavelength = {ratio:.2g}; elastic "
-                "waves carry energy away.",
-                raised=True,
-            )
-        )
-    return out
-
-
-def roughness_verdict(derived: dict[str, Any], immersed: bool = True) -> Verdict:
-    """σ against h_m, with Λ and what it implies (PHYSICS.md §4)."""
-    sigma, h_m, film = (
-        derived.get(k) for k in ("composite_roughness_m", "min_gap_m", "film_parameter")
-    )
-    if not immersed or not _finite(h_m):
+        return Verdict("rebound_expected", "Rebound", text)
+    if not _finite(st_n):
         return Verdict(
-            "roughness_exceeds_gap",
+            "rebound_expected",
+            "Rebound",
+            "not decided: the normal Stokes number could not be computed.",
+            raised=True,
+        )
+    if derived.get("rebound_expected"):
+        text = f"expected: normal Stokes number St_n = {st_n:.3g} > St_c = {critical_stokes:g}."
+        return Verdict("rebound_expected", "Rebound", text)
+    return Verdict(
+        "rebound_expected",
+        "Rebound",
+        f"not expected: normal Stokes number St_n = {st_n:.3g} ≤ St_c = "
+        f"{critical_stokes:g}; the fluid absorbs the impact.",
+        raised=True,
+    )
+
+
+def restitution_verdict(
+    derived: Mapping[str, Any], critical_stokes: float, immersed: bool
+) -> Verdict:
+    """The predicted wet restitution with its form and Stokes number named (PHYSICS.md §10)."""
+    e_pred = derived.get("predicted_restitution")
+    st = derived.get("added_mass_stokes_number")
+    name = "Predicted restitution"
+    if not immersed:
+        return Verdict(
+            "predicted_restitution",
+            name,
+            f"e = e_dry = {DRY_RESTITUTION:g} (dry; Joseph & Hunt §3).",
+        )
+    if not _finite(e_pred):
+        return Verdict(
+            "predicted_restitution",
+            name,
+            "not computed: the fluid's density or the Stokes number is not known.",
+            raised=True,
+        )
+    if not derived.get("rebound_expected"):
+        text = (
+            f"e = 0: no rebound expected (St_n ≤ St_c = {critical_stokes:g}). "
+            f"Form: {PREDICTION_FORM}."
+        )
+        return Verdict("predicted_restitution", name, text)
+    text = (
+        f"e ≈ {e_pred:.2f} at the added-mass Stokes number St = {_number(st)}. "
+        f"Form: {PREDICTION_FORM}. A prediction where nothing is measured, not a fit."
+    )
+    return Verdict("predicted_restitution", name, text)
+
+
+def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verdict:
+    """σ against Davis's band of the gap, h_m = x₁/4 … x₁/3, with Λ (PHYSICS.md §4, §12)."""
+    regime = str(derived.get("roughness_regime") or "")
+    sigma, x1, film = (
+        derived.get(k) for k in ("composite_roughness_m", "elastic_length_m", "film_parameter")
+    )
+    if not immersed or regime == "dry" or not _finite(x1):
+        return Verdict(
+            "roughness_regime",
             "Roughness against gap",
             "no fluid film: a dry contact, asperities touch (friction dry).",
         )
+    if regime not in ROUGHNESS_WORDS:  # an older frame without the three-state column
+        regime = "asperity_contact" if derived.get("roughness_exceeds_gap") else "film"
     numbers = (
-        f"σ = {engineering(sigma, 'm')} (composite RMS), h_m = {engineering(h_m, 'm')} "
-        f"({GAP_DEFINITION}), Λ = h_m/σ = {film:.3g}"
+        f"σ = {_number(sigma, 'm')} (composite RMS); the EHD gap is h_m = x₁/4 … x₁/3 = "
+        f"{_number(x1 / 4, 'm')} … {_number(x1 / 3, 'm')} (Davis et al. 1986); "
+        f"Λ = h_m/σ = {_number(film)} with {GAP_DEFINITION}"
     )
-    if derived.get("roughness_exceeds_gap"):
+    if regime == "asperity_contact":
         return Verdict(
-            "roughness_exceeds_gap",
-            "Roughness exceeds the gap",
-            f"{numbers}. Asperities touch through the film: expect dry-like "
-            "friction (glass on Zerodur in glycerol: μ_f ≈ 0.15).",
+            "roughness_regime",
+            "Roughness exceeds the gap: asperity contact",
+            f"{numbers}. σ exceeds even the largest gap. Asperities touch through the film: "
+            "expect dry-like friction (glass on Zerodur in glycerol: μ_f ≈ 0.15).",
             raised=True,
         )
-    regime = "full film" if film > 3 else "mixed lubrication"
+    if regime == "uncertain":
+        return Verdict(
+            "roughness_regime",
+            "Roughness within the gap's uncertainty: uncertain",
+            f"{numbers}. σ lies within the uncertainty of the gap itself: asperities may or "
+            "may not touch. granudb treats the contact as a film for Maw's regime; friction "
+            "may be anywhere from the film's to the dry value.",
+            raised=True,
+        )
     return Verdict(
-        "roughness_exceeds_gap",
-        "Roughness within the gap",
-        f"{numbers}. The film separates the surfaces ({regime}): friction comes "
-        "from shearing the film and is low (steel on Zerodur: μ_f ≈ 0.02).",
+        "roughness_regime",
+        "Roughness within the gap: film",
+        f"{numbers}. σ is below even the smallest gap: the film separates the surfaces; "
+        "friction comes from shearing the film and is low (steel on Zerodur: μ_f ≈ 0.02).",
+    )
+
+
+def friction_verdict(
+    derived: Mapping[str, Any], immersed: bool, fluid_name: str | None = None
+) -> Verdict:
+    """The lubricated friction (5.8) and whether it is used (PHYSICS.md §12)."""
+    state = str(derived.get("lubricated_friction_state") or ("dry" if not immersed else ""))
+    mu = derived.get("lubricated_friction")
+    cap = friction_cap()
+    bound = (
+        f"min(μ_dry = {DRY_FRICTION:g}, limiting-shear slope γ_max = "
+        f"{limits.LIMITING_SHEAR_SLOPE:g}, Bair & Winer 1979) = {cap:g}"
+    )
+    name = "Lubricated friction (5.8)"
+    asperities = derived.get("roughness_regime") == "asperity_contact"
+    if state == "dry" or not immersed:
+        return Verdict(
+            "lubricated_friction_state",
+            name,
+            f"dry contact: the dry μ_f = {DRY_FRICTION:g} is used.",
+        )
+    if state == "no_pressure_coefficient":
+        fluid = fluid_name or "the fluid"
+        return Verdict(
+            "lubricated_friction_state",
+            name,
+            f"not computed: {fluid} has no pressure–viscosity coefficient C in the database. "
+            "Water's viscosity decreases with pressure below ~150 MPa at ≤ 30 °C (Joseph & "
+            "Hunt §5), so neither a borrowed C nor the piezoviscous film (5.6) applies. "
+            f"Decided: μ_f is only bounded, μ_f ≤ {bound}, and that bound is used for Maw's "
+            "regime only where it already settles it."
+            + (" Asperities touch here, so the dry value is used." if asperities else ""),
+            raised=True,
+        )
+    if state == "above_limit":
+        return Verdict(
+            "lubricated_friction_state",
+            name,
+            f"outside the model's range, not used: (5.8) evaluates to {_number(mu)}, above "
+            f"{bound}; a film cannot carry more shear than its limiting shear stress, so "
+            "this is not a prediction. "
+            + (
+                "Asperities touch here, so the dry value is used for Maw's regime."
+                if asperities
+                else f"Maw's regime uses the cap μ_f = {cap:g} (a film at its limiting shear)."
+            ),
+            raised=True,
+        )
+    if state == "in_range":
+        use = (
+            f"not used: asperities touch, so the dry μ_f = {DRY_FRICTION:g} is used."
+            if asperities
+            else "used for Maw's regime."
+        )
+        return Verdict(
+            "lubricated_friction_state",
+            name,
+            f"μ_f = {_number(mu)}, within the model's range (≤ {bound}); {use}",
+        )
+    return Verdict("lubricated_friction_state", name, "not computed.", raised=True)
+
+
+_REGIME_WORDS = {
+    "stick": "stick — the contact point sticks, micro-slip only at the rim (ψ_in ≤ 1)",
+    "slip_then_stick": "slip, then stick (1 < ψ_in < 4χ − 1)",
+    "gross_slip": "gross slip throughout the contact (ψ_in ≥ 4χ − 1)",
+}
+
+
+def _friction_basis(derived: Mapping[str, Any]) -> str:
+    regime, state = derived.get("roughness_regime"), derived.get("lubricated_friction_state")
+    if regime in ("dry", "asperity_contact") or state == "dry":
+        return "the dry value"
+    if state == "in_range":
+        return "the film's (5.8)" + (", roughness uncertain" if regime == "uncertain" else "")
+    if state == "above_limit":
+        return "the cap: (5.8) is outside its range"
+    return "an upper bound only"
+
+
+def tangential_verdict(derived: Mapping[str, Any]) -> Verdict:
+    """Maw's regime, with "undetermined" explained (μ_f only bounded)."""
+    regime = str(derived.get("tangential_regime"))
+    psi, chi, mu = (derived.get(k) for k in ("maw_psi_in", "maw_chi", "friction_coefficient_used"))
+    name = "Tangential regime (Maw)"
+    if not _finite(psi) or psi == 0:
+        return Verdict("tangential_regime", name, "stick. No tangential motion (normal impact).")
+    numbers = (
+        f"ψ_in = {_number(psi)}, χ = {_number(chi)}, with μ_f = {_number(mu)} "
+        f"({_friction_basis(derived)})"
+    )
+    if regime == "undetermined":
+        at_bound = "stick (ψ_in ≤ 1)" if psi <= 1 else "slip, then stick (1 < ψ_in < 4χ − 1)"
+        return Verdict(
+            "tangential_regime",
+            name,
+            "undetermined: without a pressure–viscosity coefficient μ_f is known only to be "
+            f"≤ {_number(mu)}. At that bound ψ_in = {_number(psi)} and χ = {_number(chi)} give "
+            f"{at_bound}; a smaller μ_f gives a larger ψ_in and more slip, so the regime lies "
+            "between that and gross slip.",
+            raised=True,
+        )
+    words = _REGIME_WORDS.get(regime, regime)
+    return Verdict("tangential_regime", name, f"{words}. {numbers}.")
+
+
+def quasi_static_verdict(derived: Mapping[str, Any]) -> Verdict:
+    ratio = derived.get("quasi_static_ratio")
+    name = "Hertz quasi-static"
+    words = f"contact radius / wavelength = {_number(ratio)}"
+    if derived.get("quasi_static_valid"):
+        return Verdict("quasi_static_valid", name, f"valid: {words} ≪ 1.")
+    if derived.get("elastic_state") == "yield_exceeded" and _finite(ratio) and ratio < 0.1:
+        return Verdict(
+            "quasi_static_valid",
+            name,
+            f"not valid: yield is exceeded (see Yield), although {words} ≪ 1.",
+            raised=True,
+        )
+    return Verdict(
+        "quasi_static_valid",
+        name,
+        f"questionable: {words}; elastic waves carry energy away.",
+        raised=True,
+    )
+
+
+def _yield_known(materials: Sequence[Mapping[str, Any]]) -> tuple[list[str], list[str]]:
+    known = [
+        f"{m['name']} (Y = {display(m['yield_stress_pa'], 'youngs_modulus_pa')})"
+        for m in materials
+        if _finite(m.get("yield_stress_pa"))
+    ]
+    unknown = [str(m["name"]) for m in materials if not _finite(m.get("yield_stress_pa"))]
+    return known, unknown
+
+
+def yield_verdict(
+    derived: Mapping[str, Any], materials: Sequence[Mapping[str, Any]] = ()
+) -> Verdict:
+    """Onset of yield, p_max = 1.6 Y of the softer body (PHYSICS.md §11)."""
+    state = str(derived.get("elastic_state") or "unknown")
+    p_max, v_y, v_n = (
+        derived.get(k) for k in ("max_pressure_pa", "yield_speed_m_s", "normal_speed_m_s")
+    )
+    known, unknown = _yield_known(materials)
+    name = "Yield"
+    pressure = f"p_max = {_number(p_max, 'Pa')}"
+    if state == "yield_exceeded":
+        return Verdict(
+            "elastic_state",
+            "Above the onset of yield",
+            f"above the onset of yield (V_y = {_number(v_y, 'm/s')}; v_N,in = "
+            f"{_number(v_n, 'm/s')}): {pressure} > 1.6 Y of "
+            f"{', '.join(known) or 'the softer body'} (Johnson 1985 §11.4). Hertz's elastic "
+            "relations (2.1), (2.2), (5.5) and the lubricated friction built on them are "
+            "outside their range here.",
+            raised=True,
+        )
+    if state == "elastic":
+        return Verdict(
+            "elastic_state",
+            name,
+            f"elastic: {pressure} < 1.6 Y of the softer body ({', '.join(known) or 'both'}); yield "
+            f"would begin at V_y = {_number(v_y, 'm/s')} (Johnson 1985 §11.4).",
+        )
+    who = " and ".join(unknown) if unknown else "a body of the pair"
+    partial = (
+        f" Known: {', '.join(known)}, not reached (V_y = {_number(v_y, 'm/s')} for it)."
+        if known
+        else ""
+    )
+    return Verdict(
+        "elastic_state",
+        name,
+        f"unknown: yield stress not known for {who}, so the onset of yield is not checked "
+        f"({pressure}).{partial} {BRITTLE_NOTE}",
     )

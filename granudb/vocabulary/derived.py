@@ -96,7 +96,11 @@ DERIVED_TERMS: dict[str, Term] = {
     "piezoviscous_length_m": _derived("Piezoviscous length", "m", "x₃", "x₃ = (η̂μ₀v₀R)^{1/2} (§1)"),
     "composite_roughness_m": _derived("Composite roughness", "m", "σ", "σ = √(σ₁² + σ₂²)"),
     "film_parameter": _derived(
-        "Film parameter", None, "Λ", "Λ = h_m/σ: < 1 asperity contact, 1–3 mixed, > 3 full film"
+        "Film parameter",
+        None,
+        "Λ",
+        "Λ = h_m/σ, h_m = x₁/3: < 1 asperity contact, 1–4/3 uncertain (h_m = x₁/4 … x₁/3, "
+        "Davis et al. 1986), ≥ 4/3 film",
     ),
     "roughness_exceeds_gap": _derived(
         "Roughness exceeds gap", None, "σ > h_m", "σ > h_m: asperities touch through the film"

@@ -1,0 +1,40 @@
+"""Derived values for a table (the report's derived quantities, ``granudb pair``'s
+terminal view), with the words a bare number or "—" would hide."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from granudb.report.format import display
+from granudb.report.verdicts import ROUGHNESS_WORDS, _finite, _number
+
+#: Quantities of (5.6)–(5.9) that need the fluid's pressure–viscosity coefficient.
+_NEEDS_PRESSURE_COEFFICIENT = (
+    "eta_hat_pa_inv",
+    "piezoviscous_length_m",
+    "traction_film_m",
+    "friction_integral",
+    "lubricated_friction",
+)
+
+
+def qualified_value(derived: Mapping[str, Any], name: str) -> str:
+    """A derived value for a table, with the words a bare number or "—" would hide: a
+    (5.8) above its bound is "outside the model's range, not used"; a value that could not
+    be computed says why; state columns are said in words."""
+    value = derived.get(name)
+    state = derived.get("lubricated_friction_state")
+    if name == "lubricated_friction" and state == "above_limit":
+        return f"outside the model's range, not used ((5.8) gives {_number(value)})"
+    if name == "roughness_regime" and value in ROUGHNESS_WORDS:
+        return ROUGHNESS_WORDS[str(value)]
+    if _finite(value) or isinstance(value, bool | str):
+        return display(value, name)
+    if name == "yield_speed_m_s":
+        return "not known (no yield stress)"
+    if state == "dry" or derived.get("roughness_regime") == "dry":
+        return "— (dry)"
+    if name in _NEEDS_PRESSURE_COEFFICIENT and state == "no_pressure_coefficient":
+        return "not computed (no pressure–viscosity coefficient)"
+    return "not computed"
