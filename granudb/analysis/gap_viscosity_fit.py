@@ -147,7 +147,9 @@ def _fit_group(key: tuple, group: Any, model: Any, resamples: int, seed: int) ->
     row.update(gap_viscosity_std_pa_s=nan, gap_temperature_c=nan)
     row.update(gap_temperature_low_c=nan, gap_temperature_high_c=nan, n_runs=0)
     row.update(confidence_level=LEVEL, bootstrap_resamples=resamples, bootstrap_seed=seed)
-    row["ambient_viscosity_pa_s"] = float(np.nanmean(group["viscosity_pa_s"].to_numpy(float)))
+    ambient = group["viscosity_pa_s"].to_numpy(float)
+    ambient = ambient[np.isfinite(ambient)]  # rows without a fluid state have none
+    row["ambient_viscosity_pa_s"] = float(np.mean(ambient)) if ambient.size else nan
     row["method"] = METHOD
     sliding, measured, reason = _sliding_runs(group)
     if sliding is None:
