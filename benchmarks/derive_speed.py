@@ -4,7 +4,9 @@ Derives every column of ``granudb.physics.derive`` for N random scenarios (defau
 1,000,000, in chunks to bound memory), then times the obvious alternative on a sample:
 a per-row Python loop with scalar math and ``scipy.integrate.quad`` for the friction
 integral A(c). Prints rows per second for both, their ratio, peak memory, and the largest
-relative disagreement between the two on the sample (should be ≤ 1e-9).
+relative disagreement between the two on the sample (should be ≤ 1e-9), and pass/fail
+against issue 17's bounds: 1,000,000 scenarios ≤ 0.4 s (scaled linearly for other
+``--rows``), peak memory ≤ 250 MB.
 
     python benchmarks/derive_speed.py [--rows 1000000] [--sample 2000] [--chunk 250000]
 """
@@ -112,6 +114,13 @@ def main() -> None:
     print(f"ratio: {fast_rate / slow_rate:,.0f}x")
     print(f"peak memory (max RSS): {peak_mb:,.0f} MB")
     print(f"largest relative disagreement on the sample: {worst:.2e} (must be <= 1e-9)")
+    limit_s = 0.4 * args.rows / 1_000_000
+    ok_time, ok_memory = vectorized_s <= limit_s, peak_mb <= 250
+    print(
+        f"{'PASS' if ok_time else 'FAIL'}: derive {vectorized_s:.2f} s; bound <= {limit_s:.2f} s "
+        f"({vectorized_s / limit_s:.2f}x the bound)"
+    )
+    print(f"{'PASS' if ok_memory else 'FAIL'}: peak memory {peak_mb:,.0f} MB; bound <= 250 MB")
     if worst > 1e-9:
         raise SystemExit("the two implementations disagree")
 

@@ -1,18 +1,25 @@
-"""How fast does ``granudb collisions import`` load a large CSV, against the sqlite3 shell?
+r"""How fast does ``granudb collisions import`` load a large CSV, against the sqlite3 shell?
 
 Writes an N-row collision CSV (default 1,000,000) with units in the headers, imports it
 into a fresh SQLite database with ``granudb.io.collisions_csv.import_collisions`` (parse,
 convert units, validate every rule, resolve names, bulk insert, all in one transaction),
 and in the same run loads the same file with the ``sqlite3`` shell's ``.import --csv`` into
 a plain table (no conversion, no validation: the floor for getting bytes into SQLite).
-Prints rows per second for both, the ratio, and the peak memory of this process.
+Prints rows per second for both, the ratio, the peak memory of this process, where the
+import's time goes (reading and checking, inserting, the dataset's content hash), and
+pass/fail against issue 17's bounds: ≤ 3× the ``.import`` in the same run, ≤ 400 MB.
 
-    python benchmarks/import_speed.py [--rows 1000000]
+With ``--postgres-url`` the same file is also imported into that PostgreSQL database (into
+a fresh schema, dropped afterwards) and compared with ``psql \copy`` of the file into a
+plain text table in the same run (bound: ≤ 3×).
+
+    python benchmarks/import_speed.py [--rows 1000000] [--postgres-url postgresql+psycopg://…]
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import resource
 import shutil
@@ -72,9 +79,90 @@ def write_csv(path: Path, rows: int) -> None:
             )
 
 
+TIMERS: dict[str, float] = {}
+
+
+@contextlib.contextmanager
+def timed_stages():
+    """Add up the time spent in the insert and in the content hash (patched in place)."""
+    from granudb.db import collision_store, datasets
+
+    originals = {
+        "insert (insert_collisions)": (collision_store, "insert_collisions"),
+        "content hash (datasets.update_content_hash)": (datasets, "update_content_hash"),
+    }
+    saved = {}
+    for label, (module, name) in originals.items():
+        function = getattr(module, name)
+        saved[label] = function
+
+        def wrapper(*args, _f=function, _label=label, **kwargs):
+            start = time.perf_counter()
+            try:
+                return _f(*args, **kwargs)
+            finally:
+                TIMERS[_label] = TIMERS.get(_label, 0.0) + time.perf_counter() - start
+
+        setattr(module, name, wrapper)
+    try:
+        yield
+    finally:
+        for label, (module, name) in originals.items():
+            setattr(module, name, saved[label])
+
+
+def verdict(ok: bool) -> str:
+    return "PASS" if ok else "FAIL"
+
+
+def postgres(url: str, data: Path, rows: int) -> tuple[float, float]:
+    """(granudb import s, psql \\copy s) on PostgreSQL, each into a throw-away schema."""
+    from sqlalchemy import create_engine, text
+    from sqlalchemy.engine import make_url
+
+    from granudb.api.database import connect as open_database
+    from granudb.io.collisions_csv import import_collisions
+
+    schema = "granudb_import_bench"
+    admin = create_engine(url)
+    with admin.begin() as connection:
+        connection.execute(text(f"DROP SCHEMA IF EXISTS {schema} CASCADE"))
+        connection.execute(text(f"CREATE SCHEMA {schema}"))
+    scoped = make_url(url).update_query_dict({"options": f"-csearch_path={schema}"})
+    try:
+        database = open_database(scoped.render_as_string(hide_password=False))
+        start = time.perf_counter()
+        import_collisions(database, data, dataset="benchmark")
+        granudb_s = time.perf_counter() - start
+        database.dispose()
+        plain = make_url(url).set(drivername="postgresql")
+        conninfo = plain.render_as_string(hide_password=False)
+        columns = ", ".join(f"c{i} text" for i in range(14))
+        start = time.perf_counter()
+        subprocess.run(
+            [
+                shutil.which("psql") or "psql",
+                conninfo,
+                "-q",
+                "-c",
+                f"CREATE TABLE {schema}.plain ({columns})",
+                "-c",
+                f"\\copy {schema}.plain FROM '{data}' WITH (FORMAT csv, HEADER true)",
+            ],
+            check=True,
+        )
+        copy_s = time.perf_counter() - start
+    finally:
+        with admin.begin() as connection:
+            connection.execute(text(f"DROP SCHEMA IF EXISTS {schema} CASCADE"))
+        admin.dispose()
+    return granudb_s, copy_s
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rows", type=int, default=1_000_000)
+    parser.add_argument("--postgres-url", help="also compare against psql \\copy there")
     args = parser.parse_args()
     from granudb.api.database import connect as open_database
     from granudb.io.collisions_csv import import_collisions
@@ -86,9 +174,10 @@ def main() -> None:
         size_mb = data.stat().st_size / 1e6
 
         database = open_database(str(folder / "granudb.sqlite"))
-        start = time.perf_counter()
-        result = import_collisions(database, data, dataset="benchmark")
-        granudb_s = time.perf_counter() - start
+        with timed_stages():
+            start = time.perf_counter()
+            result = import_collisions(database, data, dataset="benchmark")
+            granudb_s = time.perf_counter() - start
         with database.engine.connect() as connection:
             from sqlalchemy import text
 
@@ -116,6 +205,7 @@ def main() -> None:
                 )
             how = "Python sqlite3 executemany (no sqlite3 shell on this machine)"
         shell_s = time.perf_counter() - start
+        pg = postgres(args.postgres_url, data, args.rows) if args.postgres_url else None
 
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"file: {args.rows:,} rows, {size_mb:,.0f} MB")
@@ -124,8 +214,20 @@ def main() -> None:
         f"{args.rows / granudb_s:,.0f} rows/s"
     )
     print(f"{how} (no conversion or checks): {shell_s:.1f} s = {args.rows / shell_s:,.0f} rows/s")
+    rest = granudb_s - sum(TIMERS.values())
+    for label, seconds in [*TIMERS.items(), ("reading, converting, checking (the rest)", rest)]:
+        print(f"  {label}: {seconds:.1f} s ({seconds / granudb_s:.0%})")
     print(f"ratio: granudb takes {granudb_s / shell_s:.1f}x the time of the raw load")
     print(f"peak memory of this process (max RSS): {peak_mb:,.0f} MB")
+    ratio = granudb_s / shell_s
+    print(f"{verdict(ratio <= 3)}: SQLite import = {ratio:.1f}x {how}; bound <= 3x")
+    print(f"{verdict(peak_mb <= 400)}: peak memory {peak_mb:,.0f} MB; bound <= 400 MB")
+    if pg is not None:
+        pg_s, copy_s = pg
+        print(f"PostgreSQL granudb import: {pg_s:.1f} s = {args.rows / pg_s:,.0f} rows/s")
+        print(f"psql \\copy (no checks): {copy_s:.1f} s = {args.rows / copy_s:,.0f} rows/s")
+        ratio = pg_s / copy_s
+        print(f"{verdict(ratio <= 3)}: PostgreSQL import = {ratio:.1f}x psql \\copy; bound <= 3x")
 
 
 if __name__ == "__main__":

@@ -2,32 +2,101 @@
 
 A ``GranudbError`` anywhere becomes one line on stderr (``Error: field: value rule``) and
 exit code 1; nothing else is printed, and the transaction it happened in was rolled back.
+
+Sub-commands load lazily: ``granudb --help`` lists every command from the one-line help in
+``COMMANDS`` below without importing any of their modules, and ``granudb materials list``
+imports ``granudb.cli.materials`` only (tests/test_startup.py checks the one-line help here
+matches each module's own). The root help is plain Click text rather than Rich, because
+importing Rich costs several times Python's own start-up; sub-command help keeps Rich.
 """
 
 from __future__ import annotations
 
 import os
 import sys
-from typing import Any, NoReturn
+from importlib import import_module
+from typing import TYPE_CHECKING, Any, NoReturn
 
 import click
 import typer
 from typer.core import TyperGroup
 
-from granudb.cli import (
-    collisions,
-    dataset,
-    db,
-    dem,
-    fit,
-    fluids,
-    materials,
-    pair,
-    report,
-    sources,
-)
-from granudb.cli.common import DbOption
+from granudb.cli.options import DbOption
 from granudb.version import __version__
+
+if TYPE_CHECKING:
+    from typer import _click as click
+
+
+# name → (module, attribute, one-line help). A Typer app attribute is a command group; a
+# function is a single command. The help must match the module's (tests/test_startup.py).
+COMMANDS: dict[str, tuple[str, str, str]] = {
+    "materials": (
+        "granudb.cli.materials",
+        "app",
+        "Particle and wall materials (ρ, E, ν, roughness).",
+    ),
+    "fluids": (
+        "granudb.cli.fluids",
+        "app",
+        "Fluids: density, viscosity and how it varies with temperature.",
+    ),
+    "sources": (
+        "granudb.cli.sources",
+        "app",
+        "Sources (papers, correlations) cited by stored values.",
+    ),
+    "collisions": (
+        "granudb.cli.collisions",
+        "app",
+        "Measured collisions: import CSV files, list them with e, β, Ψ, μ_f and regime verdicts.",
+    ),
+    "fit": (
+        "granudb.cli.fit",
+        "app",
+        "Fit measured collisions: Walton β and μ_f, e(St), gap viscosity.",
+    ),
+    "dataset": (
+        "granudb.cli.dataset",
+        "app",
+        "Curated collision datasets: catalogue, export and import as Frictionless Data Packages.",
+    ),
+    "pair": (
+        "granudb.cli.pair",
+        "pair",
+        "Properties, every derived quantity and the regime verdicts for one collision.",
+    ),
+    "report": (
+        "granudb.cli.report",
+        "report",
+        "Write a lab report: properties with sources, derived quantities, verdicts with the "
+        "roughness flag, fits next to published values, figures and methods.",
+    ),
+    "db": (
+        "granudb.cli.db",
+        "app",
+        "Schema migrations (Alembic) and the shipped seed data.",
+    ),
+    "dem": (
+        "granudb.cli.dem",
+        "app",
+        "DEM inputs for LIGGGHTS, LAMMPS, Yade and MercuryDPM, checked by running the codes.",
+    ),
+}
+
+
+def load_command(name: str) -> click.Command:
+    """Import the module of sub-command ``name`` and build its Click command."""
+    module, attribute, _ = COMMANDS[name]
+    target = getattr(import_module(module), attribute)
+    if isinstance(target, typer.Typer):
+        command: click.Command = typer.main.get_group(target)
+    else:
+        single = typer.Typer(add_completion=False)
+        single.command(name)(target)
+        command = typer.main.get_command(single)
+    command.name = name
+    return command
 
 
 class GranudbGroup(TyperGroup):
@@ -48,6 +117,28 @@ class GranudbGroup(TyperGroup):
             raise
         except _USAGE as exc:
             _usage_error(exc)
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return [*COMMANDS, *super().list_commands(ctx)]
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name in COMMANDS:
+            if cmd_name not in self.commands:
+                self.commands[cmd_name] = load_command(cmd_name)
+            return self.commands[cmd_name]
+        return super().get_command(ctx, cmd_name)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """List every command from ``COMMANDS`` without importing its module."""
+        rows = [(name, help_text) for name, (_, _, help_text) in COMMANDS.items()]
+        rows += [
+            (name, command.get_short_help_str(limit=formatter.width))
+            for name, command in sorted(self.commands.items())
+            if name not in COMMANDS and not command.hidden
+        ]
+        width = formatter.width - 6 - max(len(name) for name, _ in rows)
+        with formatter.section("Commands"):
+            formatter.write_dl([(name, _shorten(text, width)) for name, text in rows])
 
     def invoke(self, ctx: typer.Context) -> Any:
         from granudb.errors import GranudbError, ValidationError
@@ -134,6 +225,7 @@ app = typer.Typer(
     help="Materials-and-regime database for particle–wall collisions in liquids.",
     no_args_is_help=True,
     pretty_exceptions_enable=False,
+    rich_markup_mode=None,
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 
@@ -156,16 +248,10 @@ def _root(
     """
 
 
-app.add_typer(materials.app, name="materials")
-app.add_typer(fluids.app, name="fluids")
-app.add_typer(sources.app, name="sources")
-app.add_typer(collisions.app, name="collisions")
-app.add_typer(fit.app, name="fit")
-app.add_typer(dataset.app, name="dataset")
-app.command("pair")(pair.pair)
-app.command("report")(report.report)
-app.add_typer(db.app, name="db")
-app.add_typer(dem.app, name="dem")
+def _shorten(text: str, width: int) -> str:
+    """The first sentence of ``text``, cut to ``width`` like Click's short help."""
+    first = text.split(". ")[0].rstrip(".") + "."
+    return first if len(first) <= width else first[: max(width - 3, 10)].rsplit(" ", 1)[0] + "..."
 
 
 @app.command("datasette-metadata")

@@ -26,6 +26,9 @@ from granudb.config import default_database_path, resolve_database_url
 from granudb.errors import DatabaseAccessError, GranudbError
 
 BUSY_TIMEOUT_S = 30.0
+# Set in a connection's info by a bulk load that enlarged SQLite's page cache
+# (granudb.db.collision_store.insert_collisions): the setting to restore on check-in.
+BULK_CACHE_KEY = "granudb_bulk_cache_size"
 
 
 def _sqlite_file(url: str) -> Path | None:
@@ -65,6 +68,13 @@ def make_engine(url: str) -> Engine:
             cursor.execute("PRAGMA journal_mode=WAL")
             cursor.execute("PRAGMA synchronous=NORMAL")
         cursor.close()
+
+    @event.listens_for(engine, "checkin")
+    def _on_checkin(dbapi_connection: Any, record: Any) -> None:
+        # A bulk load's page cache lasts only for its transaction, not the pooled connection.
+        cache_size = record.info.pop(BULK_CACHE_KEY, None) if record is not None else None
+        if cache_size is not None and dbapi_connection is not None:
+            dbapi_connection.execute(f"PRAGMA cache_size={int(cache_size)}")
 
     @event.listens_for(engine, "begin")
     def _on_begin(connection: Connection) -> None:

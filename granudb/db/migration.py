@@ -8,12 +8,14 @@ older file forward, while a file from a *newer* granudb is refused rather than d
 from __future__ import annotations
 
 import io
+import re
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
 from sqlalchemy import inspect, text
 from sqlalchemy.engine import Connection
+from sqlalchemy.exc import DBAPIError
 
 from granudb.errors import ConfirmationNeeded, SchemaError
 from granudb.resources import shipped_dir
@@ -115,20 +117,65 @@ def check_revision(current: str | None, connection: Connection) -> None:
         ) from None
 
 
+_REVISION_LINE = re.compile(r"^(down_revision|revision)\b[^=]*=\s*(?:\"([^\"]*)\"|None)", re.M)
+
+
+def shipped_head() -> str | None:
+    """The newest shipped revision, read from the migration files without Alembic.
+
+    Importing Alembic costs about as much as the rest of a command's start-up, and almost
+    every run only needs to know "is the database at head?". Each migration file states
+    ``revision = "…"`` and ``down_revision = "…"``; the head is the one revision nothing
+    revises. Returns None if the files do not form one straight line (then the caller asks
+    Alembic, which is authoritative; tests/test_startup.py checks both agree).
+    """
+    revisions: set[str] = set()
+    parents: set[str] = set()
+    for path in (shipped_dir("migrations") / "versions").glob("*.py"):
+        found = dict((m.group(1), m.group(2)) for m in _REVISION_LINE.finditer(path.read_text()))
+        if found.get("revision"):
+            revisions.add(found["revision"])
+            if found.get("down_revision"):
+                parents.add(found["down_revision"])
+    heads = revisions - parents
+    return heads.pop() if len(heads) == 1 else None
+
+
+def stored_revisions(connection: Connection) -> list[str] | None:
+    """The rows of ``alembic_version``, or None when the table is missing or unreadable."""
+    try:
+        rows = connection.exec_driver_sql("SELECT version_num FROM alembic_version").fetchall()
+    except DBAPIError:
+        connection.rollback()  # PostgreSQL: the failed statement aborted the transaction
+        return None
+    return [row[0] for row in rows]
+
+
+def is_current(database: Database) -> bool:
+    """One cheap query: is the database exactly at the shipped head? (No Alembic import.)"""
+    head = shipped_head()
+    if head is None:
+        return False
+    with database.engine.connect() as probe:
+        stored = stored_revisions(probe)
+        probe.rollback()
+    return stored == [head]
+
+
 def ensure_current(
     database: Database, on_create: Callable[[Connection], None] | None = None
 ) -> bool:
     """Migrate ``database`` to head if needed; return True when it was created just now.
 
-    Runs in one write transaction: checking the revision, migrating and ``on_create``
+    The common case, a database already at head, is decided by ``is_current`` with one
+    query of ``alembic_version`` and without importing Alembic. Anything else (missing
+    table, older, newer or unknown revision, tables that are not granudb's) goes through
+    Alembic in one write transaction: checking the revision, migrating and ``on_create``
     (seeding) either all happen or none, and concurrent first uses wait for each other.
     """
-    head = head_revision()
-    with database.engine.connect() as probe:
-        current = current_revision(probe)
-        probe.rollback()
-    if current == head:
+    if is_current(database):
         return False
+    head = head_revision()
     with schema_transaction(database) as connection:
         current = current_revision(connection)
         if current == head:
