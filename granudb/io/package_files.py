@@ -125,10 +125,12 @@ def package_root(path: Path) -> Iterator[Path]:
         return
     if not path.exists():
         raise PackageError([f"{path} does not exist"])
+    if not path.is_file():  # a pipe or device would block or never end
+        raise PackageError([f"{path} is not a folder, a datapackage.json or a zip file"])
     try:
-        is_zip = path.is_file() and zipfile.is_zipfile(path)
         with path.open("rb"):
             pass
+        is_zip = zipfile.is_zipfile(path)
     except OSError as exc:
         raise PackageError([f"{path}: cannot be read ({exc.strerror or exc})"]) from None
     if not is_zip:
