@@ -46,13 +46,13 @@ def test_export_is_a_valid_data_package(exported: Path) -> None:
     assert set(resources) == {"collisions", "materials", "fluids", "fluid_points", "sources"}
     fields = {f["name"]: f for f in resources["collisions"]["schema"]["fields"]}
     assert fields["v_n_in_m_s"]["unit"] == "m/s"
-    assert fields["v_n_in_m_s"]["constraints"] == {"required": True, "exclusiveMinimum": 0.0}
+    assert fields["v_n_in_m_s"]["constraints"] == {"required": True, "minimum": 0.0}
     assert resources["collisions"]["schema"]["foreignKeys"][0]["reference"]["resource"] == (
         "materials"
     )
     assert resources["collisions"]["hash"].startswith("sha256:")
     assert (exported / "README.md").read_text("utf-8").startswith("# Example runs")
-    assert "cff-version: 1.2.0" in (exported / "CITATION.cff").read_text("utf-8")
+    assert 'cff-version: "1.2.0"' in (exported / "CITATION.cff").read_text("utf-8")
     # the upstream validator agrees
     tool = shutil.which("frictionless") or str(Path(sys.executable).parent / "frictionless")
     check = subprocess.run(

@@ -98,18 +98,16 @@ def export(
 ) -> None:
     """Write the dataset as a Data Package (datapackage.json, CSVs, README, CITATION.cff)."""
     from granudb.cli.output import say
-    from granudb.db import datasets
+    from granudb.db.package_queries import export_data
     from granudb.io.package_export import build_package, write_package
 
     database = open_db(db)
     with database.session() as session:
-        dataset = datasets.get_dataset(session, name, version)
-        content_hash = datasets.content_hash(session, dataset)
-        files = build_package(session, dataset, content_hash)
-    write_package(files, output)
+        data = export_data(session, name, version)
+    write_package(build_package(data), output)
     say(
-        f"exported dataset {dataset.name} {dataset.version} to {output} "
-        f"(content hash {content_hash[:16]}…)"
+        f"exported dataset {data.dataset['name']} {data.dataset['version']} to {output} "
+        f"(content hash {data.content_hash[:16]}…)"
     )
 
 
@@ -150,16 +148,11 @@ def import_(
     db: DbOption = None,
 ) -> None:
     """Validate and import a package in one transaction (all or nothing)."""
-    from granudb.cli.output import note, say
-    from granudb.io.package_import import PackageError, import_package
+    from granudb.cli.output import say
+    from granudb.io.package_import import import_package
 
     database = open_db(db)
-    try:
-        result = import_package(database, path, as_name=as_name, rename_conflicts=rename_conflicts)
-    except PackageError as exc:
-        for problem in exc.problems:
-            note(f"problem: {problem}")
-        raise
+    result = import_package(database, path, as_name=as_name, rename_conflicts=rename_conflicts)
     for line in result.renamed:
         say(f"renamed {line}")
     say(
@@ -167,6 +160,12 @@ def import_(
         f"(content hash {result.content_hash[:16]}…); reused {len(result.reused)}, added "
         f"{len(result.added)} materials/fluids/sources"
     )
+    if result.declared_hash and result.declared_hash != result.content_hash:
+        say(
+            f"content hash: the package's {result.declared_hash[:16]}… was verified; stored "
+            f"as {result.content_hash[:16]}… because names were matched or renamed "
+            f"({', '.join(result.renamed + result.reused) or 'case differences'})"
+        )
 
 
 from granudb.cli import dataset_lifecycle  # noqa: E402, F401 - registers remove, edit, release, …

@@ -257,11 +257,17 @@ def _shorten(text: str, width: int) -> str:
 @app.command("datasette-metadata")
 def datasette_metadata(
     db: DbOption = None,
+    print_path: bool = typer.Option(
+        False,
+        "--print-path",
+        help="Print the SQLite file's path instead (for: datasette \"$(granudb "
+        'datasette-metadata --print-path)" -m metadata.json).',
+    ),
 ) -> None:
     """Print Datasette metadata (titles, descriptions, units) for the database as JSON.
 
     Browse the database with: granudb datasette-metadata > metadata.json &&
-    datasette PATH/TO/granudb.sqlite -m metadata.json
+    datasette "$(granudb datasette-metadata --print-path)" -m metadata.json
     """
     from pathlib import Path
 
@@ -269,15 +275,19 @@ def datasette_metadata(
 
     from granudb.cli.output import to_json
     from granudb.config import resolve_database_url
+    from granudb.errors import ValidationError
     from granudb.io.datasette import datasette_metadata as metadata
 
     url = make_url(resolve_database_url(db))
-    name = (
-        Path(url.database).stem
-        if url.get_backend_name() == "sqlite" and url.database
-        else "granudb"
-    )
-    typer.echo(to_json(metadata(name)))
+    path = url.database if url.get_backend_name() == "sqlite" and url.database else None
+    if print_path:
+        if path is None or path == ":memory:":
+            raise ValidationError(
+                "--db", url.render_as_string(), "is not a SQLite file (Datasette reads SQLite)"
+            )
+        typer.echo(str(Path(path).resolve()))
+        return
+    typer.echo(to_json(metadata(Path(path).stem if path else "granudb")))
 
 
 def main() -> None:

@@ -1,7 +1,8 @@
 """Datasette ``metadata.json`` for a granudb SQLite file, generated from the vocabulary.
 
 Datasette shows a column description as a tooltip and a ``units`` entry beside values;
-foreign keys display the referenced row's ``name`` (or ``key`` for sources).
+foreign keys display the referenced row's ``name`` (or ``key`` for sources). Temperatures
+(°C, an offset unit) get no ``units`` entry; the description says °C.
 """
 
 from __future__ import annotations
@@ -9,6 +10,11 @@ from __future__ import annotations
 from typing import Any
 
 from granudb.vocabulary import TABLES, term
+
+#: Units Datasette cannot show: it multiplies values by their unit with Pint, and an
+#: offset unit (°C) cannot be multiplied, so a table with one answers HTTP 500. Such
+#: columns keep the unit in their name (``temperature_c``) and their description.
+OFFSET_UNITS = {"degC", "degF", "celsius", "fahrenheit"}
 
 
 def datasette_metadata(database_name: str = "granudb") -> dict[str, Any]:
@@ -28,7 +34,11 @@ def datasette_metadata(database_name: str = "granudb") -> dict[str, Any]:
             for c in table.columns
             if c.name != "id"
         }
-        units = {c.name: term(c.name).unit for c in table.columns if term(c.name).unit is not None}
+        units = {
+            c.name: term(c.name).unit
+            for c in table.columns
+            if term(c.name).unit is not None and term(c.name).unit not in OFFSET_UNITS
+        }
         entry: dict[str, Any] = {"description": TABLES.get(table.name, ""), "columns": columns}
         if units:
             entry["units"] = units

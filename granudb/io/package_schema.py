@@ -9,6 +9,7 @@ description and the same constraints the database enforces.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from granudb.vocabulary import term
@@ -133,10 +134,15 @@ def field_schema(name: str, kind: str, required: bool) -> dict[str, Any]:
         constraints["required"] = True
     rule = RULES.get(name)
     if rule is not None:
+        # Strict bounds are written as the inclusive bound (true of every valid value)
+        # and stated exactly in the description: Frictionless (5.x) refuses a schema with
+        # ``exclusiveMinimum``, and granudb re-checks the strict rule on import anyway.
         if rule.minimum is not None:
-            constraints["minimum" if rule.min_inclusive else "exclusiveMinimum"] = rule.minimum
+            constraints["minimum"] = rule.minimum
         if rule.maximum is not None:
-            constraints["maximum" if rule.max_inclusive else "exclusiveMaximum"] = rule.maximum
+            constraints["maximum"] = rule.maximum
+        if not (rule.min_inclusive and rule.max_inclusive):
+            field["description"] = f"{field.get('description', '')} Rule: {rule.text}.".strip()
     if kind == "string" and name in MAX_TEXT:
         constraints["maxLength"] = MAX_TEXT[name]
     if constraints:
@@ -161,3 +167,51 @@ def table_schema(resource: str) -> dict[str, Any]:
 
 def columns(resource: str) -> list[str]:
     return [name for name, _, _ in RESOURCES[resource]]
+
+
+def _same_unit(declared: str, expected: str) -> bool:
+    from granudb.io.units import check_unit_expression, registry
+
+    try:
+        spelled = check_unit_expression(declared)  # bounded cost: m**(9**9**9) never reaches Pint
+        ureg = registry()
+        factor = ureg.Quantity(1.0, spelled).to(expected).magnitude
+        offset = ureg.Quantity(0.0, spelled).to(expected).magnitude
+    except Exception:  # noqa: BLE001 - any Pint failure means "not the same unit"
+        return False
+    return math.isclose(factor - offset, 1.0, rel_tol=1e-12) and abs(offset) < 1e-12
+
+
+def check_schema(name: str, resource: dict[str, Any], problems: list[str]) -> None:
+    """Append a problem for each field of a package's schema that granudb cannot read."""
+    schema = resource.get("schema")
+    if not isinstance(schema, dict) or not isinstance(schema.get("fields"), list):
+        problems.append(f"{name}: has no Table Schema with fields")
+        return
+    expected = {n: (kind, required) for n, kind, required in RESOURCES[name]}
+    seen = set()
+    for entry in schema["fields"]:
+        if not isinstance(entry, dict) or not isinstance(entry.get("name"), str):
+            problems.append(f"{name}: a schema field has no name")
+            continue
+        field_name = entry["name"][:80]
+        seen.add(field_name)
+        if field_name not in expected:
+            problems.append(
+                f"{name}.{field_name}: is not a field granudb knows (known: {', '.join(expected)})"
+            )
+            continue
+        unit = term(field_name).unit
+        declared = entry.get("unit")
+        if declared is not None and unit is not None and not _same_unit(str(declared), unit):
+            problems.append(
+                f"{name}.{field_name}: unit {str(declared)[:40]!r} is not {unit!r}, the SI "
+                "unit this column holds"
+            )
+        if declared is not None and unit is None and str(declared) not in {"", "1", "-"}:
+            problems.append(
+                f"{name}.{field_name}: unit {str(declared)[:40]!r} on a column without unit"
+            )
+    for field_name, (_, required) in expected.items():
+        if required and field_name not in seen:
+            problems.append(f"{name}.{field_name}: required field is missing from the schema")

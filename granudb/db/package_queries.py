@@ -1,0 +1,134 @@
+"""What a Data Package export reads: a dataset, its runs and everything they refer to.
+
+The queries live here (all SQL is in ``granudb.db``); ``granudb.io.package_export`` only
+serialises the plain records returned. Rows carry every stored column by name, with
+references turned into the names a receiver can resolve (material and fluid names,
+source keys), never database ids.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any
+
+from sqlalchemy import inspect, select
+from sqlalchemy.orm import Session
+
+from granudb.db import datasets
+from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
+
+
+@dataclass(frozen=True)
+class ExportData:
+    """A dataset's metadata (``dataset``), content hash and tables, as plain values."""
+
+    dataset: dict[str, Any]
+    content_hash: str
+    tables: dict[str, list[dict[str, Any]]]
+
+
+def _values(row: Any) -> dict[str, Any]:
+    return {c.key: getattr(row, c.key) for c in inspect(row).mapper.column_attrs}
+
+
+def _json_list(text: object) -> list[Any]:
+    """A JSON list stored as text (``authors``, ``keywords``), or [] when absent or bad."""
+    if not isinstance(text, str) or not text.strip():
+        return []
+    try:
+        value = json.loads(text)
+    except ValueError:
+        return []
+    return value if isinstance(value, list) else []
+
+
+def dataset_metadata(dataset: Dataset) -> dict[str, Any]:
+    """The dataset's descriptive metadata; ``authors`` and ``keywords`` are read when the
+    schema has them (JSON text) and are empty lists otherwise."""
+    source = dataset.source
+    return {
+        "name": dataset.name,
+        "version": dataset.version,
+        "title": dataset.title,
+        "description": dataset.description,
+        "license": dataset.license,
+        "doi": dataset.doi,
+        "created_at": dataset.created_at,
+        "authors": _json_list(getattr(dataset, "authors", None)),
+        "keywords": _json_list(getattr(dataset, "keywords", None)),
+        "source": None if source is None else _values(source),
+    }
+
+
+def _collisions(session: Session, dataset: Dataset) -> list[Collision]:
+    return list(
+        session.scalars(
+            select(Collision).where(Collision.dataset_id == dataset.id).order_by(Collision.run)
+        )
+    )
+
+
+def _sources(session: Session, ids: set[int | None]) -> list[Source]:
+    return list(
+        session.scalars(select(Source).where(Source.id.in_(ids - {None})).order_by(Source.key))
+    )
+
+
+def export_data(session: Session, name: str, version: str | None = None) -> ExportData:
+    """Everything the export of dataset ``name`` (at ``version``, default newest) needs."""
+    dataset = datasets.get_dataset(session, name, version)
+    collisions = _collisions(session, dataset)
+    material_ids = {c.particle_id for c in collisions} | {c.wall_id for c in collisions}
+    fluid_ids = {c.fluid_id for c in collisions if c.fluid_id is not None}
+    materials = list(
+        session.scalars(
+            select(Material).where(Material.id.in_(material_ids)).order_by(Material.name)
+        )
+    )
+    fluids = list(
+        session.scalars(select(Fluid).where(Fluid.id.in_(fluid_ids)).order_by(Fluid.name))
+    )
+    points = list(session.scalars(select(FluidPoint).where(FluidPoint.fluid_id.in_(fluid_ids))))
+    source_ids = {dataset.source_id} | {m.source_id for m in materials}
+    for fluid in fluids:
+        source_ids |= {fluid.source_id, fluid.density_source_id, fluid.pressure_viscosity_source_id}
+    source_ids |= {p.source_id for p in points}
+    sources = _sources(session, source_ids)
+    keys = {s.id: s.key for s in sources}
+    names = {m.id: m.name for m in materials}
+    fluid_names = {f.id: f.name for f in fluids}
+
+    def key(source_id: int | None) -> str | None:
+        return None if source_id is None else keys.get(source_id)
+
+    tables = {
+        "collisions": [
+            {
+                **_values(c),
+                "particle": names[c.particle_id],
+                "wall": names[c.wall_id],
+                "fluid": fluid_names.get(c.fluid_id),
+            }
+            for c in collisions
+        ],
+        "materials": [{**_values(m), "source": key(m.source_id)} for m in materials],
+        "fluids": [
+            {
+                **_values(f),
+                "source": key(f.source_id),
+                "density_source": key(f.density_source_id),
+                "pressure_viscosity_source": key(f.pressure_viscosity_source_id),
+            }
+            for f in fluids
+        ],
+        "fluid_points": sorted(
+            (
+                {**_values(p), "fluid": fluid_names[p.fluid_id], "source": key(p.source_id)}
+                for p in points
+            ),
+            key=lambda r: (r["fluid"], r["temperature_c"]),
+        ),
+        "sources": [_values(s) for s in sources],
+    }
+    return ExportData(dataset_metadata(dataset), datasets.content_hash(session, dataset), tables)

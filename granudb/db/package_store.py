@@ -1,0 +1,247 @@
+"""Storing a validated Data Package: merge its sources, materials and fluids, add its runs.
+
+``granudb.io.package_import`` parses and validates; everything that reads or writes the
+database happens here, in one write transaction, so a refusal at any step (a conflict, a
+dataset that exists) leaves the database exactly as it was.
+
+Merging is by name (case-insensitive, as everywhere in granudb): an identical row is
+reused; a row with the same name and different values is a conflict, reported field by
+field, and only resolved by ``rename_conflicts`` (the package's row comes in under
+``NAME (package)``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+
+from granudb.db import datasets
+from granudb.db.collision_store import insert_collisions
+from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
+from granudb.db.sources import source_record
+from granudb.db.upsert import same_value
+from granudb.errors import ConflictError
+
+FLUID_SOURCES = {
+    "source": "source_id",
+    "density_source": "density_source_id",
+    "pressure_viscosity_source": "pressure_viscosity_source_id",
+}
+
+
+@dataclass(frozen=True)
+class PackageContent:
+    """What a validated package brings: dataset metadata and its SI tables (frames)."""
+
+    dataset: str
+    version: str
+    package: str
+    title: str | None
+    description: str | None
+    license: str | None
+    doi: str | None
+    tables: dict[str, Any]
+
+
+@dataclass
+class PackageImport:
+    """What an import did: the dataset, its rows and hash, and what was merged how."""
+
+    dataset: str
+    version: str
+    rows: int
+    content_hash: str
+    reused: list[str] = field(default_factory=list)
+    added: list[str] = field(default_factory=list)
+    renamed: list[str] = field(default_factory=list)
+    declared_hash: str | None = None
+
+
+class MergeConflict(ConflictError):
+    """Names in the package that exist here with other values; ``conflicts`` lists them."""
+
+    def __init__(self, conflicts: list[str]) -> None:
+        self.conflicts = conflicts
+        super().__init__("; ".join(conflicts))
+
+
+def records(frame: Any) -> list[dict[str, Any]]:
+    """Rows of a validated frame as dicts with None for missing values."""
+    return [
+        {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in r.items()}
+        for r in frame.to_dict("records")
+    ]
+
+
+def _differences(existing: dict[str, Any], incoming: dict[str, Any]) -> list[str]:
+    return [
+        f"{k}: {existing.get(k)!r} here, {v!r} in the package"
+        for k, v in incoming.items()
+        if not same_value(existing.get(k), v)
+    ]
+
+
+def _point_differences(existing: Fluid, points: list[dict[str, Any]]) -> list[str]:
+    here = sorted((p.temperature_c, p.viscosity_pa_s, p.density_kg_m3) for p in existing.points)
+    there = sorted((p["temperature_c"], p["viscosity_pa_s"], p["density_kg_m3"]) for p in points)
+    if len(here) == len(there) and not any(
+        _differences(dict(enumerate(a)), dict(enumerate(b)))
+        for a, b in zip(here, there, strict=True)
+    ):
+        return []
+    return [
+        f"viscosity points: {len(here)} here, {len(there)} in the package, with different values"
+    ]
+
+
+class Merger:
+    """Matches the package's sources, materials and fluids against the database."""
+
+    def __init__(self, session: Session, package: str, rename_conflicts: bool) -> None:
+        self.session = session
+        self.package = package
+        self.rename = rename_conflicts
+        self.conflicts: list[str] = []
+        self.result = PackageImport("", "", 0, "")
+        self.source_ids: dict[str, int] = {}
+
+    def _renamed(self, model: type, name: str) -> str:
+        candidate = f"{name} ({self.package})"
+        number = 2
+        while self.session.scalars(
+            select(model.id).filter_by(name_key=name_key(candidate))
+        ).first():
+            candidate = f"{name} ({self.package} {number})"
+            number += 1
+        return candidate
+
+    def sources(self, rows: list[dict[str, Any]]) -> None:
+        for row in rows:
+            existing = self.session.scalars(select(Source).filter_by(key=row["key"])).first()
+            values = {**row, "year": None if row["year"] is None else int(row["year"])}
+            if existing is None:
+                source = Source(**values)
+                self.session.add(source)
+                self.session.flush()
+                self.source_ids[row["key"]] = source.id
+                self.result.added.append(f"source {row['key']}")
+                continue
+            diffs = _differences(source_record(existing), values)
+            if diffs:
+                self.conflicts.append(f"source {row['key']}: " + "; ".join(diffs))
+            self.source_ids[row["key"]] = existing.id
+
+    def _source(self, key: str | None) -> int | None:
+        return None if key is None else self.source_ids[key]
+
+    def _match(
+        self, kind: str, model: type, name: str, values: dict[str, Any], points: Any
+    ) -> tuple[int | None, str | None]:
+        """(id of an identical row, None) or (None, the name to add the row under)."""
+        existing = self.session.scalars(select(model).filter_by(name_key=name_key(name))).first()
+        if existing is None:
+            self.result.added.append(f"{kind} {name}")
+            return None, name
+        diffs = _differences({k: getattr(existing, k) for k in values}, values)
+        if points is not None:
+            diffs += _point_differences(existing, points)
+        if not diffs:
+            self.result.reused.append(f"{kind} {existing.name}")
+            return existing.id, None
+        if not self.rename:
+            self.conflicts.append(f"{kind} {name}: " + "; ".join(diffs))
+            return None, None
+        new_name = self._renamed(model, name)
+        self.result.renamed.append(f"{kind} {name} → {new_name}")
+        return None, new_name
+
+    def named(
+        self,
+        kind: str,
+        model: type,
+        rows: list[dict[str, Any]],
+        references: dict[str, str],
+        points: dict[str, list[dict[str, Any]]] | None,
+    ) -> dict[str, int]:
+        """Ids by the package's names; new rows (and their viscosity points) added."""
+        ids: dict[str, int] = {}
+        for row in rows:
+            name = row["name"]
+            values = {k: v for k, v in row.items() if k not in references and k != "name"}
+            for column, id_column in references.items():
+                values[id_column] = self._source(row[column])
+            own_points = None if points is None else points.get(name, [])
+            found, new_name = self._match(kind, model, name, values, own_points)
+            if found is not None:
+                ids[name] = found
+            if new_name is None:
+                continue
+            added = model(name=new_name, name_key=name_key(new_name), **values)
+            self.session.add(added)
+            self.session.flush()
+            for point in own_points or []:
+                self.session.add(
+                    FluidPoint(
+                        fluid_id=added.id,
+                        temperature_c=point["temperature_c"],
+                        viscosity_pa_s=point["viscosity_pa_s"],
+                        density_kg_m3=point["density_kg_m3"],
+                        source_id=self._source(point["source"]),
+                        source_locator=point["source_locator"],
+                    )
+                )
+            ids[name] = added.id
+        return ids
+
+
+def _merge(merger: Merger, tables: dict[str, Any]) -> tuple[dict[str, int], dict[str, int]]:
+    merger.sources(records(tables["sources"]))
+    materials = merger.named(
+        "material", Material, records(tables["materials"]), {"source": "source_id"}, None
+    )
+    points: dict[str, list[dict[str, Any]]] = {}
+    for point in records(tables["fluid_points"]):
+        points.setdefault(point["fluid"], []).append(point)
+    fluids = merger.named("fluid", Fluid, records(tables["fluids"]), FLUID_SOURCES, points)
+    if merger.conflicts:
+        raise MergeConflict(merger.conflicts)
+    return materials, fluids
+
+
+def store_package(
+    database: Any, content: PackageContent, *, rename_conflicts: bool = False
+) -> PackageImport:
+    """Merge and insert ``content`` in one write transaction; all or nothing."""
+    with database.session(write=True) as session:
+        if session.scalars(
+            select(Dataset).filter_by(name=content.dataset, version=content.version)
+        ).first():
+            raise ConflictError(
+                f"package: dataset {content.dataset} {content.version} already exists (use "
+                "--as NAME, or export a new version); nothing was imported"
+            )
+        merger = Merger(session, content.package, rename_conflicts)
+        materials, fluids = _merge(merger, content.tables)
+        dataset = Dataset(
+            name=content.dataset,
+            version=content.version,
+            title=content.title,
+            description=content.description,
+            license=content.license,
+            doi=content.doi,
+        )
+        session.add(dataset)
+        session.flush()
+        frame = content.tables["collisions"].copy()
+        frame["particle_id"] = frame.pop("particle").map(materials)
+        frame["wall_id"] = frame.pop("wall").map(materials)
+        frame["fluid_id"] = frame.pop("fluid").map(fluids)
+        rows = insert_collisions(session, dataset.id, frame)
+        result = merger.result
+        result.dataset, result.version = content.dataset, content.version
+        result.rows, result.content_hash = rows, datasets.update_content_hash(session, dataset)
+        return result
