@@ -212,33 +212,6 @@ def against_incidence(
     return _svg(figure, figure_id)
 
 
-def restitution_vs_stokes(
-    stokes: np.ndarray,
-    restitution: np.ndarray,
-    groups: Sequence[str],
-    colours: Mapping[str, str],
-    curve: tuple[np.ndarray, np.ndarray, str] | None = None,
-    critical_stokes: float | None = None,
-    figure_id: str = "fig-restitution",
-) -> str:
-    """e against the normal Stokes number, with the fitted curve (figure 5)."""
-    plt = _pyplot()
-    figure, ax = plt.subplots(figsize=FIGSIZE)
-    _scatter_groups(ax, np.asarray(stokes, float), np.asarray(restitution, float), groups, colours)
-    if curve is not None:
-        ax.plot(curve[0], curve[1], "-", color="#555555", lw=1.2, label=curve[2])
-    if critical_stokes is not None:
-        ax.axvline(
-            critical_stokes, color="grey", ls="--", lw=1.0, label=f"St_c = {critical_stokes:g}"
-        )
-    _log(ax, "x")
-    ax.set_xlabel("normal Stokes number St_n = 2ρ_p R v_N,in / (9μ)  (–)")
-    ax.set_ylabel("normal restitution e  (–)")
-    ax.set_title("Restitution against Stokes number")
-    _legend(ax)
-    return _svg(figure, figure_id)
-
-
 def friction_vs_shear_strain(
     strain: np.ndarray,
     friction: np.ndarray,
@@ -260,76 +233,8 @@ def friction_vs_shear_strain(
     return _svg(figure, figure_id)
 
 
-REGIME_COLOURS = {
-    "no rebound": "#d9d9d9",
-    "rebound, asperity contact (σ > h_m)": "#fdd9b5",
-    "rebound, film (σ ≤ h_m)": "#cfe3f2",
-}
 #: Marker per measured regime of a run on the regime map.
 RUN_MARKERS = {"sticking": "o", "sliding": "^", "no rebound": "x", "normal impact": "s"}
-
-
-def regime_map(
-    velocity_m_s: np.ndarray,
-    viscosity_pa_s: np.ndarray,
-    regime: np.ndarray,
-    gap_ratio: np.ndarray,
-    stokes: np.ndarray,
-    critical_stokes: float,
-    *,
-    point: tuple[float, float] | None = None,
-    runs: Sequence[dict[str, Any]] = (),
-    colours: Mapping[str, str] | None = None,
-    figure_id: str = "fig-regime-map",
-) -> str:
-    """Impact velocity × viscosity plane shaded by regime, with h_m = σ and St_n = St_c.
-
-    ``regime``, ``gap_ratio`` (h_m/σ) and ``stokes`` (St_n) are 2-D arrays on the grid
-    ``viscosity_pa_s`` (rows) × ``velocity_m_s`` (columns), all from
-    ``granudb.physics.derive``; the two lines are their level sets. ``runs``: dicts with
-    ``v`` and ``mu`` arrays, a ``fluid`` (key of ``colours``) and a measured ``regime``
-    (key of ``RUN_MARKERS``).
-    """
-    from matplotlib.colors import ListedColormap
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
-    plt = _pyplot()
-    names = list(REGIME_COLOURS)
-    codes = np.vectorize(names.index)(regime)
-    figure, ax = plt.subplots(figsize=(FIGSIZE[0], FIGSIZE[1] + 0.6))
-    mu_axis = viscosity_pa_s * 1e3
-    # contourf draws one polygon per region (a few kB); pcolormesh one per cell (~0.5 MB).
-    ax.contourf(
-        velocity_m_s,
-        mu_axis,
-        codes,
-        levels=np.arange(len(names) + 1) - 0.5,
-        cmap=ListedColormap([REGIME_COLOURS[n] for n in names]),
-    )
-    handles: list[Any] = [Patch(color=REGIME_COLOURS[n], label=n) for n in names]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        if np.isfinite(gap_ratio).any():
-            ax.contour(velocity_m_s, mu_axis, np.log(gap_ratio), levels=[0.0],
-                       colors="black", linewidths=1.4)  # fmt: skip
-            handles.append(Line2D([], [], color="black", lw=1.4, label="h_m = σ"))
-        ax.contour(velocity_m_s, mu_axis, np.log(stokes / critical_stokes), levels=[0.0],
-                   colors="black", linewidths=1.2, linestyles="--")  # fmt: skip
-    handles.append(Line2D([], [], color="black", lw=1.2, ls="--", label="St_n = St_c"))
-    handles += _draw_runs(ax, runs, colours or {})
-    if point is not None:
-        (marker,) = ax.plot(
-            [point[0]], [point[1] * 1e3], "*", color="crimson", ms=12, label="this collision"
-        )
-        handles.append(marker)
-    _log(ax, "x", "y")
-    ax.set_xlim(float(np.min(velocity_m_s)), float(np.max(velocity_m_s)))
-    ax.set_ylim(float(np.min(mu_axis)), float(np.max(mu_axis)))
-    ax.set_xlabel("normal impact velocity v_N,in  (m/s)")
-    ax.set_ylabel("fluid viscosity μ  (mPa·s)")
-    ax.set_title("Regime map")
-    _legend(ax, handles)
-    return _svg(figure, figure_id)
 
 
 def _draw_runs(ax: Any, runs: Sequence[dict[str, Any]], colours: Mapping[str, str]) -> list[Any]:

@@ -51,7 +51,7 @@ def regime_map(
     """The regime plane shaded by ``regime`` (names of ``REGIME_COLOURS``), with the lines
     σ = x₁/3 (Λ = 1), σ = x₁/4 (Λ = 4/3) and St_n = St_c; ``sigma_over_x1`` and ``stokes``
     are 2-D on ``viscosity_pa_s`` (rows) × ``velocity_m_s`` (columns). ``runs`` as in
-    ``plots.regime_map``."""
+    the report's regime map."""
     from matplotlib.colors import ListedColormap
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
