@@ -144,7 +144,7 @@ def test_many_short_headers_are_refused_by_count(cli, db: str, tmp_path: Path) -
 
 
 def test_package_schema_units_have_bounded_cost_too() -> None:
-    from granudb.io.package_import import _same_unit
+    from granudb.io.package_schema import _same_unit
 
     start = time.perf_counter()
     assert _same_unit("m**(9**9**9)/s", "m/s") is False
