@@ -21,8 +21,17 @@ Version = Annotated[
 ]
 
 
+FullHash = Annotated[
+    bool, typer.Option("--full-hash", help="Show the whole 64-digit content hash in a table.")
+]
+#: Hex digits of a content hash a table shows (as git shows commits); JSON and CSV keep all.
+SHORT_HASH = 12
+
+
 @app.command("list")
-def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
+def list_(
+    full_hash: FullHash = False, db: DbOption = None, fmt: FormatOption = Format.table
+) -> None:
     """Every dataset with its version, content hash, run count and source."""
     from granudb.cli.output import emit
     from granudb.db import dataset_catalog
@@ -30,6 +39,10 @@ def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     database = open_db(db)
     with database.session() as session:
         records = dataset_catalog.dataset_records(session)
+    if fmt is Format.table and not full_hash:
+        for record in records:
+            digest = record.get("content_hash")
+            record["content_hash"] = f"{digest[:SHORT_HASH]}…" if digest else digest
     emit(records, dataset_catalog.DATASET_COLUMNS, fmt, title="Datasets")
 
 

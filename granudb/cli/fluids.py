@@ -6,6 +6,7 @@ from typing import Annotated
 
 import typer
 
+from granudb.cli import fluid_points
 from granudb.cli.common import DbOption, Format, FormatOption, given, open_db, quantities
 from granudb.cli.confirm import YesOption
 
@@ -170,3 +171,6 @@ def remove(name: Name, yes: YesOption = False, db: DbOption = None) -> None:
     with database.session(write=True) as session:
         fluid = catalog.remove_fluid(session, name)
     say(f"removed fluid {fluid.name}")
+
+
+app.add_typer(fluid_points.app, name="points")

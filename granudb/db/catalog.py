@@ -319,23 +319,50 @@ def _unused_fluid(session: Session, name: str) -> Fluid:
 
 
 def add_fluid_points(
-    session: Session, name: str, points: list[dict[str, Any]], source: str | None = None
-) -> int:
-    """Add or replace measured (temperature, viscosity[, density]) points of a fluid."""
+    session: Session,
+    name: str,
+    points: list[dict[str, Any]],
+    source: str | None = None,
+    *,
+    replace: bool = False,
+) -> list[str]:
+    """Add measured (temperature, viscosity[, density]) points to a fluid; one line per
+    point. A point at a temperature the fluid already has is refused, naming the stored
+    value, unless ``replace`` (then the line says what it replaced): a stored number is
+    never changed silently."""
     fluid = get_fluid(session, name)
     source_row = get_source(session, source) if source is not None else None
     by_temperature = {p.temperature_c: p for p in fluid.points}
+    seen: set[float] = set()
+    lines = []
     for index, point in enumerate(points, start=1):
         check_record(point, row=index)
-        existing = by_temperature.get(point["temperature_c"])
+        t = point["temperature_c"]
+        if t in seen:
+            raise ValidationError("temperature_c", f"{t:g} °C", "appears twice", row=index)
+        seen.add(t)
+        existing = by_temperature.get(t)
+        if existing is not None and not replace:
+            raise ConflictError(
+                f"fluid {fluid.name}: a point at {t:g} °C exists already "
+                f"({existing.viscosity_pa_s * 1e3:.4g} mPa·s); give --replace to change it"
+            )
         if existing is None:
-            existing = FluidPoint(fluid=fluid, temperature_c=point["temperature_c"])
+            existing = FluidPoint(fluid=fluid, temperature_c=t)
             session.add(existing)
+            lines.append(
+                f"added {fluid.name} at {t:g} °C: {point['viscosity_pa_s'] * 1e3:.4g} mPa·s"
+            )
+        else:
+            lines.append(
+                f"replaced {fluid.name} at {t:g} °C: {existing.viscosity_pa_s * 1e3:.4g} → "
+                f"{point['viscosity_pa_s'] * 1e3:.4g} mPa·s"
+            )
         existing.viscosity_pa_s = point["viscosity_pa_s"]
         existing.density_kg_m3 = point.get("density_kg_m3")
         existing.source = source_row
     session.flush()
-    return len(points)
+    return lines
 
 
 def _check_name(kind: str, name: str) -> None:
