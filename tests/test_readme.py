@@ -33,10 +33,9 @@ def tour_commands() -> list[list[str]]:
 
 
 def _takes_db(words: list[str]) -> bool:
-    import click
     from typer.main import get_command
 
-    from granudb.cli.main import app
+    from granudb.cli.main import app, click
 
     command = get_command(app)
     for word in words:
@@ -51,10 +50,9 @@ def _takes_db(words: list[str]) -> bool:
 
 def test_the_tour_lists_every_command_group() -> None:
     groups = {words[0] for words in tour_commands()}
-    import click
     from typer.main import get_command
 
-    from granudb.cli.main import app
+    from granudb.cli.main import app, click
 
     root = get_command(app)
     assert set(root.list_commands(click.Context(root))) - {"datasette-metadata"} <= groups

@@ -17,8 +17,12 @@ import sys
 from importlib import import_module
 from typing import TYPE_CHECKING, Any, NoReturn
 
-import click
 import typer
+
+try:  # Typer ≥ 0.20 ships its own click (not installed as a package of its own)
+    from typer import _click as click
+except ImportError:  # an older Typer, which depends on click itself
+    import click
 from typer.core import TyperGroup
 
 from granudb.cli.options import DbOption
@@ -174,15 +178,15 @@ class GranudbGroup(TyperGroup):
 
 
 def _click_classes(name: str) -> tuple[type[Exception], ...]:
-    """click's exception class ``name``, and Typer's vendored copy of it (Typer ≥ 0.20
-    ships its own click, whose exceptions are not click's)."""
-    classes: list[type[Exception]] = [getattr(click.exceptions, name)]
-    try:
-        from typer._click import exceptions as vendored
-    except ImportError:  # a Typer that uses click itself
-        return tuple(classes)
-    classes.append(getattr(vendored, name))
-    return tuple(classes)
+    """The exception class ``name`` of Typer's click, and of the click package too where
+    it is installed (another library may raise its own copy)."""
+    classes: list[type[Exception]] = []
+    for module in ("typer._click.exceptions", "click.exceptions"):
+        try:
+            classes.append(getattr(import_module(module), name))
+        except ImportError:
+            continue
+    return tuple(dict.fromkeys(classes))
 
 
 _USAGE = _click_classes("UsageError")
