@@ -212,7 +212,14 @@ def dem_export(
 ) -> str:
     """The input fragment for ``code`` (liggghts, lammps, yade or mercurydpm); ``options``
     as ``dem_model``. A value the code cannot take is refused naming its rule, or with
-    ``clamp=True`` written at the nearest allowed value with a comment."""
+    ``clamp=True`` written at the nearest allowed value with a comment.
+
+    >>> import granudb
+    >>> text = granudb.dem_export("liggghts", ["steel"], ["Zerodur"], diameter="12.7 mm",
+    ...                           velocity="0.3 m/s", db=db)
+    >>> "coefficientFriction peratomtypepair 2" in text and "μ_f = 0.11 ± 0.003" in text
+    True
+    """
     from importlib import import_module
 
     from granudb.dem import WRITER_NAMES
@@ -236,7 +243,14 @@ def dem_verify(
 ) -> list[Any]:
     """Run the exported parameters in every installed code (LIGGGHTS, LAMMPS, Yade) on
     normal and oblique wall impacts and head-on sphere pairs; one record per run, and
-    "not checked" (never "passed") for a code that is not installed."""
+    "not checked" (never "passed") for a code that is not installed.
+
+    >>> import granudb
+    >>> records = granudb.dem_verify(["steel"], ["Zerodur"], codes=("liggghts",),
+    ...                              diameter="12.7 mm", velocity="0.3 m/s", db=db)
+    >>> all(r.status == "not checked" or abs(r.e_rel_error) < 0.02 for r in records)
+    True
+    """
     from granudb.dem.verify import verify
 
     model = dem_model(particles, walls, **options)

@@ -24,7 +24,13 @@ def _fit(db: Any, filters: dict[str, Any], run: Any) -> Any:
 
 def fit_walton(db: Any = None, **filters: Any) -> Any:
     """Walton's β (sticking) and μ_f (sliding) with ē per group (Joseph & Hunt figures 4,
-    6, 9); ``filters`` as ``granudb.collisions``."""
+    6, 9), each with its bootstrap interval and the model chosen; ``filters`` as
+    ``granudb.collisions``.
+
+    >>> import granudb
+    >>> granudb.fit_walton(db=db, fluid="dry").empty  # no runs stored yet
+    True
+    """
     from granudb.analysis import fits
 
     return _fit(db, filters, lambda _session, frame: fits.walton(frame))
@@ -32,7 +38,12 @@ def fit_walton(db: Any = None, **filters: Any) -> Any:
 
 def fit_restitution(model: str = "exponential", db: Any = None, **filters: Any) -> Any:
     """e against the normal Stokes number for the immersed runs of each pair (figure 5);
-    ``model`` is "threshold" or "exponential"."""
+    ``model`` is "threshold" or "exponential".
+
+    >>> import granudb
+    >>> granudb.fit_restitution("exponential", db=db).empty
+    True
+    """
     from granudb.analysis import fits
 
     return _fit(db, filters, lambda _session, frame: fits.restitution(frame, model))
@@ -40,7 +51,12 @@ def fit_restitution(model: str = "exponential", db: Any = None, **filters: Any) 
 
 def fit_gap_viscosity(db: Any = None, **filters: Any) -> Any:
     """The gap viscosity μ₀ that (5.8) needs to match the measured sliding friction, and
-    the gap temperature it implies through the fluid's μ(T) (figure 14, table 2)."""
+    the gap temperature it implies through the fluid's μ(T) (figure 14, table 2).
+
+    >>> import granudb
+    >>> granudb.fit_gap_viscosity(db=db).empty
+    True
+    """
     from granudb.analysis import fits
     from granudb.analysis.fluid_state import fluid_model
     from granudb.db import catalog
