@@ -39,7 +39,7 @@ def _takes_db(words: list[str]) -> bool:
 
     command = get_command(app)
     for word in words:
-        if not isinstance(command, click.Group):
+        if not hasattr(command, "get_command"):  # a group
             break
         sub = command.get_command(click.Context(command), word)  # loads lazy commands too
         if sub is None:
