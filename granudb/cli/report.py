@@ -85,7 +85,6 @@ def report(
 ) -> None:
     """Write a lab report: properties with sources, derived quantities, verdicts with the
     roughness flag, fits next to published values, figures and methods."""
-    from granudb.api import _inputs
     from granudb.api.collisions import collision_query
     from granudb.cli.common import open_db
     from granudb.cli.output import say
@@ -104,6 +103,7 @@ def report(
     database = open_db(db)
     with database.session() as session:
         if pair is not None:
+            scenario = _scenario(fluid, diameter, velocity, angle, temperature, viscosity)
             report_data = pair_report(
                 session,
                 title=title,
@@ -111,15 +111,9 @@ def report(
                 database=database.display_url,
                 particle=pair[0],
                 wall=pair[1],
-                fluid=None if fluid in (None, "dry") else fluid,
-                diameter_m=quantity(diameter, "diameter_m", "--diameter"),
-                speed_m_s=quantity(velocity, "impact_speed_m_s", "--velocity"),
-                angle_rad=_inputs.angle(angle or "0 deg"),
-                temperature_c=quantity(temperature, "temperature_c", "--temperature"),
-                viscosity_pa_s=quantity(viscosity, "viscosity_pa_s", "--viscosity"),
                 wall_diameter_m=quantity(wall_diameter, "wall_diameter_m", "--wall-diameter"),
                 critical_stokes=critical_stokes,
-                assumed=set() if angle is not None else {"incidence_angle_rad"},
+                **scenario,
             )
         else:
             query = collision_query(
@@ -141,6 +135,29 @@ def report(
             )
     path = write_report(report_data, fmt, output, force=force)
     say(f"wrote {path}")
+
+
+def _scenario(
+    fluid: str | None,
+    diameter: str | None,
+    velocity: str | None,
+    angle: str | None,
+    temperature: str | None,
+    viscosity: str | None,
+) -> dict[str, object]:
+    """The pair scenario's inputs in SI, as ``granudb pair`` reads them; an angle not
+    given is 0° and said to be assumed."""
+    from granudb.api import _inputs
+
+    return {
+        "fluid": None if fluid in (None, "dry") else fluid,
+        "diameter_m": quantity(diameter, "diameter_m", "--diameter"),
+        "speed_m_s": quantity(velocity, "impact_speed_m_s", "--velocity"),
+        "angle_rad": _inputs.angle(angle or "0 deg"),
+        "temperature_c": quantity(temperature, "temperature_c", "--temperature"),
+        "viscosity_pa_s": quantity(viscosity, "viscosity_pa_s", "--viscosity"),
+        "assumed": set() if angle is not None else {"incidence_angle_rad"},
+    }
 
 
 def _asked(ctx: typer.Context) -> str:

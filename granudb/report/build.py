@@ -91,6 +91,24 @@ def pair_report(
         f" in {result.fluid['name']}" if result.fluid else " (dry)"
     )
     report = _header(title or f"granudb report: {name}", query, database)
+    _pair_sections(report, result, assumed, diameter_m, critical_stokes)
+    from granudb.analysis.collisions import CollisionQuery
+
+    add_collisions(
+        session, report, CollisionQuery(particle=particle, wall=wall, fluid=fluid), pair=True
+    )
+    report["references"] = references.references(report, dict(result.citations))
+    return report
+
+
+def _pair_sections(
+    report: dict[str, Any],
+    result: Any,
+    assumed: set[str],
+    diameter_m: float,
+    critical_stokes: float,
+) -> None:
+    """The scenario's flag, verdicts, properties, derived quantities and regime map."""
     immersed = result.fluid_state is not None
     report["flags"].append(blocks.pair_flag(result.derived, immersed))
     report["verdicts"] = [
@@ -129,13 +147,6 @@ def pair_report(
             ),
         )
     )
-    from granudb.analysis.collisions import CollisionQuery
-
-    add_collisions(
-        session, report, CollisionQuery(particle=particle, wall=wall, fluid=fluid), pair=True
-    )
-    report["references"] = references.references(report, dict(result.citations))
-    return report
 
 
 def dataset_report(
