@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import subprocess
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -217,6 +218,20 @@ for (p, t, wall, r1, r2, gap, vt, vn, dt, steps) in CASES:
 """
 
 
+#: What Open MPI prints when a process dies while starting up (before the code reads its
+#: input): a failure of the machine's MPI runtime, not of the run, so it is tried again.
+MPI_STARTUP_FAILURES = ("before MPI_INIT", "MPI_ERRORS_ARE_FATAL", "PMIX ERROR", "ORTE_ERROR")
+ATTEMPTS = 3
+
+
 def run(cmd: list[str], workdir: Path, timeout: float = 120.0) -> str:
-    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, timeout=timeout, check=False)
-    return (proc.stdout + proc.stderr).decode("utf-8", errors="replace")
+    """The program's output; a run that died in MPI start-up is retried (up to
+    ``ATTEMPTS`` times), any other outcome is returned as it is."""
+    output = ""
+    for attempt in range(ATTEMPTS):
+        proc = subprocess.run(cmd, cwd=workdir, capture_output=True, timeout=timeout, check=False)
+        output = (proc.stdout + proc.stderr).decode("utf-8", errors="replace")
+        if proc.returncode == 0 or not any(m in output for m in MPI_STARTUP_FAILURES):
+            return output
+        time.sleep(0.5 * (attempt + 1))
+    return output
