@@ -50,3 +50,66 @@ def execute(db: str, sql: str, params: dict[str, Any] | None = None) -> None:
             connection.execute(text(sql), params or {})
     finally:
         engine.dispose()
+
+
+#: A collision CSV's header with units, and one good row, for tests that build files.
+COLLISION_HEADER = [
+    "run",
+    "particle",
+    "wall",
+    "fluid",
+    "diameter [mm]",
+    "incidence_angle [deg]",
+    "v_n_in [mm/s]",
+    "v_t_in [mm/s]",
+    "omega_in [rad/s]",
+    "v_n_out [mm/s]",
+    "v_t_out [mm/s]",
+    "omega_out [rad/s]",
+    "temperature [degC]",
+    "notes",
+]
+GOOD_ROW = [
+    "r1",
+    "steel",
+    "Zerodur",
+    "",
+    "12.7",
+    "20",
+    "300",
+    "109.2",
+    "0",
+    "291",
+    "60",
+    "-5",
+    "",
+    "",
+]
+
+
+def write_csv(
+    path: Any, rows: list[list[str]], header: list[str] = COLLISION_HEADER, **options: Any
+) -> Any:
+    """Write ``rows`` under ``header`` as a CSV file (``options`` go to ``csv.writer``)."""
+    import csv
+
+    with path.open("w", encoding="utf-8", newline="") as handle:
+        writer = csv.writer(handle, lineterminator="\n", **options)
+        writer.writerow(header)
+        writer.writerows(rows)
+    return path
+
+
+def require_binary(binary: str) -> None:
+    """Skip a test that runs ``binary`` when it is missing, except where the environment
+    requires it (CI sets ``GRANUDB_REQUIRE_DEM=1``): there a missing code fails."""
+    import os
+    import shutil
+
+    import pytest
+
+    if shutil.which(binary) is not None:
+        return
+    if os.environ.get("GRANUDB_REQUIRE_DEM") == "1":
+        pytest.fail(f"{binary} is required (GRANUDB_REQUIRE_DEM=1) but not installed")
+    pytest.skip(f"{binary} not installed")

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 import random
@@ -12,37 +11,17 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from support import dump_hash
+from support import COLLISION_HEADER, GOOD_ROW, dump_hash, write_csv
 
 from granudb.api.database import connect as open_database
 from granudb.errors import GranudbError
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
-HEADER = [
-    "run",
-    "particle",
-    "wall",
-    "fluid",
-    "diameter [mm]",
-    "incidence_angle [deg]",
-    "v_n_in [mm/s]",
-    "v_t_in [mm/s]",
-    "omega_in [rad/s]",
-    "v_n_out [mm/s]",
-    "v_t_out [mm/s]",
-    "omega_out [rad/s]",
-    "temperature [degC]",
-    "notes",
-]
-GOOD = ["r1", "steel", "Zerodur", "", "12.7", "20", "300", "109.2", "0", "291", "60", "-5", "", ""]
+HEADER = COLLISION_HEADER
+GOOD = GOOD_ROW
 
 
-def write(path: Path, rows: list[list[str]], header: list[str] = HEADER) -> Path:
-    with path.open("w", encoding="utf-8", newline="") as handle:
-        writer = csv.writer(handle, lineterminator="\n")
-        writer.writerow(header)
-        writer.writerows(rows)
-    return path
+write = write_csv
 
 
 def walton_rows(

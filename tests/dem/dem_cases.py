@@ -2,10 +2,6 @@
 
 from __future__ import annotations
 
-import shutil
-
-import pytest
-
 from granudb.dem.spec import (
     DemModel,
     PairParameters,
@@ -56,6 +52,8 @@ def wet_model(fluid: str, speed: float = 0.3) -> DemModel:
 
 
 def require(code: str) -> None:
-    """Skip a run-test only when the code's binary is missing."""
-    if shutil.which(BINARIES[code]) is None:
-        pytest.skip(f"{BINARIES[code]} not installed")
+    """Skip a run-test when the code's binary is missing; fail instead where CI requires
+    the codes (``GRANUDB_REQUIRE_DEM=1``)."""
+    from support import require_binary
+
+    require_binary(BINARIES[code])

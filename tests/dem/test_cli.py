@@ -3,9 +3,7 @@ input, every value with its provenance, checked by the real code where installed
 
 from __future__ import annotations
 
-import shutil
-
-import pytest
+from support import require_binary
 
 SCENARIO = ["--diameter", "12.7 mm", "--velocity", "0.3 m/s"]
 
@@ -87,8 +85,8 @@ def test_unknown_code_names_the_option(cli, db: str) -> None:
     assert out.exit_code == 1 and out.stderr.startswith("Error: --code: espresso must be one of")
 
 
-@pytest.mark.skipif(shutil.which("liggghts") is None, reason="LIGGGHTS is not installed")
 def test_verify_runs_the_real_code(cli, db: str) -> None:
+    require_binary("liggghts")
     out = cli("dem", "verify", "--particle", "steel", "--wall", "Zerodur", *SCENARIO, db=db)
     assert out.exit_code == 0, out.stderr
     lines = [line for line in out.stdout.splitlines() if line.startswith("liggghts")]

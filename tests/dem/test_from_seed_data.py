@@ -2,31 +2,27 @@
 on Zerodur, dry and in 37 % and 78 % glycerol, exported with the published values (and the
 stated predictions where nothing is published) and run in LIGGGHTS, LAMMPS and Yade: e
 within 2 % for normal impacts at 0.1–0.5 m/s, μ_f within 5 % on dry oblique sliding
-impacts. A code that is not installed is skipped here (``test_verify`` fails instead when
-CI requires the codes)."""
+impacts. A missing code skips this test, or fails it where CI requires the codes
+(``GRANUDB_REQUIRE_DEM=1``)."""
 
 from __future__ import annotations
 
-import shutil
-
 import pytest
+from support import require_binary
 
-CODES = [
-    c
-    for c, binary in (("liggghts", "liggghts"), ("lammps", "lmp"), ("yade", "yade"))
-    if shutil.which(binary)
-]
+BINARIES = {"liggghts": "liggghts", "lammps": "lmp", "yade": "yade"}
 
 
-@pytest.mark.skipif(not CODES, reason="no DEM code installed")
 @pytest.mark.parametrize("fluid", [None, "glycerol-37", "glycerol-78"])
 def test_the_codes_give_the_seed_data_back(db: str, fluid: str | None) -> None:
     import granudb
 
+    for binary in BINARIES.values():
+        require_binary(binary)
     records = granudb.dem_verify(
         ["steel", "glass"],
         ["Zerodur"],
-        codes=tuple(CODES),
+        codes=tuple(BINARIES),
         fluid=fluid,
         diameter="12.7 mm",
         velocity="0.3 m/s",

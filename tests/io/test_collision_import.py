@@ -16,36 +16,16 @@ import time
 from pathlib import Path
 
 import pytest
-from support import dump_hash, engine_for
+from support import COLLISION_HEADER, GOOD_ROW, dump_hash, engine_for, write_csv
 
 from granudb.api.database import connect as open_database
 from granudb.errors import ValidationError
 
-HEADER = [
-    "run",
-    "particle",
-    "wall",
-    "fluid",
-    "diameter [mm]",
-    "incidence_angle [deg]",
-    "v_n_in [mm/s]",
-    "v_t_in [mm/s]",
-    "omega_in [rad/s]",
-    "v_n_out [mm/s]",
-    "v_t_out [mm/s]",
-    "omega_out [rad/s]",
-    "temperature [degC]",
-    "notes",
-]
-GOOD = ["r1", "steel", "Zerodur", "", "12.7", "20", "300", "109.2", "0", "291", "60", "-5", "", ""]
+HEADER = COLLISION_HEADER
+GOOD = GOOD_ROW
 
 
-def write(path: Path, rows: list[list[str]], header: list[str] = HEADER, **options) -> Path:
-    with path.open("w", encoding="utf-8", newline="") as handle:
-        writer = csv.writer(handle, lineterminator="\n", **options)
-        writer.writerow(header)
-        writer.writerows(rows)
-    return path
+write = write_csv
 
 
 def row(**cells: str) -> list[str]:
