@@ -12,13 +12,17 @@ naming the range that is covered.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from granudb.analysis._errors import physics_refusal
-from granudb.db.models import Fluid
 from granudb.errors import ValidationError
 from granudb.physics.viscosity import ReferencedViscosity, TabulatedViscosity
+
+if TYPE_CHECKING:
+    from granudb.db.catalog_rows import FluidRow
+    from granudb.db.models import Fluid
 
 
 @dataclass
@@ -33,7 +37,7 @@ class FluidState:
     basis: str
 
 
-def fluid_model(fluid: Fluid) -> TabulatedViscosity | ReferencedViscosity | None:
+def fluid_model(fluid: Fluid | FluidRow) -> TabulatedViscosity | ReferencedViscosity | None:
     """The fluid's viscosity–temperature model (None with fewer than two points), anchored
     to the printed reference value when the reference temperature lies inside the data."""
     points = sorted(fluid.points, key=lambda p: p.temperature_c)
@@ -48,7 +52,7 @@ def fluid_model(fluid: Fluid) -> TabulatedViscosity | ReferencedViscosity | None
     return ReferencedViscosity(table, fluid.reference_temperature_c, fluid.reference_viscosity_pa_s)
 
 
-def _printed(fluid: Fluid) -> str:
+def _printed(fluid: Fluid | FluidRow) -> str:
     source = fluid.source.key if fluid.source else "no source"
     locator = f", {fluid.source_locator}" if fluid.source_locator else ""
     return (
@@ -58,7 +62,7 @@ def _printed(fluid: Fluid) -> str:
 
 
 def fluid_state(
-    fluid: Fluid, temperature_c: float | None = None, viscosity_pa_s: float | None = None
+    fluid: Fluid | FluidRow, temperature_c: float | None = None, viscosity_pa_s: float | None = None
 ) -> FluidState:
     """The fluid at ``temperature_c`` (default: its reference temperature, printed value).
 

@@ -9,17 +9,22 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from sqlalchemy.orm import Session
+from sqlalchemy.engine import Connection
 
 from granudb.analysis._errors import physics_refusal
 from granudb.analysis.fluid_state import FluidState, fluid_state
-from granudb.db import catalog
-from granudb.db.models import Material
+from granudb.db import catalog_rows
 from granudb.errors import ValidationError
 from granudb.physics.derive import derive, scalar_view
+
+if TYPE_CHECKING:
+    from sqlalchemy.orm import Session
+
+    from granudb.db.catalog_rows import MaterialRow
+    from granudb.db.models import Material
 
 #: Per-collision parameters that need a measured rebound: a scenario has none.
 MEASURED_ONLY = (
@@ -30,7 +35,7 @@ MEASURED_ONLY = (
 )
 
 
-def material_inputs(prefix: str, material: Material) -> dict[str, Any]:
+def material_inputs(prefix: str, material: Material | MaterialRow) -> dict[str, Any]:
     """A material's stored properties as ``derive()`` keyword arguments."""
     return {
         f"{prefix}_density_kg_m3": material.density_kg_m3,
@@ -82,7 +87,7 @@ def _check_scenario(
 
 
 def derive_pair(
-    session: Session,
+    reader: Connection | Session,
     particle: str,
     wall: str,
     *,
@@ -96,7 +101,8 @@ def derive_pair(
     critical_stokes: float = 10.0,
 ) -> PairResult:
     """Derive one scenario: ``particle`` hits ``wall`` (in ``fluid``) at ``speed_m_s``,
-    ``angle_rad`` from the normal, without spin."""
+    ``angle_rad`` from the normal, without spin. ``reader`` is a Core connection
+    (``Database.reading()``, no ORM needed: issue 17's start-up bound) or a session."""
     _check_scenario(diameter_m, speed_m_s, angle_rad, critical_stokes)
     if is_dry(fluid):
         for name, value in (("viscosity", viscosity_pa_s), ("temperature", temperature_c)):
@@ -104,9 +110,10 @@ def derive_pair(
                 raise ValidationError(
                     name, f"{value:g}", "needs a fluid (a dry collision has none)", parameter=True
                 )
-    first = catalog.get_material(session, particle)
-    second = catalog.get_material(session, wall)
-    fluid_row = None if is_dry(fluid) else catalog.get_fluid(session, fluid)
+    connection = reader if isinstance(reader, Connection) else reader.connection()
+    first = catalog_rows.get_material_row(connection, particle)
+    second = catalog_rows.get_material_row(connection, wall)
+    fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(connection, fluid)
     state = fluid_state(fluid_row, temperature_c, viscosity_pa_s) if fluid_row else None
     inputs = {
         "diameter_m": diameter_m,
@@ -142,9 +149,9 @@ def derive_pair(
         if row is not None and row.source is not None
     }
     return PairResult(
-        catalog.material_record(first),
-        catalog.material_record(second),
-        catalog.fluid_record(fluid_row) if fluid_row is not None else None,
+        catalog_rows.material_record(first),
+        catalog_rows.material_record(second),
+        catalog_rows.fluid_record(fluid_row) if fluid_row is not None else None,
         state,
         inputs,
         derived,

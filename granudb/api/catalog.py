@@ -25,12 +25,9 @@ def materials(db: Any = None) -> Any:
     >>> float(frame.set_index("name").loc["glass", "youngs_modulus_pa"])
     60000000000.0
     """
-    from granudb.db import catalog
     from granudb.vocabulary import columns
 
-    with opened(db) as database, database.session() as session:
-        records = [catalog.material_record(m) for m in catalog.list_materials(session)]
-    return _frame(records, columns.MATERIAL_COLUMNS)
+    return _frame(material_records(db), columns.MATERIAL_COLUMNS)
 
 
 def fluids(db: Any = None) -> Any:
@@ -41,9 +38,34 @@ def fluids(db: Any = None) -> Any:
     >>> float(frame.set_index("name").loc["glycerol-45", "reference_viscosity_pa_s"])
     0.0045
     """
-    from granudb.db import catalog
     from granudb.vocabulary import columns
 
-    with opened(db) as database, database.session() as session:
-        records = [catalog.fluid_record(f) for f in catalog.list_fluids(session)]
-    return _frame(records, columns.FLUID_COLUMNS)
+    return _frame(fluid_records(db), columns.FLUID_COLUMNS)
+
+
+# The same as plain records (what ``granudb materials|fluids|sources list`` print). They
+# read through SQLAlchemy Core without building the ORM's classes (issue 17: start-up).
+
+
+def material_records(db: Any = None) -> list[dict[str, Any]]:
+    """Every material as an SI record, by name."""
+    from granudb.db import catalog_rows
+
+    with opened(db) as database, database.reading() as connection:
+        return [catalog_rows.material_record(m) for m in catalog_rows.material_rows(connection)]
+
+
+def fluid_records(db: Any = None) -> list[dict[str, Any]]:
+    """Every fluid as an SI record (``points`` counts its viscosity points), by name."""
+    from granudb.db import catalog_rows
+
+    with opened(db) as database, database.reading() as connection:
+        return [catalog_rows.fluid_record(f) for f in catalog_rows.fluid_rows(connection)]
+
+
+def source_records(db: Any = None) -> list[dict[str, Any]]:
+    """Every source (key, citation, DOI, …), by key."""
+    from granudb.db import catalog_rows
+
+    with opened(db) as database, database.reading() as connection:
+        return [catalog_rows.source_record(s) for s in catalog_rows.source_rows(connection)]

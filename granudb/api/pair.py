@@ -53,8 +53,8 @@ def pair(
         "viscosity_pa_s": _inputs.quantity(viscosity, "viscosity_pa_s", "viscosity"),
         "wall_diameter_m": _inputs.quantity(wall_diameter, "wall_diameter_m", "wall_diameter"),
     }
-    with opened(db) as database, database.session() as session:
+    with opened(db) as database, database.reading() as connection:
         result = derive_pair(
-            session, particle, wall, fluid=fluid, critical_stokes=critical_stokes, **values
+            connection, particle, wall, fluid=fluid, critical_stokes=critical_stokes, **values
         )
     return pair_json(result)

@@ -59,13 +59,11 @@ def _values(viscosity, density, temperature, pressure, glycerol) -> dict[str, fl
 @app.command("list")
 def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """List every fluid (``points`` counts its viscosity–temperature points)."""
+    from granudb.api.catalog import fluid_records
     from granudb.cli.output import emit
-    from granudb.db import catalog
     from granudb.vocabulary import columns
 
-    database = open_db(db)
-    with database.session() as session:
-        records = [catalog.fluid_record(f) for f in catalog.list_fluids(session)]
+    records = fluid_records(db=open_db(db))
     emit(
         records,
         columns.FLUID_TABLE_COLUMNS if fmt is Format.table else columns.FLUID_COLUMNS,

@@ -15,22 +15,14 @@ from __future__ import annotations
 import os
 import sys
 from importlib import import_module
-from typing import TYPE_CHECKING, Any, NoReturn
+from typing import Any, NoReturn
 
 import typer
-
-try:  # Typer ≥ 0.20 ships its own click (not installed as a package of its own)
-    from typer import _click as click
-except ImportError:  # an older Typer, which depends on click itself
-    import click
+from typer import _click as click  # Typer ≥ 0.26 ships its own click
 from typer.core import TyperGroup
 
 from granudb.cli.options import DbOption
 from granudb.version import __version__
-
-if TYPE_CHECKING:
-    from typer import _click as click
-
 
 # name → (module, attribute, one-line help). A Typer app attribute is a command group; a
 # function is a single command. The help must match the module's (tests/test_startup.py).

@@ -58,13 +58,11 @@ def _values(
 @app.command("list")
 def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """List every material with its properties (SI in json/csv)."""
+    from granudb.api.catalog import material_records
     from granudb.cli.output import emit
-    from granudb.db import catalog
     from granudb.vocabulary import columns
 
-    database = open_db(db)
-    with database.session() as session:
-        records = [catalog.material_record(m) for m in catalog.list_materials(session)]
+    records = material_records(db=open_db(db))
     emit(
         records,
         columns.MATERIAL_TABLE_COLUMNS if fmt is Format.table else columns.MATERIAL_COLUMNS,

@@ -16,17 +16,14 @@ app = typer.Typer(
 @app.command("list")
 def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """List every source."""
+    from granudb.api.catalog import source_records
     from granudb.cli.output import emit
-    from granudb.db import sources
+    from granudb.db.catalog_rows import SOURCE_COLUMNS
 
-    database = open_db(db)
-    with database.session() as session:
-        records = [sources.source_record(s) for s in sources.list_sources(session)]
+    records = source_records(db=open_db(db))
     emit(
         records,
-        ["key", "year", "kind", "citation", "doi"]
-        if fmt is Format.table
-        else sources.SOURCE_COLUMNS,
+        ["key", "year", "kind", "citation", "doi"] if fmt is Format.table else SOURCE_COLUMNS,
         fmt,
         title="Sources",
     )

@@ -9,6 +9,10 @@ from datetime import UTC, datetime
 from sqlalchemy import CheckConstraint, DateTime, Float, MetaData, func
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
 
+from granudb.vocabulary.text import name_key
+
+__all__ = ["Base", "Timestamped", "finite_check", "name_key", "utcnow"]
+
 # Stable constraint names, so migrations can refer to them on every dialect.
 NAMING_CONVENTION = {
     "ix": "ix_%(table_name)s_%(column_0_N_name)s",
@@ -21,15 +25,6 @@ NAMING_CONVENTION = {
 
 def utcnow() -> datetime:
     return datetime.now(UTC)
-
-
-def name_key(name: str) -> str:
-    """The case-insensitive lookup key of a name ("Zerodur", "ZERODUR" → "zerodur").
-
-    Computed in Python (``str.casefold``) rather than with SQL ``lower()``, which folds only
-    ASCII in SQLite but all of Unicode in PostgreSQL.
-    """
-    return " ".join(name.split()).casefold()
 
 
 class Base(DeclarativeBase):

@@ -13,6 +13,11 @@ from typing import Any
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+# The record builders live with the Core reads (``catalog_rows``); re-exported here.
+from granudb.db.catalog_rows import fluid_record as fluid_record
+from granudb.db.catalog_rows import material_record as material_record
+from granudb.db.catalog_rows import point_records as point_records
+from granudb.db.catalog_rows import source_key as _key
 from granudb.db.models import (
     Collision,
     Dataset,
@@ -22,36 +27,12 @@ from granudb.db.models import (
     PublishedValue,
     name_key,
 )
-from granudb.db.sources import _key, get_source
+from granudb.db.sources import get_source
 from granudb.db.upsert import Change, same_value
 from granudb.errors import ConflictError, NotFoundError, ValidationError
 from granudb.vocabulary.columns import FLUID_FIELDS, MATERIAL_FIELDS
 from granudb.vocabulary.rules import check_record
 from granudb.vocabulary.text import check_name
-
-
-def material_record(material: Material) -> dict[str, Any]:
-    """A material as an SI record; a missing shear modulus is derived, G = E / (2(1 + ν))."""
-    derived = material.shear_modulus_pa is None
-    shear = (
-        material.youngs_modulus_pa / (2.0 * (1.0 + material.poisson_ratio))
-        if derived
-        else material.shear_modulus_pa
-    )
-    return {
-        "name": material.name,
-        "description": material.description,
-        "density_kg_m3": material.density_kg_m3,
-        "youngs_modulus_pa": material.youngs_modulus_pa,
-        "poisson_ratio": material.poisson_ratio,
-        "roughness_rms_m": material.roughness_rms_m,
-        "correlation_length_m": material.correlation_length_m,
-        "shear_modulus_pa": shear,
-        "shear_modulus_derived": derived,
-        "yield_stress_pa": material.yield_stress_pa,
-        "source": _key(material.source),
-        "source_locator": material.source_locator,
-    }
 
 
 def list_materials(session: Session) -> list[Material]:
@@ -208,35 +189,6 @@ def _unused_material(session: Session, name: str) -> Material:
 
 
 # --- fluids ----------------------------------------------------------------------------
-
-
-def fluid_record(fluid: Fluid) -> dict[str, Any]:
-    return {
-        "name": fluid.name,
-        "description": fluid.description,
-        "glycerol_mass_fraction": fluid.glycerol_mass_fraction,
-        "reference_density_kg_m3": fluid.reference_density_kg_m3,
-        "reference_viscosity_pa_s": fluid.reference_viscosity_pa_s,
-        "reference_temperature_c": fluid.reference_temperature_c,
-        "pressure_viscosity_pa_inv": fluid.pressure_viscosity_pa_inv,
-        "source": _key(fluid.source),
-        "source_locator": fluid.source_locator,
-        "density_source": _key(fluid.density_source),
-        "pressure_viscosity_source": _key(fluid.pressure_viscosity_source),
-        "points": len(fluid.points),
-    }
-
-
-def point_records(fluid: Fluid) -> list[dict[str, Any]]:
-    return [
-        {
-            "temperature_c": p.temperature_c,
-            "viscosity_pa_s": p.viscosity_pa_s,
-            "density_kg_m3": p.density_kg_m3,
-            "source": _key(p.source),
-        }
-        for p in sorted(fluid.points, key=lambda p: p.temperature_c)
-    ]
 
 
 def list_fluids(session: Session) -> list[Fluid]:

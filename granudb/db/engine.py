@@ -15,15 +15,17 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sqlalchemy import Engine, create_engine, event, inspect
 from sqlalchemy.engine import Connection, make_url
 from sqlalchemy.exc import DBAPIError, IntegrityError, OperationalError
-from sqlalchemy.orm import Session
 
 from granudb.config import default_database_path, resolve_database_url
 from granudb.errors import DatabaseAccessError, GranudbError
+
+if TYPE_CHECKING:  # the ORM is imported by the commands that use it (see ``reading``)
+    from sqlalchemy.orm import Session
 
 BUSY_TIMEOUT_S = 30.0
 # Set in a connection's info by a bulk load that enlarged SQLite's page cache
@@ -143,6 +145,27 @@ class Database:
     def display_url(self) -> str:
         return make_url(self.url).render_as_string(hide_password=True)
 
+    def _read_bind(self) -> Engine:
+        if self.dialect == "postgresql":
+            # One snapshot for every statement of a read (a report runs many): PostgreSQL's
+            # default READ COMMITTED would let an import that commits mid-way show half.
+            # (SQLite's deferred transaction already reads one snapshot in WAL mode.)
+            return self.engine.execution_options(isolation_level="REPEATABLE READ")
+        return self.engine
+
+    @contextmanager
+    def reading(self) -> Iterator[Connection]:
+        """A Core connection in one read transaction (one snapshot), without the ORM.
+
+        For commands that only read the catalogue (``granudb.db.catalog_rows``): building
+        the ORM's mapped classes costs more than their query (issue 17).
+        """
+        try:
+            with self._read_bind().connect() as connection, connection.begin():
+                yield connection
+        except DBAPIError as exc:
+            raise translate_db_error(exc) from None
+
     @contextmanager
     def session(self, *, write: bool = False) -> Iterator[Session]:
         """A session in one transaction: committed on success, rolled back on any error.
@@ -150,15 +173,12 @@ class Database:
         ``write=True`` takes SQLite's write lock at the start (``BEGIN IMMEDIATE``), so a
         write either waits for another writer and then runs whole, or does not start.
         """
+        from sqlalchemy.orm import Session
+
         if write:
             bind = self.engine.execution_options(sqlite_begin="IMMEDIATE")
-        elif self.dialect == "postgresql":
-            # One snapshot for every statement of a read (a report runs many): PostgreSQL's
-            # default READ COMMITTED would let an import that commits mid-way show half.
-            # (SQLite's deferred transaction already reads one snapshot in WAL mode.)
-            bind = self.engine.execution_options(isolation_level="REPEATABLE READ")
         else:
-            bind = self.engine
+            bind = self._read_bind()
         session = Session(bind=bind, expire_on_commit=False)
         try:
             yield session
@@ -203,6 +223,8 @@ def open_database(
         return database
 
     def _fill(connection: Connection) -> None:
+        from sqlalchemy.orm import Session
+
         assert on_create is not None
         with Session(bind=connection) as session:
             database.seed_report = on_create(session)

@@ -11,14 +11,11 @@ from typing import Any
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+# The record builders live with the Core reads (``catalog_rows``); re-exported here.
+from granudb.db.catalog_rows import SOURCE_COLUMNS as SOURCE_COLUMNS
+from granudb.db.catalog_rows import source_record as source_record
 from granudb.db.models import Dataset, Fluid, Material, PublishedValue, Source
 from granudb.errors import NotFoundError
-
-SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
-
-
-def _key(source: Source | None) -> str | None:
-    return source.key if source is not None else None
 
 
 def get_source(session: Session, key: str) -> Source:
@@ -27,10 +24,6 @@ def get_source(session: Session, key: str) -> Source:
         known = ", ".join(s.key for s in list_sources(session)) or "none yet"
         raise NotFoundError(f"source: {key!r} is not in the database (known: {known})")
     return found
-
-
-def source_record(source: Source) -> dict[str, Any]:
-    return {column: getattr(source, column) for column in SOURCE_COLUMNS}
 
 
 def list_sources(session: Session) -> list[Source]:

@@ -33,6 +33,15 @@ def _describe(character: str) -> str:
     return f"U+{ord(character):04X}"
 
 
+def name_key(name: str) -> str:
+    """The case-insensitive lookup key of a name ("Zerodur", "ZERODUR" → "zerodur").
+
+    Computed in Python (``str.casefold``) rather than with SQL ``lower()``, which folds only
+    ASCII in SQLite but all of Unicode in PostgreSQL.
+    """
+    return " ".join(name.split()).casefold()
+
+
 def check_name(field: str, value: str, *, max_length: int = MAX_NAME) -> str:
     """``value`` if it is a valid name, else ``ValidationError`` naming the rule.
 

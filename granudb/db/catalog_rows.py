@@ -1,0 +1,239 @@
+"""Catalogue reads through SQLAlchemy Core, without the ORM: materials, fluids, sources.
+
+Why a second way to read the same rows: a command that only reads the catalogue
+(``materials list``, ``fluids list``, ``sources list``, ``pair``) spent more time building
+and configuring the ORM's mapped classes (``granudb.db.models``, about 0.1 s) than asking
+the database, and issue 17 bounds those commands at 1.3× and 1.5× the time Python takes to
+import SQLAlchemy. Here the same tables are named by lightweight ``table()`` clauses (no
+metadata, no mapper), queried in one read transaction (``Database.reading()``), and
+returned as frozen records whose attribute names are the models' own, so the record
+builders below (the JSON, CSV and table rows every door shows) serve ORM objects and these
+records alike. Changes still go through the ORM (``granudb.db.catalog``).
+
+``tests/db/test_catalog_rows.py`` checks every column named here against the models and
+that both paths give the same records for the same database.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from typing import Any
+
+from sqlalchemy import column, select, table
+from sqlalchemy.engine import Connection
+from sqlalchemy.sql.expression import TableClause
+
+from granudb.errors import NotFoundError
+from granudb.vocabulary.text import name_key
+
+SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
+
+
+@dataclass(frozen=True, slots=True)
+class SourceRow:
+    key: str
+    citation: str
+    doi: str | None
+    url: str | None
+    year: int | None
+    kind: str
+    notes: str | None
+
+
+@dataclass(frozen=True, slots=True)
+class MaterialRow:
+    name: str
+    description: str | None
+    density_kg_m3: float
+    youngs_modulus_pa: float
+    poisson_ratio: float
+    roughness_rms_m: float
+    correlation_length_m: float | None
+    shear_modulus_pa: float | None
+    yield_stress_pa: float | None
+    source_locator: str | None
+    source: SourceRow | None
+
+
+@dataclass(frozen=True, slots=True)
+class FluidPointRow:
+    temperature_c: float
+    viscosity_pa_s: float
+    density_kg_m3: float | None
+    source_locator: str | None
+    source: SourceRow | None
+
+
+@dataclass(frozen=True, slots=True)
+class FluidRow:
+    name: str
+    description: str | None
+    glycerol_mass_fraction: float | None
+    reference_density_kg_m3: float
+    reference_viscosity_pa_s: float
+    reference_temperature_c: float
+    pressure_viscosity_pa_inv: float | None
+    source_locator: str | None
+    density_locator: str | None
+    pressure_viscosity_locator: str | None
+    source: SourceRow | None
+    density_source: SourceRow | None
+    pressure_viscosity_source: SourceRow | None
+    points: tuple[FluidPointRow, ...]
+
+
+#: Attributes that are not columns of their own: the cited source (by ``<name>_id``) and
+#: a fluid's points (their own table).
+_REFERENCES = {"source", "density_source", "pressure_viscosity_source"}
+
+
+def _stored(record: type) -> list[str]:
+    """The columns a record type reads: its fields, with each source read by its id."""
+    names = [f.name for f in fields(record) if f.name != "points"]
+    return [f"{n}_id" if n in _REFERENCES else n for n in names]
+
+
+def _table(name: str, columns: list[str]) -> TableClause:
+    return table(name, *(column(c) for c in columns))
+
+
+SOURCES = _table("sources", ["id", *SOURCE_COLUMNS])
+MATERIALS = _table("materials", ["id", "name_key", *_stored(MaterialRow)])
+FLUIDS = _table("fluids", ["id", "name_key", *_stored(FluidRow)])
+FLUID_POINTS = _table("fluid_points", ["id", "fluid_id", *_stored(FluidPointRow)])
+#: Every lightweight table above, for the test that holds them to the models.
+TABLES = (SOURCES, MATERIALS, FLUIDS, FLUID_POINTS)
+
+
+def _sources(connection: Connection) -> dict[int, SourceRow]:
+    rows = connection.execute(select(*SOURCES.c).order_by(SOURCES.c.key)).mappings()
+    return {row["id"]: SourceRow(*(row[c] for c in SOURCE_COLUMNS)) for row in rows}
+
+
+def _build(record: type, row: Any, sources: dict[int, SourceRow], **extra: Any) -> Any:
+    values = {}
+    for f in fields(record):
+        if f.name in _REFERENCES:
+            source_id = row[f"{f.name}_id"]
+            values[f.name] = None if source_id is None else sources[source_id]
+        elif f.name not in extra:
+            values[f.name] = row[f.name]
+    return record(**values, **extra)
+
+
+def source_rows(connection: Connection) -> list[SourceRow]:
+    """Every source, by key."""
+    return list(_sources(connection).values())
+
+
+def material_rows(connection: Connection, name: str | None = None) -> list[MaterialRow]:
+    """Every material by name (case-insensitively), or the one called ``name``."""
+    query = select(*MATERIALS.c).order_by(MATERIALS.c.name_key)
+    if name is not None:
+        query = query.where(MATERIALS.c.name_key == name_key(name))
+    sources = _sources(connection)
+    return [_build(MaterialRow, row, sources) for row in connection.execute(query).mappings()]
+
+
+def fluid_rows(connection: Connection, name: str | None = None) -> list[FluidRow]:
+    """Every fluid by name with its points by temperature, or the one called ``name``."""
+    query = select(*FLUIDS.c).order_by(FLUIDS.c.name_key)
+    if name is not None:
+        query = query.where(FLUIDS.c.name_key == name_key(name))
+    found = connection.execute(query).mappings().all()
+    if not found:
+        return []
+    points_query = select(*FLUID_POINTS.c).order_by(
+        FLUID_POINTS.c.fluid_id, FLUID_POINTS.c.temperature_c
+    )
+    if name is not None:
+        points_query = points_query.where(FLUID_POINTS.c.fluid_id == found[0]["id"])
+    sources = _sources(connection)
+    points: dict[int, list[FluidPointRow]] = {}
+    for row in connection.execute(points_query).mappings():
+        points.setdefault(row["fluid_id"], []).append(_build(FluidPointRow, row, sources))
+    return [
+        _build(FluidRow, row, sources, points=tuple(points.get(row["id"], ()))) for row in found
+    ]
+
+
+def get_material_row(connection: Connection, name: str) -> MaterialRow:
+    """The material called ``name``; an error listing the known names if there is none."""
+    found = material_rows(connection, name)
+    if not found:
+        known = ", ".join(m.name for m in material_rows(connection)) or "none yet"
+        raise NotFoundError(f"material: {name!r} is not in the database (known: {known})")
+    return found[0]
+
+
+def get_fluid_row(connection: Connection, name: str) -> FluidRow:
+    """The fluid called ``name`` with its points; an error listing the known names if none."""
+    found = fluid_rows(connection, name)
+    if not found:
+        known = ", ".join(f.name for f in fluid_rows(connection)) or "none yet"
+        raise NotFoundError(f"fluid: {name!r} is not in the database (known: {known})")
+    return found[0]
+
+
+# The records every door shows, built from an ORM object or a record above alike.
+
+
+def source_key(source: Any) -> str | None:
+    return source.key if source is not None else None
+
+
+def source_record(source: Any) -> dict[str, Any]:
+    return {c: getattr(source, c) for c in SOURCE_COLUMNS}
+
+
+def material_record(material: Any) -> dict[str, Any]:
+    """A material as an SI record; a missing shear modulus is derived, G = E / (2(1 + ν))."""
+    derived = material.shear_modulus_pa is None
+    shear = (
+        material.youngs_modulus_pa / (2.0 * (1.0 + material.poisson_ratio))
+        if derived
+        else material.shear_modulus_pa
+    )
+    return {
+        "name": material.name,
+        "description": material.description,
+        "density_kg_m3": material.density_kg_m3,
+        "youngs_modulus_pa": material.youngs_modulus_pa,
+        "poisson_ratio": material.poisson_ratio,
+        "roughness_rms_m": material.roughness_rms_m,
+        "correlation_length_m": material.correlation_length_m,
+        "shear_modulus_pa": shear,
+        "shear_modulus_derived": derived,
+        "yield_stress_pa": material.yield_stress_pa,
+        "source": source_key(material.source),
+        "source_locator": material.source_locator,
+    }
+
+
+def fluid_record(fluid: Any) -> dict[str, Any]:
+    return {
+        "name": fluid.name,
+        "description": fluid.description,
+        "glycerol_mass_fraction": fluid.glycerol_mass_fraction,
+        "reference_density_kg_m3": fluid.reference_density_kg_m3,
+        "reference_viscosity_pa_s": fluid.reference_viscosity_pa_s,
+        "reference_temperature_c": fluid.reference_temperature_c,
+        "pressure_viscosity_pa_inv": fluid.pressure_viscosity_pa_inv,
+        "source": source_key(fluid.source),
+        "source_locator": fluid.source_locator,
+        "density_source": source_key(fluid.density_source),
+        "pressure_viscosity_source": source_key(fluid.pressure_viscosity_source),
+        "points": len(fluid.points),
+    }
+
+
+def point_records(fluid: Any) -> list[dict[str, Any]]:
+    return [
+        {
+            "temperature_c": p.temperature_c,
+            "viscosity_pa_s": p.viscosity_pa_s,
+            "density_kg_m3": p.density_kg_m3,
+            "source": source_key(p.source),
+        }
+        for p in sorted(fluid.points, key=lambda p: p.temperature_c)
+    ]
