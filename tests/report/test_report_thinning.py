@@ -61,3 +61,27 @@ def test_group_keys_and_labels_treat_missing_fluids_as_dry() -> None:
     assert labels_of(frame) == ["s/Z dry", "s/Z water", "g/Z dry", "s/Z dry"]
     keys = group_keys(frame["particle"], frame["wall"])
     assert keys.tolist() == [("s", "Z"), ("s", "Z"), ("g", "Z"), ("s", "Z")]
+
+
+def test_a_large_group_states_its_resample_count_beside_the_interval() -> None:
+    from granudb.analysis.walton_bootstrap import RESAMPLE_RULE
+    from granudb.report import tables
+
+    fit = {
+        "rotational_restitution": 0.34,
+        "rotational_restitution_low": 0.339,
+        "rotational_restitution_high": 0.341,
+        "rotational_restitution_determined": 1.0,
+        "confidence_level": 0.95,
+        "bootstrap_resamples": 303,
+        "bootstrap_seed": 0,
+        "bootstrap_rule": RESAMPLE_RULE,
+    }
+    cell = tables.parameter_cell(fit, "rotational_restitution", "β")
+    assert cell.endswith("(303 resamples, seed 0)")
+    note = tables.bootstrap_note([fit, {**fit, "bootstrap_resamples": 1000}])
+    assert "303 resamples, seed 0" in note and "1000 resamples" in note
+    assert RESAMPLE_RULE in note
+    usual = {**fit, "bootstrap_resamples": 1000}
+    assert "resamples" not in tables.parameter_cell(usual, "rotational_restitution", "β")
+    assert RESAMPLE_RULE not in tables.bootstrap_note([usual])
