@@ -5,7 +5,10 @@ Imports a synthetic dataset of N runs (default 100,000; the same generator as
 SQLite database, then times ``granudb report --dataset benchmark --format html`` as a
 separate process (median of ``--runs``, default 3) and reports its peak memory (max RSS of
 the child). With ``--profile`` it also runs the report once in this process under cProfile
-and prints the functions that take the time. Prints pass/fail against issue 17's bounds:
+and prints the functions that take the time. As a same-run baseline it times the floor
+of any report process: ``python -c "import sqlalchemy.orm, pandas, matplotlib.pyplot,
+scipy.optimize, jinja2"`` (the libraries a report needs, nothing of granudb). Prints
+pass/fail against issue 17's bounds:
 100,000 runs ≤ 2 s, 1,000,000 runs ≤ 15 s; for other sizes the bound is interpolated
 linearly between those two points (and reported as such).
 
@@ -25,6 +28,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from import_speed import write_csv  # noqa: E402
+
+FLOOR = "import sqlalchemy.orm, pandas, matplotlib; matplotlib.use('Agg'); " + (
+    "import matplotlib.pyplot, scipy.optimize, jinja2"
+)
 
 
 def bound_s(rows: int) -> float:
@@ -52,11 +59,15 @@ def main() -> None:
         out = folder / "report.html"
         argv = [sys.executable, "-m", "granudb", "report", "--dataset", "benchmark"]
         argv += ["--format", "html", "--output", str(out), "--force", "--db", str(db)]
-        times = []
+        times, floors = [], []
+        floor_argv = [sys.executable, "-c", FLOOR]
         for _ in range(args.runs):
             start = time.perf_counter()
             subprocess.run(argv, check=True, capture_output=True)
             times.append(time.perf_counter() - start)
+            start = time.perf_counter()
+            subprocess.run(floor_argv, check=True, capture_output=True)
+            floors.append(time.perf_counter() - start)
         size_mb = out.stat().st_size / 1e6
         if args.profile:
             import cProfile
@@ -74,7 +85,9 @@ def main() -> None:
     peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     median = statistics.median(times)
     limit = bound_s(args.rows)
+    floor = statistics.median(floors)
     print(f"report on {args.rows:,} runs: median {median:.2f} s of {args.runs} ({times})")
+    print(f"import floor (same run): median {floor:.2f} s; report = {median / floor:.1f}× floor")
     print(f"HTML {size_mb:.1f} MB; peak memory of the report process {peak_mb:,.0f} MB")
     print(
         f"{'PASS' if median <= limit else 'FAIL'}: {median:.2f} s; bound <= {limit:.1f} s "

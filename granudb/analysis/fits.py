@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from granudb.analysis import walton as core
+from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
 from granudb.analysis.restitution_fit import (
     RESTITUTION_MODELS,
@@ -40,7 +41,7 @@ __all__ = [
 ]
 
 GROUP = ["dataset", "particle", "wall", "fluid"]
-DEFAULT_RESAMPLES = 1000
+DEFAULT_RESAMPLES = resampling.DEFAULT_RESAMPLES
 DEFAULT_SEED = 0
 CONFIDENCE_LEVEL = 0.95
 SPHERE_ON_WALL_FACTOR = 3.5  # B = 1 + 1/K², K² = 2/5 (PHYSICS.md §9)
@@ -69,6 +70,8 @@ WALTON_KEYS = {
     "normal_restitution_std": "standard deviation of e over the runs",
     "walton_factor": "mean B used (7/2 unless the frame has walton_factor)",
     "confidence_level, bootstrap_resamples, bootstrap_seed": "how the intervals were made",
+    "bootstrap_rule": "how the resample count was chosen (resampling.RESAMPLE_RULE, or "
+    "'as asked' when the caller gave one)",
     "reason": "why β or μ_f is absent ('' when both are given)",
 }
 
@@ -172,11 +175,20 @@ def _reason(model: str, n_stick: int, n_slide: int) -> str:
     return "; ".join(parts)
 
 
-def _walton_group(key: tuple, group: Any, resamples: int, seed: int) -> dict[str, Any]:
+def bootstrap_plan(n: int, resamples: int | None) -> tuple[int, str]:
+    """(resamples, rule): ``resamples`` as asked, else the count of the documented rule."""
+    if resamples is not None:
+        return resamples, "as asked"
+    return resampling.resample_count(n), resampling.RESAMPLE_RULE
+
+
+def _walton_group(key: tuple, group: Any, asked: int | None, seed: int) -> dict[str, Any]:
     x, y, c, e, folded, _, factor = walton_arrays(group)
     n = len(x)
+    resamples, rule = bootstrap_plan(n, asked)
     row: dict[str, Any] = {**dict(zip(GROUP, key, strict=True)), "n_runs": n, "n_folded": folded}
     row.update(confidence_level=CONFIDENCE_LEVEL, bootstrap_resamples=resamples)
+    row["bootstrap_rule"] = rule
     row.update(bootstrap_seed=seed, walton_factor=float(np.mean(factor)) if n else math.nan)
     row.update(dict.fromkeys(_NUMBERS, math.nan), model=None, model_reason="")
     row.update(n_sticking=0, n_sliding=0)
@@ -185,7 +197,7 @@ def _walton_group(key: tuple, group: Any, resamples: int, seed: int) -> dict[str
         row["reason"] = f"{n} runs: a Walton fit needs at least {core.MIN_RUNS_FOR_PARAMETER}"
         return row
     fit = core.decide(np.ones((1, n)), x, y, c, e)
-    boot = core.bootstrap(x, y, c, e, resamples, seed)
+    boot = resampling.bootstrap(x, y, c, e, resamples, seed)
     model = core.MODELS[int(fit.model[0])]
     k = int(fit.split[0])
     bic = dict(zip(core.MODELS, fit.bic[0].tolist(), strict=True))
@@ -218,8 +230,9 @@ def _walton_group(key: tuple, group: Any, resamples: int, seed: int) -> dict[str
 
 
 def walton(
-    frame: Any, *, resamples: int = DEFAULT_RESAMPLES, seed: int = DEFAULT_SEED
+    frame: Any, *, resamples: int | None = None, seed: int = DEFAULT_SEED
 ) -> list[dict[str, Any]]:
     """β, μ_f and ē per group with model selection and bootstrap intervals (Joseph & Hunt
-    figures 4, 6, 9). Keys: ``WALTON_KEYS``."""
+    figures 4, 6, 9). Keys: ``WALTON_KEYS``. ``resamples`` None follows
+    ``walton_bootstrap.RESAMPLE_RULE`` (1000 for groups up to 10,000 runs)."""
     return [_walton_group(key, group, resamples, seed) for key, group in _groups(frame)]

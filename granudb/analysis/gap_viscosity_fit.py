@@ -29,11 +29,12 @@ from typing import Any
 import numpy as np
 
 from granudb.analysis import walton as core
+from granudb.analysis import walton_bootstrap as resampling
 from granudb.physics import contact, lubrication
 from granudb.physics._types import PhysicsInputError
 
 GROUP = ["dataset", "particle", "wall", "fluid"]
-RESAMPLES = 1000
+RESAMPLES = resampling.DEFAULT_RESAMPLES
 SEED = 0
 LEVEL = 0.95
 LOG_BOUNDS = (math.log(1e-6), math.log(10.0))  # μ₀ search range [Pa·s] of the fallback
@@ -81,15 +82,16 @@ def _least_squares(measured: np.ndarray, group: Any) -> tuple[float, np.ndarray 
 
 
 def _bootstrap(measured: np.ndarray, g: np.ndarray, resamples: int, seed: int) -> np.ndarray:
-    """μ₀ of each bootstrap resample of the sliding runs (closed form, blocks of resamples)."""
+    """μ₀ of each bootstrap resample of the sliding runs: q = Σ w μ_f g / Σ w g² with the
+    resample's draw counts w (closed form, one matrix product per batch of resamples)."""
     n = len(measured)
     rng = np.random.default_rng(seed)
-    block = max(1, core.BLOCK_CELLS // n)
+    series = np.stack([measured * g, g * g], axis=1)
+    batch = max(1, resampling.BATCH_CELLS // n)
     out = []
-    for start in range(0, resamples, block):
-        m = min(block, resamples - start)
-        draws = rng.integers(0, n, size=(m, n))
-        q = np.sum((measured * g)[draws], axis=1) / np.sum((g * g)[draws], axis=1)
+    for start in range(0, resamples, batch):
+        sums = resampling.draw_counts(rng, min(batch, resamples - start), n, n) @ series
+        q = sums[:, 0] / sums[:, 1]
         out.append(np.where(q > 0, q, np.nan) ** 3.5)
     return np.concatenate(out)
 
@@ -140,23 +142,27 @@ def _sliding_runs(group: Any) -> tuple[Any, np.ndarray, str]:
     return sliding, measured, ""
 
 
-def _fit_group(key: tuple, group: Any, model: Any, resamples: int, seed: int) -> dict:
+def _fit_group(key: tuple, group: Any, model: Any, asked: int | None, seed: int) -> dict:
     nan = math.nan
     row: dict[str, Any] = {**dict(zip(GROUP, key, strict=True))}
     row.update(gap_viscosity_pa_s=nan, gap_viscosity_low_pa_s=nan, gap_viscosity_high_pa_s=nan)
     row.update(gap_viscosity_std_pa_s=nan, gap_temperature_c=nan)
     row.update(gap_temperature_low_c=nan, gap_temperature_high_c=nan, n_runs=0)
-    row.update(confidence_level=LEVEL, bootstrap_resamples=resamples, bootstrap_seed=seed)
+    row.update(confidence_level=LEVEL, bootstrap_seed=seed)
     ambient = group["viscosity_pa_s"].to_numpy(float)
     ambient = ambient[np.isfinite(ambient)]  # rows without a fluid state have none
     row["ambient_viscosity_pa_s"] = float(np.mean(ambient)) if ambient.size else nan
     row["method"] = METHOD
     sliding, measured, reason = _sliding_runs(group)
+    count = len(measured)
+    row["bootstrap_resamples"] = asked if asked is not None else resampling.resample_count(count)
+    row["bootstrap_rule"] = "as asked" if asked is not None else resampling.RESAMPLE_RULE
     if sliding is None:
         row["reason"] = row["note"] = reason
         return row
     viscosity, g = _least_squares(measured, sliding)
     row.update(n_runs=len(measured), gap_viscosity_pa_s=viscosity)
+    resamples = row["bootstrap_resamples"]
     if not math.isfinite(viscosity):
         row["reason"] = row["note"] = "the sliding runs' μ_f give no positive μ₀"
         return row
@@ -175,7 +181,7 @@ def _fit_group(key: tuple, group: Any, model: Any, resamples: int, seed: int) ->
 
 
 def gap_viscosity(
-    frame: Any, fluids: dict[str, Any], *, resamples: int = RESAMPLES, seed: int = SEED
+    frame: Any, fluids: dict[str, Any], *, resamples: int | None = None, seed: int = SEED
 ) -> list[dict[str, Any]]:
     """μ₀ and the gap temperature per immersed group (figure 14, table 2).
 
@@ -183,7 +189,9 @@ def gap_viscosity(
     None. Keys: the group; ``gap_viscosity_pa_s`` and its ``_low_pa_s``/``_high_pa_s``
     bootstrap percentile interval and ``_std_pa_s``; ``gap_temperature_c`` with
     ``_low_c``/``_high_c``; ``ambient_viscosity_pa_s``; ``n_runs`` (sliding runs used);
-    ``confidence_level``, ``bootstrap_resamples``, ``bootstrap_seed``; ``method``;
+    ``confidence_level``, ``bootstrap_resamples``, ``bootstrap_seed``, ``bootstrap_rule``
+    (``resamples`` None follows ``walton_bootstrap.RESAMPLE_RULE`` on the sliding runs);
+    ``method``;
     ``reason`` (one line whenever μ₀ or the temperature is missing, else '') and ``note``
     (the same text, the older name).
     """

@@ -21,9 +21,10 @@ constant penalty lets the best of n−4 chance splits win too often). The smalle
 a tie goes to the simpler model.
 
 Every sum is a prefix (sticking line) or suffix (sliding line) cumulative sum over the sorted
-runs, so all splits cost O(n). The bootstrap draws runs with replacement as integer weights
-on the sorted runs, so each resample re-decides the model and the split with the same
-cumulative sums, for a block of resamples at once (no Python loop over resamples).
+runs, so all splits cost O(n). ``decide`` takes integer weights on the sorted runs (ones for
+the fit itself); the bootstrap (``granudb.analysis.walton_bootstrap``) draws runs with
+replacement as such weights and finds the same minimum from block sums, so each resample
+re-decides the model and the split at a fraction of ``decide``'s cost.
 """
 
 from __future__ import annotations
@@ -40,10 +41,10 @@ MIN_RUNS_FOR_PARAMETER = 3
 MIN_RUNS_PER_LINE = 2
 MODELS = ("sticking", "sliding", "split")
 PARAMETER_COUNT = {"sticking": 2, "sliding": 2, "split": 4}
-#: Resamples × runs per block of the bootstrap (bounds memory at ~ 100 MB).
-BLOCK_CELLS = 1_000_000
-#: Relative floor on a residual sum of squares (exact synthetic data would give ln 0).
-SSE_FLOOR = 1e-24
+#: Relative floor on a residual sum of squares (exact synthetic data would give ln 0). It
+#: sits above the rounding of sums over n runs (~1e-16 √n of Σy²), so that residuals at the
+#: level of rounding compare as equal, whatever order the sums were added in.
+SSE_FLOOR = 1e-12
 
 
 def fold(psi_in: np.ndarray, psi_out: np.ndarray, v_t_in: np.ndarray) -> tuple:
@@ -119,28 +120,6 @@ def decide(weights: np.ndarray, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: 
     beta = np.where(n_stick >= MIN_RUNS_FOR_PARAMETER, beta, np.nan)
     friction = np.where(n_slide >= MIN_RUNS_FOR_PARAMETER, friction, np.nan)
     return Decision(model, k_chosen, beta, friction, restitution, bic)
-
-
-def bootstrap(
-    x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resamples: int, seed: int
-) -> Decision:
-    """``resamples`` bootstrap fits over runs (each re-decides model and split), in blocks.
-
-    Deterministic for a given (data, resamples, seed).
-    """
-    n = len(x)
-    rng = np.random.default_rng(seed)
-    block = max(1, BLOCK_CELLS // max(n, 1))
-    parts = []
-    for start in range(0, resamples, block):
-        m = min(block, resamples - start)
-        draws = rng.integers(0, n, size=(m, n))
-        flat = (draws + (np.arange(m) * n)[:, None]).ravel()
-        weights = np.bincount(flat, minlength=m * n).reshape(m, n)
-        parts.append(decide(weights, x, y, c, e))
-    return Decision(
-        *(np.concatenate([getattr(p, f) for p in parts]) for f in Decision.__dataclass_fields__)
-    )
 
 
 def percentile_interval(values: np.ndarray, level: float) -> tuple[float, float, float]:

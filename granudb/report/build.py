@@ -14,7 +14,7 @@ from datetime import UTC, datetime
 from typing import Any
 
 from granudb.report import blocks, figures, references, tables
-from granudb.report.groups import colours, fluid_name, labels_of
+from granudb.report.groups import colours, fluid_names, labels_of
 from granudb.report.verdicts import verdicts
 from granudb.version import __version__
 
@@ -173,14 +173,14 @@ def _properties(session: Any, frame: Any) -> tuple[list[dict[str, Any]], dict[st
     from granudb.db import catalog, sources
 
     blocks_out, keys = [], set()
-    particles = sorted(set(frame["particle"]))
-    walls = sorted(set(frame["wall"]) - set(particles))
+    particles = sorted(set(frame["particle"].unique().tolist()))
+    walls = sorted(set(frame["wall"].unique().tolist()) - set(particles))
     for role, names in (("Particle", particles), ("Wall", walls)):
         for name in names:
             record = catalog.material_record(catalog.get_material(session, name))
             blocks_out.append(blocks.material_block(role, record))
             keys.add(record.get("source"))
-    for name in sorted({fluid_name(f) for f in frame["fluid"]} - {"dry"}):
+    for name in sorted(set(fluid_names(frame["fluid"]).tolist()) - {"dry"}):
         record = catalog.fluid_record(catalog.get_fluid(session, name))
         blocks_out.append(blocks.fluid_block(record))
         keys |= {record.get("source"), record.get("density_source"),

@@ -16,7 +16,14 @@ import numpy as np
 
 from granudb.report import plots, plots_extra
 from granudb.report.format import display
-from granudb.report.groups import fluid_colours, fluid_name, group_label
+from granudb.report.groups import (
+    fluid_colours,
+    fluid_name,
+    fluid_names,
+    group_keys,
+    group_label,
+    per_value,
+)
 
 #: Dry runs are drawn at the viscosity of air at 20 °C, so they appear on the map.
 AIR_VISCOSITY_PA_S = 1.8e-5
@@ -105,6 +112,7 @@ def regime_map_figure(
             f" Markers: the {count} measured runs of this pair, coloured by fluid, shaped by "
             "measured regime"
             + (" (dry runs drawn at the viscosity of air, 0.018 mPa·s)." if has_dry else ".")
+            + thinned(count)
         )
     return {"id": figure_id, "svg": svg, "file": f"{figure_id}.svg", "caption": caption}
 
@@ -118,22 +126,21 @@ def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> list[st
         )
         for f in walton
     }
-    out = []
-    for row in frame[["dataset", "particle", "wall", "fluid", "effective_incidence",
-                      "normal_restitution"]].itertuples(index=False):  # fmt: skip
-        dataset, particle, wall, fluid, psi, e = row
-        split = splits.get((dataset, particle, wall, fluid_name(fluid)), math.nan)
-        if not (isinstance(e, float) and e > 0):
-            out.append("no rebound")
-        elif not (isinstance(psi, float) and math.isfinite(psi) and psi > 0):
-            out.append("normal impact")
-        elif isinstance(split, float) and math.isfinite(split) and psi >= split:
-            out.append("sliding")
-        elif isinstance(split, float) and math.isfinite(split):
-            out.append("sticking")
-        else:
-            out.append("sticking")  # every run of the group on the sticking line
-    return out
+    keys = group_keys(frame["dataset"], frame["particle"], frame["wall"],
+                      fluid_names(frame["fluid"]))  # fmt: skip
+    split = per_value(keys, lambda key: _number(splits.get(key))).astype(float)
+    psi = frame["effective_incidence"].to_numpy(dtype=float)
+    e = frame["normal_restitution"].to_numpy(dtype=float)
+    with np.errstate(invalid="ignore"):
+        sliding = np.isfinite(split) & (psi >= split)
+        out = np.where(sliding, "sliding", "sticking")  # no split: all on the sticking line
+        out = np.where(np.isfinite(psi) & (psi > 0), out, "normal impact")
+        out = np.where(e > 0, out, "no rebound")
+    return out.tolist()
+
+
+def _number(value: Any) -> float:
+    return float(value) if isinstance(value, int | float) else math.nan
 
 
 def pair_maps(
@@ -143,11 +150,11 @@ def pair_maps(
     from granudb.db import catalog
 
     regimes = np.asarray(measured_regimes(frame, walton), dtype=object)
-    fluids = np.asarray([fluid_name(f) for f in frame["fluid"]], dtype=object)
+    fluids = fluid_names(frame["fluid"])
     colours = fluid_colours(fluids.tolist())
     densities = {f.name: f.reference_density_kg_m3 for f in catalog.list_fluids(session)}
     figures = []
-    pairs = sorted({(p, w) for p, w in zip(frame["particle"], frame["wall"], strict=True)})
+    pairs = sorted(set(group_keys(frame["particle"], frame["wall"]).tolist()))
     for index, (particle, wall) in enumerate(pairs):
         mask = ((frame["particle"] == particle) & (frame["wall"] == wall)).to_numpy()
         runs = _run_series(frame[mask], fluids[mask], regimes[mask])
@@ -193,21 +200,23 @@ def dataset_figures(
     figures = [
         _figure("fig-walton", "Ψ_out against Ψ_in with the fitted Walton lines (figures 4, 6, 9).",
                 plots.walton_plot(psi_in, frame["effective_rebound"].to_numpy(float), labels,
-                                  lines, colours)),  # fmt: skip
+                                  lines, colours), len(psi_in)),  # fmt: skip
         _figure("fig-beta", "Rotational restitution β against Ψ_in (figures 7, 10).",
                 plots.against_incidence(psi_in, frame["rotational_restitution"].to_numpy(float),
                                         labels, colours, ylabel="β = −v_T,out / v_T,in  (–)",
-                                        title="Rotational restitution", figure_id="fig-beta")),
+                                        title="Rotational restitution", figure_id="fig-beta"),
+                len(psi_in)),
         _figure("fig-friction",
                 "Friction from one collision, μ_f (2.9), against Ψ_in (figures 8, 11).",
                 plots.against_incidence(psi_in, frame["sliding_friction"].to_numpy(float),
                                         labels, colours, ylabel="μ_f (2.9)  (–)",
-                                        title="Friction coefficient", figure_id="fig-friction")),
+                                        title="Friction coefficient", figure_id="fig-friction"),
+                len(psi_in)),
     ]  # fmt: skip
     immersed = frame["normal_stokes_number"].notna().to_numpy()
     if not immersed.any():
         return figures
-    wet_labels = [g for g, m in zip(labels, immersed, strict=True) if m]
+    wet_labels = np.asarray(labels, dtype=object)[immersed].tolist()
     figures.append(restitution_figure(frame[immersed], wet_labels, colours, restitution,
                                       critical_stokes))  # fmt: skip
     strain = frame["shear_strain"].to_numpy(float)[immersed]
@@ -218,6 +227,7 @@ def dataset_figures(
             plots.friction_vs_shear_strain(
                 strain, frame["sliding_friction"].to_numpy(float)[immersed], wet_labels, colours
             ),
+            len(strain),
         )
     )
     return figures
@@ -277,7 +287,7 @@ def restitution_figure(
         + ". The grey line, where drawn, is the threshold fit of these runs; its St_c is "
         "fitted, not the verdict's St_c."
     )
-    return _figure("fig-restitution", caption, svg)
+    return _figure("fig-restitution", caption, svg, len(st_n))
 
 
 def _restitution_curve(
@@ -294,9 +304,20 @@ def _restitution_curve(
     return grid, curve, f"threshold fit, fitted St_c = {r['parameter']:.2g}"
 
 
+def thinned(count: int) -> str:
+    """The caption's word on thinning (``plots.MAX_POINTS``), or '' when all runs are drawn."""
+    if count <= plots.MAX_POINTS:
+        return ""
+    return (
+        f" {plots.MAX_POINTS:,} of the {count:,} runs are drawn (a fixed-seed sample, each "
+        "group its share; the legend gives each group's count); fits and tables use every run."
+    )
+
+
 def _finite(value: Any) -> bool:
     return isinstance(value, int | float) and math.isfinite(value)
 
 
-def _figure(figure_id: str, caption: str, svg: str) -> dict[str, Any]:
+def _figure(figure_id: str, caption: str, svg: str, count: int = 0) -> dict[str, Any]:
+    caption += thinned(count)
     return {"id": figure_id, "file": f"{figure_id}.svg", "caption": caption, "svg": svg}

@@ -2,8 +2,14 @@
 
 Each function takes plain arrays and returns an SVG string with axis labels, units and a
 legend. Output is byte-identical for the same input: matplotlib's SVG ids are seeded
-(``svg.hashsalt``), the date metadata is dropped, and dense data is thinned with a fixed
-random seed so 100,000 runs still make a figure of a few hundred kilobytes.
+(``svg.hashsalt``) and the date metadata is dropped.
+
+Thinning (issue 17): a scatter figure draws at most ``MAX_POINTS`` runs. A figure of N
+runs whose series (group, or fluid × regime) holds n of them draws ⌈MAX_POINTS · n / N⌉ of
+that series, a fixed-seed sample (``THIN_SEED``), so each group keeps its share and the
+same data always gives the same figure; the legend says "k of n runs shown". Fits, tables
+and every count use all runs: thinning only spares the reader's browser (and the report's
+time: 100,000 runs make a figure of a few hundred kilobytes).
 
 Three rules keep the figures honest and consistent with the tables:
 - colours come from the caller (``granudb.report.groups``), one per group for the whole
@@ -22,7 +28,9 @@ from typing import Any
 
 import numpy as np
 
-MAX_POINTS = 1500  # per series; more points add bytes, not information, to a scatter plot
+#: Runs drawn per scatter figure at most; more add bytes, not information, to a scatter plot.
+MAX_POINTS = 2000
+THIN_SEED = 20040101
 FIGSIZE = (7.0, 4.2)
 #: A linear y-axis spans at least this fraction of the data's magnitude.
 MIN_RELATIVE_SPAN = 0.25
@@ -67,8 +75,18 @@ def thin(*arrays: np.ndarray, limit: int = MAX_POINTS) -> tuple[np.ndarray, ...]
     n = len(arrays[0])
     if n <= limit:
         return arrays
-    keep = np.sort(np.random.default_rng(20040101).choice(n, size=limit, replace=False))
+    keep = np.sort(np.random.default_rng(THIN_SEED).choice(n, size=limit, replace=False))
     return tuple(np.asarray(a)[keep] for a in arrays)
+
+
+def share(count: int, total: int) -> int:
+    """Points a series of ``count`` of a figure's ``total`` runs may draw."""
+    return count if total <= MAX_POINTS else -(-MAX_POINTS * count // total)
+
+
+def shown(count: int, drawn: int) -> str:
+    """The legend's count: "12 runs", or "667 of 33,334 runs shown" when thinned."""
+    return f"{count} runs" if drawn == count else f"{drawn:,} of {count:,} runs shown"
 
 
 def _legend(ax: Any, handles: Sequence[Any] | None = None) -> None:
@@ -127,9 +145,11 @@ def _scatter_groups(
     ax: Any, x: np.ndarray, y: np.ndarray, groups: Sequence[str], colours: Mapping[str, str]
 ) -> None:
     labels = np.asarray(groups, dtype=object)
-    for name in sorted(set(labels.tolist())):
-        mask = labels == name
-        gx, gy = thin(x[mask], y[mask])
+    names, codes = np.unique(labels, return_inverse=True) if labels.size else ([], labels)
+    for index, name in enumerate(names):
+        mask = codes == index
+        count = int(mask.sum())
+        gx, gy = thin(x[mask], y[mask], limit=share(count, len(labels)))
         ax.plot(
             gx,
             gy,
@@ -138,7 +158,7 @@ def _scatter_groups(
             ms=4.5,
             alpha=0.8,
             color=colours[name],
-            label=f"{name} ({int(mask.sum())} runs)",
+            label=f"{name} ({shown(count, len(gx))})",
         )
 
 
@@ -240,8 +260,11 @@ RUN_MARKERS = {"sticking": "o", "sliding": "^", "no rebound": "x", "normal impac
 def _draw_runs(ax: Any, runs: Sequence[dict[str, Any]], colours: Mapping[str, str]) -> list[Any]:
     """Measured runs: colour by fluid, marker by measured regime; one legend entry each."""
     handles = []
+    total = sum(len(series["v"]) for series in runs)
     for series in runs:
-        v, mu = thin(np.asarray(series["v"], float), np.asarray(series["mu"], float))
+        count = len(series["v"])
+        v, mu = thin(np.asarray(series["v"], float), np.asarray(series["mu"], float),
+                     limit=share(count, total))  # fmt: skip
         marker = RUN_MARKERS.get(series["regime"], "o")
         (dots,) = ax.plot(
             v,
@@ -252,7 +275,7 @@ def _draw_runs(ax: Any, runs: Sequence[dict[str, Any]], colours: Mapping[str, st
             mew=1.3,
             color=colours.get(series["fluid"], "#000000"),
             markerfacecolor="none" if marker != "x" else None,
-            label=f"{series['fluid']}: {series['regime']} ({len(series['v'])} runs)",
+            label=f"{series['fluid']}: {series['regime']} ({shown(count, len(v))})",
         )
         handles.append(dots)
     return handles

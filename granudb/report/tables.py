@@ -91,7 +91,7 @@ def parameter_cell(fit: Mapping[str, Any], name: str, symbol: str) -> str:
         share = fit.get(f"{name}_determined")
         if _finite(share) and share < 0.995:
             text += f" (determined in {share:.0%} of resamples)"
-        return text
+        return text + resamples_said(fit)
     text = NOT_DETERMINED
     why = _reason_for(str(fit.get("reason") or ""), symbol)
     if why:
@@ -124,8 +124,20 @@ def _finite(value: Any) -> bool:
     return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
 
 
+def resamples_said(fit: Mapping[str, Any]) -> str:
+    """Beside an interval made with other than the default count (a large group under the
+    resample rule, or a count asked for): that count and the seed."""
+    from granudb.analysis.walton_bootstrap import DEFAULT_RESAMPLES
+
+    count = fit.get("bootstrap_resamples")
+    if not count or count == DEFAULT_RESAMPLES:
+        return ""
+    return f" ({count} resamples, seed {fit.get('bootstrap_seed')})"
+
+
 def bootstrap_note(fits: list[dict[str, Any]]) -> str:
-    """How the intervals were made, said once: level, resamples and seed."""
+    """How the intervals were made, said once: level, resamples and seed, and the resample
+    rule when a large group was resampled fewer times."""
     made = sorted(
         {(f.get("confidence_level"), f.get("bootstrap_resamples"), f.get("bootstrap_seed"))
          for f in fits if f.get("bootstrap_resamples")}
@@ -136,7 +148,13 @@ def bootstrap_note(fits: list[dict[str, Any]]) -> str:
         f"{level:.0%} bootstrap percentile intervals over runs, {resamples} resamples, seed {seed}"
         for level, resamples, seed in made
     )
-    return f"Intervals in brackets: {words}."
+    rules = sorted(
+        {f["bootstrap_rule"] for f in fits if f.get("bootstrap_rule") not in (None, "as asked")}
+    )
+    ruled = any(resamples_said(f) for f in fits)
+    return f"Intervals in brackets: {words}." + (
+        f" Resamples per group: {'; '.join(rules)}." if ruled and rules else ""
+    )
 
 
 def walton_table(
@@ -223,7 +241,7 @@ def _gap_cells(r: Mapping[str, Any]) -> tuple[str, str]:
         return f"{NOT_DETERMINED}: {reason}", "not determined"
     low, high = r.get("gap_viscosity_low_pa_s"), r.get("gap_viscosity_high_pa_s")
     scaled = [v * 1e3 if _finite(v) else v for v in (mu0, low, high)]
-    viscosity = f"{interval(*scaled)} mPa·s"
+    viscosity = f"{interval(*scaled)} mPa·s" + resamples_said(r)
     t = r.get("gap_temperature_c")
     if not _finite(t):
         return viscosity, f"not determined: {reason}"

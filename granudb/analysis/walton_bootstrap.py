@@ -1,0 +1,222 @@
+"""The Walton-fit bootstrap in O(n) per resample with a small constant (issue 13, issue 17;
+PHYSICS.md §14).
+
+Why this shape. Each resample draws n runs with replacement (integer weights on the runs,
+which are sorted once by the folded Ψ_in) and re-decides the model and the split exactly as
+``walton.decide`` does: the same three models, bounds 0 ≤ β ≤ 1 and μ_f ≥ 0, minimum runs
+per line and BIC. ``decide`` evaluates the split's residual sum of squares at every k from
+prefix sums of eight series: about thirty passes over a (resamples × runs) array. Here the
+same minimum is found from a few passes:
+
+- Runs are cut into blocks of ``BLOCK_RUNS`` consecutive runs. The weighted sums of the
+  series over each block come from one batched matrix product (BLAS), their cumulative sums
+  over blocks give the exact prefix sums at every block boundary.
+- The sticking line's minimum residual S_stick(k) (over β ∈ [0, 1]) can only grow when a
+  run is added, and the sliding line's S_slide(k) (over μ_f ≥ 0) can only shrink when k
+  grows. So within a block [K_J, K_J+1], S(k) ≥ S_stick(K_J) + S_slide(K_J+1): a lower bound
+  from boundary sums alone. A block whose bound exceeds the best boundary value cannot hold
+  the minimum and is skipped; the others (those around the split) are evaluated run by run.
+  The minimum found is the minimum of ``decide`` (up to rounding: the sums are added in a
+  different order), smallest k on a tie.
+
+The cost per resample is then the draw itself (integers and a bincount) plus one pass of
+the matrix product, so the number of resamples is bounded by time only for very large
+groups: ``resample_count`` states the rule (1000 resamples up to 10,000 runs, then
+resamples × runs ≤ 10⁷ per group, never fewer than 200), and every result carries the
+count used, the seed and the rule's text.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from granudb.analysis import walton as core
+
+#: Resamples of the Walton and gap-viscosity bootstraps for groups up to RULE_RUNS runs.
+DEFAULT_RESAMPLES = 1000
+#: Above this many runs a group gets CELL_BUDGET // n resamples (but ≥ MIN_RESAMPLES).
+RULE_RUNS = 10_000
+CELL_BUDGET = 10_000_000
+MIN_RESAMPLES = 200
+RESAMPLE_RULE = (
+    f"{DEFAULT_RESAMPLES} resamples up to {RULE_RUNS:,} runs in a group; above, "
+    f"{CELL_BUDGET:.0e} / n (never fewer than {MIN_RESAMPLES})"
+).replace("1e+07", "10⁷")
+#: Runs per block of the boundary sums (the refined blocks are evaluated run by run).
+BLOCK_RUNS = 128
+#: Resamples × padded runs per batch (bounds memory at a few tens of MB).
+BATCH_CELLS = 1 << 21
+#: Candidate blocks × BLOCK_RUNS per refinement chunk.
+REFINE_CELLS = 1 << 19
+# series: x², xy, y², c², dc, d², e (d = x − y)
+XX, XY, YY, CC, DC, DD, EE = range(7)
+
+
+def resample_count(n: int) -> int:
+    """Resamples for a group of ``n`` runs under ``RESAMPLE_RULE``."""
+    if n <= RULE_RUNS:
+        return DEFAULT_RESAMPLES
+    return max(MIN_RESAMPLES, min(DEFAULT_RESAMPLES, CELL_BUDGET // n))
+
+
+def _parts(p: np.ndarray, full: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, ...]:
+    """(S_stick, S_slide, β, μ_f) at prefix sums ``p`` (..., 7) given the totals ``full``."""
+    sxx, sxy, syy = p[..., XX], p[..., XY], p[..., YY]
+    tcc, tdc = full[..., CC] - p[..., CC], full[..., DC] - p[..., DC]
+    tdd = full[..., DD] - p[..., DD]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        beta = np.clip(np.where(sxx > 0, -sxy / sxx, 0.0), 0.0, 1.0)
+        friction = np.maximum(np.where(tcc > 0, tdc / tcc, 0.0), 0.0)
+    stick = syy + 2 * beta * sxy + beta**2 * sxx
+    slide = tdd - 2 * friction * tdc + friction**2 * tcc
+    return stick, slide, beta, friction
+
+
+class Sorted:
+    """One group's runs (sorted by folded Ψ_in), padded to whole blocks, as series."""
+
+    def __init__(self, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray) -> None:
+        self.n = len(x)
+        self.blocks = max(1, -(-self.n // BLOCK_RUNS))
+        size = self.blocks * BLOCK_RUNS
+        d = x - y
+        series = np.zeros((7, size))
+        for i, values in enumerate((x * x, x * y, y * y, c * c, d * c, d * d, e)):
+            series[i, : self.n] = values
+        # (blocks, BLOCK_RUNS, 7): each block's runs × series, for the batched product
+        self.series = np.ascontiguousarray(
+            series.reshape(7, self.blocks, BLOCK_RUNS).transpose(1, 2, 0)
+        )
+
+
+def draw_counts(rng: np.random.Generator, m: int, n: int, size: int) -> np.ndarray:
+    """(m, size) float counts of n draws with replacement among n runs (zero padding).
+
+    One bincount per resample: a row's counts stay in cache (a bincount over the whole
+    batch is about twice as slow)."""
+    draws = rng.integers(0, n, size=(m, n))
+    weights = np.zeros((m, size))
+    for row, drawn in zip(weights, draws, strict=True):
+        row[:n] = np.bincount(drawn, minlength=n)
+    return weights
+
+
+def _allowed(w: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(lo, hi, distinct): splits k ∈ [lo, hi] leave ≥ MIN_RUNS_PER_LINE distinct runs on
+    each line; ``distinct`` counts the distinct runs drawn."""
+    drawn = w[:, :n] > 0
+    rows = np.arange(len(w))
+    need = core.MIN_RUNS_PER_LINE
+    ahead, behind = drawn.copy(), drawn[:, ::-1].copy()
+    for _ in range(need - 1):  # knock out the first (last) drawn runs
+        ahead[rows, np.argmax(ahead, axis=1)] = False
+        behind[rows, np.argmax(behind, axis=1)] = False
+    lo = np.argmax(ahead, axis=1) + 1  # the need-th drawn run stays on the sticking line
+    hi = n - 1 - np.argmax(behind, axis=1)  # the need-th last drawn run starts the sliding one
+    distinct = np.count_nonzero(drawn, axis=1)
+    empty = distinct < 2 * need
+    lo[empty], hi[empty] = n, 0
+    return lo, hi, distinct
+
+
+def _refine(
+    runs: Sorted, w: np.ndarray, prefix: np.ndarray, full: np.ndarray, pairs: tuple
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """S(k), k and the prefix sums at the best k of each candidate (row, block) pair."""
+    rows, blocks, lo, hi = pairs
+    b = BLOCK_RUNS
+    local = w.reshape(len(w), runs.blocks, b)[rows, blocks]  # (P, b)
+    sums = np.empty((len(rows), b + 1, 7))
+    sums[:, 0] = prefix[rows, blocks]
+    np.cumsum(local[:, :, None] * runs.series[blocks], axis=1, out=sums[:, 1:])
+    sums[:, 1:] += sums[:, :1]
+    stick, slide, _, _ = _parts(sums, full[rows][:, None, :])
+    k = blocks[:, None] * b + np.arange(b + 1)
+    inside = (k >= lo[:, None]) & (k <= hi[:, None])
+    total = np.where(inside, np.maximum(stick + slide, 0.0), np.inf)
+    best = np.argmin(total, axis=1)
+    at = np.arange(len(rows))
+    return total[at, best], k[at, best], sums[at, best]
+
+
+def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple:
+    """Exact best split per row: (S at the split, k, prefix sums at k, boundary prefix)."""
+    m, b = len(w), BLOCK_RUNS
+    blocksums = np.matmul(w.reshape(m, runs.blocks, b).transpose(1, 0, 2), runs.series)
+    prefix = np.zeros((m, runs.blocks + 1, 7))
+    np.cumsum(blocksums.transpose(1, 0, 2), axis=1, out=prefix[:, 1:])
+    full = prefix[:, -1]
+    stick, slide, _, _ = _parts(prefix, full[:, None, :])
+    bounds = np.arange(runs.blocks + 1) * b
+    inside = (bounds >= lo[:, None]) & (bounds <= hi[:, None])
+    best = np.min(np.where(inside, np.maximum(stick + slide, 0.0), np.inf), axis=1)
+    lower = stick[:, :-1] + slide[:, 1:]  # S(k) ≥ this within block J
+    slack = 1e-9 * np.abs(best) + 1e-300
+    keep = (lower <= (best + slack)[:, None]) | ~np.isfinite(best)[:, None]
+    keep &= (bounds[1:] >= lo[:, None]) & (bounds[:-1] <= hi[:, None])
+    rows, blocks = np.nonzero(keep)
+    value = np.full(m, np.inf)
+    split = np.zeros(m, dtype=int)
+    at = np.zeros((m, 7))
+    step = max(1, REFINE_CELLS // b)
+    for start in range(0, len(rows), step):
+        r, j = rows[start : start + step], blocks[start : start + step]
+        total, k, sums = _refine(runs, w, prefix, full, (r, j, lo[r], hi[r]))
+        order = np.lexsort((k, total, r))  # per row: smallest S, then smallest k
+        first = order[np.r_[True, r[order][1:] != r[order][:-1]]]
+        better = (total[first] < value[r[first]]) | (
+            (total[first] == value[r[first]]) & (k[first] < split[r[first]])
+        )
+        chosen = first[better]
+        value[r[chosen]], split[r[chosen]], at[r[chosen]] = total[chosen], k[chosen], sums[chosen]
+    return value, split, at, full
+
+
+def decide_blocks(runs: Sorted, w: np.ndarray) -> core.Decision:
+    """``walton.decide`` for weights ``w`` (m, padded runs) by the block search."""
+    m, n = len(w), runs.n
+    lo, hi, distinct = _allowed(w, n)
+    value, split, at, full = _split(runs, w, lo, hi)
+    zero = np.zeros_like(full)
+    stick_all, _, beta_all, _ = _parts(full, full)
+    _, slide_all, _, friction_none = _parts(zero, full)
+    has_split = np.isfinite(value)
+    counted = w.sum(axis=1)
+    scale = np.maximum(full[:, YY] + full[:, DD], 1e-300) * core.SSE_FLOOR
+    sse = np.stack([np.maximum(stick_all, 0.0), np.maximum(slide_all, 0.0), value], axis=1)
+    penalty = (
+        np.array([core.PARAMETER_COUNT[name] for name in core.MODELS]) * np.log(counted)[:, None]
+    )
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bic = (
+            counted[:, None] * np.log(np.maximum(sse, scale[:, None]) / counted[:, None]) + penalty
+        )
+    bic[:, 2] = np.where(has_split, bic[:, 2], np.inf)
+    model = np.argmin(bic, axis=1)
+    k = np.select([model == 0, model == 1], [n, 0], split)
+    _, _, beta_split, friction_split = _parts(at, full)
+    beta = np.select([model == 0, model == 2], [beta_all, beta_split], np.nan)
+    friction = np.select([model == 1, model == 2], [friction_none, friction_split], np.nan)
+    n_stick = np.array([np.count_nonzero(w[i, : k[i]]) for i in range(m)])
+    beta = np.where(n_stick >= core.MIN_RUNS_FOR_PARAMETER, beta, np.nan)
+    friction = np.where(distinct - n_stick >= core.MIN_RUNS_FOR_PARAMETER, friction, np.nan)
+    return core.Decision(model, k, beta, friction, full[:, EE] / counted, bic)
+
+
+def bootstrap(
+    x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resamples: int, seed: int
+) -> core.Decision:
+    """``resamples`` bootstrap fits over runs (each re-decides model and split), in batches.
+
+    Deterministic for a given (data, resamples, seed).
+    """
+    runs = Sorted(x, y, c, e)
+    size = runs.blocks * BLOCK_RUNS
+    rng = np.random.default_rng(seed)
+    batch = max(1, BATCH_CELLS // size)
+    parts = []
+    for start in range(0, resamples, batch):
+        m = min(batch, resamples - start)
+        parts.append(decide_blocks(runs, draw_counts(rng, m, runs.n, size)))
+    fields = core.Decision.__dataclass_fields__
+    return core.Decision(*(np.concatenate([getattr(p, f) for p in parts]) for f in fields))
