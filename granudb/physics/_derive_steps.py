@@ -167,7 +167,6 @@ def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> 
     chi = ratio * p["walton"]
     psi = impact.maw_psi(ratio, lub["u_abs"], mu_used, p["v_n"])
     code = impact.tangential_regime(psi, chi)
-    names = np.asarray(impact.TANGENTIAL_REGIME_NAMES, dtype=object)[code]
     # No coefficient: μ_f ≤ cap is all that is known, and a smaller μ_f only slips more;
     # the bound decides the regime only when it already gives gross slip.
     open_ended = (
@@ -177,12 +176,15 @@ def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> 
         "mu_used": mu_used,
         "chi": chi,
         "psi": psi,
-        "regime": np.where(open_ended, UNDETERMINED, names),
+        # one lookup from codes to names (object arrays are slow to build, twice slower)
+        "regime": _REGIME_NAMES[np.where(open_ended, len(impact.TANGENTIAL_REGIME_NAMES), code)],
     }
 
 
 #: Maw's regime where the friction is only bounded (no pressure–viscosity coefficient).
 UNDETERMINED = "undetermined"
+#: Maw's regimes (``impact.TANGENTIAL_REGIME_NAMES``, by code) and then ``UNDETERMINED``.
+_REGIME_NAMES = np.asarray((*impact.TANGENTIAL_REGIME_NAMES, UNDETERMINED), dtype=object)
 
 
 def collision(p: Arrays) -> Arrays:
