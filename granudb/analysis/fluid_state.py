@@ -12,13 +12,16 @@ naming the range that is covered.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from granudb.analysis._errors import physics_refusal
-from granudb.db.models import Fluid
 from granudb.errors import ValidationError
 from granudb.physics.viscosity import ReferencedViscosity, TabulatedViscosity
+
+if TYPE_CHECKING:  # only annotations: the ORM mapping is not imported for them
+    from granudb.db.models import Fluid
 
 
 @dataclass

@@ -9,17 +9,20 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from sqlalchemy.orm import Session
 
 from granudb.analysis._errors import physics_refusal
 from granudb.analysis.fluid_state import FluidState, fluid_state
 from granudb.db import catalog
-from granudb.db.models import Material
 from granudb.errors import ValidationError
 from granudb.physics.derive import derive, scalar_view
+
+if TYPE_CHECKING:  # only annotations: the ORM mapping is not imported for them
+    from sqlalchemy.orm import Session
+
+    from granudb.db.models import Material
 
 #: Per-collision parameters that need a measured rebound: a scenario has none.
 MEASURED_ONLY = (

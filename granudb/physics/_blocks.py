@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -83,6 +82,8 @@ def run_blocked(
     starts = range(block_rows, rows, block_rows)
     workers = min(default_threads() if threads is None else max(1, threads), len(starts))
     if workers > 1:
+        from concurrent.futures import ThreadPoolExecutor  # only for large tables
+
         with ThreadPoolExecutor(max_workers=workers) as pool:
             try:
                 for _ in pool.map(work, starts):
