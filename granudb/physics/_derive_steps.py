@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from granudb.physics import contact, flow, impact, limits, lubrication, pair
+from granudb.physics._types import hypot
 
 Arrays = dict[str, np.ndarray]
 
@@ -59,7 +60,7 @@ def pair_properties(x: Arrays) -> Arrays:
         "e_star": contact.reduced_modulus(x["e1"], x["nu1"], x["e2"], x["nu2"]),
         "g_star": contact.reduced_shear_modulus(g1, x["nu1"], g2, x["nu2"]),
         "v_n": v_n,
-        "speed": np.hypot(v_n, v_t_centre),
+        "speed": hypot(v_n, v_t_centre),
         "u": u,
         # the particle's v_n_out is stored away from the target, the target's along n
         "v_n_out": x["vn_out"] + after("w_vn_out"),
@@ -70,10 +71,11 @@ def pair_properties(x: Arrays) -> Arrays:
 def hertz(x: Arrays, p: Arrays) -> Arrays:
     """Hertz impact at the relative normal speed with m* and R*, and the yield verdict."""
     v_n, m_eff, r_eff, e_star = p["v_n"], p["m_eff"], p["r_eff"], p["e_star"]
-    load = contact.peak_impact_force(m_eff, v_n, e_star, r_eff)
+    delta = contact.max_approach(m_eff, v_n, e_star, r_eff)
+    load = contact.hertz_force(e_star, r_eff, delta)  # = contact.peak_impact_force
     a = contact.max_contact_radius(r_eff, load, e_star)
     p_max = contact.max_pressure(load, a)
-    t_c = contact.contact_time(m_eff, r_eff, e_star, v_n)
+    t_c = contact.contact_time_from_approach(delta, v_n)  # = contact.contact_time
     c_wave = np.minimum(
         contact.wave_speed(x["e1"], x["rho1"]), contact.wave_speed(x["e2"], x["rho2"])
     )
@@ -84,7 +86,7 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
         "load": load,
         "a": a,
         "p_max": p_max,
-        "delta": contact.max_approach(m_eff, v_n, e_star, r_eff),
+        "delta": delta,
         "t_c": t_c,
         "c_wave": c_wave,
         "qs_ratio": ratio,
@@ -98,29 +100,26 @@ def fluid_numbers(x: Arrays, p: Arrays, gap_fraction: float) -> Arrays:
     """Re, St, St_n (Davis's pair form, m* and R*), x₁, h_m, x₃ and the roughness verdicts."""
     mu, r_eff = x["mu"], p["r_eff"]
     immersed = ~np.isnan(mu)
-    nan = np.full(mu.shape, np.nan)
-
-    def wet(values: np.ndarray) -> np.ndarray:
-        return np.where(immersed, values, nan)
-
-    st_n = wet(pair.pair_normal_stokes_number(p["m_eff"], p["v_n"], mu, r_eff))
-    x1 = wet(lubrication.davis_elastic_length(mu, p["v_n"], r_eff, p["e_star"]))
+    # Every fluid number below has μ as a factor, so it is NaN exactly where the row is
+    # dry (μ NaN): no masking needed.
+    st_n = pair.pair_normal_stokes_number(p["m_eff"], p["v_n"], mu, r_eff)
+    x1 = lubrication.davis_elastic_length(mu, p["v_n"], r_eff, p["e_star"])
     h_m = lubrication.ehd_min_gap(x1, gap_fraction)
     eta_hat = lubrication.chu_cameron_coefficient(x["c_barus"])
     sigma = contact.composite_roughness(x["s1"], x["s2"])
     with np.errstate(divide="ignore", invalid="ignore"):
-        film = np.where(immersed, h_m / sigma, np.nan)
+        film = h_m / sigma  # NaN where dry (h_m is)
     return {
         "immersed": immersed,
-        "re": wet(flow.reynolds_number(x["rho_f"], r_eff, p["speed"], mu)),
-        "st": wet(pair.pair_stokes_number(p["m_eff"], p["speed"], mu, r_eff)),
+        "re": flow.reynolds_number(x["rho_f"], r_eff, p["speed"], mu),
+        "st": pair.pair_stokes_number(p["m_eff"], p["speed"], mu, r_eff),
         "st_n": st_n,
         # Legendre et al.'s added mass, on the pair's normal Stokes number
         "st_am": st_n * (1.0 + flow.ADDED_MASS_COEFFICIENT * x["rho_f"] / x["rho1"]),
         "x1": x1,
         "h_m": h_m,
         "eta_hat": eta_hat,
-        "x3": wet(lubrication.piezoviscous_length(eta_hat, mu, p["v_n"], r_eff)),
+        "x3": lubrication.piezoviscous_length(eta_hat, mu, p["v_n"], r_eff),
         "sigma": sigma,
         "film": film,
         "rough": immersed & (sigma > h_m),
@@ -138,15 +137,16 @@ def lubricated(x: Arrays, p: Arrays, h: Arrays, f: Arrays, caps: tuple[float, fl
     has_c = f["immersed"] & ~np.isnan(eta_hat)
     u_abs = np.abs(p["u"])
     h_film = lubrication.traction_film_thickness(r_eff, mu, u_abs, eta_hat, h["load"], e_star)
+    integral = lubrication.friction_integral(eta_hat * h["p_max"])
     mu_lub = lubrication.lubricated_friction(
-        mu, u_abs, h["load"], h_film, h["a"], eta_hat, h["p_max"]
+        mu, u_abs, h["load"], h_film, h["a"], eta_hat, h["p_max"], integral
     )
     nan = np.full(mu.shape, np.nan)
     mu_lub = np.where(has_c, mu_lub, nan)
     return {
         "u_abs": u_abs,
         "h_film": np.where(has_c, h_film, nan),
-        "integral": np.where(has_c, lubrication.friction_integral(eta_hat * h["p_max"]), nan),
+        "integral": np.where(has_c, integral, nan),
         "mu_lub": mu_lub,
         "strain": np.where(f["immersed"], lubrication.shear_strain(mu, u_abs, e_star, r_eff), nan),
         "state": limits.lubricated_friction_state(mu_lub, f["immersed"], has_c, *caps),
@@ -167,7 +167,6 @@ def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> 
     chi = ratio * p["walton"]
     psi = impact.maw_psi(ratio, lub["u_abs"], mu_used, p["v_n"])
     code = impact.tangential_regime(psi, chi)
-    names = np.asarray(impact.TANGENTIAL_REGIME_NAMES, dtype=object)[code]
     # No coefficient: μ_f ≤ cap is all that is known, and a smaller μ_f only slips more;
     # the bound decides the regime only when it already gives gross slip.
     open_ended = (
@@ -177,12 +176,15 @@ def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> 
         "mu_used": mu_used,
         "chi": chi,
         "psi": psi,
-        "regime": np.where(open_ended, UNDETERMINED, names),
+        # one lookup from codes to names (object arrays are slow to build, twice slower)
+        "regime": _REGIME_NAMES[np.where(open_ended, len(impact.TANGENTIAL_REGIME_NAMES), code)],
     }
 
 
 #: Maw's regime where the friction is only bounded (no pressure–viscosity coefficient).
 UNDETERMINED = "undetermined"
+#: Maw's regimes (``impact.TANGENTIAL_REGIME_NAMES``, by code) and then ``UNDETERMINED``.
+_REGIME_NAMES = np.asarray((*impact.TANGENTIAL_REGIME_NAMES, UNDETERMINED), dtype=object)
 
 
 def collision(p: Arrays) -> Arrays:

@@ -57,12 +57,14 @@ immersed row without fluid density.
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any
 
 import numpy as np
 
 from granudb.physics import _derive_steps as steps
 from granudb.physics import flow, limits, lubrication, pair
+from granudb.physics._blocks import run_blocked
 from granudb.physics._types import Numeric, PhysicsInputError
 
 #: Friction coefficient assumed where asperities touch or the collision is dry; the paper's
@@ -201,6 +203,7 @@ def derive(
     gap_fraction: float = lubrication.GAP_FRACTION,
     dry_restitution: float = DRY_RESTITUTION,
     limiting_shear_slope: float = limits.LIMITING_SHEAR_SLOPE,
+    threads: int | None = None,
 ) -> dict[str, np.ndarray]:
     """Derive every derived column (``granudb.vocabulary.DERIVED_TERMS``) for arrays of collisions.
 
@@ -216,12 +219,39 @@ def derive(
     yield stress or pressure–viscosity coefficient, ν outside (−1, 0.5), a target that
     recedes faster than the particle approaches, target velocities without a target
     diameter).
+
+    Large tables are computed in blocks of ``granudb.physics._blocks.BLOCK_ROWS`` rows on
+    up to ``threads`` threads (None: one per core, at most four; 1: the calling thread
+    only); every row's result is the same whatever the blocks or threads.
     """
     given = locals()
     arrays = np.broadcast_arrays(*(np.asarray(given[name], dtype=float) for name in _INPUTS))
     x = dict(zip(_INPUTS.values(), arrays, strict=True))
+    compute = partial(
+        _derive_block,
+        caps=(dry_friction, limiting_shear_slope),
+        gap_fraction=gap_fraction,
+        critical_stokes=critical_stokes,
+        dry_restitution=dry_restitution,
+    )
+    try:
+        return run_blocked(compute, x, threads)
+    except PhysicsInputError:
+        _validate(x)  # the first bad row of the whole table, as one pass would name it
+        raise
+
+
+def _derive_block(
+    x: dict[str, np.ndarray],
+    *,
+    caps: tuple[float, float],
+    gap_fraction: float,
+    critical_stokes: float,
+    dry_restitution: float,
+) -> dict[str, np.ndarray]:
+    """Every derived column for broadcast inputs ``x`` (one block of rows), after
+    ``_validate``."""
     _validate(x)
-    caps = (dry_friction, limiting_shear_slope)
     p = steps.pair_properties(x)
     h = steps.hertz(x, p)
     f = steps.fluid_numbers(x, p, gap_fraction)

@@ -1,0 +1,140 @@
+"""``derive`` over large tables: blocks and threads change nothing but the time taken.
+
+A table longer than ``BLOCK_ROWS`` is computed block by block (on several threads by
+default); every row must equal what a small table holding that row alone gives, every
+column must keep its dtype and shape, and bad input must be refused exactly as one pass
+over the whole table refuses it (the first bad row of the first failing rule).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from granudb.physics._blocks import BLOCK_ROWS, run_blocked
+from granudb.physics._types import PhysicsInputError
+from granudb.physics.derive import derive
+
+ROWS = 2 * BLOCK_ROWS + 123  # two full blocks and a partial one
+
+
+def _mixed(n: int, seed: int = 5) -> dict[str, np.ndarray]:
+    """Walls, fixed and free spheres, dry and immersed rows, known and unknown inputs."""
+    rng = np.random.default_rng(seed)
+
+    def some_nan(values: np.ndarray, share: float) -> np.ndarray:
+        return np.where(rng.random(n) < share, np.nan, values)
+
+    free = rng.random(n) < 0.3
+    sphere = free | (rng.random(n) < 0.3)
+
+    def target(low: float, high: float) -> np.ndarray:
+        return np.where(free, some_nan(rng.uniform(low, high, n), 0.2), np.nan)
+
+    tangential = rng.uniform(0, 2, n)
+    tangential[rng.random(n) < 0.05] = 0.0
+    return {
+        "particle_density_kg_m3": rng.uniform(1000, 8000, n),
+        "particle_youngs_modulus_pa": rng.uniform(1e9, 2e11, n),
+        "particle_poisson_ratio": rng.uniform(0.1, 0.45, n),
+        "particle_roughness_rms_m": rng.uniform(1e-9, 1e-6, n),
+        "particle_yield_stress_pa": some_nan(rng.uniform(1e8, 3e9, n), 0.4),
+        "wall_density_kg_m3": rng.uniform(1000, 8000, n),
+        "wall_youngs_modulus_pa": rng.uniform(1e9, 2e11, n),
+        "wall_poisson_ratio": rng.uniform(0.1, 0.45, n),
+        "wall_roughness_rms_m": rng.uniform(1e-9, 1e-6, n),
+        "wall_shear_modulus_pa": some_nan(rng.uniform(1e9, 8e10, n), 0.5),
+        "wall_diameter_m": np.where(sphere, rng.uniform(1e-3, 3e-2, n), np.nan),
+        "diameter_m": rng.uniform(1e-3, 3e-2, n),
+        "v_n_in_m_s": rng.uniform(0.01, 2.0, n),
+        "v_t_in_m_s": tangential,
+        "omega_in_rad_s": rng.uniform(-100, 100, n),
+        "fluid_density_kg_m3": some_nan(rng.uniform(990, 1260, n), 0.1),
+        "viscosity_pa_s": some_nan(rng.uniform(5e-4, 0.5, n), 0.3),
+        "pressure_viscosity_pa_inv": some_nan(np.full(n, 6e-9), 0.3),
+        "v_n_out_m_s": some_nan(rng.uniform(0, 2, n), 0.3),
+        "v_t_out_m_s": some_nan(rng.uniform(-2, 2, n), 0.3),
+        "wall_v_n_in_m_s": np.where(free, rng.uniform(-1, 0.005, n), np.nan),
+        "wall_v_t_in_m_s": target(-1, 1),
+        "wall_omega_out_rad_s": target(-50, 50),
+    }
+
+
+def _same(a: np.ndarray, b: np.ndarray) -> bool:
+    if a.dtype.kind == "f":
+        return bool(np.array_equal(a, b, equal_nan=True))
+    return bool(np.array_equal(a, b))
+
+
+@pytest.mark.parametrize("threads", [1, 2, None])
+def test_blocked_derive_equals_small_tables_row_for_row(threads: int | None) -> None:
+    table = _mixed(ROWS)
+    whole = derive(**table, threads=threads)
+    # slices of at most 1000 rows are one block each: the plain, unblocked computation
+    for start in range(0, ROWS, 1000):
+        part = derive(**{name: values[start : start + 1000] for name, values in table.items()})
+        for name, values in part.items():
+            assert whole[name].dtype == values.dtype, name
+            assert _same(whole[name][start : start + 1000], values), (name, start)
+
+
+def test_blocked_outputs_keep_shape_and_are_independent_writable_arrays() -> None:
+    speeds = np.linspace(0.01, 1.0, 3 * (ROWS // 3)).reshape(ROWS // 3, 3)
+    common = dict(
+        particle_density_kg_m3=7780.0,
+        particle_youngs_modulus_pa=190e9,
+        particle_poisson_ratio=0.27,
+        particle_roughness_rms_m=0.0236e-6,
+        wall_density_kg_m3=2540.0,
+        wall_youngs_modulus_pa=91e9,
+        wall_poisson_ratio=0.24,
+        wall_roughness_rms_m=0.0155e-6,
+        diameter_m=12.7e-3,
+        v_t_in_m_s=0.1,
+        viscosity_pa_s=1e-3,
+        fluid_density_kg_m3=998.0,
+        pressure_viscosity_pa_inv=6e-9,
+    )
+    result = derive(**common, v_n_in_m_s=speeds)
+    one_by_one = derive(**common, v_n_in_m_s=speeds[5, 1])
+    for name, values in result.items():
+        assert values.shape == speeds.shape, name
+        assert _same(values[5, 1:2], np.asarray(one_by_one[name]).reshape(1)), name
+    before = result["contact_radius_m"].copy()
+    result["max_pressure_pa"][:] = 0.0  # columns share no elements
+    assert np.array_equal(result["contact_radius_m"], before)
+
+
+def test_bad_input_in_a_late_block_names_the_row_of_the_whole_table() -> None:
+    table = _mixed(ROWS)
+    late = 2 * BLOCK_ROWS + 7
+    table["diameter_m"][late] = -1.0
+    with pytest.raises(PhysicsInputError) as caught:
+        derive(**table)
+    assert (caught.value.field, caught.value.row) == ("diameter_m", late + 1)
+
+
+def test_bad_input_is_refused_by_the_same_rule_as_one_pass() -> None:
+    # An earlier row breaks a later rule (v_n_in); one pass checks diameter first over the
+    # whole table, so the diameter row is named although it is in a later block.
+    table = _mixed(ROWS)
+    table["v_n_in_m_s"][3] = 0.0
+    table["diameter_m"][BLOCK_ROWS + 50] = 0.0
+    with pytest.raises(PhysicsInputError) as caught:
+        derive(**table, threads=2)
+    assert (caught.value.field, caught.value.row) == ("diameter_m", BLOCK_ROWS + 51)
+
+
+def test_run_blocked_calls_compute_once_per_block_and_preserves_dtypes() -> None:
+    seen: list[int] = []
+
+    def compute(x: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        seen.append(len(x["a"]))
+        return {"twice": 2 * x["a"], "odd": x["a"] % 2 == 1, "name": x["a"].astype(object)}
+
+    values = np.arange(25, dtype=float)
+    out = run_blocked(compute, {"a": values}, threads=3, block_rows=10)
+    assert sorted(seen) == [5, 10, 10]
+    assert np.array_equal(out["twice"], 2 * values)
+    assert out["odd"].dtype == bool and out["odd"].sum() == 12
+    assert out["name"].dtype == object and out["name"][24] == 24.0
