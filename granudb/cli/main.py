@@ -169,20 +169,10 @@ class GranudbGroup(TyperGroup):
             raise typer.Exit(2) from None
 
 
-def _click_classes(name: str) -> tuple[type[Exception], ...]:
-    """The exception class ``name`` of Typer's click, and of the click package too where
-    it is installed (another library may raise its own copy)."""
-    classes: list[type[Exception]] = []
-    for module in ("typer._click.exceptions", "click.exceptions"):
-        try:
-            classes.append(getattr(import_module(module), name))
-        except ImportError:
-            continue
-    return tuple(dict.fromkeys(classes))
-
-
-_USAGE = _click_classes("UsageError")
-_NO_ARGS = _click_classes("NoArgsIsHelpError")
+# Typer's own click raises these; the click package (installed for other tools) is not
+# imported: no granudb command runs code that raises its copies.
+_USAGE = click.exceptions.UsageError
+_NO_ARGS = click.exceptions.NoArgsIsHelpError
 
 
 def _usage_error(exc: Any) -> NoReturn:
