@@ -28,6 +28,7 @@ from granudb.vocabulary import COLLISION_TARGET
 
 #: Rows formatted at once when hashing; bounds the text held in memory (~20 MB).
 HASH_BLOCK_ROWS = 100_000
+WORKERS = 2
 #: Where Arrow's text of a float is ``repr``'s (plus ".0" when integral): ``repr`` is
 #: positional for 1e-4 <= |x| < 1e16, Arrow for about 1e-7 <= |x| < 1e10; zero is
 #: positional in both. Outside this range Python formats the (rare) value itself.
@@ -79,25 +80,35 @@ class BlockHasher:
 
     def add(
         self,
-        runs: list[str],
+        runs: Any,
         ids: tuple[Any, Any, Any],
         values: dict[str, Any],
         notes: list[str | None] | None,
     ) -> None:
+        """Keep one block's rows (``runs`` an Arrow string array); empty columns are not
+        kept, so memory is what the file holds."""
         import pyarrow as pa
 
-        self.runs.append(pa.array(runs, type=pa.string()))
-        self.ids.append(tuple(np.asarray(i, dtype=np.int64) for i in ids))
-        self.values.append({c: np.asarray(v, dtype=np.float64) for c, v in values.items()})
+        self.runs.append(runs)
+        self.ids.append(tuple(np.asarray(i, dtype=np.int32) for i in ids))
+        self.values.append(
+            {c: np.asarray(v, dtype=np.float64) for c, v in values.items() if not np.isnan(v).all()}
+        )
         self.notes.append(None if notes is None else pa.array(notes, type=pa.string()))
         self.sizes.append(len(runs))
 
-    def _column(self, name: str) -> Any:
-        parts = [
-            v[name] if name in v else np.full(n, np.nan)
-            for v, n in zip(self.values, self.sizes, strict=True)
-        ]
-        return np.concatenate(parts) if parts else np.empty(0)
+    def _gather(self, name: str, blocks: Any, local: Any) -> Any:
+        """Column ``name`` at the rows given as (block, position in block); None if the
+        column is empty in every block. Gathered from the blocks' own arrays, so no column
+        is ever copied whole."""
+        if not any(name in v for v in self.values):
+            return None
+        out = np.full(len(local), np.nan)
+        for number, values in enumerate(self.values):
+            if name in values:
+                here = blocks == number
+                out[here] = values[name][local[here]]
+        return out
 
     def hexdigest(self, material_names: dict[int, str], fluid_names: dict[int, str]) -> str:
         """sha256 of the collected rows in ``datasets.content_hash``'s canonical form."""
@@ -109,7 +120,8 @@ class BlockHasher:
         if total == 0:
             return digest.hexdigest()
         runs = pa.chunked_array(self.runs, type=pa.string()).combine_chunks()
-        order = pc.sort_indices(runs.cast(pa.binary())).to_numpy()
+        self.runs = []
+        order = pc.sort_indices(runs.cast(pa.binary())).to_numpy().astype(np.int64)
         ids = [np.concatenate([i[k] for i in self.ids]) for k in range(3)]
         notes = pa.chunked_array(
             [
@@ -119,9 +131,13 @@ class BlockHasher:
             type=pa.string(),
         ).combine_chunks()
         names = _name_lookup(material_names, fluid_names)
-        columns = {c: self._column(c) for c in COLUMNS}
+        self.notes, self.ids = [], []
+        starts = np.cumsum([0, *self.sizes])
         for start in range(0, total, HASH_BLOCK_ROWS):
             rows = order[start : start + HASH_BLOCK_ROWS]
+            blocks = np.searchsorted(starts, rows, side="right") - 1
+            local = rows - starts[blocks]
+            columns = {c: self._gather(c, blocks, local) for c in COLUMNS}
             digest.update(_block_bytes(runs, ids, columns, notes, rows, names))
         return digest.hexdigest()
 
@@ -139,30 +155,45 @@ def _name_lookup(materials: dict[int, str], fluids: dict[int, str]) -> tuple[Any
     return pa.array(material_array, pa.string()), pa.array(fluid_array, pa.string())
 
 
+def _float_columns(columns: dict[str, Any]) -> dict[str, Any]:
+    """``float_texts`` of each non-empty column, two at a time (Arrow's casts release
+    the GIL, so both cores format)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    present = {c: v for c, v in columns.items() if v is not None}
+    with ThreadPoolExecutor(max_workers=WORKERS) as pool:
+        return dict(zip(present, pool.map(float_texts, present.values()), strict=True))
+
+
 def _block_bytes(
     runs: Any, ids: list[Any], columns: dict[str, Any], notes: Any, rows: Any, names: Any
 ) -> memoryview:
-    """The canonical text of ``rows`` (already in hash order) as UTF-8 bytes."""
+    """The canonical text of ``rows`` (already in hash order) as UTF-8 bytes; ``columns``
+    are the SI columns at those rows (None = empty)."""
     import pyarrow as pa
     import pyarrow.compute as pc
 
     materials, fluids = names
     take = pa.array(rows)
+    empty = pa.array([""] * len(rows), type=pa.string())
+    texts = _float_columns(columns)
     fields = [
         runs.take(take),
         materials.take(pa.array(ids[0][rows])),
         materials.take(pa.array(ids[1][rows])),
         fluids.take(pa.array(ids[2][rows] + 1)),
-        *(float_texts(columns[c][rows]) for c in _ALWAYS),
+        *(texts.get(c, empty) for c in _ALWAYS),
         pc.fill_null(notes.take(take), ""),
     ]
-    target_values = [columns[c][rows] for c in COLLISION_TARGET]
     kept = pc.binary_join_element_wise(*fields, "\x1f")
     has_target = np.zeros(len(rows), dtype=bool)
-    for values in target_values:
-        has_target |= ~np.isnan(values)
+    for c in COLLISION_TARGET:
+        if columns[c] is not None:
+            has_target |= ~np.isnan(columns[c])
     if has_target.any():
-        target = pc.binary_join_element_wise(*(float_texts(v) for v in target_values), "\x1f")
+        target = pc.binary_join_element_wise(
+            *(texts.get(c, empty) for c in COLLISION_TARGET), "\x1f"
+        )
         kept = pc.if_else(
             pa.array(has_target), pc.binary_join_element_wise(kept, target, "\x1f"), kept
         )

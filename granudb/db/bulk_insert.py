@@ -27,7 +27,10 @@ from granudb.vocabulary import COLLISION_MEASURED
 # unique (dataset, run) index of a million rows no longer spills to the WAL mid-way. The
 # engine restores the connection's own setting when it goes back to the pool
 # (granudb.db.engine.BULK_CACHE_KEY).
-BULK_CACHE_KIB = 65_536
+BULK_CACHE_KIB = 16_384
+#: Rows bound per ``executemany`` call: the Python values of a slice (about 300 bytes a
+#: row) exist only while it is written, so memory does not grow with the reader's chunks.
+INSERT_SLICE_ROWS = 20_000
 
 
 @dataclass
@@ -125,6 +128,11 @@ def _python_values(column: Any) -> list[Any]:
     return array.tolist()
 
 
+def _rows(bound: dict[str, Any], start: int, stop: int) -> Any:
+    """Tuples of the bound columns' Python values for rows ``start:stop``."""
+    return zip(*(_python_values(c[start:stop]) for c in bound.values()), strict=True)
+
+
 def _columns(
     dataset_id: int, runs: list[str], ids: tuple[Any, Any, Any], values: dict[str, Any], notes: Any
 ) -> tuple[dict[str, int], dict[str, Any]]:
@@ -177,11 +185,13 @@ def insert_rows(
         mark = "?" if dialect.paramstyle == "qmark" else "%s"
         literals = [str(v) for v in constant.values()]
         statement += f" VALUES ({', '.join([*literals, *[mark] * len(bound)])})"
-        rows = zip(*(_python_values(c) for c in bound.values()), strict=True)
         if dialect.name == "sqlite":
             _bulk_cache(connection, raw)
-            raw.cursor().executemany(statement, rows)
+            cursor = raw.cursor()
+            for start in range(0, n, INSERT_SLICE_ROWS):
+                cursor.executemany(statement, _rows(bound, start, start + INSERT_SLICE_ROWS))
             return n
+        rows = _rows(bound, 0, n)
     except dialect.loaded_dbapi.Error as exc:
         # The driver's own error, as SQLAlchemy would raise it (the session translates it).
         raise DBAPIError.instance(statement, None, exc, dialect.loaded_dbapi.Error) from None

@@ -224,8 +224,8 @@ def store_collisions(
             _refuse_earlier_import(session, dataset, target)
         names = NameIndex(session)
         ranges = FluidRanges(session)
-        seen = set(session.scalars(select(Collision.run).filter_by(dataset_id=dataset.id)))
-        hasher = BlockHasher() if not seen else None
+        seen = RunIndex(session.scalars(select(Collision.run).filter_by(dataset_id=dataset.id)))
+        hasher = BlockHasher() if not len(seen) else None
         for frame in frames:
             block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
             ranges.check(block, target.dataset)
@@ -250,15 +250,66 @@ def store_collisions(
     return rows
 
 
+class RunIndex:
+    """The run labels of the dataset so far, for "does this label repeat?".
+
+    Each label is kept as text in an Arrow array (about 11 bytes a label; a Python set of
+    a million labels took about 100 MB) and as Python's 64-bit hash of it, sorted per
+    block, so a block is checked by sorting and binary search. Equal hashes are confirmed
+    on the labels themselves before anything is refused.
+    """
+
+    def __init__(self, existing: Iterable[str]) -> None:
+        self.parts: list[Any] = []
+        self.hashes: list[Any] = []
+        self.size = 0
+        self.add(list(existing))
+
+    def __len__(self) -> int:
+        return self.size
+
+    @staticmethod
+    def _hashes(runs: list[str]) -> Any:
+        return np.sort(np.fromiter(map(hash, runs), dtype=np.int64, count=len(runs)))
+
+    def repeats(self, runs: list[str]) -> bool:
+        """Whether ``runs`` repeats a label, within itself or earlier (exact)."""
+        hashes = self._hashes(runs)
+        suspect = bool((hashes[1:] == hashes[:-1]).any())
+        for earlier in self.hashes:
+            if suspect:
+                break
+            found = np.searchsorted(earlier, hashes).clip(0, len(earlier) - 1)
+            suspect = bool((earlier[found] == hashes).any())
+        if not suspect:
+            return False
+        return len(set(runs)) != len(runs) or not self.as_set().isdisjoint(runs)
+
+    def add(self, runs: list[str]) -> None:
+        import pyarrow as pa
+
+        if runs:
+            self.parts.append(pa.array(runs, type=pa.string()))
+            self.hashes.append(self._hashes(runs))
+            self.size += len(runs)
+
+    def as_set(self) -> set[str]:
+        return {run for part in self.parts for run in part.to_pylist()}
+
+
 def _refuse_repeated_runs(
-    session: Any, dataset: Any, target: ImportTarget, block: CollisionBlock, seen: set[str]
+    session: Any,
+    dataset: Any,
+    target: ImportTarget,
+    block: CollisionBlock,
+    index: RunIndex,
 ) -> None:
     """The first run label that repeats (in the file, or already in the dataset)."""
-    runs = block.runs
-    if seen.isdisjoint(runs) and len(set(runs)) == len(runs):
+    if not index.repeats(block.runs):
         return
+    seen = index.as_set()
     here: set[str] = set()
-    for pos, run in enumerate(runs):
+    for pos, run in enumerate(block.runs):
         if run in seen and not target.file_sha256:
             _refuse_earlier_import(session, dataset, target)  # the same file again?
         if run in seen or run in here:
@@ -277,12 +328,13 @@ def _store_block(
     target: ImportTarget,
     block: CollisionBlock,
     names: NameIndex,
-    seen: set[str],
+    seen: RunIndex,
     hasher: BlockHasher | None,
 ) -> int:
     first_row = block.first_row
     _refuse_repeated_runs(session, dataset, target, block, seen)
-    seen.update(block.runs)
+    seen.add(block.runs)
+    runs = seen.parts[-1]
     ids = (
         names.ids(block.particle, names.materials, names.material_names, "particle", first_row),
         names.ids(block.wall, names.materials, names.material_names, "wall", first_row),
@@ -293,7 +345,7 @@ def _store_block(
             row = first_row + _first(column < 0)
             raise ValidationError(header, "(empty)", "is required", row=row)
     if hasher is not None:
-        hasher.add(block.runs, ids, block.values, block.notes)
+        hasher.add(runs, ids, block.values, block.notes)
     return insert_rows(session, dataset.id, block.runs, ids, block.values, block.notes)
 
 
