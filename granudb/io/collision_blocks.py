@@ -1,9 +1,9 @@
 """Reading a collision CSV in one pass: hashed while Arrow parses it, checked in columns.
 
-``HashingFile`` feeds the file to ``pyarrow.csv.open_csv`` and updates the sha256 with
-every byte it hands over, so the file is read once (not once to hash, once to count cells,
-once to parse). Arrow parses blocks of ``BLOCK_BYTES`` on its own threads, every cell as
-text; blocks are cut into chunks of ``chunk_rows`` rows (memory stays bounded whatever the
+``HashingFile`` updates the sha256 with every byte read, and the file is read once (not
+once to hash, once to count cells, once to parse), ``READ_BYTES`` at a time cut at the
+last whole record; ``pyarrow.csv.read_csv`` parses each piece on its threads, every cell as
+text. Pieces are cut into chunks of ``chunk_rows`` rows (memory stays bounded whatever the
 file's size) and each chunk is converted and checked with vectorized rules:
 
 * numbers: ASCII spaces trimmed, cast to float64 by Arrow (the correctly rounded double,

@@ -5,13 +5,13 @@ The contract (README, "Importing collisions"): one row per run; text columns ``r
 in the header (``v_n_in [mm/s]``, ``incidence_angle (deg)``, ``Temperature [degC]``;
 names case-insensitive) or under granudb's SI column name (``v_n_in_m_s``).
 
-Everything that can be checked without the database is checked before the write
-transaction opens (``open_collision_file``): the header is read with a size limit, every
-column mapped and every unit parsed (all header problems in one refusal), and every row
-counted. So a hostile header costs milliseconds and never holds SQLite's write lock. The
-rows are then read in chunks (memory is bounded whatever the file's size), converted and
-checked with vectorized rules, and bulk-inserted by ``granudb.db.collision_store`` in one
-transaction: one bad row anywhere rejects the whole file and nothing is written. A file
+The header is checked before the write transaction opens (``open_collision_file``): read
+with a size limit, every column mapped and every unit parsed (all header problems in one
+refusal), so a hostile header costs milliseconds and never holds SQLite's write lock. The
+rows are then read once, hashed as they are read (``granudb.io.collision_blocks``), in
+chunks (memory is bounded whatever the file's size), converted and checked with
+vectorized rules, and bulk-inserted by ``granudb.db.collision_store`` in one transaction:
+one bad row or ragged line anywhere rejects the whole file and nothing is written. A file
 (by sha256) is imported into a dataset at most once.
 
 Semicolon-delimited files with decimal commas, as European spreadsheets write them, are
