@@ -26,8 +26,8 @@ import numpy as np
 from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
 from granudb.vocabulary import COLLISION_TARGET
 
-#: Rows formatted at once when hashing; bounds the text held in memory (~20 MB).
-HASH_BLOCK_ROWS = 100_000
+#: Rows formatted at once when hashing; bounds the text held in memory (~5 MB).
+HASH_BLOCK_ROWS = 20_000
 WORKERS = 2
 #: Where Arrow's text of a float is ``repr``'s (plus ".0" when integral): ``repr`` is
 #: positional for 1e-4 <= |x| < 1e16, Arrow for about 1e-7 <= |x| < 1e10; zero is

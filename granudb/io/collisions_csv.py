@@ -280,7 +280,7 @@ def import_collisions(
     and temperatures outside a fluid's data, and writes everything in one transaction.
     """
     from granudb.db.collision_store import ImportTarget, store_collisions
-    from granudb.io.collision_blocks import HashingFile, read_blocks
+    from granudb.io.collision_blocks import HashingFile, arrow_memory, read_blocks
 
     check_name("dataset", dataset)
     check_name("version", version)
@@ -288,12 +288,13 @@ def import_collisions(
     name = opened.path.name
     stream = HashingFile(opened.path)
     try:
-        target = ImportTarget(
-            dataset, version, source, title, license, "", name, digest=stream.hexdigest
-        )
-        blocks = read_blocks(opened, stream, chunk_rows)
-        rows = store_collisions(database, target, blocks, progress=progress)
-        sha256 = stream.hexdigest()
+        with arrow_memory():
+            target = ImportTarget(
+                dataset, version, source, title, license, "", name, digest=stream.hexdigest
+            )
+            blocks = read_blocks(opened, stream, chunk_rows)
+            rows = store_collisions(database, target, blocks, progress=progress)
+            sha256 = stream.hexdigest()
     finally:
         stream.close()
     return ImportResult(dataset, version, rows, sha256, name)
