@@ -52,14 +52,15 @@ def float_texts(values: Any) -> Any:
     positional = (magnitude >= _POSITIONAL_LOW) & (magnitude < _POSITIONAL_HIGH)
     positional |= magnitude == 0
     text = pc.cast(pa.array(np.where(positional, values, 0.0)), pa.string())
-    integral = ~pc.match_substring(text, ".").to_numpy(zero_copy_only=False)
-    text = pc.if_else(pa.array(integral), pc.binary_join_element_wise(text, ".0", ""), text)
+    integral = pc.invert(pc.match_substring(text, "."))
+    text = pc.if_else(integral, pc.binary_join_element_wise(text, ".0", ""), text)
     other = ~positional & ~missing
-    if missing.any() or other.any():
+    if other.any():  # rare: exponent form, formatted by Python
         texts = text.to_numpy(zero_copy_only=False).astype(object)
-        texts[missing] = ""
         texts[other] = [repr(v) for v in values[other].tolist()]
         text = pa.array(texts, type=pa.string())
+    if missing.any():
+        text = pc.if_else(pa.array(missing), "", text)
     return text
 
 

@@ -104,6 +104,66 @@ def arrow_memory() -> Iterator[None]:
         pa.set_memory_pool(previous)
 
 
+class Prefetched:
+    """Iterate ``iterator`` on a thread, one item ahead of the consumer.
+
+    The import reads and checks block k+1 (Arrow and numpy, which release the GIL) while
+    block k is written (SQLite's ``executemany`` releases it inside each step): about a
+    quarter less time on two cores, for one more block in memory. Items and the
+    reader's exception arrive in order, so refusals are the ones a sequential read gives.
+    The thread never touches the database.
+    """
+
+    _END = object()
+
+    def __init__(self, iterator: Iterator[Any]) -> None:
+        import queue
+        import threading
+
+        self._queue: queue.Queue[tuple[Any, BaseException | None]] = queue.Queue(maxsize=1)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, args=(iterator,), daemon=True)
+        self._thread.start()
+
+    def _put(self, item: Any, error: BaseException | None = None) -> bool:
+        import queue
+
+        while not self._stop.is_set():
+            try:
+                self._queue.put((item, error), timeout=0.05)
+                return True
+            except queue.Full:
+                continue
+        return False
+
+    def _run(self, iterator: Iterator[Any]) -> None:
+        try:
+            for item in iterator:
+                if not self._put(item):
+                    return
+        except BaseException as exc:  # noqa: BLE001 - handed to the consumer, in order
+            self._put(self._END, exc)
+            return
+        self._put(self._END)
+
+    def __iter__(self) -> Iterator[Any]:
+        try:
+            while True:
+                item, error = self._queue.get()
+                if error is not None:
+                    raise error
+                if item is self._END:
+                    return
+                yield item
+        finally:
+            self.close()
+
+    def close(self) -> None:
+        """Stop reading ahead and wait for the thread (it finishes its current block)."""
+        self._stop.set()
+        self._thread.join()
+
+
 def read_blocks(
     source: Any, stream: HashingFile, chunk_rows: int = csvmod.CHUNK_ROWS
 ) -> Iterator[CollisionBlock]:

@@ -280,7 +280,12 @@ def import_collisions(
     and temperatures outside a fluid's data, and writes everything in one transaction.
     """
     from granudb.db.collision_store import ImportTarget, store_collisions
-    from granudb.io.collision_blocks import HashingFile, arrow_memory, read_blocks
+    from granudb.io.collision_blocks import (
+        HashingFile,
+        Prefetched,
+        arrow_memory,
+        read_blocks,
+    )
 
     check_name("dataset", dataset)
     check_name("version", version)
@@ -289,11 +294,17 @@ def import_collisions(
     stream = HashingFile(opened.path)
     try:
         with arrow_memory():
-            target = ImportTarget(
-                dataset, version, source, title, license, "", name, digest=stream.hexdigest
-            )
-            blocks = read_blocks(opened, stream, chunk_rows)
-            rows = store_collisions(database, target, blocks, progress=progress)
+            blocks = Prefetched(read_blocks(opened, stream, chunk_rows))
+
+            def digest() -> str:  # the reader thread stops before the rest is hashed
+                blocks.close()
+                return stream.hexdigest()
+
+            target = ImportTarget(dataset, version, source, title, license, "", name, digest)
+            try:
+                rows = store_collisions(database, target, blocks, progress=progress)
+            finally:
+                blocks.close()
             sha256 = stream.hexdigest()
     finally:
         stream.close()
