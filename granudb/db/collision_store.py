@@ -5,20 +5,35 @@ with material and fluid names as text; here they are resolved to ids (case-insen
 refused when a run label repeats, bulk-inserted, and the import recorded with the file's
 sha256, all inside one write transaction: a failure anywhere, in reading or writing, rolls
 everything back.
+
+Rows arrive as ``CollisionBlock`` columns (``granudb.db.bulk_insert``; DataFrames are
+converted) and are written by ``bulk_insert.insert_rows``. The file's sha256 may be known
+only once the reader has read the whole file (it is hashed while it is parsed, one pass):
+then "was this file imported before?" is answered at the end, and at the first run that is
+already in the dataset (a repeated file's first row), before the same transaction commits.
+When the dataset held no runs before, its content hash is computed from the inserted
+arrays (``granudb.db.bulk_hash``), the same value ``datasets.content_hash`` gives.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from itertools import repeat
 from typing import Any
 
 import numpy as np
 from sqlalchemy import func, select
-from sqlalchemy.exc import DBAPIError
 
 from granudb.db import datasets
+from granudb.db.bulk_hash import BlockHasher
+from granudb.db.bulk_insert import (
+    BULK_CACHE_KIB,
+    CollisionBlock,
+    NameColumn,
+    block_from_frame,
+    frame_columns,
+    insert_rows,
+)
 from granudb.db.models import (
     Collision,
     CollisionImport,
@@ -28,12 +43,17 @@ from granudb.db.models import (
     name_key,
 )
 from granudb.errors import ConflictError, ValidationError
-from granudb.vocabulary import COLLISION_MEASURED
+
+__all__ = ["BULK_CACHE_KIB", "ImportTarget", "insert_collisions", "store_collisions"]
 
 
 @dataclass(frozen=True)
 class ImportTarget:
-    """Where the rows go and where they came from."""
+    """Where the rows go and where they came from.
+
+    ``file_sha256`` is the file's hash when known up front; otherwise ``digest`` gives it
+    (it finishes reading the file if the reader has not).
+    """
 
     dataset: str
     version: str
@@ -42,6 +62,10 @@ class ImportTarget:
     license: str | None
     file_sha256: str
     file_name: str
+    digest: Callable[[], str] | None = None
+
+    def sha256(self) -> str:
+        return self.file_sha256 or (self.digest() if self.digest is not None else "")
 
 
 def _first(mask: Any) -> int:
@@ -49,38 +73,41 @@ def _first(mask: Any) -> int:
 
 
 class NameIndex:
-    """Case-insensitive lookup of material and fluid names to ids, vectorized."""
+    """Case-insensitive lookup of material and fluid names to ids, one lookup per distinct
+    name of a block."""
 
     def __init__(self, session: Any) -> None:
-        self.materials = {
-            name_key(n): i for i, n in session.execute(select(Material.id, Material.name))
-        }
-        self.material_names = sorted(
-            (n for (n,) in session.execute(select(Material.name))), key=str.casefold
-        )
-        self.fluids = {name_key(n): i for i, n in session.execute(select(Fluid.id, Fluid.name))}
-        self.fluid_names = sorted(
-            (n for (n,) in session.execute(select(Fluid.name))), key=str.casefold
-        )
+        materials = list(session.execute(select(Material.id, Material.name)))
+        fluids = list(session.execute(select(Fluid.id, Fluid.name)))
+        self.materials = {name_key(n): i for i, n in materials}
+        self.material_names = sorted((n for _, n in materials), key=str.casefold)
+        self.material_by_id = {i: n for i, n in materials}
+        self.fluids = {name_key(n): i for i, n in fluids}
+        self.fluid_names = sorted((n for _, n in fluids), key=str.casefold)
+        self.fluid_by_id = {i: n for i, n in fluids}
 
     def ids(
-        self, names: Any, table: dict[str, int], known: list[str], header: str, first_row: int
+        self,
+        column: NameColumn,
+        table: dict[str, int],
+        known: list[str],
+        header: str,
+        first_row: int,
     ) -> Any:
-        unique = {n: table.get(name_key(n)) for n in names.dropna().unique() if isinstance(n, str)}
-        ids = names.map(unique)
-        unknown = names.notna() & ids.isna()
-        if unknown.any():
-            pos = _first(unknown)
+        """Ids by row (-1 where empty); the first unknown name is refused with its row."""
+        found = [table.get(name_key(n), -1) for n in column.names]
+        codes = np.asarray(column.codes)
+        unknown = [k for k, i in enumerate(found) if i < 0]
+        if unknown:
+            pos = _first(np.isin(codes, unknown))
             raise ValidationError(
                 header,
-                repr(str(names.iloc[pos])),
+                repr(column.names[codes[pos]]),
                 f"is not in the database (known: {', '.join(known)})",
                 row=first_row + pos,
             )
-        return ids
-
-
-#: A run this close to its fluid's reference temperature is derived with the printed
+        lookup = np.array([*found, -1], dtype=np.int64)
+        return lookup[codes]
 
 
 class FluidRanges:
@@ -113,44 +140,62 @@ class FluidRanges:
             )
         }
 
-    def check(self, frame: Any, dataset: str) -> None:
+    def check(self, block: Any, dataset: str) -> None:
         """Refuse the first row whose temperature its fluid's data does not cover."""
-        temperatures = frame["temperature_c"].to_numpy(dtype=float)
-        fluids = frame["fluid"]
-        given = ~np.isnan(temperatures) & fluids.notna().to_numpy()
+        if not isinstance(block, CollisionBlock):
+            block = block_from_frame(block)
+        temperatures = block.values.get("temperature_c")
+        if temperatures is None:
+            return
+        temperatures = np.asarray(temperatures, dtype=float)
+        codes = np.asarray(block.fluid.codes)
+        given = ~np.isnan(temperatures) & (codes >= 0)
         if not given.any():
             return
-        bad = np.zeros(len(frame), dtype=bool)
-        rules: dict[str, str] = {}
-        for name in fluids[given].unique():
+        bad = np.zeros(len(block), dtype=bool)
+        rules: dict[int, str] = {}
+        for code, name in enumerate(block.fluid.names):
             known = self.fluids.get(name_key(str(name)))
-            if known is None:
-                continue  # refused as unknown when names are resolved
+            rows = given & (codes == code)
+            if known is None or not rows.any():
+                continue  # an unknown name is refused when names are resolved
             shown, reference, low, high, count = known
-            rows = given & (fluids == name).to_numpy()
             t = temperatures
             if count < 2:
                 off = rows & (t != reference)
-                rules[name] = (
+                rules[code] = (
                     f"differs from fluid {shown}'s reference temperature ({reference:g} °C) "
                     "and the fluid has no viscosity–temperature points"
                 )
             else:
                 off = rows & ((t < low) | (t > high))
-                rules[name] = (
+                rules[code] = (
                     f"is outside fluid {shown}'s viscosity data ({low:g}–{high:g} °C), which "
                     "granudb does not extrapolate"
                 )
             bad |= off
         if bad.any():
             pos = _first(bad)
-            header = frame.attrs.get("headers", {}).get("temperature_c", "temperature_c")
+            header = block.headers.get("temperature_c", "temperature_c")
             raise ValidationError(
                 header,
                 f"{temperatures[pos]:g} °C",
-                f"{rules[fluids.iloc[pos]]}; nothing was imported into dataset {dataset}",
-                row=int(frame.attrs.get("first_row", 2)) + pos,
+                f"{rules[int(codes[pos])]}; nothing was imported into dataset {dataset}",
+                row=block.first_row + pos,
             )
+
+
+def _refuse_earlier_import(session: Any, dataset: Any, target: ImportTarget) -> None:
+    """``ConflictError`` if this file (by sha256) was imported into the dataset before."""
+    earlier = session.scalars(
+        select(CollisionImport).filter_by(dataset_id=dataset.id, file_sha256=target.sha256())
+    ).first()
+    if earlier is not None:
+        raise ConflictError(
+            f"FILE: {target.file_name} was already imported into dataset {target.dataset} "
+            f"{target.version} on {earlier.imported_at:%Y-%m-%d %H:%M} ({earlier.rows} "
+            "rows); nothing was imported again"
+        )
 
 
 def store_collisions(
@@ -160,7 +205,8 @@ def store_collisions(
     *,
     progress: Callable[[int], None] | None = None,
 ) -> int:
-    """Write every frame of ``frames`` into ``target`` in one write transaction."""
+    """Write every block of ``frames`` (``CollisionBlock``s or DataFrames) into ``target``
+    in one write transaction."""
     from granudb.db.sources import get_source
 
     rows = 0
@@ -174,148 +220,144 @@ def store_collisions(
             license=target.license,
             source_id=source_id,
         )
-        earlier = session.scalars(
-            select(CollisionImport).filter_by(dataset_id=dataset.id, file_sha256=target.file_sha256)
-        ).first()
-        if earlier is not None:
-            raise ConflictError(
-                f"FILE: {target.file_name} was already imported into dataset {target.dataset} "
-                f"{target.version} on {earlier.imported_at:%Y-%m-%d %H:%M} ({earlier.rows} "
-                "rows); nothing was imported again"
-            )
+        if target.file_sha256:
+            _refuse_earlier_import(session, dataset, target)
         names = NameIndex(session)
         ranges = FluidRanges(session)
-        seen = set(session.scalars(select(Collision.run).filter_by(dataset_id=dataset.id)))
+        seen = RunIndex(session.scalars(select(Collision.run).filter_by(dataset_id=dataset.id)))
+        hasher = BlockHasher() if not len(seen) else None
         for frame in frames:
-            ranges.check(frame, target.dataset)
-            rows += _store_frame(session, dataset.id, frame, names, seen)
+            block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
+            ranges.check(block, target.dataset)
+            rows += _store_block(session, dataset, target, block, names, seen, hasher)
             if progress is not None:
                 progress(rows)
+        if not target.file_sha256:
+            _refuse_earlier_import(session, dataset, target)
         session.add(
             CollisionImport(
                 dataset_id=dataset.id,
-                file_sha256=target.file_sha256,
+                file_sha256=target.sha256(),
                 file_name=target.file_name[:500],
                 rows=rows,
             )
         )
-        datasets.update_content_hash(session, dataset)
+        if hasher is None:
+            datasets.update_content_hash(session, dataset)
+        else:
+            dataset.content_hash = hasher.hexdigest(names.material_by_id, names.fluid_by_id)
+            session.flush()
     return rows
 
 
-def _store_frame(
-    session: Any, dataset_id: int, frame: Any, names: NameIndex, seen: set[str]
-) -> int:
-    first_row = int(frame.attrs.get("first_row", 2))
-    runs = frame["run"]
-    repeated = runs.duplicated() | runs.isin(seen)
-    if repeated.any():
-        pos = _first(repeated)
-        raise ValidationError(
-            "run",
-            repr(runs.iloc[pos]),
-            "appears twice (in this file or already in the dataset)",
-            row=first_row + pos,
-        )
-    seen.update(runs)
-    frame = frame.copy()
-    frame["particle_id"] = names.ids(
-        frame.pop("particle"), names.materials, names.material_names, "particle", first_row
-    )
-    frame["wall_id"] = names.ids(
-        frame.pop("wall"), names.materials, names.material_names, "wall", first_row
-    )
-    frame["fluid_id"] = names.ids(
-        frame.pop("fluid"), names.fluids, names.fluid_names, "fluid", first_row
-    )
-    return insert_collisions(session, dataset_id, frame)
+class RunIndex:
+    """The run labels of the dataset so far, for "does this label repeat?".
 
-
-INSERT_COLUMNS = [
-    "dataset_id",
-    "run",
-    "particle_id",
-    "wall_id",
-    "fluid_id",
-    *COLLISION_MEASURED,
-    "notes",
-]
-
-
-# Page cache for the length of a bulk load (KiB, negative = size rather than pages): the
-# unique (dataset, run) index of a million rows no longer spills to the WAL mid-way. The
-# engine restores the connection's own setting when it goes back to the pool
-# (granudb.db.engine.BULK_CACHE_KEY).
-BULK_CACHE_KIB = 65_536
-_ID_COLUMNS = ("particle_id", "wall_id", "fluid_id")
-
-
-def _column_values(frame: Any, name: str) -> list[Any]:
-    """One column as Python values with missing → None, built by numpy, not per row.
-
-    Floats stay the exact float64 values (Python floats round-trip them); ids become ints.
+    Each label is kept as text in an Arrow array (about 11 bytes a label; a Python set of
+    a million labels took about 100 MB) and as Python's 64-bit hash of it, sorted per
+    block, so a block is checked by sorting and binary search. Equal hashes are confirmed
+    on the labels themselves before anything is refused.
     """
-    values = frame[name]
-    missing = values.isna().to_numpy()
-    if name in _ID_COLUMNS:
-        numbers = values.to_numpy(dtype="float64", na_value=0.0).astype(np.int64)
-        array = numbers.astype(object)
-    elif name in ("run", "notes"):
-        array = values.to_numpy(dtype=object, copy=True)
-    else:
-        array = values.to_numpy(dtype="float64", na_value=np.nan).astype(object)
-    if missing.any():
-        array[missing] = None
-    return array.tolist()
+
+    def __init__(self, existing: Iterable[str]) -> None:
+        self.parts: list[Any] = []
+        self.hashes: list[Any] = []
+        self.size = 0
+        self.add(list(existing))
+
+    def __len__(self) -> int:
+        return self.size
+
+    @staticmethod
+    def _hashes(runs: list[str]) -> Any:
+        return np.sort(np.fromiter(map(hash, runs), dtype=np.int64, count=len(runs)))
+
+    def repeats(self, runs: list[str]) -> bool:
+        """Whether ``runs`` repeats a label, within itself or earlier (exact)."""
+        hashes = self._hashes(runs)
+        suspect = bool((hashes[1:] == hashes[:-1]).any())
+        for earlier in self.hashes:
+            if suspect:
+                break
+            found = np.searchsorted(earlier, hashes).clip(0, len(earlier) - 1)
+            suspect = bool((earlier[found] == hashes).any())
+        if not suspect:
+            return False
+        return len(set(runs)) != len(runs) or not self.as_set().isdisjoint(runs)
+
+    def add(self, runs: list[str]) -> None:
+        import pyarrow as pa
+
+        if runs:
+            self.parts.append(pa.array(runs, type=pa.string()))
+            self.hashes.append(self._hashes(runs))
+            self.size += len(runs)
+
+    def as_set(self) -> set[str]:
+        return {run for part in self.parts for run in part.to_pylist()}
 
 
-def _bulk_cache(connection: Any, raw: Any) -> None:
-    """Enlarge SQLite's page cache for this transaction (restored on check-in)."""
-    from granudb.db.engine import BULK_CACHE_KEY
+def _refuse_repeated_runs(
+    session: Any,
+    dataset: Any,
+    target: ImportTarget,
+    block: CollisionBlock,
+    index: RunIndex,
+) -> None:
+    """The first run label that repeats (in the file, or already in the dataset)."""
+    if not index.repeats(block.runs):
+        return
+    seen = index.as_set()
+    here: set[str] = set()
+    for pos, run in enumerate(block.runs):
+        if run in seen and not target.file_sha256:
+            _refuse_earlier_import(session, dataset, target)  # the same file again?
+        if run in seen or run in here:
+            raise ValidationError(
+                "run",
+                repr(run),
+                "appears twice (in this file or already in the dataset)",
+                row=block.first_row + pos,
+            )
+        here.add(run)
 
-    if BULK_CACHE_KEY not in connection.info:
-        connection.info[BULK_CACHE_KEY] = raw.execute("PRAGMA cache_size").fetchone()[0]
-        raw.execute(f"PRAGMA cache_size=-{BULK_CACHE_KIB}")
+
+def _store_block(
+    session: Any,
+    dataset: Any,
+    target: ImportTarget,
+    block: CollisionBlock,
+    names: NameIndex,
+    seen: RunIndex,
+    hasher: BlockHasher | None,
+) -> int:
+    first_row = block.first_row
+    _refuse_repeated_runs(session, dataset, target, block, seen)
+    seen.add(block.runs)
+    runs = seen.parts[-1]
+    ids = (
+        names.ids(block.particle, names.materials, names.material_names, "particle", first_row),
+        names.ids(block.wall, names.materials, names.material_names, "wall", first_row),
+        names.ids(block.fluid, names.fluids, names.fluid_names, "fluid", first_row),
+    )
+    for column, header in ((ids[0], "particle"), (ids[1], "wall")):
+        if (column < 0).any():  # a reader checks required names; this is the last guard
+            row = first_row + _first(column < 0)
+            raise ValidationError(header, "(empty)", "is required", row=row)
+    if hasher is not None:
+        hasher.add(runs, ids, block.values, block.notes)
+    return insert_rows(session, dataset.id, block.runs, ids, block.values, block.notes)
 
 
 def insert_collisions(session: Any, dataset_id: int, frame: Any) -> int:
-    """Bulk-insert SI rows (ids already resolved) in the session's transaction; the count.
-
-    The fastest path each backend offers, still inside the one all-or-nothing transaction
-    of the import: PostgreSQL ``COPY … FROM STDIN`` through psycopg 3; SQLite one prepared
-    ``executemany`` over a generator of tuples (no SQL built from data) with a larger page
-    cache for the load. SQLite's durability settings (WAL, ``synchronous=NORMAL``) are left
-    as they are: an import killed mid-way leaves the file intact with none of its rows.
-    """
+    """Bulk-insert a DataFrame of SI rows whose ids are already resolved (``particle_id``,
+    ``wall_id``, ``fluid_id``) in the session's transaction; the count (Data Packages)."""
     n = len(frame)
     if n == 0:
         return 0
-    columns = [_column_values(frame, name) for name in INSERT_COLUMNS[1:]]
-    rows = zip(repeat(dataset_id, n), *columns, strict=False)
-    connection = session.connection()
-    raw = connection.connection.driver_connection
-    names = ", ".join(INSERT_COLUMNS)
-    dialect = connection.dialect
-    try:
-        if dialect.name == "postgresql" and hasattr(raw, "pgconn"):  # psycopg 3
-            statement = f"COPY collisions ({names}) FROM STDIN"
-            with raw.cursor() as cursor, cursor.copy(statement) as copy:
-                for row in rows:
-                    copy.write_row(row)
-            return n
-        if dialect.name == "sqlite":
-            statement = (
-                f"INSERT INTO collisions ({names}) VALUES ({', '.join('?' * len(INSERT_COLUMNS))})"
-            )
-            _bulk_cache(connection, raw)
-            raw.cursor().executemany(statement, rows)
-            return n
-    except dialect.loaded_dbapi.Error as exc:
-        # The driver's own error, as SQLAlchemy would raise it (the session translates it).
-        raise DBAPIError.instance(statement, None, exc, dialect.loaded_dbapi.Error) from None
-    mark = "?" if connection.dialect.paramstyle == "qmark" else "%s"
-    connection.exec_driver_sql(
-        f"INSERT INTO collisions ({names}) VALUES ({', '.join([mark] * len(INSERT_COLUMNS))})",
-        list(rows),
+    ids = tuple(
+        frame[c].to_numpy(dtype="float64", na_value=-1.0).astype(np.int64)
+        for c in ("particle_id", "wall_id", "fluid_id")
     )
-    return n
+    runs, values, notes = frame_columns(frame)
+    return insert_rows(session, dataset_id, runs, ids, values, notes)

@@ -5,13 +5,13 @@ The contract (README, "Importing collisions"): one row per run; text columns ``r
 in the header (``v_n_in [mm/s]``, ``incidence_angle (deg)``, ``Temperature [degC]``;
 names case-insensitive) or under granudb's SI column name (``v_n_in_m_s``).
 
-Everything that can be checked without the database is checked before the write
-transaction opens (``open_collision_file``): the header is read with a size limit, every
-column mapped and every unit parsed (all header problems in one refusal), and every row
-counted. So a hostile header costs milliseconds and never holds SQLite's write lock. The
-rows are then read in chunks (memory is bounded whatever the file's size), converted and
-checked with vectorized rules, and bulk-inserted by ``granudb.db.collision_store`` in one
-transaction: one bad row anywhere rejects the whole file and nothing is written. A file
+The header is checked before the write transaction opens (``open_collision_file``): read
+with a size limit, every column mapped and every unit parsed (all header problems in one
+refusal), so a hostile header costs milliseconds and never holds SQLite's write lock. The
+rows are then read once, hashed as they are read (``granudb.io.collision_blocks``), in
+chunks (memory is bounded whatever the file's size), converted and checked with
+vectorized rules, and bulk-inserted by ``granudb.db.collision_store`` in one transaction:
+one bad row or ragged line anywhere rejects the whole file and nothing is written. A file
 (by sha256) is imported into a dataset at most once.
 
 Semicolon-delimited files with decimal commas, as European spreadsheets write them, are
@@ -107,9 +107,28 @@ def _header_of(mapping: dict[str, Any], column: str) -> str:
 
 
 def _check_chunk(frame: Any, raw: Any, mapping: dict[str, Any], first_row: int) -> None:
-    """Every rule on one converted chunk; raises on the first broken row."""
+    """Every rule on one converted chunk (a DataFrame); raises on the first broken row."""
+    columns = {c: frame[c] for c in REQUIRED if c in TEXT}
+    columns.update({c: frame[c].to_numpy(dtype=float) for c in NUMERIC})
+    check_values(columns, lambda h, p: str(raw[h].iloc[p]).strip(), mapping, first_row)
+    _check_text(frame, mapping, first_row)
+
+
+def check_values(
+    columns: dict[str, Any],
+    cell: Callable[[str, int], str],
+    mapping: dict[str, Any],
+    first_row: int,
+) -> None:
+    """The required, range, restitution and angle rules on SI arrays (every ``NUMERIC``
+    column, NaN = empty; required text columns as pandas Series, if given); ``cell(header,
+    position)`` is the file's text of a cell, for the message. Raises on the first broken row.
+    """
     for column in REQUIRED:
-        missing = frame[column].isna()
+        if column not in columns:
+            continue
+        values = columns[column]
+        missing = np.isnan(values) if isinstance(values, np.ndarray) else values.isna()
         if missing.any():
             pos = _first(missing)
             raise ValidationError(
@@ -119,16 +138,16 @@ def _check_chunk(frame: Any, raw: Any, mapping: dict[str, Any], first_row: int) 
         rule = RULES.get(column)
         if rule is None:
             continue
-        broken = ~rule.holds_array(frame[column].to_numpy(dtype=float))
+        broken = ~rule.holds_array(columns[column])
         if broken.any():
             pos = _first(broken)
             header = _header_of(mapping, column)
-            shown = str(raw[mapping[column].header].iloc[pos]).strip()
+            shown = cell(mapping[column].header, pos)
             raise ValidationError(
                 header, shown, rule.text + _in_units(column, mapping), row=first_row + pos
             )
-    v_n_in = frame["v_n_in_m_s"].to_numpy(dtype=float)
-    e = frame["v_n_out_m_s"].to_numpy(dtype=float) / v_n_in
+    v_n_in = columns["v_n_in_m_s"]
+    e = columns["v_n_out_m_s"] / v_n_in
     too_high = e > MAX_RESTITUTION
     if too_high.any():
         pos = _first(too_high)
@@ -139,25 +158,27 @@ def _check_chunk(frame: Any, raw: Any, mapping: dict[str, Any], first_row: int) 
             "measurement error)",
             row=first_row + pos,
         )
-    _check_angle(frame, raw, mapping, first_row)
-    _check_text(frame, mapping, first_row)
+    _check_angle(columns, cell, mapping, first_row)
 
 
-def _check_angle(frame: Any, raw: Any, mapping: dict[str, Any], first_row: int) -> None:
+def _check_angle(
+    columns: dict[str, Any],
+    cell: Callable[[str, int], str],
+    mapping: dict[str, Any],
+    first_row: int,
+) -> None:
     """A stated angle must agree with the velocities it describes (``ANGLE_TOLERANCE_RAD``)."""
     if "nominal_angle_rad" not in mapping:
         return
-    stated = frame["nominal_angle_rad"].to_numpy(dtype=float)
-    derived = np.arctan2(
-        frame["v_t_in_m_s"].to_numpy(dtype=float), frame["v_n_in_m_s"].to_numpy(dtype=float)
-    )
+    stated = columns["nominal_angle_rad"]
+    derived = np.arctan2(columns["v_t_in_m_s"], columns["v_n_in_m_s"])
     off = np.abs(stated - derived) > ANGLE_TOLERANCE_RAD  # NaN (empty) compares False
     if off.any():
         pos = _first(off)
         header = mapping["nominal_angle_rad"].header
         raise ValidationError(
             header,
-            str(raw[header].iloc[pos]).strip(),
+            cell(header, pos),
             f"disagrees with atan(v_t_in / v_n_in) = {math.degrees(derived[pos]):.2f}° by more "
             f"than {math.degrees(ANGLE_TOLERANCE_RAD):g}° (check the column and its unit, or "
             "leave it empty: the angle is derived from the velocities)",
@@ -208,10 +229,12 @@ def _in_units(column: str, mapping: dict[str, Any]) -> str:
 
 
 def open_collision_file(path: Path, *, delimiter: str = ",", decimal: str = ".") -> CollisionFile:
-    """Read and map the header and count every row's cells; no database is touched.
+    """Read and map the header; no database is touched.
 
-    Everything here happens before ``store_collisions`` opens the write transaction, so
-    a bad header or a ragged file is refused without ever holding the lock.
+    Everything here happens before ``store_collisions`` opens the write transaction, so a
+    bad header is refused without ever holding the lock. Rows (their cell counts
+    included) are checked as they are read, inside the transaction, which any refusal
+    rolls back.
     """
     from granudb.io.tables import check_shape, csv_options, map_headers, read_header
 
@@ -221,26 +244,18 @@ def open_collision_file(path: Path, *, delimiter: str = ",", decimal: str = ".")
         raise ValidationError("FILE", str(path), "is not a file")
     headers = read_header(path, delimiter)
     try:
-        check_shape(path, delimiter)
-    except UnicodeDecodeError:
-        raise ValidationError("FILE", path.name, "is not UTF-8 text") from None
-    mapping = map_headers(headers, NUMERIC, TEXT, table=TABLE, aliases=ALIASES, required=REQUIRED)
+        mapping = map_headers(
+            headers, NUMERIC, TEXT, table=TABLE, aliases=ALIASES, required=REQUIRED
+        )
+    except ValidationError:
+        # A file that is not text or not a table is refused as such, as it always was,
+        # rather than for the header that its bytes happen to make.
+        try:
+            check_shape(path, delimiter)
+        except UnicodeDecodeError:
+            raise ValidationError("FILE", path.name, "is not UTF-8 text") from None
+        raise
     return CollisionFile(path, delimiter, decimal, mapping)
-
-
-def _read_chunks(source: CollisionFile, chunk_rows: int) -> Any:
-    import pandas as pd
-
-    return pd.read_csv(
-        source.path,
-        sep=source.delimiter,
-        dtype=str,
-        keep_default_na=False,
-        na_filter=False,
-        encoding="utf-8-sig",
-        chunksize=chunk_rows,
-        index_col=False,
-    )
 
 
 def import_collisions(
@@ -259,22 +274,40 @@ def import_collisions(
 ) -> ImportResult:
     """Import ``path`` into ``dataset`` (created if new), all or nothing.
 
-    This module reads and checks the file (``open_collision_file`` before any transaction,
-    then ``collision_frames``); ``granudb.db.collision_store`` resolves names, refuses
-    repeated runs and temperatures outside a fluid's data, and writes everything in one
-    transaction.
+    This module reads the header (``open_collision_file``, before any transaction);
+    ``granudb.io.collision_blocks`` reads, hashes and checks the rows in one pass;
+    ``granudb.db.collision_store`` resolves names, refuses repeated runs, a repeated file
+    and temperatures outside a fluid's data, and writes everything in one transaction.
     """
     from granudb.db.collision_store import ImportTarget, store_collisions
+    from granudb.io.collision_blocks import (
+        HashingFile,
+        Prefetched,
+        arrow_memory,
+        read_blocks,
+    )
 
     check_name("dataset", dataset)
     check_name("version", version)
     opened = open_collision_file(Path(path), delimiter=delimiter, decimal=decimal)
-    sha256 = file_sha256(opened.path)
     name = opened.path.name
-    target = ImportTarget(dataset, version, source, title, license, sha256, name)
-    rows = store_collisions(
-        database, target, collision_frames(opened, chunk_rows), progress=progress
-    )
+    stream = HashingFile(opened.path)
+    try:
+        with arrow_memory():
+            blocks = Prefetched(read_blocks(opened, stream, chunk_rows))
+
+            def digest() -> str:  # the reader thread stops before the rest is hashed
+                blocks.close()
+                return stream.hexdigest()
+
+            target = ImportTarget(dataset, version, source, title, license, "", name, digest)
+            try:
+                rows = store_collisions(database, target, blocks, progress=progress)
+            finally:
+                blocks.close()
+            sha256 = stream.hexdigest()
+    finally:
+        stream.close()
     return ImportResult(dataset, version, rows, sha256, name)
 
 
@@ -284,43 +317,27 @@ def collision_frames(source: Path | CollisionFile, chunk_rows: int = CHUNK_ROWS)
     ``source`` is a path (read as a comma-separated file) or what ``open_collision_file``
     returned. Each frame's ``attrs["first_row"]`` is the spreadsheet row of its first line
     (the header is row 1) and ``attrs["headers"]`` the file's header of each column, so
-    later checks can name the row and the column as the file does.
+    later checks can name the row and the column as the file does. (The import reads
+    ``CollisionBlock``s, ``granudb.io.collision_blocks``; this is the same rows as frames.)
     """
     import pandas as pd
 
-    from granudb.io.tables import convert_frame
+    from granudb.io.collision_blocks import HashingFile, read_blocks
 
     if not isinstance(source, CollisionFile):
         source = open_collision_file(Path(source))
-    mapping = source.mapping
-    headers = {column: cmap.header for column, cmap in mapping.items()}
-    rows = 0
+    stream = HashingFile(source.path)
     try:
-        for chunk in _read_chunks(source, chunk_rows):
-            if rows == 0 and [str(c) for c in chunk.columns] != list(headers.values()):
-                raise ValidationError(
-                    "FILE", source.path.name, "has a header that is not one line of cells"
-                )
-            first_row = rows + 2
-            frame = convert_frame(
-                chunk, mapping, table=TABLE, first_row=first_row, decimal=source.decimal
-            )
-            for column in NUMERIC + TEXT:
-                if column not in frame:
-                    frame[column] = np.nan if column in NUMERIC else None
-            _check_chunk(frame, chunk, mapping, first_row)
-            frame.attrs["first_row"] = first_row
-            frame.attrs["headers"] = headers
-            rows += len(frame)
+        for block in read_blocks(source, stream, chunk_rows):
+            frame = pd.DataFrame({"run": block.runs})
+            for column, names in (("particle", block.particle), ("wall", block.wall)):
+                frame[column] = block.names_by_row(names)
+            frame["fluid"] = block.names_by_row(block.fluid)
+            for column in NUMERIC:
+                frame[column] = block.values.get(column, np.full(len(block), np.nan))
+            frame["notes"] = block.notes if block.notes is not None else None
+            frame.attrs["first_row"] = block.first_row
+            frame.attrs["headers"] = block.headers
             yield frame
-    except UnicodeDecodeError:
-        raise ValidationError("FILE", source.path.name, "is not UTF-8 text") from None
-    except pd.errors.ParserError as exc:
-        detail = str(exc).strip().splitlines()[-1]
-        raise ValidationError(
-            "FILE", source.path.name, f"is not a well-formed CSV ({detail})"
-        ) from None
-    except pd.errors.EmptyDataError:
-        raise ValidationError("FILE", source.path.name, "is empty") from None
-    if rows == 0:
-        raise ValidationError("FILE", source.path.name, "holds no rows")
+    finally:
+        stream.close()

@@ -1,0 +1,225 @@
+"""Checked collision rows as columns, and the fastest bulk insert each backend offers.
+
+A ``CollisionBlock`` is what a reader (``granudb.io.collision_blocks``, or a DataFrame via
+``block_from_frame``) hands to ``granudb.db.collision_store``: run labels, names as the
+file writes them (dictionary-encoded: a million rows name a handful of materials), and the
+SI columns as float64 arrays (NaN = no value).
+
+``insert_rows`` writes resolved rows inside the caller's transaction. SQLite: one prepared
+``executemany`` per block over tuples of only the columns that carry values (a column empty
+in the whole block is left to its NULL default, an id the same in every row is written
+into the statement as an integer), because binding each value from Python is most of the
+cost. PostgreSQL: ``COPY … FROM STDIN (FORMAT csv)`` of the block written by Arrow, whose
+float text is the shortest that reads back as the same double.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from sqlalchemy.exc import DBAPIError
+
+from granudb.vocabulary import COLLISION_MEASURED
+
+# Page cache for the length of a bulk load (KiB, negative = size rather than pages), so
+# the unique (dataset, run) index is not re-read from the WAL page by page. 16 MB loads a
+# million rows as fast as 64 MB did (measured, benchmarks/import_speed.py) for 48 MB less
+# memory. The engine restores the connection's own setting when it goes back to the pool
+# (granudb.db.engine.BULK_CACHE_KEY).
+BULK_CACHE_KIB = 16_384
+#: Rows bound per ``executemany`` call: the Python values of a slice (about 300 bytes a
+#: row) exist only while it is written, so memory does not grow with the reader's chunks.
+INSERT_SLICE_ROWS = 20_000
+
+
+@dataclass
+class NameColumn:
+    """Names by row: ``names[codes[i]]``, code -1 = empty (no name)."""
+
+    codes: Any
+    names: list[str]
+
+
+@dataclass
+class CollisionBlock:
+    """One block of checked rows; ``first_row`` is the spreadsheet row of the first (the
+    header is row 1) and ``headers`` the file's header of each column, for messages."""
+
+    first_row: int
+    headers: dict[str, str]
+    runs: list[str]
+    particle: NameColumn
+    wall: NameColumn
+    fluid: NameColumn
+    values: dict[str, Any]
+    notes: list[str | None] | None
+
+    def __len__(self) -> int:
+        return len(self.runs)
+
+    def names_by_row(self, column: NameColumn) -> Any:
+        """The names as an object array (None where empty), for messages and checks."""
+        lookup = np.array([*column.names, None], dtype=object)
+        return lookup[np.asarray(column.codes)]
+
+
+def name_column(values: Any) -> NameColumn:
+    """Dictionary-encode a sequence of names (None or NaN = empty)."""
+    codes = np.full(len(values), -1, dtype=np.int64)
+    index: dict[str, int] = {}
+    for position, value in enumerate(values):
+        if isinstance(value, str):
+            codes[position] = index.setdefault(value, len(index))
+    return NameColumn(codes, list(index))
+
+
+def frame_columns(frame: Any) -> tuple[list[str], dict[str, Any], list[str | None] | None]:
+    """(run labels, SI columns as float64, notes or None) of a DataFrame."""
+    notes = None
+    if "notes" in frame and frame["notes"].notna().any():
+        notes = [v if isinstance(v, str) else None for v in frame["notes"].tolist()]
+    values = {
+        c: frame[c].to_numpy(dtype="float64", na_value=np.nan)
+        for c in COLLISION_MEASURED
+        if c in frame
+    }
+    return [str(r) for r in frame["run"].tolist()], values, notes
+
+
+def block_from_frame(frame: Any) -> CollisionBlock:
+    """A ``CollisionBlock`` from a checked SI DataFrame (names as text), as the Data Package
+    reader and earlier callers give them."""
+    runs, values, notes = frame_columns(frame)
+    return CollisionBlock(
+        first_row=int(frame.attrs.get("first_row", 2)),
+        headers=dict(frame.attrs.get("headers", {})),
+        runs=runs,
+        particle=name_column(frame["particle"].tolist()),
+        wall=name_column(frame["wall"].tolist()),
+        fluid=name_column(frame["fluid"].tolist() if "fluid" in frame else [None] * len(frame)),
+        values=values,
+        notes=notes,
+    )
+
+
+def _bulk_cache(connection: Any, raw: Any) -> None:
+    """Enlarge SQLite's page cache for this transaction (restored on check-in)."""
+    from granudb.db.engine import BULK_CACHE_KEY
+
+    if BULK_CACHE_KEY not in connection.info:
+        connection.info[BULK_CACHE_KEY] = raw.execute("PRAGMA cache_size").fetchone()[0]
+        raw.execute(f"PRAGMA cache_size=-{BULK_CACHE_KIB}")
+
+
+def _python_values(column: Any) -> list[Any]:
+    """A bound column as Python values for ``executemany``: exact floats, ints, text;
+    None where NaN (floats) or -1 (ids)."""
+    if isinstance(column, list):
+        return column
+    if column.dtype.kind == "f":
+        missing = np.isnan(column)
+        if not missing.any():
+            return column.tolist()
+    else:
+        missing = column < 0
+    array = column.astype(object)
+    array[missing] = None
+    return array.tolist()
+
+
+def _rows(bound: dict[str, Any], start: int, stop: int) -> Any:
+    """Tuples of the bound columns' Python values for rows ``start:stop``."""
+    return zip(*(_python_values(c[start:stop]) for c in bound.values()), strict=True)
+
+
+def _columns(
+    dataset_id: int, runs: list[str], ids: tuple[Any, Any, Any], values: dict[str, Any], notes: Any
+) -> tuple[dict[str, int], dict[str, Any]]:
+    """(columns written as integers in the statement, columns bound: float64 arrays with
+    NaN, int64 id arrays with -1, or lists of text)."""
+    constant: dict[str, int] = {"dataset_id": int(dataset_id)}
+    bound: dict[str, Any] = {"run": runs}
+    for name, column in zip(("particle_id", "wall_id", "fluid_id"), ids, strict=True):
+        column = np.asarray(column, dtype=np.int64)
+        if len(column) and (column == column[0]).all():
+            if column[0] >= 0:  # an all-dry fluid column stays NULL
+                constant[name] = int(column[0])
+            continue
+        bound[name] = column
+    for name in COLLISION_MEASURED:
+        column = values.get(name)
+        if column is not None:
+            column = np.asarray(column, dtype=np.float64)
+            if not np.isnan(column).all():
+                bound[name] = column
+    if notes is not None and any(n is not None for n in notes):
+        bound["notes"] = list(notes)
+    return constant, bound
+
+
+def insert_rows(
+    session: Any,
+    dataset_id: int,
+    runs: list[str],
+    ids: tuple[Any, Any, Any],
+    values: dict[str, Any],
+    notes: list[str | None] | None,
+) -> int:
+    """Insert resolved rows (ids: particle, wall, fluid with -1 = dry) in the session's
+    transaction; returns the count."""
+    n = len(runs)
+    if n == 0:
+        return 0
+    constant, bound = _columns(dataset_id, runs, ids, values, notes)
+    connection = session.connection()
+    raw = connection.connection.driver_connection
+    dialect = connection.dialect
+    names = ", ".join([*constant, *bound])
+    statement = f"INSERT INTO collisions ({names})"
+    try:
+        if dialect.name == "postgresql" and hasattr(raw, "pgconn"):  # psycopg 3
+            statement = f"COPY collisions ({names}) FROM STDIN (FORMAT csv)"
+            _copy(raw, statement, n, constant, bound)
+            return n
+        mark = "?" if dialect.paramstyle == "qmark" else "%s"
+        literals = [str(v) for v in constant.values()]
+        statement += f" VALUES ({', '.join([*literals, *[mark] * len(bound)])})"
+        if dialect.name == "sqlite":
+            _bulk_cache(connection, raw)
+            cursor = raw.cursor()
+            for start in range(0, n, INSERT_SLICE_ROWS):
+                cursor.executemany(statement, _rows(bound, start, start + INSERT_SLICE_ROWS))
+            return n
+        rows = _rows(bound, 0, n)
+    except dialect.loaded_dbapi.Error as exc:
+        # The driver's own error, as SQLAlchemy would raise it (the session translates it).
+        raise DBAPIError.instance(statement, None, exc, dialect.loaded_dbapi.Error) from None
+    connection.exec_driver_sql(statement, list(rows))
+    return n
+
+
+def _copy(
+    raw: Any, statement: str, n: int, constant: dict[str, int], bound: dict[str, Any]
+) -> None:
+    """COPY the rows as CSV written by Arrow (NULL = an unquoted empty field; every value
+    quoted, so an empty text could never read as NULL)."""
+    import io
+
+    import pyarrow as pa
+    import pyarrow.csv as pacsv
+
+    arrays = {name: pa.array(np.full(n, value, dtype=np.int64)) for name, value in constant.items()}
+    for name, column in bound.items():
+        if isinstance(column, list):
+            arrays[name] = pa.array(column, type=pa.string())
+        elif column.dtype.kind == "f":
+            arrays[name] = pa.array(column, from_pandas=True)
+        else:
+            arrays[name] = pa.array(column, mask=column < 0)
+    buffer = io.BytesIO()
+    options = pacsv.WriteOptions(include_header=False, quoting_style="all_valid")
+    pacsv.write_csv(pa.table(arrays), buffer, write_options=options)
+    with raw.cursor() as cursor, cursor.copy(statement) as copy:
+        copy.write(buffer.getbuffer())
