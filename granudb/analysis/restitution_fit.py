@@ -41,9 +41,107 @@ def restitution_curve(model: str, stokes: np.ndarray, e_dry: float, parameter: f
     raise KeyError(model)
 
 
+def threshold_least_squares(
+    st: np.ndarray, e: np.ndarray, e_dry: float | None
+) -> tuple[float, float, float, float]:
+    """(e_dry, e_dry_stderr, St_c, St_c_stderr) minimising Σ(e − e_dry(1 − St_c/St_n)₊)² over
+    0 ≤ e_dry ≤ 1 (or e_dry fixed, stderr NaN), St_c ≥ 0: the global minimum, exactly.
+
+    Why exact and without scipy: for St_c between two consecutive distinct St_n the runs
+    above it are fixed, and with c = e_dry·St_c the model e_dry − c/St_n is linear in
+    (e_dry, c), the constraint St_c ∈ [lo, hi] is linear too (e_dry·lo ≤ c ≤ e_dry·hi), and
+    the sum of squares is continuous across the breakpoints (the model is 0 at St_n = St_c
+    either way). So each interval is a small convex quadratic problem whose optimum is its
+    interior stationary point or lies on an edge of its feasible polygon; suffix sums give
+    every interval's coefficients at once and the smallest sum wins. The standard errors
+    are ``curve_fit``'s: (JᵀJ)⁻¹ · S/(n − p) with J the model's Jacobian at the optimum.
+    """
+    order = np.argsort(st, kind="stable")
+    s, y = np.asarray(st, float)[order], np.asarray(e, float)[order]
+    n = len(s)
+    u = 1.0 / s
+    # suffix sums over the runs k..n-1 (the active ones when St_c lies below s[k])
+    count = np.arange(n, 0, -1, dtype=float)
+    su, suu = _suffix(u), _suffix(u * u)
+    se, seu = _suffix(y), _suffix(y * u)
+    total = float(np.sum(y * y))
+    first = np.r_[True, s[1:] > s[:-1]]  # k starts an interval only at a new St_n value
+    lo = np.r_[0.0, s[:-1]][first]
+    hi = s[first]
+    n_k, su, suu, se, seu = count[first], su[first], suu[first], se[first], seu[first]
+
+    candidates = []  # (a, c) per interval for each way the optimum can sit
+    if e_dry is None:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            det = n_k * suu - su * su
+            a = (se * suu - su * seu) / det
+            c = (su * se - n_k * seu) / det
+        inside = np.isfinite(a) & (a >= 0) & (a <= 1) & (c >= a * lo) & (c <= a * hi)
+        candidates.append((np.where(inside, a, np.nan), np.where(inside, c, np.nan)))
+        fixed_a = np.ones_like(lo)  # the edge e_dry = 1
+    else:
+        fixed_a = np.full_like(lo, e_dry)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = np.clip((fixed_a * su - seu) / suu, fixed_a * lo, fixed_a * hi)
+    candidates.append((fixed_a, c))
+    for t in (lo, hi):  # the edges St_c = lo and St_c = hi
+        if e_dry is None:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                a = np.clip((se - t * seu) / (n_k - 2 * t * su + t * t * suu), 0.0, 1.0)
+        else:
+            a = fixed_a
+        candidates.append((a, a * t))
+    a_all = np.concatenate([a for a, _ in candidates])
+    c_all = np.concatenate([c for _, c in candidates])
+    m = len(candidates)
+    n_t, su_t, suu_t, se_t, seu_t = (np.tile(v, m) for v in (n_k, su, suu, se, seu))
+    value = total - 2 * a_all * se_t + 2 * c_all * seu_t + a_all * a_all * n_t
+    value += c_all * (c_all * suu_t - 2 * a_all * su_t)
+    value[~(np.isfinite(value) & (a_all > 0))] = np.inf
+    if not np.isfinite(value).any():
+        raise ValueError("no finite least-squares solution")
+    best = int(np.argmin(value))
+    a_best, critical = float(a_all[best]), float(c_all[best] / a_all[best])
+    residual = y - np.where(s > critical, a_best * (1 - critical * u), 0.0)
+    ss = float(residual @ residual)
+    # At a run's own St_n (where the optimum often sits) the model has a kink and the
+    # Jacobian two one-sided values: the larger standard error of the two is reported.
+    errors = [_errors(s > critical, a_best, critical, u, ss, e_dry)]
+    if np.any(np.abs(s - critical) <= 1e-12 * critical):
+        errors.append(_errors(s >= critical * (1 - 1e-12), a_best, critical, u, ss, e_dry))
+    e_dry_se, critical_se = np.max(errors, axis=0)
+    return (a_best if e_dry is None else e_dry), float(e_dry_se), critical, float(critical_se)
+
+
+def _errors(
+    active: np.ndarray, a: float, critical: float, u: np.ndarray, ss: float, e_dry: float | None
+) -> tuple[float, float]:
+    """curve_fit's standard errors: sqrt(diag((JᵀJ)⁻¹) · S/(n − p)); e_dry's NaN if fixed."""
+    d_a = np.where(active, 1 - critical * u, 0.0)
+    d_c = np.where(active, -a * u, 0.0)
+    if e_dry is not None:
+        dof, jj = len(u) - 1, float(d_c @ d_c)
+        return math.nan, (math.sqrt(ss / dof / jj) if dof > 0 and jj > 0 else math.inf)
+    jtj = np.array([[d_a @ d_a, d_a @ d_c], [d_a @ d_c, d_c @ d_c]])
+    dof = len(u) - 2
+    try:
+        cov = np.linalg.inv(jtj) * (ss / dof) if dof > 0 else np.full((2, 2), math.inf)
+    except np.linalg.LinAlgError:
+        cov = np.full((2, 2), math.inf)
+    return math.sqrt(cov[0, 0]), math.sqrt(cov[1, 1])
+
+
+def _suffix(values: np.ndarray) -> np.ndarray:
+    """Σ values[k:] for every k."""
+    return np.cumsum(values[::-1])[::-1]
+
+
 def _fit(model: str, st: np.ndarray, e: np.ndarray, e_dry: float | None) -> tuple:
     """(e_dry, e_dry_stderr, parameter, parameter_stderr) by bounded least squares; e_dry is
-    fixed (stderr NaN) when given."""
+    fixed (stderr NaN) when given. The threshold form is solved exactly in numpy
+    (``threshold_least_squares``); the exponential form by scipy's ``curve_fit``."""
+    if model == "threshold":
+        return threshold_least_squares(st, e, e_dry)
     from scipy.optimize import curve_fit
 
     start = max(1.0, float(np.min(st)) * 0.5)
