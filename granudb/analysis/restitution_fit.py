@@ -29,6 +29,7 @@ RESTITUTION_MODELS = {
 }
 PARAMETER_NAMES = {"threshold": "fitted_critical_stokes", "exponential": "k"}
 E_DRY_MAX = 1.0
+_INPUTS = ["dataset", "particle", "wall", "fluid", "normal_stokes_number", "normal_restitution"]
 
 
 def restitution_curve(model: str, stokes: np.ndarray, e_dry: float, parameter: float) -> np.ndarray:
@@ -91,17 +92,17 @@ def threshold_least_squares(
         else:
             a = fixed_a
         candidates.append((a, a * t))
-    a_all = np.concatenate([a for a, _ in candidates])
-    c_all = np.concatenate([c for _, c in candidates])
-    m = len(candidates)
-    n_t, su_t, suu_t, se_t, seu_t = (np.tile(v, m) for v in (n_k, su, suu, se, seu))
-    value = total - 2 * a_all * se_t + 2 * c_all * seu_t + a_all * a_all * n_t
-    value += c_all * (c_all * suu_t - 2 * a_all * su_t)
-    value[~(np.isfinite(value) & (a_all > 0))] = np.inf
-    if not np.isfinite(value).any():
+    a_best, c_best, least = math.nan, math.nan, math.inf
+    for a, c in candidates:  # one set at a time: a few arrays of the runs' length, no more
+        a = np.broadcast_to(a, lo.shape)
+        value = total - 2 * a * se + 2 * c * seu + a * a * n_k + c * (c * suu - 2 * a * su)
+        value[~(np.isfinite(value) & (a > 0))] = np.inf
+        best = int(np.argmin(value))
+        if value[best] < least:  # ties: the earlier candidate, as one argmin over all
+            a_best, c_best, least = float(a[best]), float(c[best]), float(value[best])
+    if not math.isfinite(least):
         raise ValueError("no finite least-squares solution")
-    best = int(np.argmin(value))
-    a_best, critical = float(a_all[best]), float(c_all[best] / a_all[best])
+    critical = c_best / a_best
     residual = y - np.where(s > critical, a_best * (1 - critical * u), 0.0)
     ss = float(residual @ residual)
     # At a run's own St_n (where the optimum often sits) the model has a kink and the
@@ -226,6 +227,7 @@ def restitution(frame: Any, model: str = "threshold") -> list[dict[str, Any]]:
 
     if model not in RESTITUTION_MODELS:
         raise ValidationError("--model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}")
+    frame = frame[[c for c in _INPUTS if c in frame]]  # a subset copies only these
     finite_e = np.isfinite(frame["normal_restitution"])
     immersed = frame[np.isfinite(frame["normal_stokes_number"]) & finite_e]
     dry = frame[frame["fluid"].isna() & finite_e] if "fluid" in frame else frame.iloc[0:0]

@@ -150,12 +150,14 @@ def _honest_limits(ax: Any, values: np.ndarray) -> None:
 def _scatter_groups(
     ax: Any, x: np.ndarray, y: np.ndarray, groups: Sequence[str], colours: Mapping[str, str]
 ) -> None:
-    labels = np.asarray(groups, dtype=object)
-    names, codes = np.unique(labels, return_inverse=True) if labels.size else ([], labels)
+    from granudb.report.groups import sorted_codes
+
+    codes, names = sorted_codes(groups)
+    counts = np.bincount(codes, minlength=len(names))
     for index, name in enumerate(names):
         mask = codes == index
-        count = int(mask.sum())
-        gx, gy = thin(x[mask], y[mask], limit=share(count, len(labels)))
+        count = int(counts[index])
+        gx, gy = thin(x[mask], y[mask], limit=share(count, len(codes)))
         ax.plot(
             gx,
             gy,
