@@ -14,13 +14,19 @@ interpolated linearly between those two points, and reported as such), and peak 
 ≤ 600 MB at any size (the runs are read and derived in chunks, keeping only the columns
 the report uses).
 
+With ``--baseline-src DIR`` (a source tree of another granudb, say an export of main:
+``git archive main | tar -x -C DIR``) it also times that version's report on the same
+database, interleaved, and prints the ratio; ``--db PATH`` reuses a database that already
+holds the dataset ``benchmark`` (``--rows`` is then its size, for the bound).
+
     python benchmarks/report_speed.py [--rows 100000] [--runs 3] [--profile]
+                                      [--baseline-src DIR] [--db PATH]
 """
 
 from __future__ import annotations
 
 import argparse
-import resource
+import os
 import statistics
 import subprocess
 import sys
@@ -36,6 +42,18 @@ FLOOR = "import sqlalchemy.orm, pandas, matplotlib.figure, matplotlib.backends.b
 MEMORY_BOUND_MB = 600
 
 
+def timed(argv: list[str], env: dict[str, str] | None = None) -> tuple[float, float]:
+    """(seconds, peak memory in MB) of one child process (its own rusage, from wait4)."""
+    start = time.perf_counter()
+    child = subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, usage = os.wait4(child.pid, 0)
+    seconds = time.perf_counter() - start
+    if os.waitstatus_to_exitcode(status) != 0:
+        raise SystemExit(f"{argv[:4]} failed: {child.stderr.read().decode()[-2000:]}")
+    child.stderr.close()
+    return seconds, usage.ru_maxrss / 1024
+
+
 def bound_s(rows: int) -> float:
     """Issue 17: 2 s at 100,000 runs, 15 s at 1,000,000; linear between (and beyond)."""
     return 2.0 + (rows - 100_000) * (15.0 - 2.0) / 900_000
@@ -46,30 +64,34 @@ def main() -> None:
     parser.add_argument("--rows", type=int, default=100_000)
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--profile", action="store_true")
+    parser.add_argument("--baseline-src", type=Path, default=None)
+    parser.add_argument("--db", type=Path, default=None)
     args = parser.parse_args()
     from granudb.api.database import connect
     from granudb.io.collisions_csv import import_collisions
 
     with tempfile.TemporaryDirectory() as folder:
         folder = Path(folder)
-        data = folder / "collisions.csv"
-        write_csv(data, args.rows)
-        db = folder / "granudb.sqlite"
-        database = connect(str(db))
-        import_collisions(database, data, dataset="benchmark")
-        database.dispose()
+        db = args.db
+        if db is None:
+            data = folder / "collisions.csv"
+            write_csv(data, args.rows)
+            db = folder / "granudb.sqlite"
+            database = connect(str(db))
+            import_collisions(database, data, dataset="benchmark")
+            database.dispose()
         out = folder / "report.html"
         argv = [sys.executable, "-m", "granudb", "report", "--dataset", "benchmark"]
         argv += ["--format", "html", "--output", str(out), "--force", "--db", str(db)]
-        times, floors = [], []
-        floor_argv = [sys.executable, "-c", FLOOR]
+        runs, floors, baseline = [], [], []
+        env = None
+        if args.baseline_src is not None:
+            env = {**os.environ, "PYTHONPATH": str(args.baseline_src.resolve())}
         for _ in range(args.runs):
-            start = time.perf_counter()
-            subprocess.run(argv, check=True, capture_output=True)
-            times.append(time.perf_counter() - start)
-            start = time.perf_counter()
-            subprocess.run(floor_argv, check=True, capture_output=True)
-            floors.append(time.perf_counter() - start)
+            runs.append(timed(argv))
+            floors.append(timed([sys.executable, "-c", FLOOR])[0])
+            if env is not None:
+                baseline.append(timed(argv, env))
         size_mb = out.stat().st_size / 1e6
         if args.profile:
             import cProfile
@@ -84,12 +106,21 @@ def main() -> None:
             finally:
                 profiler.disable()
             pstats.Stats(profiler).sort_stats("cumulative").print_stats(30)
-    peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+    times = [t for t, _ in runs]
+    peak_mb = max(m for _, m in runs)
     median = statistics.median(times)
     limit = bound_s(args.rows)
     floor = statistics.median(floors)
+    print(f"load average at the end: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print(f"report on {args.rows:,} runs: median {median:.2f} s of {args.runs} ({times})")
     print(f"import floor (same run): median {floor:.2f} s; report = {median / floor:.1f}× floor")
+    if baseline:
+        before = statistics.median(t for t, _ in baseline)
+        print(
+            f"baseline {args.baseline_src} (same run): median {before:.2f} s, peak "
+            f"{max(m for _, m in baseline):,.0f} MB; this version takes {median / before:.2f}× "
+            f"its time ({before / median:.1f}× faster)"
+        )
     print(f"HTML {size_mb:.1f} MB; peak memory of the report process {peak_mb:,.0f} MB")
     print(
         f"{'PASS' if peak_mb <= MEMORY_BOUND_MB else 'FAIL'}: peak memory {peak_mb:,.0f} MB; "
