@@ -42,10 +42,15 @@ FLOOR = "import sqlalchemy.orm, pandas, matplotlib.figure, matplotlib.backends.b
 MEMORY_BOUND_MB = 600
 
 
-def timed(argv: list[str], env: dict[str, str] | None = None) -> tuple[float, float]:
-    """(seconds, peak memory in MB) of one child process (its own rusage, from wait4)."""
+def timed(argv: list[str], source: Path | None = None) -> tuple[float, float]:
+    """(seconds, peak memory in MB) of one child process (its own rusage, from wait4);
+    ``source``: run granudb from that source tree (first on the path, and the working
+    directory, which ``python -m`` puts first)."""
+    env = None if source is None else {**os.environ, "PYTHONPATH": str(source)}
     start = time.perf_counter()
-    child = subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    child = subprocess.Popen(
+        argv, env=env, cwd=source, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
+    )
     _, status, usage = os.wait4(child.pid, 0)
     seconds = time.perf_counter() - start
     if os.waitstatus_to_exitcode(status) != 0:
@@ -72,7 +77,7 @@ def main() -> None:
 
     with tempfile.TemporaryDirectory() as folder:
         folder = Path(folder)
-        db = args.db
+        db = None if args.db is None else args.db.resolve()
         if db is None:
             data = folder / "collisions.csv"
             write_csv(data, args.rows)
@@ -84,14 +89,12 @@ def main() -> None:
         argv = [sys.executable, "-m", "granudb", "report", "--dataset", "benchmark"]
         argv += ["--format", "html", "--output", str(out), "--force", "--db", str(db)]
         runs, floors, baseline = [], [], []
-        env = None
-        if args.baseline_src is not None:
-            env = {**os.environ, "PYTHONPATH": str(args.baseline_src.resolve())}
+        source = None if args.baseline_src is None else args.baseline_src.resolve()
         for _ in range(args.runs):
             runs.append(timed(argv))
             floors.append(timed([sys.executable, "-c", FLOOR])[0])
-            if env is not None:
-                baseline.append(timed(argv, env))
+            if source is not None:
+                baseline.append(timed(argv, source))
         size_mb = out.stat().st_size / 1e6
         if args.profile:
             import cProfile
