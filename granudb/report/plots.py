@@ -37,7 +37,7 @@ MIN_RELATIVE_SPAN = 0.25
 GAMMA = "(–)"
 
 
-#: matplotlib settings of every figure (applied once, before the first figure is made).
+#: matplotlib settings of every figure (applied before each figure is made).
 STYLE = {
     "svg.hashsalt": "granudb",
     "svg.fonttype": "none",  # text stays text: smaller, searchable, selectable
