@@ -10,6 +10,7 @@ columns empty and the reason in ``derivation_note``: one bad row never hides the
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -122,11 +123,17 @@ class CollisionQuery:
                 )
 
 
-def select_collisions(session: Any, query: CollisionQuery) -> Any:
+def select_collisions(
+    session: Any, query: CollisionQuery, *, columns: Sequence[str] | None = None
+) -> Any:
     """The collisions matching ``query``, with every derived column (a DataFrame, SI,
-    units in ``attrs["units"]``)."""
+    units in ``attrs["units"]``); with ``columns``, only those (in that order).
+
+    The query's conditions on derived values are applied chunk by chunk as the runs are
+    read and derived, so neither the rows left out nor the columns not asked for are ever
+    held for every run."""
     query.check()
-    frame = collision_table(
+    return collision_table(
         session,
         dataset=query.dataset,
         version=query.version,
@@ -134,8 +141,16 @@ def select_collisions(session: Any, query: CollisionQuery) -> Any:
         wall=query.wall,
         fluid=query.fluid,
         critical_stokes=query.critical_stokes,
+        columns=columns,
+        where=lambda frame: _matches(frame, query),
     )
-    keep = frame["run"].notna()
+
+
+def _matches(frame: Any, query: CollisionQuery) -> np.ndarray:
+    """Which rows of ``frame`` (every derived column) satisfy the query's conditions."""
+    import pandas as pd
+
+    keep = pd.Series(True, index=frame.index)
     st = frame["normal_stokes_number"]
     if query.min_normal_stokes is not None:
         keep &= st >= query.min_normal_stokes
@@ -149,43 +164,102 @@ def select_collisions(session: Any, query: CollisionQuery) -> Any:
         wanted = getattr(query, flag)
         if wanted is not None:
             keep &= frame[flag].fillna(not wanted).astype(bool) == wanted
-    selected = frame[keep].reset_index(drop=True)
-    selected.attrs["units"] = frame.attrs.get("units", {})
-    return selected
+    return keep.to_numpy(dtype=bool)
 
 
-def collision_table(session: Any, *, critical_stokes: float = 10.0, **filters: Any) -> Any:
+def collision_table(
+    session: Any,
+    *,
+    critical_stokes: float = 10.0,
+    columns: Sequence[str] | None = None,
+    where: Callable[[Any], np.ndarray] | None = None,
+    **filters: Any,
+) -> Any:
     """Measured collisions with every derived column, as a pandas DataFrame (SI).
 
-    ``filters``: dataset, version, particle, wall, fluid ("dry" for none).
+    ``filters``: dataset, version, particle, wall, fluid ("dry" for none). ``columns``:
+    keep only these (in this order); ``where``: a function of a chunk's frame giving the
+    rows to keep. Both act on each chunk of runs as it is derived (``iter_collisions``),
+    which bounds the memory of a million runs to the columns asked for.
     """
     import pandas as pd
 
     from granudb.db import catalog
-    from granudb.db.collision_queries import load_collisions
+    from granudb.db.collision_queries import count_collisions, iter_collisions
 
-    stored = load_collisions(session, **filters)
-    if stored.empty:
-        empty = pd.DataFrame({c: [] for c in WIDE_COLUMNS})
+    fluids = {f.id: f for f in catalog.list_fluids(session)}
+    chunk_filters = {k: v for k, v in filters.items() if k != "chunk_rows"}
+    out = _Columns(count_collisions(session, **chunk_filters))
+    text = columns is None or bool({"run", "notes"} & set(columns))
+    for stored in iter_collisions(session, text=text, **filters):
+        frame = _derive_stored(stored, fluids, critical_stokes)
+        del stored
+        keep = where(frame) if where is not None else None
+        names = list(frame.columns) if columns is None else [c for c in columns if c in frame]
+        out.append({c: frame[c].to_numpy() for c in names}, keep)
+        del frame
+    if out.names is None:
+        empty = pd.DataFrame({c: [] for c in (WIDE_COLUMNS if columns is None else columns)})
         empty.attrs["units"] = units_of(empty.columns)
         return empty
-    fluids = {f.id: f for f in catalog.list_fluids(session)}
-    return _derive_stored(stored, fluids, critical_stokes)
+    table = pd.DataFrame(out.arrays(), copy=False)
+    table.attrs["units"] = units_of(table.columns)
+    return table
+
+
+class _Columns:
+    """Column arrays allocated once for the counted runs and filled chunk by chunk.
+
+    Why not collect the chunks and concatenate: the chunks' copies and the result would
+    both be live at the end (twice the table), and the freed chunks leave the heap
+    fragmented, so the process's peak memory would be twice the table it returns."""
+
+    def __init__(self, capacity: int) -> None:
+        self.capacity = capacity
+        self.filled = 0
+        self.names: list[str] | None = None
+        self.data: dict[str, np.ndarray] = {}
+
+    def append(self, chunk: dict[str, np.ndarray], keep: np.ndarray | None) -> None:
+        if self.names is None:
+            self.names = list(chunk)
+        rows = len(next(iter(chunk.values()))) if keep is None else int(np.sum(keep))
+        end = self.filled + rows
+        for name in self.names:
+            values = chunk[name] if keep is None else chunk[name][keep]
+            column = self.data.get(name)
+            if column is None:
+                column = np.empty(max(self.capacity, end), dtype=values.dtype)
+            dtype = np.result_type(column.dtype, values.dtype)
+            if dtype != column.dtype:  # say a flag column that a later chunk leaves blank
+                column = column.astype(dtype)
+            if len(column) < end:  # runs added since they were counted
+                column = np.concatenate([column, np.empty(end - len(column), column.dtype)])
+            column[self.filled : end] = values
+            self.data[name] = column
+        self.filled = end
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        return {name: self.data[name][: self.filled] for name in self.names or ()}
 
 
 def _floats(frame: Any, name: str) -> np.ndarray:
+    values = frame[name]
+    if isinstance(values, np.ndarray) and values.dtype.kind == "f":
+        return values
     import pandas as pd
 
-    return pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
+    return pd.to_numeric(values, errors="coerce").to_numpy(dtype=float)
 
 
 def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) -> Any:
+    """One chunk of stored runs (``iter_collisions``) with every derived column."""
     import pandas as pd
 
     from granudb.physics.derive import derive
 
     c = {name: _floats(stored, name) for name in COLLISION_MEASURED}
-    fluid_ids = stored["fluid_id"].fillna(-1).to_numpy(dtype=int)
+    fluid_ids = np.nan_to_num(_floats(stored, "fluid_id"), nan=-1).astype(int)
     viscosity, density, reason = fluid_states_per_row(fluids, fluid_ids, c["temperature_c"])
     props = {
         f"{p}_{name}": _floats(stored, f"{p}_{name}")
@@ -212,15 +286,16 @@ def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) 
         )
     frame = pd.DataFrame(
         {
-            **{k: stored[k].to_numpy(dtype=object) for k in ("dataset", "version", "run")},
-            **{k: stored[k].to_numpy(dtype=object) for k in ("particle", "wall")},
+            **{k: np.asarray(stored[k], dtype=object) for k in ("dataset", "version")},
+            **{k: np.asarray(stored[k], dtype=object) for k in ("run",) if k in stored},
+            **{k: np.asarray(stored[k], dtype=object) for k in ("particle", "wall")},
             "fluid": pd.Series(fluid_ids)
             .map({i: f.name for i, f in fluids.items()})
             .to_numpy(dtype=object),
             **c,
             "viscosity_pa_s": viscosity,
             "particle_density_kg_m3": props["particle_density_kg_m3"],
-            "notes": stored["notes"].to_numpy(dtype=object),
+            **{k: np.asarray(stored[k], dtype=object) for k in ("notes",) if k in stored},
         }
     )
     for name, values in result.items():
@@ -228,10 +303,11 @@ def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) 
             frame[name] = values
     frame["derivation_note"] = reason
     _blank_underivable(frame, reason != None)  # noqa: E711 - elementwise on an object array
-    ordered = [*WIDE_COLUMNS, *(n for n in frame.columns if n not in WIDE_COLUMNS)]
-    frame = frame[ordered]
-    frame.attrs["units"] = units_of(frame.columns)
-    return frame
+    ordered = [
+        *(n for n in WIDE_COLUMNS if n in frame),
+        *(n for n in frame if n not in WIDE_COLUMNS),
+    ]
+    return frame[ordered]
 
 
 def _blank_underivable(frame: Any, bad: np.ndarray) -> None:

@@ -44,6 +44,11 @@ METHOD = (
 )
 
 
+#: The columns (5.8) reads for each run (``model_friction``).
+_MODEL_INPUTS = ["effective_radius_m", "reduced_modulus_pa", "eta_hat_pa_inv", "v_n_in_m_s",
+                 "tangential_speed_m_s", "effective_mass_kg", "particle_density_kg_m3"]  # fmt: skip
+
+
 def model_friction(group: Any, viscosity: float) -> np.ndarray:
     """(5.8) for each run of ``group`` at gap viscosity ``viscosity`` [Pa·s]."""
     radius = group["effective_radius_m"].to_numpy(dtype=float)
@@ -195,8 +200,11 @@ def gap_viscosity(
     ``reason`` (one line whenever μ₀ or the temperature is missing, else '') and ``note``
     (the same text, the older name).
     """
-    immersed = frame[frame["fluid"].notna()]
-    return [
+    from granudb.analysis.fits import WALTON_INPUTS, group_frames
+
+    inputs = [*WALTON_INPUTS, *_MODEL_INPUTS, "viscosity_pa_s", "roughness_exceeds_gap"]
+    frame = frame[[c for c in dict.fromkeys(inputs) if c in frame]]
+    return [  # dry runs (no fluid) are in no group
         _fit_group(key, group, fluids.get(key[3]), resamples, seed)
-        for key, group in immersed.groupby(GROUP, sort=True)
+        for key, group in group_frames(frame, GROUP)
     ]

@@ -29,6 +29,7 @@ RESTITUTION_MODELS = {
 }
 PARAMETER_NAMES = {"threshold": "fitted_critical_stokes", "exponential": "k"}
 E_DRY_MAX = 1.0
+_INPUTS = ["dataset", "particle", "wall", "fluid", "normal_stokes_number", "normal_restitution"]
 
 
 def restitution_curve(model: str, stokes: np.ndarray, e_dry: float, parameter: float) -> np.ndarray:
@@ -41,9 +42,107 @@ def restitution_curve(model: str, stokes: np.ndarray, e_dry: float, parameter: f
     raise KeyError(model)
 
 
+def threshold_least_squares(
+    st: np.ndarray, e: np.ndarray, e_dry: float | None
+) -> tuple[float, float, float, float]:
+    """(e_dry, e_dry_stderr, St_c, St_c_stderr) minimising Σ(e − e_dry(1 − St_c/St_n)₊)² over
+    0 ≤ e_dry ≤ 1 (or e_dry fixed, stderr NaN), St_c ≥ 0: the global minimum, exactly.
+
+    Why exact and without scipy: for St_c between two consecutive distinct St_n the runs
+    above it are fixed, and with c = e_dry·St_c the model e_dry − c/St_n is linear in
+    (e_dry, c), the constraint St_c ∈ [lo, hi] is linear too (e_dry·lo ≤ c ≤ e_dry·hi), and
+    the sum of squares is continuous across the breakpoints (the model is 0 at St_n = St_c
+    either way). So each interval is a small convex quadratic problem whose optimum is its
+    interior stationary point or lies on an edge of its feasible polygon; suffix sums give
+    every interval's coefficients at once and the smallest sum wins. The standard errors
+    are ``curve_fit``'s: (JᵀJ)⁻¹ · S/(n − p) with J the model's Jacobian at the optimum.
+    """
+    order = np.argsort(st, kind="stable")
+    s, y = np.asarray(st, float)[order], np.asarray(e, float)[order]
+    n = len(s)
+    u = 1.0 / s
+    # suffix sums over the runs k..n-1 (the active ones when St_c lies below s[k])
+    count = np.arange(n, 0, -1, dtype=float)
+    su, suu = _suffix(u), _suffix(u * u)
+    se, seu = _suffix(y), _suffix(y * u)
+    total = float(np.sum(y * y))
+    first = np.r_[True, s[1:] > s[:-1]]  # k starts an interval only at a new St_n value
+    lo = np.r_[0.0, s[:-1]][first]
+    hi = s[first]
+    n_k, su, suu, se, seu = count[first], su[first], suu[first], se[first], seu[first]
+
+    candidates = []  # (a, c) per interval for each way the optimum can sit
+    if e_dry is None:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            det = n_k * suu - su * su
+            a = (se * suu - su * seu) / det
+            c = (su * se - n_k * seu) / det
+        inside = np.isfinite(a) & (a >= 0) & (a <= 1) & (c >= a * lo) & (c <= a * hi)
+        candidates.append((np.where(inside, a, np.nan), np.where(inside, c, np.nan)))
+        fixed_a = np.ones_like(lo)  # the edge e_dry = 1
+    else:
+        fixed_a = np.full_like(lo, e_dry)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = np.clip((fixed_a * su - seu) / suu, fixed_a * lo, fixed_a * hi)
+    candidates.append((fixed_a, c))
+    for t in (lo, hi):  # the edges St_c = lo and St_c = hi
+        if e_dry is None:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                a = np.clip((se - t * seu) / (n_k - 2 * t * su + t * t * suu), 0.0, 1.0)
+        else:
+            a = fixed_a
+        candidates.append((a, a * t))
+    a_best, c_best, least = math.nan, math.nan, math.inf
+    for a, c in candidates:  # one set at a time: a few arrays of the runs' length, no more
+        a = np.broadcast_to(a, lo.shape)
+        value = total - 2 * a * se + 2 * c * seu + a * a * n_k + c * (c * suu - 2 * a * su)
+        value[~(np.isfinite(value) & (a > 0))] = np.inf
+        best = int(np.argmin(value))
+        if value[best] < least:  # ties: the earlier candidate, as one argmin over all
+            a_best, c_best, least = float(a[best]), float(c[best]), float(value[best])
+    if not math.isfinite(least):
+        raise ValueError("no finite least-squares solution")
+    critical = c_best / a_best
+    residual = y - np.where(s > critical, a_best * (1 - critical * u), 0.0)
+    ss = float(residual @ residual)
+    # At a run's own St_n (where the optimum often sits) the model has a kink and the
+    # Jacobian two one-sided values: the larger standard error of the two is reported.
+    errors = [_errors(s > critical, a_best, critical, u, ss, e_dry)]
+    if np.any(np.abs(s - critical) <= 1e-12 * critical):
+        errors.append(_errors(s >= critical * (1 - 1e-12), a_best, critical, u, ss, e_dry))
+    e_dry_se, critical_se = np.max(errors, axis=0)
+    return (a_best if e_dry is None else e_dry), float(e_dry_se), critical, float(critical_se)
+
+
+def _errors(
+    active: np.ndarray, a: float, critical: float, u: np.ndarray, ss: float, e_dry: float | None
+) -> tuple[float, float]:
+    """curve_fit's standard errors: sqrt(diag((JᵀJ)⁻¹) · S/(n − p)); e_dry's NaN if fixed."""
+    d_a = np.where(active, 1 - critical * u, 0.0)
+    d_c = np.where(active, -a * u, 0.0)
+    if e_dry is not None:
+        dof, jj = len(u) - 1, float(d_c @ d_c)
+        return math.nan, (math.sqrt(ss / dof / jj) if dof > 0 and jj > 0 else math.inf)
+    jtj = np.array([[d_a @ d_a, d_a @ d_c], [d_a @ d_c, d_c @ d_c]])
+    dof = len(u) - 2
+    try:
+        cov = np.linalg.inv(jtj) * (ss / dof) if dof > 0 else np.full((2, 2), math.inf)
+    except np.linalg.LinAlgError:
+        cov = np.full((2, 2), math.inf)
+    return math.sqrt(cov[0, 0]), math.sqrt(cov[1, 1])
+
+
+def _suffix(values: np.ndarray) -> np.ndarray:
+    """Σ values[k:] for every k."""
+    return np.cumsum(values[::-1])[::-1]
+
+
 def _fit(model: str, st: np.ndarray, e: np.ndarray, e_dry: float | None) -> tuple:
     """(e_dry, e_dry_stderr, parameter, parameter_stderr) by bounded least squares; e_dry is
-    fixed (stderr NaN) when given."""
+    fixed (stderr NaN) when given. The threshold form is solved exactly in numpy
+    (``threshold_least_squares``); the exponential form by scipy's ``curve_fit``."""
+    if model == "threshold":
+        return threshold_least_squares(st, e, e_dry)
     from scipy.optimize import curve_fit
 
     start = max(1.0, float(np.min(st)) * 0.5)
@@ -128,6 +227,7 @@ def restitution(frame: Any, model: str = "threshold") -> list[dict[str, Any]]:
 
     if model not in RESTITUTION_MODELS:
         raise ValidationError("--model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}")
+    frame = frame[[c for c in _INPUTS if c in frame]]  # a subset copies only these
     finite_e = np.isfinite(frame["normal_restitution"])
     immersed = frame[np.isfinite(frame["normal_stokes_number"]) & finite_e]
     dry = frame[frame["fluid"].isna() & finite_e] if "fluid" in frame else frame.iloc[0:0]

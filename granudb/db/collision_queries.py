@@ -1,20 +1,29 @@
 """Reading stored collisions as plain columns (not ORM objects) into a DataFrame.
 
 One select gives each run with the ids of its dataset, particle, wall and fluid; names
-and properties are looked up per id: 100,000 rows load in a fraction of a second.
+and properties are looked up per id. Rows come in chunks from the driver's cursor, so a
+million runs read in bounded memory: 100,000 rows load in a fraction of a second.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from typing import Any
 
-from sqlalchemy import select
+from sqlalchemy import func, select
 from sqlalchemy.orm import Session, aliased
 
 from granudb.db import catalog
 from granudb.db import datasets as dataset_queries
 from granudb.db.models import Collision, Dataset, Material
 from granudb.vocabulary import COLLISION_MEASURED, MATERIAL_PROPERTIES
+
+#: Rows read and derived at a time: bounds the memory of a read of a million runs (the
+#: driver's row tuples of one chunk, about 40 MB), while a chunk stays large enough that
+#: numpy, not Python, does the work.
+CHUNK_ROWS = 50_000
+_NUMBERS = ["dataset_id", "particle_id", "wall_id", "fluid_id", *COLLISION_MEASURED]
+_TEXT = ["run", "notes"]
 
 
 def load_collisions(
@@ -28,25 +37,119 @@ def load_collisions(
 ) -> Any:
     """The stored collisions matching the filters (names case-insensitive; ``fluid``
     "dry" for dry runs), ordered by dataset, version and run label, as a DataFrame with
-    ``particle_<property>`` and ``wall_<property>`` columns.
-
-    Why columnar: the select returns each run's own columns and the ids of its dataset
-    and materials; names and material properties are looked up once per id and spread
-    with an index (not joined into every row), and the rows become columns in one
-    transpose, so 100,000 runs read at the driver's pace (a DataFrame built from row
-    objects cost twice the read itself)."""
+    ``particle_<property>`` and ``wall_<property>`` columns (``iter_collisions`` in one
+    piece)."""
     import numpy as np
     import pandas as pd
 
-    query = select(
-        Collision.dataset_id,
-        Collision.run,
-        Collision.particle_id,
-        Collision.wall_id,
-        Collision.fluid_id,
-        *(getattr(Collision, name) for name in COLLISION_MEASURED),
-        Collision.notes,
+    chunks = list(
+        iter_collisions(
+            session, dataset=dataset, version=version, particle=particle, wall=wall, fluid=fluid
+        )
     )
+    if not chunks:
+        return pd.DataFrame()
+    return pd.DataFrame(
+        {name: np.concatenate([c[name] for c in chunks]) for name in chunks[0]}, copy=False
+    )
+
+
+def iter_collisions(
+    session: Session,
+    *,
+    dataset: str | None = None,
+    version: str | None = None,
+    particle: str | None = None,
+    wall: str | None = None,
+    fluid: str | None = None,
+    chunk_rows: int = CHUNK_ROWS,
+    text: bool = True,
+) -> Iterator[dict[str, Any]]:
+    """The stored collisions matching the filters, in order, as dicts of numpy arrays of at
+    most ``chunk_rows`` runs each: ``dataset``, ``version``, ``run``, ``particle``,
+    ``wall`` (names), ``fluid_id`` (float, NaN for dry), every measured column, ``notes``
+    and ``particle_<property>``/``wall_<property>``. ``text`` False: no ``run`` and
+    ``notes`` (a reader that needs neither: every cell is then a number, and a chunk
+    converts to floats in one step, without a Python object per cell).
+
+    Why this way: the select returns each run's own columns and the ids of its dataset
+    and materials; names and material properties are looked up once per id and spread
+    with an index (not joined into every row). Rows come from the driver's cursor in
+    chunks (no SQLAlchemy row objects), each chunk becomes one object array and its
+    columns numpy arrays at C speed, so a million runs read at the driver's pace in
+    bounded memory. PostgreSQL streams through a server-side (named) cursor."""
+    import numpy as np
+
+    query = _collision_select(session, dataset, version, particle, wall, fluid, text=text)
+    connection = session.connection()
+    sets = sorted(connection.execute(select(Dataset.id, Dataset.name, Dataset.version)).all())
+    set_ids = np.array([r[0] for r in sets], dtype=np.int64)
+    set_names = np.array([r[1] for r in sets], dtype=object)
+    set_versions = np.array([r[2] for r in sets], dtype=object)
+    properties = [getattr(Material, name) for name in MATERIAL_PROPERTIES]
+    materials = sorted(connection.execute(select(Material.id, Material.name, *properties)).all())
+    material_ids = np.array([r[0] for r in materials], dtype=np.int64)
+    material_names = np.array([r[1] for r in materials], dtype=object)
+    table = np.stack([_floats([r[2 + i] for r in materials]) for i in range(len(properties))], 1)
+    names = [*_NUMBERS, *(_TEXT if text else ())]
+    at = {name: i for i, name in enumerate(names)}
+    for rows in _driver_chunks(connection, query, chunk_rows):
+        try:
+            if text:
+                raise TypeError("text columns")
+            block = np.array(rows, dtype=float).reshape(len(rows), len(names))
+        except (TypeError, ValueError):  # text, or a bad stored cell (NaN, as below)
+            block = np.array(rows, dtype=object).reshape(len(rows), len(names))
+        data: dict[str, Any] = {}
+        where = np.searchsorted(set_ids, block[:, at["dataset_id"]].astype(np.int64))
+        data["dataset"], data["version"] = set_names[where], set_versions[where]
+        if text:
+            data["run"] = block[:, at["run"]].copy()
+        roles = {}
+        for role in ("particle", "wall"):
+            ids = block[:, at[f"{role}_id"]].astype(np.int64)
+            roles[role] = np.searchsorted(material_ids, ids)
+            data[role] = material_names[roles[role]]
+        data["fluid_id"] = _floats(block[:, at["fluid_id"]])
+        for name in COLLISION_MEASURED:
+            data[name] = _floats(block[:, at[name]])
+        if text:
+            data["notes"] = block[:, at["notes"]].copy()
+        for role in ("particle", "wall"):
+            for i, name in enumerate(MATERIAL_PROPERTIES):
+                data[f"{role}_{name}"] = table[roles[role], i]
+        del block, rows
+        yield data
+
+
+def count_collisions(
+    session: Session,
+    *,
+    dataset: str | None = None,
+    version: str | None = None,
+    particle: str | None = None,
+    wall: str | None = None,
+    fluid: str | None = None,
+) -> int:
+    """How many runs ``iter_collisions`` with the same filters yields (so a reader can
+    allocate its arrays once)."""
+    query = _collision_select(session, dataset, version, particle, wall, fluid, text=False)
+    counted = select(func.count()).select_from(query.order_by(None).subquery())
+    return int(session.connection().execute(counted).scalar_one())
+
+
+def _collision_select(
+    session: Session,
+    dataset: str | None,
+    version: str | None,
+    particle: str | None,
+    wall: str | None,
+    fluid: str | None,
+    *,
+    text: bool,
+) -> Any:
+    """The select of ``iter_collisions``: each run's columns and ids, filtered, in order."""
+    query = select(*(getattr(Collision, name) for name in (*_NUMBERS, *(_TEXT if text else ()))))
     first, second = aliased(Material), aliased(Material)  # inner joins: as before, a run
     query = (  # whose dataset or material is missing is not read
         query.join(Dataset, Collision.dataset_id == Dataset.id)
@@ -66,54 +169,36 @@ def load_collisions(
         else:
             query = query.where(Collision.fluid_id == catalog.get_fluid(session, fluid).id)
     query = query.order_by(Dataset.name, Dataset.version, Collision.run)
-    connection = session.connection()
-    result = connection.execute(query)
-    names = list(result.keys())
-    rows = result.fetchall()
-    columns = dict(zip(names, zip(*rows, strict=True), strict=True)) if rows else {}
-    n = len(rows)
+    return query
 
-    def objects(name: str) -> np.ndarray:
-        out = np.empty(n, dtype=object)
-        out[:] = columns.get(name, ())
-        return out
 
-    def index_of(name: str, ids: list[int]) -> np.ndarray:
-        """Each row's position in ``ids`` (one lookup per distinct id)."""
-        where = {key: i for i, key in enumerate(ids)}
-        return np.array([where[key] for key in columns.get(name, ())], dtype=np.intp)
-
-    data: dict[str, Any] = {}
-    sets = connection.execute(select(Dataset.id, Dataset.name, Dataset.version)).all()
-    at = index_of("dataset_id", [r[0] for r in sets])
-    data["dataset"] = np.array([r[1] for r in sets], dtype=object)[at]
-    data["version"] = np.array([r[2] for r in sets], dtype=object)[at]
-    data["run"] = objects("run")
-    properties = [getattr(Material, name) for name in MATERIAL_PROPERTIES]
-    materials = connection.execute(select(Material.id, Material.name, *properties)).all()
-    ids = [r[0] for r in materials]
-    table = np.stack([_floats([r[2 + i] for r in materials]) for i in range(len(properties))], 1)
-    material_names = np.array([r[1] for r in materials], dtype=object)
-    for role in ("particle", "wall"):
-        data[role] = material_names[index_of(f"{role}_id", ids)]
-    data["fluid_id"] = _floats(columns.get("fluid_id", ()))
-    for name in COLLISION_MEASURED:
-        data[name] = _floats(columns.get(name, ()))
-    data["notes"] = objects("notes")
-    for role in ("particle", "wall"):
-        at = index_of(f"{role}_id", ids)
-        for i, name in enumerate(MATERIAL_PROPERTIES):
-            data[f"{role}_{name}"] = table[at, i]
-    return pd.DataFrame(data)
+def _driver_chunks(connection: Any, query: Any, chunk_rows: int) -> Iterator[list[tuple]]:
+    """The rows of ``query`` as the driver's tuples, ``chunk_rows`` at a time, on the
+    session's own connection (so inside its transaction)."""
+    compiled = query.compile(dialect=connection.dialect)
+    params = compiled.construct_params()
+    if compiled.positional:
+        params = tuple(params[name] for name in compiled.positiontup)
+    raw = connection.connection.dbapi_connection
+    named = connection.dialect.name == "postgresql"
+    cursor = raw.cursor(name="granudb_collisions") if named else raw.cursor()
+    try:
+        cursor.execute(str(compiled), params)
+        while rows := cursor.fetchmany(chunk_rows):
+            yield rows
+    finally:
+        cursor.close()
 
 
 def _floats(values: Any) -> Any:
-    """A float array; a value that is not a number (a bad stored cell) becomes NaN, as
-    ``pandas.to_numeric(errors="coerce")`` makes it."""
+    """A float array (None is NaN); a value that is not a number (a bad stored cell)
+    becomes NaN, as ``pandas.to_numeric(errors="coerce")`` makes it."""
     import numpy as np
 
+    if isinstance(values, np.ndarray) and values.dtype.kind == "f":
+        return values.copy()  # a column of a float block: its own contiguous array
     try:
-        return np.array(values, dtype=float)
+        return np.asarray(values, dtype=object).astype(float)
     except (TypeError, ValueError):
         import pandas as pd
 

@@ -23,6 +23,7 @@ from granudb.report.groups import (
     group_keys,
     group_label,
     per_value,
+    sorted_codes,
 )
 
 #: Dry runs are drawn at the viscosity of air at 20 °C, so they appear on the map.
@@ -117,7 +118,7 @@ def regime_map_figure(
     return {"id": figure_id, "svg": svg, "file": f"{figure_id}.svg", "caption": caption}
 
 
-def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> list[str]:
+def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> np.ndarray:
     """Each run's measured regime: no rebound, normal impact, or sticking/sliding by the
     Walton split of its group (runs at or above the split Ψ_in slide)."""
     splits = {
@@ -131,12 +132,13 @@ def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> list[st
     split = per_value(keys, lambda key: _number(splits.get(key))).astype(float)
     psi = frame["effective_incidence"].to_numpy(dtype=float)
     e = frame["normal_restitution"].to_numpy(dtype=float)
+    names = np.array(["sliding", "sticking", "normal impact", "no rebound"], dtype=object)
     with np.errstate(invalid="ignore"):
         sliding = np.isfinite(split) & (psi >= split)
-        out = np.where(sliding, "sliding", "sticking")  # no split: all on the sticking line
-        out = np.where(np.isfinite(psi) & (psi > 0), out, "normal impact")
-        out = np.where(e > 0, out, "no rebound")
-    return out.tolist()
+        code = np.where(sliding, 0, 1)  # no split: all on the sticking line
+        code = np.where(np.isfinite(psi) & (psi > 0), code, 2)
+        code = np.where(e > 0, code, 3)
+    return names[code]  # an object array of the names (shared strings, no copies)
 
 
 def _number(value: Any) -> float:
@@ -149,7 +151,7 @@ def pair_maps(
     """One regime map per particle/wall pair, with every run of that pair on it."""
     from granudb.db import catalog
 
-    regimes = np.asarray(measured_regimes(frame, walton), dtype=object)
+    regimes = measured_regimes(frame, walton)
     fluids = fluid_names(frame["fluid"])
     colours = fluid_colours(fluids.tolist())
     densities = {f.name: f.reference_density_kg_m3 for f in catalog.list_fluids(session)}
@@ -177,10 +179,15 @@ def _run_series(frame: Any, fluids: np.ndarray, regimes: np.ndarray) -> list[dic
     v = frame["v_n_in_m_s"].to_numpy(float)
     mu = frame["viscosity_pa_s"].to_numpy(float)
     mu = np.where(np.isfinite(mu), mu, AIR_VISCOSITY_PA_S)
+    fluid_codes, fluid_list = sorted_codes(fluids)
+    regime_codes, regime_list = sorted_codes(regimes)
     series = []
-    for fluid in sorted(set(fluids.tolist()), key=lambda n: (n != "dry", n)):
+    for fluid in sorted(fluid_list, key=lambda n: (n != "dry", n)):
+        is_fluid = fluid_codes == fluid_list.index(fluid)
         for regime in plots.RUN_MARKERS:
-            keep = (fluids == fluid) & (regimes == regime)
+            if regime not in regime_list:
+                continue
+            keep = is_fluid & (regime_codes == regime_list.index(regime))
             if keep.any():
                 series.append({"v": v[keep], "mu": mu[keep], "fluid": fluid, "regime": regime})
     return series

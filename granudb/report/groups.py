@@ -94,7 +94,26 @@ def colours(labels: Iterable[str]) -> dict[str, str]:
     return {label: PALETTE[i % len(PALETTE)] for i, label in enumerate(sorted(set(labels)))}
 
 
+def sorted_codes(values: Any) -> tuple[Any, list[Any]]:
+    """(codes, names): each element's index in the sorted distinct ``names``.
+
+    Why: hashing (``pandas.factorize``) then sorting the few distinct values is linear in
+    the runs, where ``numpy.unique`` sorts a million strings."""
+    import numpy as np
+    import pandas as pd
+
+    codes, uniques = pd.factorize(np.asarray(values, dtype=object), use_na_sentinel=False)
+    order = sorted(range(len(uniques)), key=lambda i: uniques[i])
+    rank = np.empty(len(order), dtype=np.intp)
+    rank[order] = np.arange(len(order))
+    return rank[codes], [uniques[i] for i in order]
+
+
 def fluid_colours(fluids: Iterable[Any]) -> dict[str, str]:
     """A colour per fluid name for the regime maps (colour by fluid), dry first."""
-    names = sorted({fluid_name(f) for f in fluids}, key=lambda n: (n != DRY, n))
+    import numpy as np
+
+    values = fluids if isinstance(fluids, np.ndarray) else np.asarray(list(fluids), dtype=object)
+    distinct = set(per_value(values, fluid_name).tolist()) if len(values) else set()
+    names = sorted(distinct, key=lambda n: (n != DRY, n))
     return {name: PALETTE[i % len(PALETTE)] for i, name in enumerate(names)}

@@ -56,10 +56,9 @@ def regime_map(
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    plt = plots._pyplot()
     names = list(REGIME_COLOURS)
     codes = np.vectorize(names.index)(regime)
-    figure, ax = plt.subplots(figsize=(plots.FIGSIZE[0], plots.FIGSIZE[1] + 0.8))
+    figure, ax = plots.new_axes((plots.FIGSIZE[0], plots.FIGSIZE[1] + 0.8))
     mu_axis = viscosity_pa_s * 1e3
     ax.contourf(velocity_m_s, mu_axis, codes, levels=np.arange(len(names) + 1) - 0.5,
                 cmap=ListedColormap([REGIME_COLOURS[n] for n in names]))  # fmt: skip
@@ -106,8 +105,7 @@ def restitution_with_prediction(
     """e against St_n with each group's predicted curve in the group's colour (dotted) and
     an optional fitted curve (grey). ``predictions``: dicts with ``label`` (a key of
     ``colours``), ``st_n`` and ``e`` arrays (the curve, on the St_n axis)."""
-    plt = plots._pyplot()
-    figure, ax = plt.subplots(figsize=plots.FIGSIZE)
+    figure, ax = plots.new_axes()
     plots._scatter_groups(
         ax, np.asarray(stokes, float), np.asarray(restitution, float), groups, colours
     )

@@ -72,3 +72,60 @@ def test_an_empty_fit_says_why() -> None:
     [fit] = fits.restitution(frame, "threshold")
     assert math.isnan(fit["e_dry"]) and math.isnan(fit["parameter"])
     assert fit["reason"].startswith("St_n must take ≥ 3 distinct values")
+
+
+def _sse(st: np.ndarray, e: np.ndarray, e_dry: float, critical: float) -> float:
+    return float(np.sum((e - fits.restitution_curve("threshold", st, e_dry, critical)) ** 2))
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_threshold_fit_is_the_global_least_squares_minimum(seed: int) -> None:
+    # a dense grid over the whole feasible box never beats it, and neither does curve_fit
+    # started where the former fit started (which can stop in a local minimum)
+    from scipy.optimize import curve_fit
+
+    from granudb.analysis.restitution_fit import threshold_least_squares
+
+    rng = np.random.default_rng(seed)
+    n = 60
+    st = np.geomspace(rng.uniform(2, 30), rng.uniform(300, 3000), n) * rng.uniform(0.8, 1.2, n)
+    e = fits.restitution_curve("threshold", st, rng.uniform(0.6, 1.0), rng.uniform(5, 60))
+    e = e + rng.normal(0, 0.05, n)
+    for fixed in (None, 0.9):
+        a, a_se, critical, critical_se = threshold_least_squares(st, e, fixed)
+        best = _sse(st, e, a, critical)
+        assert 0 < a <= 1 and critical >= 0 and critical_se > 0
+        assert math.isnan(a_se) if fixed else a_se > 0
+        grid_a = [fixed] if fixed else np.linspace(0.01, 1.0, 100)
+        for trial_a in grid_a:
+            values = [_sse(st, e, trial_a, b) for b in np.linspace(0, 2 * st.max(), 400)]
+            assert best <= min(values) + 1e-12
+        start = max(1.0, float(st.min()) * 0.5)
+        if fixed is None:
+            (ca, cb), _ = curve_fit(
+                lambda s, p, q: fits.restitution_curve("threshold", s, p, q), st, e,
+                p0=(0.99, start), bounds=([0.0, 0.0], [1.0, np.inf]),
+            )  # fmt: skip
+        else:
+            ca, ((cb,), _) = fixed, curve_fit(
+                lambda s, q, f=fixed: fits.restitution_curve("threshold", s, f, q), st, e,
+                p0=(start,), bounds=([0.0], [np.inf]),
+            )  # fmt: skip
+        assert best <= _sse(st, e, ca, cb) * (1 + 1e-9)
+
+
+def test_threshold_standard_errors_are_curve_fits_away_from_a_kink() -> None:
+    from scipy.optimize import curve_fit
+
+    from granudb.analysis.restitution_fit import threshold_least_squares
+
+    rng = np.random.default_rng(7)
+    st = np.geomspace(20, 2000, 200)
+    e = fits.restitution_curve("threshold", st, 0.9, 12.0) + rng.normal(0, 0.01, 200)
+    a, a_se, critical, critical_se = threshold_least_squares(st, e, None)
+    values, covariance = curve_fit(
+        lambda s, p, q: fits.restitution_curve("threshold", s, p, q), st, e,
+        p0=(0.95, 10.0), bounds=([0.0, 0.0], [1.0, np.inf]),
+    )  # fmt: skip
+    assert (a, critical) == pytest.approx(tuple(values), rel=1e-6)
+    assert (a_se, critical_se) == pytest.approx(tuple(np.sqrt(np.diag(covariance))), rel=1e-4)
