@@ -10,10 +10,10 @@ against issue 17's bounds: 1,000,000 scenarios ≤ 0.4 s (scaled linearly for ot
 
 The timed figure is ``derive()`` alone: drawing the random scenarios (numpy's generator,
 not granudb) is timed apart and printed on its own line. ``--threads`` is passed to
-``derive`` (default: its own, one thread per core up to four; 1 for a single core).
+``derive`` (default: its own, the calling thread only).
 
     python benchmarks/derive_speed.py [--rows 1000000] [--sample 2000] [--chunk 250000]
-                                      [--threads N]
+                                      [--repeats 5] [--threads N]
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 import math
 import resource
+import statistics
 import time
 
 import numpy as np
@@ -80,14 +81,8 @@ def per_row(row: dict[str, float]) -> dict[str, float]:
     }
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--rows", type=int, default=1_000_000)
-    parser.add_argument("--sample", type=int, default=2_000)
-    parser.add_argument("--chunk", type=int, default=250_000)
-    parser.add_argument("--threads", type=int, default=None)
-    args = parser.parse_args()
-
+def _one_pass(args: argparse.Namespace) -> tuple[float, float]:
+    """(seconds in derive(), seconds drawing the scenarios) for ``--rows`` scenarios."""
     vectorized_s = drawing_s = 0.0
     done = 0
     while done < args.rows:
@@ -100,6 +95,23 @@ def main() -> None:
         vectorized_s += time.perf_counter() - start
         del chunk
         done += n
+    return vectorized_s, drawing_s
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rows", type=int, default=1_000_000)
+    parser.add_argument("--sample", type=int, default=2_000)
+    parser.add_argument("--chunk", type=int, default=250_000)
+    parser.add_argument("--threads", type=int, default=None)
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+
+    # One warm-up pass, then the median of ``--repeats`` passes (a shared machine's
+    # neighbours move a single pass by ±30 %).
+    passes = [_one_pass(args) for _ in range(args.repeats + 1)][1:]
+    vectorized_s = statistics.median(p[0] for p in passes)
+    drawing_s = statistics.median(p[1] for p in passes)
 
     sample = scenarios(args.sample, seed=12345)
     start = time.perf_counter()
@@ -116,7 +128,8 @@ def main() -> None:
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(
         f"vectorized derive(): {args.rows:,} rows in {vectorized_s:.2f} s = "
-        f"{fast_rate:,.0f} rows/s (chunks of {args.chunk:,}, threads {args.threads or 'default'})"
+        f"{fast_rate:,.0f} rows/s (median of {args.repeats} after a warm-up; chunks of "
+        f"{args.chunk:,}, threads {args.threads or 'default'})"
     )
     print(f"drawing the random scenarios (not timed above): {drawing_s:.2f} s")
     print(

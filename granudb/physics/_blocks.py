@@ -15,10 +15,13 @@ fault maps 2 MiB instead of 4 KiB (measured about 6× less time). Each column is
 ordinary contiguous, writeable float array (a row view of that 2-D array); the memory is
 returned when the last of them is dropped.
 
-Why threads: numpy's ufuncs release the GIL while they loop, so blocks computed on a
-small thread pool use the machine's other cores. The default is one thread per available
-core, at most ``MAX_THREADS``; ``threads=1`` keeps everything on the calling thread.
-Small tables (one block) never start a thread.
+Threads are available but not the default: numpy's ufuncs release the GIL while they
+loop, but a 64 KiB block's loops are so short that handing the GIL back and forth costs
+more than a second core gives. On the 2-core benchmark machine, idle, 1,000,000 rows took
+0.38–0.43 s on one thread and 0.45–0.62 s on two (``benchmarks/derive_speed.py --threads``,
+alternating runs). ``threads=None`` therefore means ``DEFAULT_THREADS`` (1, the calling
+thread); ``threads=n`` uses a pool of n, at most the cores available. Small tables (one
+block) never start a thread.
 
 The computation must be element-wise (row i of the result depends on row i of the inputs
 only), so a block's rows are exactly what one pass over the whole table would give.
@@ -35,17 +38,16 @@ Arrays = dict[str, np.ndarray]
 
 #: Rows per block: 8192 × 8 B = 64 KiB an array (below glibc's 128 KiB mmap threshold).
 BLOCK_ROWS = 8192
-#: Most threads the default uses (beyond a few cores, memory bandwidth is the limit).
-MAX_THREADS = 4
+#: Threads used when none are asked for (see the module docstring for the measurement).
+DEFAULT_THREADS = 1
 
 
-def default_threads() -> int:
-    """Cores this process may run on, at most ``MAX_THREADS``."""
+def available_cores() -> int:
+    """Cores this process may run on: the most threads a pool is given."""
     try:
-        available = len(os.sched_getaffinity(0))
+        return len(os.sched_getaffinity(0))
     except AttributeError:  # not on Linux
-        available = os.cpu_count() or 1
-    return max(1, min(MAX_THREADS, available))
+        return os.cpu_count() or 1
 
 
 def run_blocked(
@@ -57,7 +59,7 @@ def run_blocked(
     """``compute(inputs)``, evaluated block by block into full-size output arrays.
 
     ``inputs`` are arrays of one shape (broadcast already); the outputs have that shape
-    and the dtypes ``compute`` gives. ``threads`` None: ``default_threads()``.
+    and the dtypes ``compute`` gives. ``threads`` None: ``DEFAULT_THREADS``.
     """
     shape = next(iter(inputs.values())).shape
     rows = int(np.prod(shape))
@@ -80,7 +82,8 @@ def run_blocked(
 
     store(0, first)
     starts = range(block_rows, rows, block_rows)
-    workers = min(default_threads() if threads is None else max(1, threads), len(starts))
+    asked = DEFAULT_THREADS if threads is None else max(1, threads)
+    workers = min(asked, available_cores(), len(starts))
     if workers > 1:
         from concurrent.futures import ThreadPoolExecutor  # only for large tables
 

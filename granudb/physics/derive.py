@@ -221,8 +221,9 @@ def derive(
     diameter).
 
     Large tables are computed in blocks of ``granudb.physics._blocks.BLOCK_ROWS`` rows on
-    up to ``threads`` threads (None: one per core, at most four; 1: the calling thread
-    only); every row's result is the same whatever the blocks or threads.
+    ``threads`` threads (None: the calling thread only, which measured faster than two on
+    two cores; n: a pool of n, at most the cores available); every row's result is the
+    same whatever the blocks or threads.
     """
     given = locals()
     arrays = np.broadcast_arrays(*(np.asarray(given[name], dtype=float) for name in _INPUTS))
