@@ -224,8 +224,10 @@ def dataset_figures(
     if not immersed.any():
         return figures
     wet_labels = np.asarray(labels, dtype=object)[immersed].tolist()
-    figures.append(restitution_figure(frame[immersed], wet_labels, colours, restitution,
-                                      critical_stokes))  # fmt: skip
+    # Only the columns the figure reads: a copy of every column of a million immersed runs
+    # was the report's peak memory (about 200 MB more).
+    wet = frame.loc[immersed, [c for c in WET_COLUMNS if c in frame]]
+    figures.append(restitution_figure(wet, wet_labels, colours, restitution, critical_stokes))
     strain = frame["shear_strain"].to_numpy(float)[immersed]
     figures.append(
         _figure(
@@ -238,6 +240,10 @@ def dataset_figures(
         )
     )
     return figures
+
+
+#: What ``restitution_figure`` and ``predicted_curves`` read of the immersed runs.
+WET_COLUMNS = ("normal_stokes_number", "normal_restitution", "added_mass_stokes_number")
 
 
 def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) -> list[dict]:
