@@ -180,7 +180,7 @@ def pair_flag(derived: dict[str, Any], immersed: bool) -> dict[str, Any]:
 def _regimes(frame: Any) -> np.ndarray:
     """Each run's roughness regime (three states); older frames: from σ > h_m."""
     if "roughness_regime" in frame:
-        return frame["roughness_regime"].astype(object).to_numpy()
+        return frame["roughness_regime"].to_numpy(dtype=object)
     rough = frame["roughness_exceeds_gap"].fillna(False).astype(bool).to_numpy()
     return np.where(rough, "asperity_contact", "film").astype(object)
 
@@ -193,7 +193,9 @@ def dataset_flag(frame: Any) -> dict[str, Any]:
     rough = int(np.sum(regimes == "asperity_contact"))
     unsure = int(np.sum(regimes == "uncertain"))
     raised = bool(rough or unsure)
-    immersed = frame[wet]
+    # Only the two columns read below (a copy of every column of a million runs was a
+    # report's largest transient memory).
+    immersed = frame.loc[wet, ["composite_roughness_m", "film_parameter"]]
     if immersed.empty:
         detail = "All runs are dry."
     else:
