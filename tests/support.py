@@ -52,6 +52,20 @@ def execute(db: str, sql: str, params: dict[str, Any] | None = None) -> None:
         engine.dispose()
 
 
+#: Steel on Zerodur as ``derive()`` takes them (SI; Joseph & Hunt 2004, table 1): the
+#: materials of the physics tests' scenarios.
+STEEL_ON_ZERODUR = dict(
+    particle_density_kg_m3=7780.0,
+    particle_youngs_modulus_pa=190e9,
+    particle_poisson_ratio=0.27,
+    particle_roughness_rms_m=0.0236e-6,
+    wall_density_kg_m3=2540.0,
+    wall_youngs_modulus_pa=91e9,
+    wall_poisson_ratio=0.24,
+    wall_roughness_rms_m=0.0155e-6,
+    diameter_m=12.7e-3,
+)
+
 #: A collision CSV's header with units, and one good row, for tests that build files.
 COLLISION_HEADER = [
     "run",

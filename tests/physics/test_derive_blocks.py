@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from support import STEEL_ON_ZERODUR
 
 from granudb.physics._blocks import BLOCK_ROWS, run_blocked
 from granudb.physics._types import PhysicsInputError
@@ -81,15 +82,7 @@ def test_blocked_derive_equals_small_tables_row_for_row(threads: int | None) -> 
 def test_blocked_outputs_keep_shape_and_are_independent_writable_arrays() -> None:
     speeds = np.linspace(0.01, 1.0, 3 * (ROWS // 3)).reshape(ROWS // 3, 3)
     common = dict(
-        particle_density_kg_m3=7780.0,
-        particle_youngs_modulus_pa=190e9,
-        particle_poisson_ratio=0.27,
-        particle_roughness_rms_m=0.0236e-6,
-        wall_density_kg_m3=2540.0,
-        wall_youngs_modulus_pa=91e9,
-        wall_poisson_ratio=0.24,
-        wall_roughness_rms_m=0.0155e-6,
-        diameter_m=12.7e-3,
+        STEEL_ON_ZERODUR,
         v_t_in_m_s=0.1,
         viscosity_pa_s=1e-3,
         fluid_density_kg_m3=998.0,

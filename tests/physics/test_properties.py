@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 from scipy.integrate import quad
+from support import STEEL_ON_ZERODUR
 
 from granudb.physics import contact, flow, impact, lubrication
 from granudb.physics._types import PhysicsInputError as ValidationError
@@ -95,17 +96,7 @@ def test_equation_2_9_equals_2_10_on_the_sticking_line(psi_in, beta, e) -> None:
     )
 
 
-SCENARIO = dict(
-    particle_density_kg_m3=7780.0,
-    particle_youngs_modulus_pa=190e9,
-    particle_poisson_ratio=0.27,
-    particle_roughness_rms_m=0.0236e-6,
-    wall_density_kg_m3=2540.0,
-    wall_youngs_modulus_pa=91e9,
-    wall_poisson_ratio=0.24,
-    wall_roughness_rms_m=0.0155e-6,
-    diameter_m=12.7e-3,
-)
+SCENARIO = STEEL_ON_ZERODUR
 
 
 def test_vectorized_derivation_equals_row_by_row() -> None:
