@@ -41,3 +41,27 @@ def test_materials_list_json_imports_no_heavy_libraries(tmp_path) -> None:
     subprocess.run(first, capture_output=True, text=True, check=True)  # creates and seeds
     out = subprocess.run(first, capture_output=True, text=True, check=True)
     assert out.stdout.strip().splitlines()[-1] == "HEAVY="
+
+
+def test_a_dataset_report_imports_neither_matplotlib_nor_scipy(tmp_path) -> None:
+    """Figures are written by ``granudb.report.svg`` and the fits are numpy: the report
+    path is spared 0.7 s of matplotlib and scipy imports (issue 17)."""
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "collisions_example.csv"
+    db, out = tmp_path / "g.sqlite", tmp_path / "r.html"
+
+    def run(args: list[str]) -> str:
+        code = (
+            "import sys\nfrom granudb.cli.main import app\n"
+            f"try:\n    app({args!r})\nexcept SystemExit as stop:\n"
+            "    assert not stop.code, stop.code\n"
+            "print('HEAVY=' + ','.join(m for m in ('matplotlib', 'scipy') if m in sys.modules))"
+        )
+        done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        assert done.returncode == 0, done.stderr[-2000:]
+        return done.stdout.strip().splitlines()[-1]
+
+    run(["collisions", "import", str(example), "--dataset", "ex", "--db", str(db)])
+    assert run(["report", "--dataset", "ex", "--output", str(out), "--db", str(db)]) == "HEAVY="
+    assert out.read_text("utf-8").count("<svg id=") >= 5

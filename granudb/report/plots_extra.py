@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from granudb.report import plots
+from granudb.report.svg import Plot, Style
 from granudb.report.verdicts import ROUGHNESS_WORDS
 
 #: Regions of the regime map, in drawing order, with their fill colours.
@@ -35,6 +36,13 @@ def regime_names(rebound: np.ndarray, roughness: np.ndarray) -> np.ndarray:
     return np.where(np.asarray(rebound, bool), names, "no rebound").astype(object)
 
 
+def _edges(centres: np.ndarray) -> np.ndarray:
+    """Cell edges around geometric grid points: midway in log space, clipped to the grid."""
+    logs = np.log10(np.asarray(centres, float))
+    middle = (logs[1:] + logs[:-1]) / 2
+    return 10 ** np.concatenate([[logs[0]], middle, [logs[-1]]])
+
+
 def regime_map(
     velocity_m_s: np.ndarray,
     viscosity_pa_s: np.ndarray,
@@ -50,46 +58,47 @@ def regime_map(
 ) -> str:
     """The regime plane shaded by ``regime`` (names of ``REGIME_COLOURS``), with the lines
     σ = x₁/3 (Λ = 1), σ = x₁/4 (Λ = 4/3) and St_n = St_c; ``sigma_over_x1`` and ``stokes``
-    are 2-D on ``viscosity_pa_s`` (rows) × ``velocity_m_s`` (columns). ``runs`` as in
-    the report's regime map."""
-    from matplotlib.colors import ListedColormap
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
+    are 2-D on ``viscosity_pa_s`` (rows) × ``velocity_m_s`` (columns) (geometric grids).
+    ``runs`` as in the report's regime map."""
+    from granudb.report.contour import level_lines
 
     names = list(REGIME_COLOURS)
-    codes = np.vectorize(names.index)(regime)
-    figure, ax = plots.new_axes((plots.FIGSIZE[0], plots.FIGSIZE[1] + 0.8))
-    mu_axis = viscosity_pa_s * 1e3
-    ax.contourf(velocity_m_s, mu_axis, codes, levels=np.arange(len(names) + 1) - 0.5,
-                cmap=ListedColormap([REGIME_COLOURS[n] for n in names]))  # fmt: skip
-    handles: list[Any] = [Patch(color=REGIME_COLOURS[n], label=n) for n in names]
+    codes = np.vectorize(names.index, otypes=[int])(regime)
+    mu_axis = np.asarray(viscosity_pa_s, float) * 1e3
+    velocity = np.asarray(velocity_m_s, float)
+    plot = Plot(xlog=True, ylog=True, height=plots_height(), title="Regime map",
+                xlabel="normal impact velocity v_N,in  (m/s)",
+                ylabel="fluid viscosity μ  (mPa·s)")  # fmt: skip
+    plot.cells(_edges(velocity), _edges(mu_axis), codes, [REGIME_COLOURS[n] for n in names])
+    for name in names:
+        plot.patch(REGIME_COLOURS[name], name)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.log(np.asarray(sigma_over_x1, float))
         if np.isfinite(ratio).any():
-            ax.contour(velocity_m_s, mu_axis, ratio, levels=[np.log(1 / 3)], colors="black",
-                       linewidths=1.4)  # fmt: skip
-            ax.contour(velocity_m_s, mu_axis, ratio, levels=[np.log(1 / 4)], colors="black",
-                       linewidths=0.9, linestyles=":")  # fmt: skip
-            handles.append(Line2D([], [], color="black", lw=1.4, label="σ = x₁/3 (Λ = 1)"))
-            handles.append(
-                Line2D([], [], color="black", lw=0.9, ls=":", label="σ = x₁/4 (Λ = 4/3)")
-            )
-        ax.contour(velocity_m_s, mu_axis, np.log(stokes / critical_stokes), levels=[0.0],
-                   colors="black", linewidths=1.2, linestyles="--")  # fmt: skip
-    handles.append(Line2D([], [], color="black", lw=1.2, ls="--", label="St_n = St_c"))
-    handles += plots._draw_runs(ax, runs, colours or {})
+            for level, style, label in (
+                (np.log(1 / 3), Style("#000000", width=1.4), "σ = x₁/3 (Λ = 1)"),
+                (np.log(1 / 4), Style("#000000", width=0.9, dash="1,1.65"), "σ = x₁/4 (Λ = 4/3)"),
+            ):
+                plot.polylines(level_lines(velocity, mu_axis, ratio, level), style)
+                plot.legend.append(("line", style, label))
+        stokes_ratio = np.log(np.asarray(stokes, float) / critical_stokes)
+    dashed = Style("#000000", width=1.2, dash="4.4,1.9")
+    plot.polylines(level_lines(velocity, mu_axis, stokes_ratio, 0.0), dashed)
+    plot.legend.append(("line", dashed, "St_n = St_c"))
+    plots.draw_runs(plot, runs, colours or {})
     if point is not None:
-        (marker,) = ax.plot([point[0]], [point[1] * 1e3], "*", color="crimson", ms=12,
-                            label="this collision")  # fmt: skip
-        handles.append(marker)
-    plots._log(ax, "x", "y")
-    ax.set_xlim(float(np.min(velocity_m_s)), float(np.max(velocity_m_s)))
-    ax.set_ylim(float(np.min(mu_axis)), float(np.max(mu_axis)))
-    ax.set_xlabel("normal impact velocity v_N,in  (m/s)")
-    ax.set_ylabel("fluid viscosity μ  (mPa·s)")
-    ax.set_title("Regime map")
-    plots._legend(ax, handles)
-    return plots._svg(figure, figure_id)
+        plot.points([point[0]], [point[1] * 1e3], Style("#dc143c", marker="*", size=12),
+                    "this collision")  # fmt: skip
+    plot.xlim = (float(np.min(velocity)), float(np.max(velocity)))
+    plot.ylim = (float(np.min(mu_axis)), float(np.max(mu_axis)))
+    return plot.svg(figure_id)
+
+
+def plots_height() -> float:
+    """The regime map is taller than the scatter figures (0.8 in more, as before)."""
+    from granudb.report.svg import PLOT_HEIGHT
+
+    return PLOT_HEIGHT + 0.8 * 72 * 0.77
 
 
 def restitution_with_prediction(
@@ -105,20 +114,19 @@ def restitution_with_prediction(
     """e against St_n with each group's predicted curve in the group's colour (dotted) and
     an optional fitted curve (grey). ``predictions``: dicts with ``label`` (a key of
     ``colours``), ``st_n`` and ``e`` arrays (the curve, on the St_n axis)."""
-    figure, ax = plots.new_axes()
+    plot = Plot(xlog=True, title="Restitution against Stokes number: measured and predicted",
+                xlabel="normal Stokes number St_n = m* v_N,in / (6πμR*²)  (–)",
+                ylabel="normal restitution e  (–)")  # fmt: skip
     plots._scatter_groups(
-        ax, np.asarray(stokes, float), np.asarray(restitution, float), groups, colours
+        plot, np.asarray(stokes, float), np.asarray(restitution, float), groups, colours
     )
     for curve in predictions:
-        ax.plot(curve["st_n"], curve["e"], ":", lw=1.6, color=colours[curve["label"]],
-                label=f"{curve['label']}: predicted, e_dry exp(−35/St)")  # fmt: skip
+        dotted = Style(colours[curve["label"]], width=1.6, dash="1.6,2.6")
+        plot.line(curve["st_n"], curve["e"], dotted,
+                  f"{curve['label']}: predicted, e_dry exp(−35/St)")  # fmt: skip
     if fitted is not None:
-        ax.plot(fitted[0], fitted[1], "-", color="#555555", lw=1.2, label=fitted[2])
-    ax.axvline(critical_stokes, color="grey", ls="--", lw=1.0, label=f"St_c = {critical_stokes:g}")
-    plots._log(ax, "x")
-    ax.set_ylim(-0.03, 1.05)
-    ax.set_xlabel("normal Stokes number St_n = m* v_N,in / (6πμR*²)  (–)")
-    ax.set_ylabel("normal restitution e  (–)")
-    ax.set_title("Restitution against Stokes number: measured and predicted")
-    plots._legend(ax)
-    return plots._svg(figure, figure_id)
+        plot.line(fitted[0], fitted[1], Style("#555555"), fitted[2])
+    plot.vline(critical_stokes, Style("#808080", width=1.0, dash="3.7,1.6"),
+               f"St_c = {critical_stokes:g}")  # fmt: skip
+    plot.ylim = (-0.03, 1.05)
+    return plot.svg(figure_id)

@@ -89,19 +89,14 @@ def _probe(tmp_path: Path, html: Path, width: int) -> dict:
 
 
 def _legend_entries(svg: str) -> list[tuple[str, str]]:
-    """(colour, label) of every legend entry of a matplotlib SVG, in order."""
+    """(colour, label) of every legend entry of a report figure, in order: the colour the
+    entry's sample is drawn in (not the ``data-colour`` it declares)."""
     entries = []
-    for legend in re.findall(r'<g id="legend_\d+">(.*?)\n   </g>\n  </g>', svg, re.S):
-        colour = None
-        for group in re.findall(r'<g id="(?:line2d|PathCollection|patch|text)_\d+">(.*?)\n    </g>',
-                                legend, re.S):  # fmt: skip
-            text = re.search(r"<text[^>]*>([^<]*)</text>", group)
-            if text:
-                entries.append((colour or "", htmllib.unescape(text.group(1))))
-                colour = None
-                continue
-            colours = re.findall(r"(?:stroke|fill): (#[0-9a-f]{6})", group)
-            colour = colours[0] if colours else colour
+    for entry in re.findall(r'<g class="legend-entry"[^>]*>(.*?)</g>', svg, re.S):
+        colours = re.findall(r'(?:stroke|fill)="(#[0-9a-f]{6})"', entry.split("<text")[0])
+        text = re.search(r"<text[^>]*>([^<]*)</text>", entry)
+        assert text, entry
+        entries.append((colours[0] if colours else "", htmllib.unescape(text.group(1))))
     return entries
 
 
@@ -114,9 +109,11 @@ def _check_colours(html: str) -> None:
     )
     for svg in re.findall(r"<svg id=.*?</svg>", html, re.S):
         figure = re.search(r'<svg id="([^"]+)"', svg).group(1)
-        outside = re.sub(r'<g id="legend_\d+">.*', "", svg, flags=re.S)
+        outside = re.sub(r'<g class="legend">.*', "", svg, flags=re.S)
         by_key: dict[str, str] = {}
-        for colour, label in _legend_entries(svg):
+        entries = _legend_entries(svg)
+        assert entries, figure  # every figure has a legend
+        for colour, label in entries:
             assert "nan" not in label.lower(), (figure, label)
             key = re.split(r": | \(", htmllib.unescape(label))[0]
             if not colour or key.startswith(("St_", "h_m", "threshold", "this", "rebound", "no ")):

@@ -38,8 +38,8 @@ def _rows(html: str, table_id: str) -> dict[str, str]:
 
 def _legend_texts(svg_html: str) -> list[str]:
     texts = []
-    for legend in re.findall(r'<g id="legend_\d+">(.*?)\n   </g>\n  </g>', svg_html, re.S):
-        texts += re.findall(r"<text[^>]*>([^<]*)</text>", legend)
+    for legend in re.findall(r'<g class="legend">(.*?)</g></g>', svg_html, re.S):
+        texts += [htmllib.unescape(t) for t in re.findall(r"<text[^>]*>([^<]*)</text>", legend)]
     return texts
 
 
@@ -90,7 +90,7 @@ def test_beta_axis_does_not_inflate_a_tiny_spread(cli, example_db, tmp_path) -> 
     html = _report(cli, example_db, tmp_path, "--dataset", "example")
     svg = html[html.index('<svg id="fig-beta"') :]
     svg = svg[: svg.index("</svg>")]
-    ticks = re.findall(r'<g id="ytick_\d+">.*?<text[^>]*>([^<]*)</text>', svg, re.S)
+    ticks = re.findall(r'<g class="ytick">.*?<text[^>]*>([^<]*)</text>', svg, re.S)
     assert ticks and all(len(t.split(".")[-1]) <= 3 for t in ticks if "." in t), ticks
 
 

@@ -12,12 +12,10 @@ from granudb.report.groups import colours, group_keys, labels_of
 
 
 def _points(svg: str) -> int:
-    """Markers drawn: matplotlib writes each as a <use> of a marker path; the data's
-    markers are the most used (ticks use others), less the legend's one per group."""
-    from collections import Counter
-
-    uses = Counter(re.findall(r'<use xlink:href="#([^"]+)"', svg))
-    return sum(n - 1 for name, n in uses.items() if n > 20)
+    """Markers drawn: each data series is one <path class="series">, a marker one sub-path
+    (``M``) of it; the legend's samples are outside ``<g class="legend">``'s data."""
+    data = svg.split('<g class="legend">')[0]
+    return sum(d.count("M") for d in re.findall(r'<path class="series" d="([^"]*)"', data))
 
 
 def test_a_dense_figure_draws_at_most_the_limit_each_group_its_share() -> None:
