@@ -146,15 +146,19 @@ def _number(value: Any) -> float:
 
 
 def pair_maps(
-    session: Any, frame: Any, walton: Sequence[Mapping[str, Any]], critical_stokes: float
+    reader: Any, frame: Any, walton: Sequence[Mapping[str, Any]], critical_stokes: float
 ) -> list[dict[str, Any]]:
-    """One regime map per particle/wall pair, with every run of that pair on it."""
-    from granudb.db import catalog
+    """One regime map per particle/wall pair, with every run of that pair on it.
+    ``reader``: a Core connection or a session (the catalogue is read through Core)."""
+    from sqlalchemy.engine import Connection
 
+    from granudb.db import catalog_rows
+
+    connection = reader if isinstance(reader, Connection) else reader.connection()
     regimes = measured_regimes(frame, walton)
     fluids = fluid_names(frame["fluid"])
     colours = fluid_colours(fluids.tolist())
-    densities = {f.name: f.reference_density_kg_m3 for f in catalog.list_fluids(session)}
+    densities = {f.name: f.reference_density_kg_m3 for f in catalog_rows.fluid_rows(connection)}
     figures = []
     pairs = sorted(set(group_keys(frame["particle"], frame["wall"]).tolist()))
     for index, (particle, wall) in enumerate(pairs):
@@ -162,8 +166,8 @@ def pair_maps(
         runs = _run_series(frame[mask], fluids[mask], regimes[mask])
         wet = [densities[f] for f in set(fluids[mask].tolist()) if f in densities]
         figure = regime_map_figure(
-            catalog.material_record(catalog.get_material(session, particle)),
-            catalog.material_record(catalog.get_material(session, wall)),
+            catalog_rows.material_record(catalog_rows.get_material_row(connection, particle)),
+            catalog_rows.material_record(catalog_rows.get_material_row(connection, wall)),
             float(np.nanmedian(frame.loc[mask, "diameter_m"].to_numpy(float))),
             float(np.median(wet)) if wet else math.nan,
             critical_stokes,
