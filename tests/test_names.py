@@ -323,3 +323,11 @@ def test_listed_csv_cannot_run_as_a_spreadsheet_formula(cli, db: str) -> None:
     shown = json.loads(cli("materials", "list", "--format", "json", db=db).stdout)
     assert '=HYPERLINK("http://x")' in {m["name"] for m in shown}  # stored as typed
     assert all(not r["density_kg_m3"].startswith("'") for r in rows)
+
+
+def test_names_are_printed_as_typed_not_as_emoji(cli, db) -> None:
+    """Rich's console turned ``:smile:`` in a dataset name into 😄 in the import's
+    confirmation; a name is data, printed as typed."""
+    result = cli("collisions", "import", str(EXAMPLE), "--dataset", ":smile: [b]x[/b]", db=db)
+    assert result.exit_code == 0, result.stderr
+    assert "into dataset :smile: [b]x[/b] 1.0.0" in result.stdout
