@@ -202,9 +202,10 @@ def gap_viscosity(
     """
     from granudb.analysis.fits import WALTON_INPUTS, group_frames
 
-    inputs = [*WALTON_INPUTS, *_MODEL_INPUTS, "viscosity_pa_s", "roughness_exceeds_gap"]
-    frame = frame[[c for c in dict.fromkeys(inputs) if c in frame]]
+    inputs = dict.fromkeys(
+        [*WALTON_INPUTS, *_MODEL_INPUTS, "viscosity_pa_s", "roughness_exceeds_gap"]
+    )
     return [  # dry runs (no fluid) are in no group
         _fit_group(key, group, fluids.get(key[3]), resamples, seed)
-        for key, group in group_frames(frame, GROUP)
+        for key, group in group_frames(frame, GROUP, [c for c in inputs if c not in GROUP])
     ]

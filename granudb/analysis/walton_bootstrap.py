@@ -47,7 +47,7 @@ BLOCK_RUNS = 128
 #: Resamples × padded runs per batch (bounds memory at a few tens of MB).
 BATCH_CELLS = 1 << 21
 #: Candidate blocks × BLOCK_RUNS per refinement chunk.
-REFINE_CELLS = 1 << 19
+REFINE_CELLS = 1 << 17
 # series: x², xy, y², c², dc, d², e (d = x − y)
 XX, XY, YY, CC, DC, DD, EE = range(7)
 
