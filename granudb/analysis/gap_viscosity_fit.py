@@ -94,8 +94,9 @@ def _bootstrap(measured: np.ndarray, g: np.ndarray, resamples: int, seed: int) -
     series = np.stack([measured * g, g * g], axis=1)
     batch = max(1, resampling.BATCH_CELLS // n)
     out = []
+    weights = np.zeros((min(batch, resamples), n))  # reused by every batch
     for start in range(0, resamples, batch):
-        sums = resampling.draw_counts(rng, min(batch, resamples - start), n, n) @ series
+        sums = resampling.draw_counts(rng, min(batch, resamples - start), n, n, weights) @ series
         q = sums[:, 0] / sums[:, 1]
         out.append(np.where(q > 0, q, np.nan) ** 3.5)
     return np.concatenate(out)
