@@ -106,19 +106,28 @@ def draw_counts(
     return weights
 
 
+def _nth_drawn(counts: np.ndarray, need: int) -> np.ndarray:
+    """Index of the ``need``-th drawn run (count > 0) of each row (0 for a row with fewer).
+
+    A resample draws about 63 % of the runs, so the ``need``-th drawn run is nearly always
+    among the first few: each row is looked at over a short window first, and only the
+    (rare) rows without ``need`` drawn runs there over their whole length."""
+    window = min(counts.shape[1], 64)
+    seen = np.cumsum(counts[:, :window] > 0, axis=1)
+    found = np.argmax(seen >= need, axis=1)
+    short = np.flatnonzero(seen[:, -1] < need) if window else np.arange(len(counts))
+    if short.size:
+        found[short] = np.argmax(np.cumsum(counts[short] > 0, axis=1) >= need, axis=1)
+    return found
+
+
 def _allowed(w: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(lo, hi, distinct): splits k ∈ [lo, hi] leave ≥ MIN_RUNS_PER_LINE distinct runs on
     each line; ``distinct`` counts the distinct runs drawn."""
-    drawn = w[:, :n] > 0
-    rows = np.arange(len(w))
     need = core.MIN_RUNS_PER_LINE
-    ahead, behind = drawn.copy(), drawn[:, ::-1].copy()
-    for _ in range(need - 1):  # knock out the first (last) drawn runs
-        ahead[rows, np.argmax(ahead, axis=1)] = False
-        behind[rows, np.argmax(behind, axis=1)] = False
-    lo = np.argmax(ahead, axis=1) + 1  # the need-th drawn run stays on the sticking line
-    hi = n - 1 - np.argmax(behind, axis=1)  # the need-th last drawn run starts the sliding one
-    distinct = np.count_nonzero(drawn, axis=1)
+    lo = _nth_drawn(w[:, :n], need) + 1  # the need-th drawn run stays on the sticking line
+    hi = n - 1 - _nth_drawn(w[:, n - 1 :: -1], need)  # the need-th last starts the sliding one
+    distinct = np.count_nonzero(w[:, :n], axis=1)
     empty = distinct < 2 * need
     lo[empty], hi[empty] = n, 0
     return lo, hi, distinct
