@@ -124,10 +124,15 @@ class CollisionQuery:
 
 
 def select_collisions(
-    session: Any, query: CollisionQuery, *, columns: Sequence[str] | None = None
+    session: Any,
+    query: CollisionQuery,
+    *,
+    columns: Sequence[str] | None = None,
+    shared_text: bool = False,
 ) -> Any:
     """The collisions matching ``query``, with every derived column (a DataFrame, SI,
-    units in ``attrs["units"]``); with ``columns``, only those (in that order).
+    units in ``attrs["units"]``); with ``columns``, only those (in that order);
+    ``shared_text``: see ``collision_table``.
 
     The query's conditions on derived values are applied chunk by chunk as the runs are
     read and derived, so neither the rows left out nor the columns not asked for are ever
@@ -135,6 +140,7 @@ def select_collisions(
     query.check()
     return collision_table(
         session,
+        shared_text=shared_text,
         dataset=query.dataset,
         version=query.version,
         particle=query.particle,
@@ -146,25 +152,29 @@ def select_collisions(
     )
 
 
-def _matches(frame: Any, query: CollisionQuery) -> np.ndarray:
-    """Which rows of ``frame`` (every derived column) satisfy the query's conditions."""
-    import pandas as pd
-
-    keep = pd.Series(True, index=frame.index)
-    st = frame["normal_stokes_number"]
-    if query.min_normal_stokes is not None:
-        keep &= st >= query.min_normal_stokes
-    if query.max_normal_stokes is not None:
-        keep &= st <= query.max_normal_stokes
-    if query.angle_range is not None:
-        keep &= frame["incidence_angle_rad"].between(*query.angle_range)
+def _matches(chunk: dict[str, np.ndarray], query: CollisionQuery) -> np.ndarray:
+    """Which rows of ``chunk`` (every derived column, as arrays) satisfy the query's
+    conditions (a missing value satisfies none, a missing flag counts as its opposite)."""
+    keep = np.ones(len(chunk["normal_stokes_number"]), dtype=bool)
+    st = chunk["normal_stokes_number"]
+    with np.errstate(invalid="ignore"):
+        if query.min_normal_stokes is not None:
+            keep &= st >= query.min_normal_stokes
+        if query.max_normal_stokes is not None:
+            keep &= st <= query.max_normal_stokes
+        if query.angle_range is not None:
+            angle = chunk["incidence_angle_rad"]
+            keep &= (angle >= query.angle_range[0]) & (angle <= query.angle_range[1])
     if query.regime is not None:
-        keep &= frame["tangential_regime"] == query.regime
+        keep &= np.asarray(chunk["tangential_regime"] == query.regime, dtype=bool)
     for flag in ("roughness_exceeds_gap", "rebound_expected"):
         wanted = getattr(query, flag)
         if wanted is not None:
-            keep &= frame[flag].fillna(not wanted).astype(bool) == wanted
-    return keep.to_numpy(dtype=bool)
+            import pandas as pd
+
+            values = pd.Series(chunk[flag], copy=False)
+            keep &= (values.fillna(not wanted).astype(bool) == wanted).to_numpy(dtype=bool)
+    return keep
 
 
 def collision_table(
@@ -172,15 +182,21 @@ def collision_table(
     *,
     critical_stokes: float = 10.0,
     columns: Sequence[str] | None = None,
-    where: Callable[[Any], np.ndarray] | None = None,
+    where: Callable[[dict[str, np.ndarray]], np.ndarray] | None = None,
+    shared_text: bool = False,
     **filters: Any,
 ) -> Any:
     """Measured collisions with every derived column, as a pandas DataFrame (SI).
 
     ``filters``: dataset, version, particle, wall, fluid ("dry" for none). ``columns``:
-    keep only these (in this order); ``where``: a function of a chunk's frame giving the
-    rows to keep. Both act on each chunk of runs as it is derived (``iter_collisions``),
-    which bounds the memory of a million runs to the columns asked for.
+    keep only these (in this order); ``where``: a function of a chunk's columns (a dict of
+    arrays) giving the rows to keep. Both act on each chunk of runs as it is derived
+    (``iter_collisions``), which bounds the memory of a million runs to the columns asked
+    for. ``shared_text``: text columns stay object columns holding one string object per
+    distinct value (the same cells; missing text is NaN where the column holds names, as
+    pandas' string dtype shows it), instead of pandas' string dtype, which holds the text
+    in Arrow buffers and makes a new Python string per cell each time a column is read
+    as objects: a report reads its group columns that way several times.
     """
     import pandas as pd
 
@@ -192,17 +208,23 @@ def collision_table(
     out = _Columns(count_collisions(session, **chunk_filters))
     text = columns is None or bool({"run", "notes"} & set(columns))
     for stored in iter_collisions(session, text=text, **filters):
-        frame = _derive_stored(stored, fluids, critical_stokes)
+        chunk = _derive_stored(stored, fluids, critical_stokes)
         del stored
-        keep = where(frame) if where is not None else None
-        names = list(frame.columns) if columns is None else [c for c in columns if c in frame]
-        out.append({c: _values(frame[c]) for c in names}, keep)
-        del frame
+        keep = where(chunk) if where is not None else None
+        names = list(chunk) if columns is None else [c for c in columns if c in chunk]
+        out.append({c: _values(chunk[c]) for c in names}, keep)
+        del chunk
     if out.names is None:
         empty = pd.DataFrame({c: [] for c in (WIDE_COLUMNS if columns is None else columns)})
         empty.attrs["units"] = units_of(empty.columns)
         return empty
-    table = pd.DataFrame(out.arrays(), copy=False)
+    arrays = out.arrays()
+    if shared_text:
+        arrays = {
+            name: pd.Series(values, dtype=object, copy=False) if values.dtype == object else values
+            for name, values in arrays.items()
+        }
+    table = pd.DataFrame(arrays, copy=False)
     table.attrs["units"] = units_of(table.columns)
     return table
 
@@ -249,15 +271,20 @@ def _values(column: Any) -> np.ndarray:
     pandas 3 keeps text in Arrow and ``to_numpy()`` makes a new Python string for every
     cell: a million runs' six name and verdict columns were about 300 MB held until the
     table was built (issue 17: memory bounded). Factorizing first makes one string per
-    distinct value; the cells and the missing value (the dtype's own) are what
-    ``to_numpy()`` gives.
+    distinct value. The cells and the missing value are what pandas would give: for a
+    column (a Series, or an object array as pandas would hold it) of text, NaN (the
+    string dtype's); for one of other objects (flags a blank row leaves empty), None.
     """
     if column.dtype.kind in "biufcmM":
-        return column.to_numpy()
+        return np.asarray(column)
     import pandas as pd
 
     codes, distinct = pd.factorize(column, use_na_sentinel=True)
-    missing = getattr(column.dtype, "na_value", None)
+    if isinstance(column, np.ndarray):
+        text = len(distinct) > 0 and all(isinstance(value, str) for value in distinct)
+        missing = np.nan if text else None
+    else:
+        missing = getattr(column.dtype, "na_value", None)
     lookup = np.array([*distinct, missing], dtype=object)  # code −1 (missing) → last
     return lookup[codes]
 
@@ -271,10 +298,12 @@ def _floats(frame: Any, name: str) -> np.ndarray:
     return pd.to_numeric(values, errors="coerce").to_numpy(dtype=float)
 
 
-def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) -> Any:
-    """One chunk of stored runs (``iter_collisions``) with every derived column."""
-    import pandas as pd
-
+def _derive_stored(
+    stored: Any, fluids: dict[int, Any], critical_stokes: float
+) -> dict[str, np.ndarray]:
+    """One chunk of stored runs (``iter_collisions``) with every derived column, as arrays
+    in presentation order (no DataFrame per chunk: pandas would turn every text column into
+    Arrow strings, to be turned back when the chunk is kept)."""
     from granudb.physics.derive import derive
 
     c = {name: _floats(stored, name) for name in COLLISION_MEASURED}
@@ -285,11 +314,7 @@ def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) 
         for p in ("particle", "wall")
         for name in _MATERIAL
     }
-    barus = (
-        pd.Series(fluid_ids)
-        .map({i: f.pressure_viscosity_pa_inv for i, f in fluids.items()})
-        .to_numpy(dtype=float)
-    )
+    barus = _per_fluid(fluids, fluid_ids, "pressure_viscosity_pa_inv")
     with physics_refusal():
         result = derive(
             **props,
@@ -303,47 +328,58 @@ def _derive_stored(stored: Any, fluids: dict[int, Any], critical_stokes: float) 
             pressure_viscosity_pa_inv=barus,
             critical_stokes=critical_stokes,
         )
-    frame = pd.DataFrame(
-        {
-            **{k: np.asarray(stored[k], dtype=object) for k in ("dataset", "version")},
-            **{k: np.asarray(stored[k], dtype=object) for k in ("run",) if k in stored},
-            **{k: np.asarray(stored[k], dtype=object) for k in ("particle", "wall")},
-            "fluid": pd.Series(fluid_ids)
-            .map({i: f.name for i, f in fluids.items()})
-            .to_numpy(dtype=object),
-            **c,
-            "viscosity_pa_s": viscosity,
-            "particle_density_kg_m3": props["particle_density_kg_m3"],
-            **{k: np.asarray(stored[k], dtype=object) for k in ("notes",) if k in stored},
-        }
-    )
+    chunk: dict[str, np.ndarray] = {
+        **{k: np.asarray(stored[k], dtype=object) for k in ("dataset", "version")},
+        **{k: np.asarray(stored[k], dtype=object) for k in ("run",) if k in stored},
+        **{k: np.asarray(stored[k], dtype=object) for k in ("particle", "wall")},
+        "fluid": _per_fluid(fluids, fluid_ids, "name"),
+        **c,
+        "viscosity_pa_s": viscosity,
+        "particle_density_kg_m3": props["particle_density_kg_m3"],
+        **{k: np.asarray(stored[k], dtype=object) for k in ("notes",) if k in stored},
+    }
     for name, values in result.items():
-        if name not in frame:
-            frame[name] = values
-    frame["derivation_note"] = reason
-    _blank_underivable(frame, reason != None)  # noqa: E711 - elementwise on an object array
-    ordered = [
-        *(n for n in WIDE_COLUMNS if n in frame),
-        *(n for n in frame if n not in WIDE_COLUMNS),
-    ]
-    return frame[ordered]
+        if name not in chunk:
+            chunk[name] = np.asarray(values)
+    chunk["derivation_note"] = reason
+    _blank_underivable(chunk, reason != None)  # noqa: E711 - elementwise on an object array
+    return {
+        **{n: chunk[n] for n in WIDE_COLUMNS if n in chunk},
+        **{n: values for n, values in chunk.items() if n not in WIDE_COLUMNS},
+    }
 
 
-def _blank_underivable(frame: Any, bad: np.ndarray) -> None:
+def _per_fluid(fluids: dict[int, Any], fluid_ids: np.ndarray, attribute: str) -> np.ndarray:
+    """Each run's fluid ``attribute`` ("name": an object array, None for a dry run or an
+    unknown id; else floats, NaN there)."""
+    ids = np.array(sorted(fluids), dtype=np.int64)
+    values = [getattr(fluids[i], attribute) for i in ids.tolist()]
+    if attribute == "name":
+        table = np.array([*values, None], dtype=object)
+    else:
+        table = np.array([*(np.nan if v is None else v for v in values), np.nan], dtype=float)
+    at = np.searchsorted(ids, fluid_ids)
+    found = at < len(ids)
+    found[found] = ids[at[found]] == fluid_ids[found]
+    return table[np.where(found, at, len(ids))]
+
+
+def _blank_underivable(chunk: dict[str, np.ndarray], bad: np.ndarray) -> None:
     """Rows without a fluid state keep their measurements but no derived value (a wrong
-    number is worse than none)."""
+    number is worse than none): None in object and flag columns, NaN in number columns."""
     if not bad.any():
         return
     from granudb.vocabulary import DERIVED_TERMS
 
     for name in DERIVED_TERMS:
-        if name in frame:
-            column = frame[name]
-            frame[name] = (
-                column.astype(object).where(~bad, None)
-                if column.dtype == object or column.dtype == bool
-                else column.where(~bad, np.nan)
-            )
+        if name in chunk:
+            column = chunk[name]
+            if column.dtype == object or column.dtype == bool:
+                column = column.astype(object)
+                column[bad] = None
+            else:
+                column = np.where(bad, np.nan, column)
+            chunk[name] = column
 
 
 def units_of(columns: Any) -> dict[str, str]:

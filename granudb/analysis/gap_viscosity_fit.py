@@ -94,8 +94,9 @@ def _bootstrap(measured: np.ndarray, g: np.ndarray, resamples: int, seed: int) -
     series = np.stack([measured * g, g * g], axis=1)
     batch = max(1, resampling.BATCH_CELLS // n)
     out = []
+    weights = np.zeros((min(batch, resamples), n))  # reused by every batch
     for start in range(0, resamples, batch):
-        sums = resampling.draw_counts(rng, min(batch, resamples - start), n, n) @ series
+        sums = resampling.draw_counts(rng, min(batch, resamples - start), n, n, weights) @ series
         q = sums[:, 0] / sums[:, 1]
         out.append(np.where(q > 0, q, np.nan) ** 3.5)
     return np.concatenate(out)
@@ -202,9 +203,10 @@ def gap_viscosity(
     """
     from granudb.analysis.fits import WALTON_INPUTS, group_frames
 
-    inputs = [*WALTON_INPUTS, *_MODEL_INPUTS, "viscosity_pa_s", "roughness_exceeds_gap"]
-    frame = frame[[c for c in dict.fromkeys(inputs) if c in frame]]
+    inputs = dict.fromkeys(
+        [*WALTON_INPUTS, *_MODEL_INPUTS, "viscosity_pa_s", "roughness_exceeds_gap"]
+    )
     return [  # dry runs (no fluid) are in no group
         _fit_group(key, group, fluids.get(key[3]), resamples, seed)
-        for key, group in group_frames(frame, GROUP)
+        for key, group in group_frames(frame, GROUP, [c for c in inputs if c not in GROUP])
     ]

@@ -168,9 +168,9 @@ def _fit(model: str, st: np.ndarray, e: np.ndarray, e_dry: float | None) -> tupl
     return e_dry, math.nan, float(values[0]), float(np.sqrt(covariance[0, 0]))
 
 
-def _group_row(model: str, key: tuple, group: Any, dry_e: np.ndarray) -> dict[str, Any]:
-    st = group["normal_stokes_number"].to_numpy(dtype=float)
-    e = group["normal_restitution"].to_numpy(dtype=float)
+def _group_row(
+    model: str, key: tuple, st: np.ndarray, e: np.ndarray, dry_e: np.ndarray
+) -> dict[str, Any]:
     fixed = float(min(np.mean(dry_e), E_DRY_MAX)) if dry_e.size else None
     row: dict[str, Any] = {
         "dataset": key[0],
@@ -227,13 +227,18 @@ def restitution(frame: Any, model: str = "threshold") -> list[dict[str, Any]]:
 
     if model not in RESTITUTION_MODELS:
         raise ValidationError("--model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}")
-    frame = frame[[c for c in _INPUTS if c in frame]]  # a subset copies only these
-    finite_e = np.isfinite(frame["normal_restitution"])
-    immersed = frame[np.isfinite(frame["normal_stokes_number"]) & finite_e]
-    dry = frame[frame["fluid"].isna() & finite_e] if "fluid" in frame else frame.iloc[0:0]
+    st = frame["normal_stokes_number"].to_numpy(dtype=float)
+    e = frame["normal_restitution"].to_numpy(dtype=float)
+    finite_e = np.isfinite(e)
+    immersed = np.isfinite(st) & finite_e
+    dry = finite_e & (frame["fluid"].isna().to_numpy() if "fluid" in frame else False)
+    # Each group's row positions (frame order) from the key columns alone: no copy of the
+    # frame, of its immersed or dry rows, or of the frame sorted by group.
+    groups = frame.groupby([frame[k] for k in _INPUTS[:3]], sort=True).indices
     results = []
-    for key, group in immersed.groupby(["dataset", "particle", "wall"], sort=True):
-        same = (dry["dataset"] == key[0]) & (dry["particle"] == key[1]) & (dry["wall"] == key[2])
-        dry_e = dry.loc[same, "normal_restitution"].to_numpy(dtype=float)
-        results.append(_group_row(model, key, group, dry_e))
+    for key in sorted(groups):
+        rows = groups[key]
+        runs = rows[immersed[rows]]
+        if runs.size:
+            results.append(_group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]]))
     return results

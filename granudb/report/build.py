@@ -211,7 +211,7 @@ def add_collisions(session: Any, report: dict[str, Any], query: Any, *, pair: bo
     from granudb.analysis.fluid_state import fluid_model
     from granudb.db import catalog, sources
 
-    frame = select_collisions(session, query, columns=REPORT_COLUMNS)
+    frame = select_collisions(session, query, columns=REPORT_COLUMNS, shared_text=True)
     if frame.empty:
         if not pair:
             report["flags"].append(blocks.no_runs_flag(query.describe()))
