@@ -12,7 +12,8 @@ only once the reader has read the whole file (it is hashed while it is parsed, o
 then "was this file imported before?" is answered at the end, and at the first run that is
 already in the dataset (a repeated file's first row), before the same transaction commits.
 When the dataset held no runs before, its content hash is computed from the inserted
-arrays (``granudb.db.bulk_hash``), the same value ``datasets.content_hash`` gives.
+arrays (``granudb.db.bulk_hash``, formatting each block on a worker thread while it is
+inserted), the same value ``datasets.content_hash`` gives.
 """
 
 from __future__ import annotations
@@ -225,28 +226,32 @@ def store_collisions(
         names = NameIndex(session)
         ranges = FluidRanges(session)
         seen = RunIndex(session.scalars(select(Collision.run).filter_by(dataset_id=dataset.id)))
-        hasher = BlockHasher() if not len(seen) else None
-        for frame in frames:
-            block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
-            ranges.check(block, target.dataset)
-            rows += _store_block(session, dataset, target, block, names, seen, hasher)
-            if progress is not None:
-                progress(rows)
-        if not target.file_sha256:
-            _refuse_earlier_import(session, dataset, target)
-        session.add(
-            CollisionImport(
-                dataset_id=dataset.id,
-                file_sha256=target.sha256(),
-                file_name=target.file_name[:500],
-                rows=rows,
+        hasher = BlockHasher(names.material_by_id, names.fluid_by_id) if not len(seen) else None
+        try:
+            for frame in frames:
+                block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
+                ranges.check(block, target.dataset)
+                rows += _store_block(session, dataset, target, block, names, seen, hasher)
+                if progress is not None:
+                    progress(rows)
+            if not target.file_sha256:
+                _refuse_earlier_import(session, dataset, target)
+            session.add(
+                CollisionImport(
+                    dataset_id=dataset.id,
+                    file_sha256=target.sha256(),
+                    file_name=target.file_name[:500],
+                    rows=rows,
+                )
             )
-        )
-        if hasher is None:
-            datasets.update_content_hash(session, dataset)
-        else:
-            dataset.content_hash = hasher.hexdigest(names.material_by_id, names.fluid_by_id)
-            session.flush()
+            if hasher is None:
+                datasets.update_content_hash(session, dataset)
+            else:
+                dataset.content_hash = hasher.hexdigest()
+                session.flush()
+        finally:
+            if hasher is not None:
+                hasher.close()
     return rows
 
 
