@@ -82,7 +82,8 @@ class BlockHasher:
     columns (float64, NaN = no value; a column absent from ``values`` is empty) and the
     notes (None or a list with None for no note), and hands the formatting to the worker
     thread; nothing it is given may change afterwards. ``close`` stops the worker (an
-    import that fails does not wait for texts it will never hash).
+    import that fails does not wait for texts it will never hash). ``keeps_negative_zero``
+    is False where the database reads a stored -0.0 back as 0.0 (SQLite).
 
     Kept per row: the run label (the caller's array, not copied), the text of the floats
     and notes, and one 32-bit code for the (particle, wall, fluid) names, whose text is
@@ -90,10 +91,17 @@ class BlockHasher:
     less than keeping the names' text).
     """
 
-    def __init__(self, material_names: dict[int, str], fluid_names: dict[int, str]) -> None:
+    def __init__(
+        self,
+        material_names: dict[int, str],
+        fluid_names: dict[int, str],
+        *,
+        keeps_negative_zero: bool = True,
+    ) -> None:
         from concurrent.futures import ThreadPoolExecutor
 
         self._names = _Names(material_names, fluid_names)
+        self._signed = keeps_negative_zero
         self._runs: list[Any] = []
         self._texts: list[Any] = []
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="granudb-hash")
@@ -107,6 +115,8 @@ class BlockHasher:
     ) -> None:
         """Queue one block's rows for formatting (in the order the rows are inserted)."""
         self._runs.append(runs)
+        if not self._signed:
+            values = {c: _unsigned_zero(v) for c, v in values.items()}
         self._texts.append(self._pool.submit(_row_texts, self._names, ids, values, notes))
 
     def close(self) -> None:
@@ -244,6 +254,13 @@ def _row_texts(
             pa.array(has_target), pc.binary_join_element_wise(kept, target, "\x1f"), kept
         )
     return names.encode(ids), pc.binary_join_element_wise(kept, "", "\x1e")
+
+
+def _unsigned_zero(values: Any) -> Any:
+    """``values`` with -0.0 as 0.0: SQLite stores an integral REAL as an integer, so a
+    stored -0.0 reads back as 0.0, and the hash is of what the database gives back."""
+    values = np.asarray(values, dtype=np.float64)
+    return values + 0.0 if (values == 0).any() else values
 
 
 def _column(values: Any) -> Any:

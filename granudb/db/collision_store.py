@@ -226,7 +226,13 @@ def store_collisions(
         names = NameIndex(session)
         ranges = FluidRanges(session)
         seen = RunIndex(session.scalars(select(Collision.run).filter_by(dataset_id=dataset.id)))
-        hasher = BlockHasher(names.material_by_id, names.fluid_by_id) if not len(seen) else None
+        hasher = None
+        if not len(seen):
+            hasher = BlockHasher(
+                names.material_by_id,
+                names.fluid_by_id,
+                keeps_negative_zero=session.get_bind().dialect.name != "sqlite",
+            )
         try:
             for frame in frames:
                 block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
