@@ -18,6 +18,14 @@ per-statement work as well (0.4-0.55 s alone, 1.0-1.7 s beside either).
 
 PostgreSQL: ``COPY … FROM STDIN (FORMAT csv)`` of the block written by Arrow, whose
 float text is the shortest that reads back as the same double.
+
+``PlainIndexes``: on SQLite a large load into a small table drops the collisions table's
+non-unique indexes and creates them again after the last row, inside the same
+transaction (SQLite's DDL is transactional: a failed or killed import leaves them as they
+were). Creating both from sorted keys took 1.0-1.1 s for a million rows where updating them
+row by row took 1.7-2.3 s (benchmarks/import_speed.py's rows); but creating them reads
+every row already in the table too, so it is done only when ``rebuild_pays``. The unique
+(dataset, run) index is never dropped: it is a constraint.
 """
 
 from __future__ import annotations
@@ -42,6 +50,53 @@ INSERT_SLICE_ROWS = 20_000
 #: Rows in one SQLite ``INSERT … VALUES (…), (…), …`` (within SQLite's limit on bound
 #: parameters, 32,766 by default since 3.32; the statement is cut to fit a lower one).
 ROWS_PER_STATEMENT = 50
+
+
+#: The smallest load for which the plain indexes are rebuilt rather than updated.
+REBUILD_MIN_ROWS = 100_000
+
+
+def rebuild_pays(expected_rows: int, existing_rows: int) -> bool:
+    """Whether to rebuild the plain indexes after loading about ``expected_rows`` rows into
+    a table holding at most ``existing_rows``: creating them costs about as much per row
+    (old and new) as updating them costs per new row, so only a load at least as large as
+    the table gains, and never a small one (10 million rows already stored and a
+    1,000-row import: updating wins by far)."""
+    return expected_rows >= max(REBUILD_MIN_ROWS, existing_rows)
+
+
+class PlainIndexes:
+    """The collisions table's non-unique indexes, dropped for a bulk load and created again
+    (their own SQL, as the schema has them) before the transaction commits (SQLite)."""
+
+    def __init__(self, session: Any) -> None:
+        self.session = session
+        self.statements: list[str] = []
+
+    def existing_rows(self) -> int:
+        """At most the rows in the table, without counting them (ids start at 1)."""
+        connection = self.session.connection()
+        return int(connection.exec_driver_sql("SELECT max(id) FROM collisions").scalar() or 0)
+
+    def drop(self) -> None:
+        connection = self.session.connection()
+        plain = [
+            row[1]
+            for row in connection.exec_driver_sql("PRAGMA index_list(collisions)")
+            if not row[2] and row[3] == "c"  # not unique, made by CREATE INDEX
+        ]
+        for name in plain:
+            sql = connection.exec_driver_sql(
+                "SELECT sql FROM sqlite_master WHERE type = 'index' AND name = ?", (name,)
+            ).scalar()
+            connection.exec_driver_sql(f'DROP INDEX "{name}"')
+            self.statements.append(sql)
+
+    def create(self) -> None:
+        connection = self.session.connection()
+        for sql in self.statements:
+            connection.exec_driver_sql(sql)
+        self.statements = []
 
 
 @dataclass

@@ -31,9 +31,11 @@ from granudb.db.bulk_insert import (
     BULK_CACHE_KIB,
     CollisionBlock,
     NameColumn,
+    PlainIndexes,
     block_from_frame,
     frame_columns,
     insert_rows,
+    rebuild_pays,
 )
 from granudb.db.models import (
     Collision,
@@ -64,6 +66,8 @@ class ImportTarget:
     file_sha256: str
     file_name: str
     digest: Callable[[], str] | None = None
+    #: About how many rows the file holds (0 = unknown), for ``bulk_insert.rebuild_pays``.
+    expected_rows: int = 0
 
     def sha256(self) -> str:
         return self.file_sha256 or (self.digest() if self.digest is not None else "")
@@ -233,6 +237,7 @@ def store_collisions(
                 names.fluid_by_id,
                 keeps_negative_zero=session.get_bind().dialect.name != "sqlite",
             )
+        indexes = _indexes_to_rebuild(session, target)
         try:
             for frame in frames:
                 block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
@@ -242,6 +247,8 @@ def store_collisions(
                     progress(rows)
             if not target.file_sha256:
                 _refuse_earlier_import(session, dataset, target)
+            if indexes is not None:
+                indexes.create()
             session.add(
                 CollisionImport(
                     dataset_id=dataset.id,
@@ -259,6 +266,17 @@ def store_collisions(
             if hasher is not None:
                 hasher.close()
     return rows
+
+
+def _indexes_to_rebuild(session: Any, target: ImportTarget) -> PlainIndexes | None:
+    """The plain indexes, dropped until the last row is in, when that pays (SQLite)."""
+    if session.get_bind().dialect.name != "sqlite" or not target.expected_rows:
+        return None
+    indexes = PlainIndexes(session)
+    if not rebuild_pays(target.expected_rows, indexes.existing_rows()):
+        return None
+    indexes.drop()
+    return indexes
 
 
 class RunIndex:

@@ -102,6 +102,18 @@ def file_sha256(path: Path) -> str:
     return digest.hexdigest()
 
 
+def estimate_rows(path: Path, sample_bytes: int = 1 << 16) -> int:
+    """About how many rows the file holds: its size over the mean length of the lines in
+    its first ``sample_bytes`` (a guess for deciding how to load, never for checking)."""
+    size = path.stat().st_size
+    with path.open("rb") as handle:
+        sample = handle.read(sample_bytes)
+    lines = sample.count(b"\n")
+    if lines <= 1 or len(sample) >= size:
+        return max(lines - 1, 0)
+    return int(size / (len(sample) / lines))
+
+
 def _first(mask: Any) -> int:
     return int(np.flatnonzero(np.asarray(mask))[0])
 
@@ -304,7 +316,17 @@ def import_collisions(
                 blocks.close()
                 return stream.hexdigest()
 
-            target = ImportTarget(dataset, version, source, title, license, "", name, digest)
+            target = ImportTarget(
+                dataset,
+                version,
+                source,
+                title,
+                license,
+                "",
+                name,
+                digest,
+                expected_rows=estimate_rows(opened.path),
+            )
             try:
                 rows = store_collisions(database, target, blocks, progress=progress)
             finally:
