@@ -40,9 +40,10 @@ from granudb.vocabulary.text import (
 
 __all__ = ["HashingFile", "Prefetched", "arrow_memory", "read_blocks"]
 
-#: Bytes read and parsed at a time (about 90,000 rows), and the block each of Arrow's
-#: parser threads takes of them.
-READ_BYTES = 8 << 20
+#: Bytes read and parsed at a time (about 45,000 rows, one chunk: 8 MB held about 20 MB
+#: more at the million-row import's peak, benchmarks/import_speed.py), and the block each
+#: of Arrow's parser threads takes of them.
+READ_BYTES = 4 << 20
 BLOCK_BYTES = 1 << 20
 
 
