@@ -105,6 +105,7 @@ class BlockHasher:
         self._runs: list[Any] = []
         self._texts: list[Any] = []
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="granudb-hash")
+        self._digest: Any = None
 
     def add(
         self,
@@ -123,15 +124,27 @@ class BlockHasher:
         """Stop the worker; formatting not yet started is dropped."""
         self._pool.shutdown(wait=True, cancel_futures=True)
 
+    def start(self) -> None:
+        """Begin the digest on the worker thread, after the blocks queued before it, so
+        the caller works meanwhile (the import creates its indexes: SQLite releases the
+        GIL for the whole statement)."""
+        if self._digest is None:
+            self._digest = self._pool.submit(self._compute)
+
     def hexdigest(self) -> str:
         """sha256 of the collected rows in ``datasets.content_hash``'s canonical form."""
+        self.start()
+        try:
+            return self._digest.result()
+        finally:
+            self.close()
+
+    def _compute(self) -> str:
+        """The digest (on the worker thread: every block before it is formatted)."""
         import pyarrow as pa
         import pyarrow.compute as pc
 
-        try:
-            done = [future.result() for future in self._texts]
-        finally:
-            self.close()
+        done = [future.result() for future in self._texts]
         self._texts = []
         digest = hashlib.sha256()
         sizes = [len(texts) for _, texts in done]

@@ -248,6 +248,8 @@ def store_collisions(
             if not target.file_sha256:
                 _refuse_earlier_import(session, dataset, target)
             if indexes is not None:
+                if hasher is not None:
+                    hasher.start()  # hashed on its thread while SQLite builds the indexes
                 indexes.create()
             session.add(
                 CollisionImport(
