@@ -89,13 +89,15 @@ def test_rows_many_to_a_statement_are_stored_whole_and_in_file_order(
     with engine.connect() as connection:
         stored = connection.execute(
             text(
-                "SELECT run, v_n_in_m_s, wall_v_n_in_m_s, temperature_c, notes "
-                "FROM collisions ORDER BY id"
+                "SELECT run, v_n_in_m_s, wall_v_n_in_m_s, temperature_c, notes, diameter_m, "
+                "omega_out_rad_s FROM collisions ORDER BY id"
             )
         ).all()
     engine.dispose()
     assert [r[0] for r in stored] == [row[0] for row in rows]
-    for row, (_, v_n, wall_v_n, temperature, notes) in zip(rows, stored, strict=True):
+    # Columns the same in every row are bound once per statement: still in every row.
+    assert {(r[5], r[6]) for r in stored} == {(0.0127, -5.0)}
+    for row, (_, v_n, wall_v_n, temperature, notes, *_) in zip(rows, stored, strict=True):
         assert math.isclose(v_n, float(row[6]) / 1000, rel_tol=1e-14)
         assert (wall_v_n is None) == (row[15] == "")
         assert (temperature is None) == (row[12] == "")
