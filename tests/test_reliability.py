@@ -95,6 +95,7 @@ def test_sigkill_during_a_large_import_leaves_none_of_it(db: str, tmp_path: Path
     # A million rows (issue 17), through the one-pass import and its bulk insert.
     big = _csv(tmp_path / "big.csv", 1_000_000, "big")
     before = dump_hash(db)
+    indexes = _indexes(db)
     process = _granudb("collisions", "import", str(big), "--dataset", "big", "--db", db)
     # Kill once rows are being written: the write-ahead log has grown past 2 MB (the bulk
     # load's 16 MB page cache spills to it long before the million rows are in).
@@ -111,6 +112,9 @@ def test_sigkill_during_a_large_import_leaves_none_of_it(db: str, tmp_path: Path
         assert connection.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
         assert connection.execute("SELECT count(*) FROM collisions").fetchone()[0] == 0
     assert dump_hash(db) == before
+    # A million rows into an empty table drop the plain indexes until the last row is in
+    # (granudb.db.bulk_insert.PlainIndexes); the killed transaction never dropped them.
+    assert _indexes(db) == indexes and len(indexes) >= 3
     # and the database still works, and the killed import can be run again whole
     again = subprocess.run(
         [sys.executable, "-m", "granudb", "collisions", "import", str(big), "--dataset", "big"]
@@ -122,6 +126,8 @@ def test_sigkill_during_a_large_import_leaves_none_of_it(db: str, tmp_path: Path
     assert again.returncode == 0, again.stderr
     with sqlite3.connect(db) as connection:
         assert connection.execute("SELECT count(*) FROM collisions").fetchone()[0] == 1_000_000
+        assert connection.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+    assert _indexes(db) == indexes
     done = subprocess.run(
         [
             sys.executable,
@@ -140,6 +146,17 @@ def test_sigkill_during_a_large_import_leaves_none_of_it(db: str, tmp_path: Path
         timeout=120,
     )
     assert done.returncode == 0, done.stderr
+
+
+def _indexes(db: str) -> list[tuple[str, str | None]]:
+    """The collisions table's indexes (name, SQL) as the schema has them."""
+    import sqlite3
+
+    with sqlite3.connect(db) as connection:
+        return connection.execute(
+            "SELECT name, sql FROM sqlite_master WHERE type = 'index' "
+            "AND tbl_name = 'collisions' ORDER BY name"
+        ).fetchall()
 
 
 @pytest.mark.sqlite_only

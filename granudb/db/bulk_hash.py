@@ -11,14 +11,18 @@ and joins the fields, and only the rare float ``repr`` writes in exponent form i
 formatted by Python. Tests check the result against ``datasets.content_hash`` of the
 stored rows.
 
-Memory: the arrays of every block are kept until the end (about 100 bytes a row for the
-usual columns), then formatted and hashed ``HASH_BLOCK_ROWS`` rows at a time.
+When: only the sort needs every row, so each block's text after its run label (names,
+floats, notes) is written as soon as the block is added, on one worker thread, while the
+block is inserted (Arrow's kernels release the GIL, and so does SQLite inside each step,
+so the two cores work at once). Formatting after the last insert took about a fifth of a
+million-row import. What is kept is that text (about as large as the float64 arrays it
+replaces: about 100 bytes a row for the usual columns); at the end the labels are sorted
+and the texts gathered in that order and hashed ``HASH_BLOCK_ROWS`` rows at a time.
 """
 
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -28,7 +32,6 @@ from granudb.vocabulary import COLLISION_TARGET
 
 #: Rows formatted at once when hashing; bounds the text held in memory (~5 MB).
 HASH_BLOCK_ROWS = 20_000
-WORKERS = 2
 #: Where Arrow's text of a float is ``repr``'s (plus ".0" when integral): ``repr`` is
 #: positional for 1e-4 <= |x| < 1e16, Arrow for about 1e-7 <= |x| < 1e10; zero is
 #: positional in both. Outside this range Python formats the (rare) value itself.
@@ -41,19 +44,26 @@ def float_texts(values: Any) -> Any:
 
     Arrow's cast writes the shortest round-trip digits, as ``repr`` does; where ``repr``
     switches to exponent form (``1e-05``, ``1e+16``) the few such values are formatted by
-    Python, so every element equals ``repr(float(v))``.
+    Python, so every element equals ``repr(float(v))``. A column holding one value in
+    every row (a diameter, a temperature) is formatted once; the ``.0`` that ``repr``
+    adds to an integral value is looked for only when numpy finds an integral value.
     """
     import pyarrow as pa
     import pyarrow.compute as pc
 
     values = np.asarray(values, dtype=np.float64)
+    bits = values.view(np.int64)
+    if len(values) > 1 and (bits == bits[0]).all():  # bitwise: 0.0 and -0.0 differ
+        return pa.repeat(float_texts(values[:1])[0], len(values))
     missing = np.isnan(values)
     magnitude = np.abs(values)
     positional = (magnitude >= _POSITIONAL_LOW) & (magnitude < _POSITIONAL_HIGH)
     positional |= magnitude == 0
-    text = pc.cast(pa.array(np.where(positional, values, 0.0)), pa.string())
-    integral = pc.invert(pc.match_substring(text, "."))
-    text = pc.if_else(integral, pc.binary_join_element_wise(text, ".0", ""), text)
+    cast = np.where(positional, values, 0.0)
+    text = pc.cast(pa.array(cast), pa.string())
+    if (cast == np.trunc(cast)).any():  # Arrow writes "20" where repr writes "20.0"
+        integral = pc.invert(pc.match_substring(text, "."))
+        text = pc.if_else(integral, pc.binary_join_element_wise(text, ".0", ""), text)
     other = ~positional & ~missing
     if other.any():  # rare: exponent form, formatted by Python
         texts = text.to_numpy(zero_copy_only=False).astype(object)
@@ -64,20 +74,38 @@ def float_texts(values: Any) -> Any:
     return text
 
 
-@dataclass
 class BlockHasher:
-    """Collects the inserted arrays block by block; ``hexdigest`` gives the content hash.
+    """Takes the inserted rows block by block; ``hexdigest`` gives the content hash.
 
-    ``add`` takes the run labels, the resolved material/fluid ids (fluid -1 = dry), the SI
+    ``material_names`` and ``fluid_names`` map ids to names. ``add`` takes the run labels
+    (an Arrow string array), the resolved material/fluid ids (fluid -1 = dry), the SI
     columns (float64, NaN = no value; a column absent from ``values`` is empty) and the
-    notes (None or a list with None for no note).
+    notes (None or a list with None for no note), and hands the formatting to the worker
+    thread; nothing it is given may change afterwards. ``close`` stops the worker (an
+    import that fails does not wait for texts it will never hash). ``keeps_negative_zero``
+    is False where the database reads a stored -0.0 back as 0.0 (SQLite).
+
+    Kept per row: the run label (the caller's array, not copied), the text of the floats
+    and notes, and one 32-bit code for the (particle, wall, fluid) names, whose text is
+    kept once per distinct triple (a million rows name a handful: about 25 bytes a row
+    less than keeping the names' text).
     """
 
-    runs: list[Any] = field(default_factory=list)
-    ids: list[tuple[Any, Any, Any]] = field(default_factory=list)
-    values: list[dict[str, Any]] = field(default_factory=list)
-    notes: list[Any] = field(default_factory=list)
-    sizes: list[int] = field(default_factory=list)
+    def __init__(
+        self,
+        material_names: dict[int, str],
+        fluid_names: dict[int, str],
+        *,
+        keeps_negative_zero: bool = True,
+    ) -> None:
+        from concurrent.futures import ThreadPoolExecutor
+
+        self._names = _Names(material_names, fluid_names)
+        self._signed = keeps_negative_zero
+        self._runs: list[Any] = []
+        self._texts: list[Any] = []
+        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="granudb-hash")
+        self._digest: Any = None
 
     def add(
         self,
@@ -86,108 +114,148 @@ class BlockHasher:
         values: dict[str, Any],
         notes: list[str | None] | None,
     ) -> None:
-        """Keep one block's rows (``runs`` an Arrow string array); empty columns are not
-        kept, so memory is what the file holds."""
-        import pyarrow as pa
+        """Queue one block's rows for formatting (in the order the rows are inserted)."""
+        self._runs.append(runs)
+        if not self._signed:
+            values = {c: _unsigned_zero(v) for c, v in values.items()}
+        self._texts.append(self._pool.submit(_row_texts, self._names, ids, values, notes))
 
-        self.runs.append(runs)
-        self.ids.append(tuple(np.asarray(i, dtype=np.int32) for i in ids))
-        self.values.append(
-            {c: np.asarray(v, dtype=np.float64) for c, v in values.items() if not np.isnan(v).all()}
-        )
-        self.notes.append(None if notes is None else pa.array(notes, type=pa.string()))
-        self.sizes.append(len(runs))
+    def close(self) -> None:
+        """Stop the worker; formatting not yet started is dropped."""
+        self._pool.shutdown(wait=True, cancel_futures=True)
 
-    def _gather(self, name: str, blocks: Any, local: Any) -> Any:
-        """Column ``name`` at the rows given as (block, position in block); None if the
-        column is empty in every block. Gathered from the blocks' own arrays, so no column
-        is ever copied whole."""
-        if not any(name in v for v in self.values):
-            return None
-        out = np.full(len(local), np.nan)
-        for number, values in enumerate(self.values):
-            if name in values:
-                here = blocks == number
-                out[here] = values[name][local[here]]
-        return out
+    def start(self) -> None:
+        """Begin the digest on the worker thread, after the blocks queued before it, so
+        the caller works meanwhile (the import creates its indexes: SQLite releases the
+        GIL for the whole statement)."""
+        if self._digest is None:
+            self._digest = self._pool.submit(self._compute)
 
-    def hexdigest(self, material_names: dict[int, str], fluid_names: dict[int, str]) -> str:
+    def hexdigest(self) -> str:
         """sha256 of the collected rows in ``datasets.content_hash``'s canonical form."""
+        self.start()
+        try:
+            return self._digest.result()
+        finally:
+            self.close()
+
+    def _compute(self) -> str:
+        """The digest (on the worker thread: every block before it is formatted)."""
         import pyarrow as pa
         import pyarrow.compute as pc
 
+        done = [future.result() for future in self._texts]
+        self._texts = []
         digest = hashlib.sha256()
-        total = sum(self.sizes)
+        sizes = [len(texts) for _, texts in done]
+        total = sum(sizes)
         if total == 0:
             return digest.hexdigest()
-        runs = pa.chunked_array(self.runs, type=pa.string()).combine_chunks()
-        self.runs = []
-        order = pc.sort_indices(runs.cast(pa.binary())).to_numpy().astype(np.int64)
-        ids = [np.concatenate([i[k] for i in self.ids]) for k in range(3)]
-        notes = pa.chunked_array(
-            [
-                pa.nulls(n, pa.string()) if part is None else part
-                for part, n in zip(self.notes, self.sizes, strict=True)
-            ],
-            type=pa.string(),
-        ).combine_chunks()
-        names = _name_lookup(material_names, fluid_names)
-        self.notes, self.ids = [], []
-        starts = np.cumsum([0, *self.sizes])
+        codes = np.concatenate([codes for codes, _ in done])
+        texts = [texts for _, texts in done]
+        del done
+        prefixes = pa.array(self._names.prefixes, type=pa.string())
+        runs, self._runs = self._runs, []
+        order = pc.sort_indices(pa.chunked_array(runs, type=pa.string()).cast(pa.binary()))
+        order = order.to_numpy().astype(np.int64)
+        starts = np.cumsum([0, *sizes])
         for start in range(0, total, HASH_BLOCK_ROWS):
             rows = order[start : start + HASH_BLOCK_ROWS]
-            blocks = np.searchsorted(starts, rows, side="right") - 1
-            local = rows - starts[blocks]
-            columns = {c: self._gather(c, blocks, local) for c in COLUMNS}
-            digest.update(_block_bytes(runs, ids, columns, notes, rows, names))
+            plan = _Gather(starts, rows)
+            line = pc.binary_join_element_wise(
+                plan.take(runs), prefixes.take(pa.array(codes[rows])), plan.take(texts), "\x1f"
+            )
+            digest.update(_data(line))
         return digest.hexdigest()
 
 
-def _name_lookup(materials: dict[int, str], fluids: dict[int, str]) -> tuple[Any, Any]:
-    """Arrays indexable by id: material names, fluid names ("" at index 0 for dry = -1+1)."""
-    import pyarrow as pa
+class _Names:
+    """The text of each (particle, wall, fluid) triple of ids met so far, by code.
 
-    material_array = [""] * (max(materials, default=0) + 1)
-    for i, name in materials.items():
-        material_array[i] = name
-    fluid_array = [""] * (max(fluids, default=0) + 2)
-    for i, name in fluids.items():
-        fluid_array[i + 1] = name
-    return pa.array(material_array, pa.string()), pa.array(fluid_array, pa.string())
+    Used by the worker thread only, until ``hexdigest`` reads ``prefixes`` after the
+    worker has finished."""
+
+    def __init__(self, materials: dict[int, str], fluids: dict[int, str]) -> None:
+        self.materials = materials
+        self.fluids = fluids
+        self.codes: dict[tuple[int, int, int], int] = {}
+        self.prefixes: list[str] = []
+
+    def encode(self, ids: tuple[Any, Any, Any]) -> Any:
+        """A 32-bit code by row for its (particle, wall, fluid) names."""
+        particle, wall, fluid = (np.asarray(i, dtype=np.int64) for i in ids)
+        # One integer per triple (ids are small: a key never comes near 2**63).
+        span = max(int(particle.max(initial=0)), int(wall.max(initial=0))) + 1
+        fluids = int(fluid.max(initial=0)) + 2
+        key = (particle * span + wall) * fluids + (fluid + 1)
+        distinct, inverse = np.unique(key, return_inverse=True)
+        lookup = np.empty(len(distinct), dtype=np.int32)
+        for k, value in enumerate(distinct.tolist()):
+            pair, fluid_id = divmod(value, fluids)
+            triple = (*divmod(pair, span), fluid_id - 1)
+            if triple not in self.codes:
+                self.codes[triple] = len(self.prefixes)
+                self.prefixes.append(
+                    "\x1f".join(
+                        (
+                            self.materials[triple[0]],
+                            self.materials[triple[1]],
+                            self.fluids.get(triple[2], ""),
+                        )
+                    )
+                )
+            lookup[k] = self.codes[triple]
+        return lookup[np.asarray(inverse).reshape(-1)]
 
 
-def _float_columns(columns: dict[str, Any]) -> dict[str, Any]:
-    """``float_texts`` of each non-empty column, two at a time (Arrow's casts release
-    the GIL, so both cores format)."""
-    from concurrent.futures import ThreadPoolExecutor
+class _Gather:
+    """Where the overall positions ``rows`` fall in arrays kept one per block, so each
+    array is taken block by block (``take`` on a chunked array of strings joins the
+    chunks first: about eight times slower here)."""
 
-    present = {c: v for c, v in columns.items() if v is not None}
-    with ThreadPoolExecutor(max_workers=WORKERS) as pool:
-        return dict(zip(present, pool.map(float_texts, present.values()), strict=True))
+    def __init__(self, starts: Any, rows: Any) -> None:
+        blocks = np.searchsorted(starts, rows, side="right") - 1
+        grouped = np.argsort(blocks, kind="stable")  # by block, in ``rows`` order within
+        self.parts = []
+        for number in np.unique(blocks):
+            here = grouped[blocks[grouped] == number]
+            self.parts.append((int(number), rows[here] - starts[number]))
+        self.back = np.empty_like(grouped)
+        self.back[grouped] = np.arange(len(grouped))
+
+    def take(self, arrays: list[Any]) -> Any:
+        """``arrays`` (one per block) at ``rows``, in that order."""
+        import pyarrow as pa
+
+        parts = [arrays[number].take(pa.array(local)) for number, local in self.parts]
+        return pa.concat_arrays(parts).take(pa.array(self.back))
 
 
-def _block_bytes(
-    runs: Any, ids: list[Any], columns: dict[str, Any], notes: Any, rows: Any, names: Any
-) -> memoryview:
-    """The canonical text of ``rows`` (already in hash order) as UTF-8 bytes; ``columns``
-    are the SI columns at those rows (None = empty)."""
+def _data(line: Any) -> memoryview:
+    """The UTF-8 bytes of a string array's values, end to end."""
+    offsets = np.frombuffer(line.buffers()[1], dtype=np.int32)[line.offset :]
+    return memoryview(line.buffers()[2])[int(offsets[0]) : int(offsets[len(line)])]
+
+
+def _row_texts(
+    names: _Names,
+    ids: tuple[Any, Any, Any],
+    values: dict[str, Any],
+    notes: list[str | None] | None,
+) -> tuple[Any, Any]:
+    """(names' code by row, each row's canonical text after its names): the floats, notes
+    (and the target sphere's columns when the row has any), joined by the unit separator,
+    then the record separator that ends the row. Runs on the worker thread."""
     import pyarrow as pa
     import pyarrow.compute as pc
 
-    materials, fluids = names
-    take = pa.array(rows)
-    empty = pa.array([""] * len(rows), type=pa.string())
-    texts = _float_columns(columns)
-    fields = [
-        runs.take(take),
-        materials.take(pa.array(ids[0][rows])),
-        materials.take(pa.array(ids[1][rows])),
-        fluids.take(pa.array(ids[2][rows] + 1)),
-        *(texts.get(c, empty) for c in _ALWAYS),
-        pc.fill_null(notes.take(take), ""),
-    ]
-    kept = pc.binary_join_element_wise(*fields, "\x1f")
-    has_target = np.zeros(len(rows), dtype=bool)
+    n = len(ids[0])
+    columns = {c: _column(values.get(c)) for c in COLUMNS}
+    texts = {c: float_texts(v) for c, v in columns.items() if v is not None}
+    empty = pa.array([""] * n, type=pa.string())
+    note_texts = empty if notes is None else pc.fill_null(pa.array(notes, pa.string()), "")
+    kept = pc.binary_join_element_wise(*(texts.get(c, empty) for c in _ALWAYS), note_texts, "\x1f")
+    has_target = np.zeros(n, dtype=bool)
     for c in COLLISION_TARGET:
         if columns[c] is not None:
             has_target |= ~np.isnan(columns[c])
@@ -198,6 +266,19 @@ def _block_bytes(
         kept = pc.if_else(
             pa.array(has_target), pc.binary_join_element_wise(kept, target, "\x1f"), kept
         )
-    line = pc.binary_join_element_wise(kept, "", "\x1e")
-    offsets = np.frombuffer(line.buffers()[1], dtype=np.int32)[line.offset :]
-    return memoryview(line.buffers()[2])[int(offsets[0]) : int(offsets[len(line)])]
+    return names.encode(ids), pc.binary_join_element_wise(kept, "", "\x1e")
+
+
+def _unsigned_zero(values: Any) -> Any:
+    """``values`` with -0.0 as 0.0: SQLite stores an integral REAL as an integer, so a
+    stored -0.0 reads back as 0.0, and the hash is of what the database gives back."""
+    values = np.asarray(values, dtype=np.float64)
+    return values + 0.0 if (values == 0).any() else values
+
+
+def _column(values: Any) -> Any:
+    """A float64 column, or None when it holds no value at all."""
+    if values is None:
+        return None
+    values = np.asarray(values, dtype=np.float64)
+    return None if np.isnan(values).all() else values

@@ -6,11 +6,26 @@ file writes them (dictionary-encoded: a million rows name a handful of materials
 SI columns as float64 arrays (NaN = no value).
 
 ``insert_rows`` writes resolved rows inside the caller's transaction. SQLite: one prepared
-``executemany`` per block over tuples of only the columns that carry values (a column empty
-in the whole block is left to its NULL default, an id the same in every row is written
-into the statement as an integer), because binding each value from Python is most of the
-cost. PostgreSQL: ``COPY … FROM STDIN (FORMAT csv)`` of the block written by Arrow, whose
+``executemany`` per slice of only the columns that carry values (a column empty in the
+whole block is left to its NULL default, an id the same in every row is written into the
+statement as an integer), each statement inserting ``ROWS_PER_STATEMENT`` rows (a
+multi-row ``VALUES``). pysqlite releases the GIL around every ``sqlite3_step`` and must
+take it back after; while the reader and the hash worker run on the other core it often
+waits for it, so one row a step spent half the insert waiting (measured: 300,000 rows
+0.8 s alone, 1.7-2.2 s beside a thread formatting floats with Arrow, 9-14 s beside a
+thread running Python). Fifty rows a step make the hand-offs fifty times rarer and save
+per-statement work as well (0.4-0.55 s alone, 1.0-1.7 s beside either).
+
+PostgreSQL: ``COPY … FROM STDIN (FORMAT csv)`` of the block written by Arrow, whose
 float text is the shortest that reads back as the same double.
+
+``PlainIndexes``: on SQLite a large load into a small table drops the collisions table's
+non-unique indexes and creates them again after the last row, inside the same
+transaction (SQLite's DDL is transactional: a failed or killed import leaves them as they
+were). Creating both from sorted keys took 1.0-1.1 s for a million rows where updating them
+row by row took 1.7-2.3 s (benchmarks/import_speed.py's rows); but creating them reads
+every row already in the table too, so it is done only when ``rebuild_pays``. The unique
+(dataset, run) index is never dropped: it is a constraint.
 """
 
 from __future__ import annotations
@@ -32,6 +47,56 @@ BULK_CACHE_KIB = 16_384
 #: Rows bound per ``executemany`` call: the Python values of a slice (about 300 bytes a
 #: row) exist only while it is written, so memory does not grow with the reader's chunks.
 INSERT_SLICE_ROWS = 20_000
+#: Rows in one SQLite ``INSERT … VALUES (…), (…), …`` (within SQLite's limit on bound
+#: parameters, 32,766 by default since 3.32; the statement is cut to fit a lower one).
+ROWS_PER_STATEMENT = 50
+
+
+#: The smallest load for which the plain indexes are rebuilt rather than updated.
+REBUILD_MIN_ROWS = 100_000
+
+
+def rebuild_pays(expected_rows: int, existing_rows: int) -> bool:
+    """Whether to rebuild the plain indexes after loading about ``expected_rows`` rows into
+    a table holding at most ``existing_rows``: creating them costs about as much per row
+    (old and new) as updating them costs per new row, so only a load at least as large as
+    the table gains, and never a small one (10 million rows already stored and a
+    1,000-row import: updating wins by far)."""
+    return expected_rows >= max(REBUILD_MIN_ROWS, existing_rows)
+
+
+class PlainIndexes:
+    """The collisions table's non-unique indexes, dropped for a bulk load and created again
+    (their own SQL, as the schema has them) before the transaction commits (SQLite)."""
+
+    def __init__(self, session: Any) -> None:
+        self.session = session
+        self.statements: list[str] = []
+
+    def existing_rows(self) -> int:
+        """At most the rows in the table, without counting them (ids start at 1)."""
+        connection = self.session.connection()
+        return int(connection.exec_driver_sql("SELECT max(id) FROM collisions").scalar() or 0)
+
+    def drop(self) -> None:
+        connection = self.session.connection()
+        plain = [
+            row[1]
+            for row in connection.exec_driver_sql("PRAGMA index_list(collisions)")
+            if not row[2] and row[3] == "c"  # not unique, made by CREATE INDEX
+        ]
+        for name in plain:
+            sql = connection.exec_driver_sql(
+                "SELECT sql FROM sqlite_master WHERE type = 'index' AND name = ?", (name,)
+            ).scalar()
+            connection.exec_driver_sql(f'DROP INDEX "{name}"')
+            self.statements.append(sql)
+
+    def create(self) -> None:
+        connection = self.session.connection()
+        for sql in self.statements:
+            connection.exec_driver_sql(sql)
+        self.statements = []
 
 
 @dataclass
@@ -114,8 +179,8 @@ def _bulk_cache(connection: Any, raw: Any) -> None:
 
 
 def _python_values(column: Any) -> list[Any]:
-    """A bound column as Python values for ``executemany``: exact floats, ints, text;
-    None where NaN (floats) or -1 (ids)."""
+    """A bound column as Python values: exact floats, ints, text; None where NaN (floats)
+    or -1 (ids)."""
     if isinstance(column, list):
         return column
     if column.dtype.kind == "f":
@@ -132,6 +197,80 @@ def _python_values(column: Any) -> list[Any]:
 def _rows(bound: dict[str, Any], start: int, stop: int) -> Any:
     """Tuples of the bound columns' Python values for rows ``start:stop``."""
     return zip(*(_python_values(c[start:stop]) for c in bound.values()), strict=True)
+
+
+def _matrix(bound: dict[str, Any], start: int, stop: int) -> Any:
+    """The bound columns' Python values for rows ``start:stop`` as an object array, one
+    row a row (numpy boxes each float as the exact Python float ``tolist`` gives)."""
+    columns = list(bound.values())
+    rows = len(columns[0][start:stop])
+    matrix = np.empty((rows, len(columns)), dtype=object)
+    for j, column in enumerate(columns):
+        part = column[start:stop]
+        if isinstance(part, list):
+            matrix[:, j] = part
+            continue
+        matrix[:, j] = part
+        missing = np.isnan(part) if part.dtype.kind == "f" else part < 0
+        if missing.any():
+            matrix[missing, j] = None
+    return matrix
+
+
+def _sqlite_insert(raw: Any, head: str, literals: list[str], bound: dict[str, Any], n: int) -> None:
+    """``executemany`` of ``ROWS_PER_STATEMENT``-row statements, the rest one row a time,
+    ``INSERT_SLICE_ROWS`` rows of Python values at a time.
+
+    A float column holding one value in every row of the block (a diameter, a
+    temperature) is bound once per statement as a numbered parameter that every row of
+    the statement names, rather than once per row: the same exact double, fewer values
+    boxed and bound."""
+    import sqlite3
+
+    shared = [c for c, v in bound.items() if _constant(v)]
+    per_row = {c: v for c, v in bound.items() if c not in shared}
+    first = {c: bound[c][:1].tolist()[0] for c in shared}
+    width = len(per_row)
+    limit = raw.getlimit(sqlite3.SQLITE_LIMIT_VARIABLE_NUMBER)
+    per = max(1, min(ROWS_PER_STATEMENT, (limit - len(shared)) // max(width, 1)))
+
+    def values(rows: int) -> str:
+        """``VALUES`` of ``rows`` rows: the literals, then each bound column's number."""
+        out = []
+        for row in range(rows):
+            own = iter(range(len(shared) + row * width + 1, len(shared) + (row + 1) * width + 1))
+            marks = [f"?{shared.index(c) + 1}" if c in shared else f"?{next(own)}" for c in bound]
+            out.append(f"({', '.join([*literals, *marks])})")
+        return f"{head} VALUES {', '.join(out)}"
+
+    many, single = values(per), values(1)
+    cursor = raw.cursor()
+    for start in range(0, n, INSERT_SLICE_ROWS):
+        matrix = _matrix(per_row, start, min(start + INSERT_SLICE_ROWS, n))
+        whole = len(matrix) - len(matrix) % per
+        if whole:
+            cursor.executemany(many, _with_shared(first, matrix[:whole].reshape(-1, per * width)))
+        if whole < len(matrix):
+            cursor.executemany(single, _with_shared(first, matrix[whole:]))
+
+
+def _constant(column: Any) -> bool:
+    """A float column with the same value (bit for bit: not NaN, not 0.0 and -0.0) in
+    every row."""
+    if isinstance(column, list) or column.dtype.kind != "f" or len(column) < 2:
+        return False
+    bits = column.view(np.int64)
+    return bool((bits == bits[0]).all()) and not np.isnan(column[0])
+
+
+def _with_shared(first: dict[str, Any], rows: Any) -> list[list[Any]]:
+    """Each statement's parameters: the shared values, then its rows' own."""
+    if not first:
+        return rows.tolist()
+    out = np.empty((len(rows), len(first) + rows.shape[1]), dtype=object)
+    out[:, : len(first)] = list(first.values())
+    out[:, len(first) :] = rows
+    return out.tolist()
 
 
 def _columns(
@@ -183,15 +322,13 @@ def insert_rows(
             statement = f"COPY collisions ({names}) FROM STDIN (FORMAT csv)"
             _copy(raw, statement, n, constant, bound)
             return n
-        mark = "?" if dialect.paramstyle == "qmark" else "%s"
         literals = [str(v) for v in constant.values()]
-        statement += f" VALUES ({', '.join([*literals, *[mark] * len(bound)])})"
         if dialect.name == "sqlite":
             _bulk_cache(connection, raw)
-            cursor = raw.cursor()
-            for start in range(0, n, INSERT_SLICE_ROWS):
-                cursor.executemany(statement, _rows(bound, start, start + INSERT_SLICE_ROWS))
+            _sqlite_insert(raw, statement, literals, bound, n)
             return n
+        mark = "?" if dialect.paramstyle == "qmark" else "%s"
+        statement += f" VALUES ({', '.join([*literals, *[mark] * len(bound)])})"
         rows = _rows(bound, 0, n)
     except dialect.loaded_dbapi.Error as exc:
         # The driver's own error, as SQLAlchemy would raise it (the session translates it).

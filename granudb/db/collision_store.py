@@ -12,7 +12,8 @@ only once the reader has read the whole file (it is hashed while it is parsed, o
 then "was this file imported before?" is answered at the end, and at the first run that is
 already in the dataset (a repeated file's first row), before the same transaction commits.
 When the dataset held no runs before, its content hash is computed from the inserted
-arrays (``granudb.db.bulk_hash``), the same value ``datasets.content_hash`` gives.
+arrays (``granudb.db.bulk_hash``, formatting each block on a worker thread while it is
+inserted), the same value ``datasets.content_hash`` gives.
 """
 
 from __future__ import annotations
@@ -30,9 +31,11 @@ from granudb.db.bulk_insert import (
     BULK_CACHE_KIB,
     CollisionBlock,
     NameColumn,
+    PlainIndexes,
     block_from_frame,
     frame_columns,
     insert_rows,
+    rebuild_pays,
 )
 from granudb.db.models import (
     Collision,
@@ -63,6 +66,8 @@ class ImportTarget:
     file_sha256: str
     file_name: str
     digest: Callable[[], str] | None = None
+    #: About how many rows the file holds (0 = unknown), for ``bulk_insert.rebuild_pays``.
+    expected_rows: int = 0
 
     def sha256(self) -> str:
         return self.file_sha256 or (self.digest() if self.digest is not None else "")
@@ -225,44 +230,73 @@ def store_collisions(
         names = NameIndex(session)
         ranges = FluidRanges(session)
         seen = RunIndex(session.scalars(select(Collision.run).filter_by(dataset_id=dataset.id)))
-        hasher = BlockHasher() if not len(seen) else None
-        for frame in frames:
-            block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
-            ranges.check(block, target.dataset)
-            rows += _store_block(session, dataset, target, block, names, seen, hasher)
-            if progress is not None:
-                progress(rows)
-        if not target.file_sha256:
-            _refuse_earlier_import(session, dataset, target)
-        session.add(
-            CollisionImport(
-                dataset_id=dataset.id,
-                file_sha256=target.sha256(),
-                file_name=target.file_name[:500],
-                rows=rows,
+        hasher = None
+        if not len(seen):
+            hasher = BlockHasher(
+                names.material_by_id,
+                names.fluid_by_id,
+                keeps_negative_zero=session.get_bind().dialect.name != "sqlite",
             )
-        )
-        if hasher is None:
-            datasets.update_content_hash(session, dataset)
-        else:
-            dataset.content_hash = hasher.hexdigest(names.material_by_id, names.fluid_by_id)
-            session.flush()
+        indexes = _indexes_to_rebuild(session, target)
+        try:
+            for frame in frames:
+                block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
+                ranges.check(block, target.dataset)
+                rows += _store_block(session, dataset, target, block, names, seen, hasher)
+                if progress is not None:
+                    progress(rows)
+            if not target.file_sha256:
+                _refuse_earlier_import(session, dataset, target)
+            if indexes is not None:
+                if hasher is not None:
+                    hasher.start()  # hashed on its thread while SQLite builds the indexes
+                indexes.create()
+            session.add(
+                CollisionImport(
+                    dataset_id=dataset.id,
+                    file_sha256=target.sha256(),
+                    file_name=target.file_name[:500],
+                    rows=rows,
+                )
+            )
+            if hasher is None:
+                datasets.update_content_hash(session, dataset)
+            else:
+                dataset.content_hash = hasher.hexdigest()
+                session.flush()
+        finally:
+            if hasher is not None:
+                hasher.close()
     return rows
+
+
+def _indexes_to_rebuild(session: Any, target: ImportTarget) -> PlainIndexes | None:
+    """The plain indexes, dropped until the last row is in, when that pays (SQLite)."""
+    if session.get_bind().dialect.name != "sqlite" or not target.expected_rows:
+        return None
+    indexes = PlainIndexes(session)
+    if not rebuild_pays(target.expected_rows, indexes.existing_rows()):
+        return None
+    indexes.drop()
+    return indexes
 
 
 class RunIndex:
     """The run labels of the dataset so far, for "does this label repeat?".
 
     Each label is kept as text in an Arrow array (about 11 bytes a label; a Python set of
-    a million labels took about 100 MB) and as Python's 64-bit hash of it, sorted per
-    block, so a block is checked by sorting and binary search. Equal hashes are confirmed
-    on the labels themselves before anything is refused.
+    a million labels took about 100 MB) and as Python's 64-bit hash of it, all hashes in
+    one sorted array (a block's sorted hashes merged in: a stable sort of two sorted runs
+    is a merge), so a block is checked by one binary search, not one per earlier block
+    (that grew with the square of the blocks: half a second on a million rows). Equal
+    hashes are confirmed on the labels themselves before anything is refused.
     """
 
     def __init__(self, existing: Iterable[str]) -> None:
         self.parts: list[Any] = []
-        self.hashes: list[Any] = []
+        self.sorted = np.empty(0, dtype=np.int64)
         self.size = 0
+        self._last: tuple[list[str], Any] | None = None
         self.add(list(existing))
 
     def __len__(self) -> int:
@@ -275,12 +309,11 @@ class RunIndex:
     def repeats(self, runs: list[str]) -> bool:
         """Whether ``runs`` repeats a label, within itself or earlier (exact)."""
         hashes = self._hashes(runs)
+        self._last = (runs, hashes)  # ``add`` of the same block reuses them
         suspect = bool((hashes[1:] == hashes[:-1]).any())
-        for earlier in self.hashes:
-            if suspect:
-                break
-            found = np.searchsorted(earlier, hashes).clip(0, len(earlier) - 1)
-            suspect = bool((earlier[found] == hashes).any())
+        if not suspect and len(self.sorted):
+            found = np.searchsorted(self.sorted, hashes).clip(0, len(self.sorted) - 1)
+            suspect = bool((self.sorted[found] == hashes).any())
         if not suspect:
             return False
         return len(set(runs)) != len(runs) or not self.as_set().isdisjoint(runs)
@@ -288,9 +321,11 @@ class RunIndex:
     def add(self, runs: list[str]) -> None:
         import pyarrow as pa
 
+        last, self._last = self._last, None
         if runs:
+            hashes = last[1] if last is not None and last[0] is runs else self._hashes(runs)
             self.parts.append(pa.array(runs, type=pa.string()))
-            self.hashes.append(self._hashes(runs))
+            self.sorted = np.sort(np.concatenate([self.sorted, hashes]), kind="stable")
             self.size += len(runs)
 
     def as_set(self) -> set[str]:

@@ -40,9 +40,10 @@ from granudb.vocabulary.text import (
 
 __all__ = ["HashingFile", "Prefetched", "arrow_memory", "read_blocks"]
 
-#: Bytes read and parsed at a time (about 90,000 rows), and the block each of Arrow's
-#: parser threads takes of them.
-READ_BYTES = 8 << 20
+#: Bytes read and parsed at a time (about 45,000 rows, one chunk: 8 MB held about 20 MB
+#: more at the million-row import's peak, benchmarks/import_speed.py), and the block each
+#: of Arrow's parser threads takes of them.
+READ_BYTES = 4 << 20
 BLOCK_BYTES = 1 << 20
 
 
@@ -245,6 +246,11 @@ def _numpy(array: Any) -> Any:
 
 _NAME_FORBIDDEN = re.compile(name_forbidden_pattern())
 _TEXT_FORBIDDEN = re.compile(text_forbidden_pattern())
+#: A label starting or ending with a character Python's ``str.strip`` removes (every one
+#: of them: ``str.isspace``), found by Arrow's regex without a Python loop over the
+#: labels (which held the GIL the insert waits for); such a label goes the pandas way.
+_SPACE = r"[\t\n\v\f\r \x1c-\x1f\x85\p{Z}]"
+_EDGE_SPACE = f"^{_SPACE}|{_SPACE}$"
 
 
 def _names(table: Any, mapping: dict[str, Any], column: str, required: bool) -> Any:
@@ -278,11 +284,13 @@ def _texts(table: Any, mapping: dict[str, Any]) -> tuple[Any, ...] | None:
     """(runs, particle, wall, fluid, notes), or None if the pandas path must look."""
     import pyarrow.compute as pc
 
-    runs = table.column(mapping["run"].header).to_pylist()
-    joined = "".join(runs)
-    if _NAME_FORBIDDEN.search(joined) or max(map(len, runs)) > MAX_NAME:
+    column = table.column(mapping["run"].header)
+    if pc.any(pc.equal(column, "")).as_py():
         return None
-    if any(not run or run != run.strip() for run in runs):
+    if pc.any(pc.match_substring_regex(column, _EDGE_SPACE)).as_py():
+        return None
+    runs = column.to_pylist()
+    if _NAME_FORBIDDEN.search("".join(runs)) or max(map(len, runs)) > MAX_NAME:
         return None
     names = [_names(table, mapping, c, c in csvmod.REQUIRED) for c in ("particle", "wall", "fluid")]
     if any(n is None for n in names):

@@ -67,7 +67,11 @@ MAX_RESTITUTION = 1.05
 #: set to about ±1°. Their sum rounds up to 3°; a difference larger than that is a wrong
 #: column or a wrong unit (the physics review found one of tens of degrees), not noise.
 ANGLE_TOLERANCE_RAD = math.radians(3.0)
-CHUNK_ROWS = 100_000
+#: Rows checked and inserted at a time. About three chunks are in memory at once (one
+#: read ahead, one being read, one being written): 50,000 rather than 100,000 took the
+#: million-row import's peak from about 430 to 395 MB (benchmarks/import_speed.py), at the
+#: same speed.
+CHUNK_ROWS = 50_000
 TABLE = "collisions.csv"
 
 
@@ -96,6 +100,18 @@ def file_sha256(path: Path) -> str:
         while chunk := handle.read(1 << 20):
             digest.update(chunk)
     return digest.hexdigest()
+
+
+def estimate_rows(path: Path, sample_bytes: int = 1 << 16) -> int:
+    """About how many rows the file holds: its size over the mean length of the lines in
+    its first ``sample_bytes`` (a guess for deciding how to load, never for checking)."""
+    size = path.stat().st_size
+    with path.open("rb") as handle:
+        sample = handle.read(sample_bytes)
+    lines = sample.count(b"\n")
+    if lines <= 1 or len(sample) >= size:
+        return max(lines - 1, 0)
+    return int(size / (len(sample) / lines))
 
 
 def _first(mask: Any) -> int:
@@ -300,7 +316,17 @@ def import_collisions(
                 blocks.close()
                 return stream.hexdigest()
 
-            target = ImportTarget(dataset, version, source, title, license, "", name, digest)
+            target = ImportTarget(
+                dataset,
+                version,
+                source,
+                title,
+                license,
+                "",
+                name,
+                digest,
+                expected_rows=estimate_rows(opened.path),
+            )
             try:
                 rows = store_collisions(database, target, blocks, progress=progress)
             finally:
