@@ -43,9 +43,10 @@ def test_materials_list_json_imports_no_heavy_libraries(tmp_path) -> None:
     assert out.stdout.strip().splitlines()[-1] == "HEAVY="
 
 
-def test_a_dataset_report_imports_neither_matplotlib_nor_scipy(tmp_path) -> None:
-    """Figures are written by ``granudb.report.svg`` and the fits are numpy: the report
-    path is spared 0.7 s of matplotlib and scipy imports (issue 17)."""
+def test_a_dataset_report_imports_no_plotting_fitting_or_orm_library(tmp_path) -> None:
+    """Figures are written by ``granudb.report.svg``, the fits are numpy, and the runs and
+    catalogue are read through Core (``lookup_rows``, ``catalog_rows``): the report path
+    is spared matplotlib, scipy, the ORM and the models (issue 17)."""
     from pathlib import Path
 
     example = Path(__file__).resolve().parents[1] / "examples" / "collisions_example.csv"
@@ -56,7 +57,8 @@ def test_a_dataset_report_imports_neither_matplotlib_nor_scipy(tmp_path) -> None
             "import sys\nfrom granudb.cli.main import app\n"
             f"try:\n    app({args!r})\nexcept SystemExit as stop:\n"
             "    assert not stop.code, stop.code\n"
-            "print('HEAVY=' + ','.join(m for m in ('matplotlib', 'scipy') if m in sys.modules))"
+            "heavy = ('matplotlib', 'scipy', 'sqlalchemy.orm', 'granudb.db.models', 'pint')\n"
+            "print('HEAVY=' + ','.join(m for m in heavy if m in sys.modules))"
         )
         done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
         assert done.returncode == 0, done.stderr[-2000:]

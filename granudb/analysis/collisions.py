@@ -200,10 +200,11 @@ def collision_table(
     """
     import pandas as pd
 
-    from granudb.db import catalog
-    from granudb.db.collision_queries import count_collisions, iter_collisions
+    from granudb.db.catalog_rows import fluid_rows_by_id
+    from granudb.db.collision_queries import count_collisions, iter_collisions, reading
 
-    fluids = {f.id: f for f in catalog.list_fluids(session)}
+    session = reading(session)  # a Core connection: no ORM on a read of runs
+    fluids = fluid_rows_by_id(session)
     chunk_filters = {k: v for k, v in filters.items() if k != "chunk_rows"}
     out = _Columns(count_collisions(session, **chunk_filters))
     text = columns is None or bool({"run", "notes"} & set(columns))

@@ -101,7 +101,7 @@ def report(
     check_output(output, force=force)
     asked = _asked(ctx)
     database = open_db(db)
-    with database.session() as session:
+    with database.reading() as session:  # Core only: a report reads, no ORM needed
         if pair is not None:
             scenario = _scenario(fluid, diameter, velocity, angle, temperature, viscosity)
             report_data = pair_report(

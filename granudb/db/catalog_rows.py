@@ -137,12 +137,21 @@ def material_rows(connection: Connection, name: str | None = None) -> list[Mater
 
 def fluid_rows(connection: Connection, name: str | None = None) -> list[FluidRow]:
     """Every fluid by name with its points by temperature, or the one called ``name``."""
+    return list(_fluids(connection, name).values())
+
+
+def fluid_rows_by_id(connection: Connection) -> dict[int, FluidRow]:
+    """Every fluid keyed by its id: stored runs name their fluid by id."""
+    return _fluids(connection, None)
+
+
+def _fluids(connection: Connection, name: str | None) -> dict[int, FluidRow]:
     query = select(*FLUIDS.c).order_by(FLUIDS.c.name_key)
     if name is not None:
         query = query.where(FLUIDS.c.name_key == name_key(name))
     found = connection.execute(query).mappings().all()
     if not found:
-        return []
+        return {}
     points_query = select(*FLUID_POINTS.c).order_by(
         FLUID_POINTS.c.fluid_id, FLUID_POINTS.c.temperature_c
     )
@@ -152,9 +161,10 @@ def fluid_rows(connection: Connection, name: str | None = None) -> list[FluidRow
     points: dict[int, list[FluidPointRow]] = {}
     for row in connection.execute(points_query).mappings():
         points.setdefault(row["fluid_id"], []).append(_build(FluidPointRow, row, sources))
-    return [
-        _build(FluidRow, row, sources, points=tuple(points.get(row["id"], ()))) for row in found
-    ]
+    return {
+        row["id"]: _build(FluidRow, row, sources, points=tuple(points.get(row["id"], ())))
+        for row in found
+    }
 
 
 def get_material_row(connection: Connection, name: str) -> MaterialRow:

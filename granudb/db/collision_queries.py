@@ -12,11 +12,11 @@ from collections.abc import Iterator
 from typing import Any
 
 from sqlalchemy import func, select
-from sqlalchemy.orm import Session, aliased
+from sqlalchemy.engine import Connection
 
-from granudb.db import catalog
-from granudb.db import datasets as dataset_queries
-from granudb.db.models import Collision, Dataset, Material
+from granudb.db import lookup_rows
+from granudb.db.catalog_rows import MATERIALS, _table
+from granudb.db.lookup_rows import DATASETS
 from granudb.vocabulary import COLLISION_MEASURED, MATERIAL_PROPERTIES
 
 #: Rows read and derived at a time: bounds the memory of a read of a million runs (the
@@ -25,10 +25,20 @@ from granudb.vocabulary import COLLISION_MEASURED, MATERIAL_PROPERTIES
 CHUNK_ROWS = 50_000
 _NUMBERS = ["dataset_id", "particle_id", "wall_id", "fluid_id", *COLLISION_MEASURED]
 _TEXT = ["run", "notes"]
+#: Core clauses (no ORM: a read needs no mapped classes; see ``lookup_rows``). A reader
+#: is a Core connection (``Database.reading()``) or a session, whose connection is used.
+COLLISIONS = _table("collisions", ["id", *_NUMBERS, *_TEXT])
+TABLES = (COLLISIONS,)
+Reader = Any
+
+
+def reading(reader: Reader) -> Connection:
+    """The Core connection of ``reader`` (itself, or a session's connection)."""
+    return reader if isinstance(reader, Connection) else reader.connection()
 
 
 def load_collisions(
-    session: Session,
+    reader: Reader,
     *,
     dataset: str | None = None,
     version: str | None = None,
@@ -45,7 +55,7 @@ def load_collisions(
 
     chunks = list(
         iter_collisions(
-            session, dataset=dataset, version=version, particle=particle, wall=wall, fluid=fluid
+            reader, dataset=dataset, version=version, particle=particle, wall=wall, fluid=fluid
         )
     )
     if not chunks:
@@ -56,7 +66,7 @@ def load_collisions(
 
 
 def iter_collisions(
-    session: Session,
+    reader: Reader,
     *,
     dataset: str | None = None,
     version: str | None = None,
@@ -81,14 +91,14 @@ def iter_collisions(
     bounded memory. PostgreSQL streams through a server-side (named) cursor."""
     import numpy as np
 
-    query = _collision_select(session, dataset, version, particle, wall, fluid, text=text)
-    connection = session.connection()
-    sets = sorted(connection.execute(select(Dataset.id, Dataset.name, Dataset.version)).all())
+    connection = reading(reader)
+    query = _collision_select(connection, dataset, version, particle, wall, fluid, text=text)
+    sets = sorted(connection.execute(select(DATASETS.c.id, DATASETS.c.name, DATASETS.c.version)))
     set_ids = np.array([r[0] for r in sets], dtype=np.int64)
     set_names = np.array([r[1] for r in sets], dtype=object)
     set_versions = np.array([r[2] for r in sets], dtype=object)
-    properties = [getattr(Material, name) for name in MATERIAL_PROPERTIES]
-    materials = sorted(connection.execute(select(Material.id, Material.name, *properties)).all())
+    properties = [MATERIALS.c[name] for name in MATERIAL_PROPERTIES]
+    materials = sorted(connection.execute(select(MATERIALS.c.id, MATERIALS.c.name, *properties)))
     material_ids = np.array([r[0] for r in materials], dtype=np.int64)
     material_names = np.array([r[1] for r in materials], dtype=object)
     table = np.stack([_floats([r[2 + i] for r in materials]) for i in range(len(properties))], 1)
@@ -128,7 +138,7 @@ def iter_collisions(
 
 
 def count_collisions(
-    session: Session,
+    reader: Reader,
     *,
     dataset: str | None = None,
     version: str | None = None,
@@ -138,13 +148,14 @@ def count_collisions(
 ) -> int:
     """How many runs ``iter_collisions`` with the same filters yields (so a reader can
     allocate its arrays once)."""
-    query = _collision_select(session, dataset, version, particle, wall, fluid, text=False)
+    connection = reading(reader)
+    query = _collision_select(connection, dataset, version, particle, wall, fluid, text=False)
     counted = select(func.count()).select_from(query.order_by(None).subquery())
-    return int(session.connection().execute(counted).scalar_one())
+    return int(connection.execute(counted).scalar_one())
 
 
 def _collision_select(
-    session: Session,
+    connection: Connection,
     dataset: str | None,
     version: str | None,
     particle: str | None,
@@ -154,27 +165,31 @@ def _collision_select(
     text: bool,
 ) -> Any:
     """The select of ``iter_collisions``: each run's columns and ids, filtered, in order."""
-    query = select(*(getattr(Collision, name) for name in (*_NUMBERS, *(_TEXT if text else ()))))
-    first, second = aliased(Material), aliased(Material)  # inner joins: as before, a run
-    query = (  # whose dataset or material is missing is not read
-        query.join(Dataset, Collision.dataset_id == Dataset.id)
-        .join(first, Collision.particle_id == first.id)
-        .join(second, Collision.wall_id == second.id)
+    runs = COLLISIONS.c
+    query = select(*(runs[name] for name in (*_NUMBERS, *(_TEXT if text else ()))))
+    first, second = (
+        MATERIALS.alias("particle_material"),
+        MATERIALS.alias("wall_material"),
+    )  # inner joins: as
+    query = (  # before, a run whose dataset or material is missing is not read
+        query.select_from(COLLISIONS)
+        .join(DATASETS, runs.dataset_id == DATASETS.c.id)
+        .join(first, runs.particle_id == first.c.id)
+        .join(second, runs.wall_id == second.c.id)
     )
     if dataset is not None:
-        chosen = dataset_queries.get_dataset(session, dataset, version)
-        query = query.where(Collision.dataset_id == chosen.id)
+        chosen = lookup_rows.dataset_row(connection, dataset, version)
+        query = query.where(runs.dataset_id == chosen.id)
     if particle is not None:
-        query = query.where(Collision.particle_id == catalog.get_material(session, particle).id)
+        query = query.where(runs.particle_id == lookup_rows.material_id(connection, particle))
     if wall is not None:
-        query = query.where(Collision.wall_id == catalog.get_material(session, wall).id)
+        query = query.where(runs.wall_id == lookup_rows.material_id(connection, wall))
     if fluid is not None:
         if fluid.strip().casefold() == "dry":
-            query = query.where(Collision.fluid_id.is_(None))
+            query = query.where(runs.fluid_id.is_(None))
         else:
-            query = query.where(Collision.fluid_id == catalog.get_fluid(session, fluid).id)
-    query = query.order_by(Dataset.name, Dataset.version, Collision.run)
-    return query
+            query = query.where(runs.fluid_id == lookup_rows.fluid_id(connection, fluid))
+    return query.order_by(DATASETS.c.name, DATASETS.c.version, runs.run)
 
 
 def _driver_chunks(connection: Any, query: Any, chunk_rows: int) -> Iterator[list[tuple]]:

@@ -56,7 +56,7 @@ def _header(title: str, query: str, database: str) -> dict[str, Any]:
 
 
 def pair_report(
-    session: Any,
+    reader: Any,
     *,
     title: str | None,
     query: str,
@@ -87,7 +87,7 @@ def pair_report(
     if speed_m_s is None:
         speed_m_s, _ = DEFAULT_SPEED_M_S, assumed.add("impact_speed_m_s")
     result = derive_pair(
-        session,
+        reader,
         particle,
         wall,
         fluid=fluid,
@@ -107,7 +107,7 @@ def pair_report(
     from granudb.analysis.collisions import CollisionQuery
 
     add_collisions(
-        session, report, CollisionQuery(particle=particle, wall=wall, fluid=fluid), pair=True
+        reader, report, CollisionQuery(particle=particle, wall=wall, fluid=fluid), pair=True
     )
     report["references"] = references.references(report, dict(result.citations))
     return report
@@ -162,56 +162,63 @@ def _pair_sections(
 
 
 def dataset_report(
-    session: Any, *, title: str | None, query_text: str, database: str, query: Any
+    reader: Any, *, title: str | None, query_text: str, database: str, query: Any
 ) -> dict[str, Any]:
-    """A report on stored collisions (a dataset or any query)."""
-    from granudb.db import datasets
+    """A report on stored collisions (a dataset or any query). ``reader``: a Core
+    connection (``Database.reading()``: no ORM on the report's path) or a session."""
+    from granudb.db import lookup_rows
 
     report = _header(title or f"granudb report: {query.describe()}", query_text, database)
     if query.dataset is not None:
-        dataset = datasets.get_dataset(session, query.dataset, query.version)
+        dataset = lookup_rows.dataset_row(_connection(reader), query.dataset, query.version)
         report["dataset"] = {
             "name": dataset.name,
             "version": dataset.version,
             "content_hash": dataset.content_hash,
         }
-    citations = add_collisions(session, report, query, pair=False)
+    citations = add_collisions(reader, report, query, pair=False)
     report["references"] = references.references(report, citations)
     return report
 
 
-def _properties(session: Any, frame: Any) -> tuple[list[dict[str, Any]], dict[str, str]]:
+def _connection(reader: Any) -> Any:
+    from sqlalchemy.engine import Connection
+
+    return reader if isinstance(reader, Connection) else reader.connection()
+
+
+def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict[str, str]]:
     """Property blocks of every material and fluid the runs use, and their citations."""
-    from granudb.db import catalog, sources
+    from granudb.db import catalog_rows as catalog
 
     blocks_out, keys = [], set()
     particles = sorted(set(frame["particle"].unique().tolist()))
     walls = sorted(set(frame["wall"].unique().tolist()) - set(particles))
     for role, names in (("Particle", particles), ("Wall", walls)):
         for name in names:
-            record = catalog.material_record(catalog.get_material(session, name))
+            record = catalog.material_record(catalog.get_material_row(connection, name))
             blocks_out.append(blocks.material_block(role, record))
             keys.add(record.get("source"))
     for name in sorted(set(fluid_names(frame["fluid"]).tolist()) - {"dry"}):
-        record = catalog.fluid_record(catalog.get_fluid(session, name))
+        record = catalog.fluid_record(catalog.get_fluid_row(connection, name))
         blocks_out.append(blocks.fluid_block(record))
         keys |= {record.get("source"), record.get("density_source"),
                  record.get("pressure_viscosity_source")}  # fmt: skip
-    citations = {}
-    for key in sorted(k for k in keys if k):
-        citations[key] = sources.get_source(session, key).citation
+    known = {source.key: source.citation for source in catalog.source_rows(connection)}
+    citations = {key: known[key] for key in sorted(k for k in keys if k)}
     return blocks_out, citations
 
 
-def add_collisions(session: Any, report: dict[str, Any], query: Any, *, pair: bool) -> dict:
+def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bool) -> dict:
     """The stored runs matching ``query``: flag, properties, fit tables and figures.
     Returns the citations of the materials and fluids involved."""
     from granudb.analysis import fits
     from granudb.analysis.collisions import select_collisions
     from granudb.analysis.fluid_state import fluid_model
-    from granudb.db import catalog, sources
+    from granudb.db import catalog_rows, lookup_rows
 
-    frame = select_collisions(session, query, columns=REPORT_COLUMNS, shared_text=True)
+    connection = _connection(reader)
+    frame = select_collisions(connection, query, columns=REPORT_COLUMNS, shared_text=True)
     if frame.empty:
         if not pair:
             report["flags"].append(blocks.no_runs_flag(query.describe()))
@@ -219,18 +226,18 @@ def add_collisions(session: Any, report: dict[str, Any], query: Any, *, pair: bo
     citations: dict[str, str] = {}
     if not pair:
         report["flags"].append(blocks.dataset_flag(frame))
-        report["properties"], citations = _properties(session, frame)
+        report["properties"], citations = _properties(connection, frame)
     labels = labels_of(frame)
     palette = colours(labels)
     walton = fits.walton(frame)
     report["tables"].append(
-        tables.walton_table(walton, sources.published_records(session), palette)
+        tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )
     restitution = fits.restitution(frame, "threshold")
     if restitution:
         formula, source = fits.RESTITUTION_MODELS["threshold"]
         report["tables"].append(tables.restitution_table(restitution, formula, source))
-    models = {f.name: fluid_model(f) for f in catalog.list_fluids(session)}
+    models = {f.name: fluid_model(f) for f in catalog_rows.fluid_rows(connection)}
     gap = fits.gap_viscosity(frame, models)
     if gap:
         report["tables"].append(tables.gap_table(gap, palette))
@@ -238,5 +245,5 @@ def add_collisions(session: Any, report: dict[str, Any], query: Any, *, pair: bo
         frame, labels, palette, walton, restitution, query.critical_stokes
     )
     if not pair:
-        report["figures"] += figures.pair_maps(session, frame, walton, query.critical_stokes)
+        report["figures"] += figures.pair_maps(connection, frame, walton, query.critical_stokes)
     return citations

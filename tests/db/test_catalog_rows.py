@@ -11,13 +11,13 @@ from __future__ import annotations
 import pytest
 
 from granudb.api.database import opened
-from granudb.db import catalog, catalog_rows, sources
+from granudb.db import catalog, catalog_rows, collision_queries, datasets, lookup_rows, sources
 from granudb.db.models import Base
 from granudb.errors import NotFoundError
 
 
 def test_every_column_read_is_a_column_of_the_models() -> None:
-    for clause in catalog_rows.TABLES:
+    for clause in (*catalog_rows.TABLES, *lookup_rows.TABLES, *collision_queries.TABLES):
         model_table = Base.metadata.tables[clause.name]
         assert set(clause.c.keys()) <= set(model_table.c.keys()), clause.name
 
@@ -74,3 +74,52 @@ def test_a_missing_name_lists_the_known_ones(db: str) -> None:
             catalog_rows.get_fluid_row(connection, "mercury")
         found = catalog_rows.get_material_row(connection, "  ZERODUR ")
     assert found.name == "Zerodur"
+
+
+def test_core_lookups_agree_with_the_orm(cli, db: str, tmp_path) -> None:
+    """The lookups a read of runs makes (``lookup_rows``) find what the ORM finds, and
+    refuse with the same words."""
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "collisions_example.csv"
+    for version in ("1.0.0", "1.1.0"):
+        result = cli("collisions", "import", str(example), "--dataset", "ex", "--version",
+                     version, db=db)  # fmt: skip
+        assert result.exit_code == 0, result.stderr
+    with opened(db) as database:
+        with database.session() as session:
+            orm = {
+                "latest": datasets.get_dataset(session, "ex"),
+                "first": datasets.get_dataset(session, "ex", "1.0.0"),
+                "steel": catalog.get_material(session, "STEEL").id,
+                "water": catalog.get_fluid(session, " water").id,
+                "published": sources.published_records(session),
+            }
+            errors = []
+            for call in (lambda: datasets.get_dataset(session, "nope"),
+                         lambda: datasets.get_dataset(session, "ex", "9"),
+                         lambda: catalog.get_material(session, "nope"),
+                         lambda: catalog.get_fluid(session, "nope")):  # fmt: skip
+                with pytest.raises(NotFoundError) as caught:
+                    call()
+                errors.append(str(caught.value))
+        with database.reading() as connection:
+            latest = lookup_rows.dataset_row(connection, "ex")
+            first = lookup_rows.dataset_row(connection, "ex", "1.0.0")
+            assert (latest.id, latest.version, latest.content_hash) == (
+                orm["latest"].id, orm["latest"].version, orm["latest"].content_hash
+            )  # fmt: skip
+            assert (first.id, first.version) == (orm["first"].id, "1.0.0")
+            assert lookup_rows.material_id(connection, "STEEL") == orm["steel"]
+            assert lookup_rows.fluid_id(connection, " water") == orm["water"]
+            published = lookup_rows.published_rows(connection)
+            assert published == orm["published"] and len(published) > 5
+            core_errors = []
+            for call in (lambda: lookup_rows.dataset_row(connection, "nope"),
+                         lambda: lookup_rows.dataset_row(connection, "ex", "9"),
+                         lambda: lookup_rows.material_id(connection, "nope"),
+                         lambda: lookup_rows.fluid_id(connection, "nope")):  # fmt: skip
+                with pytest.raises(NotFoundError) as caught:
+                    call()
+                core_errors.append(str(caught.value))
+    assert core_errors == errors
