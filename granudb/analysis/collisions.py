@@ -201,14 +201,15 @@ def collision_table(
     import pandas as pd
 
     from granudb.db.catalog_rows import fluid_rows_by_id
-    from granudb.db.collision_queries import count_collisions, iter_collisions, reading
+    from granudb.db.collision_queries import iter_collisions, reading, survey_collisions
 
     session = reading(session)  # a Core connection: no ORM on a read of runs
     fluids = fluid_rows_by_id(session)
     chunk_filters = {k: v for k, v in filters.items() if k != "chunk_rows"}
-    out = _Columns(count_collisions(session, **chunk_filters))
+    count, present = survey_collisions(session, **chunk_filters)
+    out = _Columns(count)
     text = columns is None or bool({"run", "notes"} & set(columns))
-    for stored in iter_collisions(session, text=text, **filters):
+    for stored in iter_collisions(session, text=text, measured=present, **filters):
         chunk = _derive_stored(stored, fluids, critical_stokes)
         del stored
         keep = where(chunk) if where is not None else None

@@ -8,7 +8,7 @@ million runs read in bounded memory: 100,000 rows load in a fraction of a second
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator
+from collections.abc import Collection, Iterator, Sequence
 from typing import Any
 
 from sqlalchemy import func, select
@@ -23,7 +23,8 @@ from granudb.vocabulary import COLLISION_MEASURED, MATERIAL_PROPERTIES
 #: driver's row tuples of one chunk, about 40 MB), while a chunk stays large enough that
 #: numpy, not Python, does the work.
 CHUNK_ROWS = 50_000
-_NUMBERS = ["dataset_id", "particle_id", "wall_id", "fluid_id", *COLLISION_MEASURED]
+_IDS = ["dataset_id", "particle_id", "wall_id", "fluid_id"]
+_NUMBERS = [*_IDS, *COLLISION_MEASURED]
 _TEXT = ["run", "notes"]
 #: Core clauses (no ORM: a read needs no mapped classes; see ``lookup_rows``). A reader
 #: is a Core connection (``Database.reading()``) or a session, whose connection is used.
@@ -75,13 +76,16 @@ def iter_collisions(
     fluid: str | None = None,
     chunk_rows: int = CHUNK_ROWS,
     text: bool = True,
+    measured: Collection[str] | None = None,
 ) -> Iterator[dict[str, Any]]:
     """The stored collisions matching the filters, in order, as dicts of numpy arrays of at
     most ``chunk_rows`` runs each: ``dataset``, ``version``, ``run``, ``particle``,
     ``wall`` (names), ``fluid_id`` (float, NaN for dry), every measured column, ``notes``
     and ``particle_<property>``/``wall_<property>``. ``text`` False: no ``run`` and
     ``notes`` (a reader that needs neither: every cell is then a number, and a chunk
-    converts to floats in one step, without a Python object per cell).
+    converts to floats in one step, without a Python object per cell). ``measured``: the
+    measured columns to read (``survey_collisions``: those holding a value), the others
+    come back as NaN without being read (default: every one).
 
     Why this way: the select returns each run's own columns and the ids of its dataset
     and materials; names and material properties are looked up once per id and spread
@@ -92,7 +96,10 @@ def iter_collisions(
     import numpy as np
 
     connection = reading(reader)
-    query = _collision_select(connection, dataset, version, particle, wall, fluid, text=text)
+    read = [c for c in COLLISION_MEASURED if measured is None or c in measured]
+    query = _collision_select(
+        connection, dataset, version, particle, wall, fluid, text=text, measured=read
+    )
     sets = sorted(connection.execute(select(DATASETS.c.id, DATASETS.c.name, DATASETS.c.version)))
     set_ids = np.array([r[0] for r in sets], dtype=np.int64)
     set_names = np.array([r[1] for r in sets], dtype=object)
@@ -102,7 +109,7 @@ def iter_collisions(
     material_ids = np.array([r[0] for r in materials], dtype=np.int64)
     material_names = np.array([r[1] for r in materials], dtype=object)
     table = np.stack([_floats([r[2 + i] for r in materials]) for i in range(len(properties))], 1)
-    names = [*_NUMBERS, *(_TEXT if text else ())]
+    names = [*_IDS, *read, *(_TEXT if text else ())]
     at = {name: i for i, name in enumerate(names)}
     for rows in _driver_chunks(connection, query, chunk_rows):
         try:
@@ -127,7 +134,7 @@ def iter_collisions(
             data[role] = material_names[roles[role]]
         data["fluid_id"] = _floats(block[:, at["fluid_id"]])
         for name in COLLISION_MEASURED:
-            data[name] = _floats(block[:, at[name]])
+            data[name] = _floats(block[:, at[name]]) if name in at else np.full(len(rows), np.nan)
         if text:
             data["notes"] = block[:, at["notes"]].copy()
         for role in ("particle", "wall"):
@@ -148,10 +155,31 @@ def count_collisions(
 ) -> int:
     """How many runs ``iter_collisions`` with the same filters yields (so a reader can
     allocate its arrays once)."""
+    filters = {"dataset": dataset, "version": version, "particle": particle, "wall": wall}
+    return survey_collisions(reader, fluid=fluid, **filters)[0]
+
+
+def survey_collisions(
+    reader: Reader,
+    *,
+    dataset: str | None = None,
+    version: str | None = None,
+    particle: str | None = None,
+    wall: str | None = None,
+    fluid: str | None = None,
+) -> tuple[int, frozenset[str]]:
+    """(how many runs the filters select, the measured columns holding a value in any of
+    them), in one pass. Why: most datasets leave whole columns empty (the target sphere's
+    six, spin, temperature); ``iter_collisions`` then skips them instead of converting a
+    NULL per run. In one read transaction (``Database.reading()``, or a session's) the
+    survey and the read see the same snapshot."""
     connection = reading(reader)
     query = _collision_select(connection, dataset, version, particle, wall, fluid, text=False)
-    counted = select(func.count()).select_from(query.order_by(None).subquery())
-    return int(connection.execute(counted).scalar_one())
+    runs = query.order_by(None).subquery()
+    counts = [func.count(runs.c[name]) for name in COLLISION_MEASURED]
+    row = connection.execute(select(func.count(), *counts).select_from(runs)).one()
+    present = frozenset(c for c, n in zip(COLLISION_MEASURED, row[1:], strict=True) if n)
+    return int(row[0]), present
 
 
 def _collision_select(
@@ -163,10 +191,12 @@ def _collision_select(
     fluid: str | None,
     *,
     text: bool,
+    measured: Sequence[str] = COLLISION_MEASURED,
 ) -> Any:
-    """The select of ``iter_collisions``: each run's columns and ids, filtered, in order."""
+    """The select of ``iter_collisions``: each run's ids, ``measured`` columns and (with
+    ``text``) its label and notes, filtered, in order."""
     runs = COLLISIONS.c
-    query = select(*(runs[name] for name in (*_NUMBERS, *(_TEXT if text else ()))))
+    query = select(*(runs[name] for name in (*_IDS, *measured, *(_TEXT if text else ()))))
     first, second = (
         MATERIALS.alias("particle_material"),
         MATERIALS.alias("wall_material"),
