@@ -15,7 +15,10 @@ run, ≤ 400 MB.
 
 With ``--postgres-url`` the same file is also imported into that PostgreSQL database (into
 a fresh schema, dropped afterwards) and compared with ``psql \copy`` of the file into a
-plain text table in the same run (bound: ≤ 3×).
+plain text table in the same run (issue 17 asks for this comparison and bounds only the
+SQLite import; the 3× printed for PostgreSQL is this project's own target, not met: about
+two thirds of the time are PostgreSQL's per-row foreign-key triggers, which only
+table-locking DDL or superuser rights could set aside).
 
     python benchmarks/import_speed.py [--rows 1000000] [--postgres-url postgresql+psycopg://…]
 """
@@ -271,7 +274,10 @@ def main() -> None:
         print(f"PostgreSQL granudb import: {pg_s:.1f} s = {args.rows / pg_s:,.0f} rows/s")
         print(f"psql \\copy (no checks): {copy_s:.1f} s = {args.rows / copy_s:,.0f} rows/s")
         ratio = pg_s / copy_s
-        print(f"{verdict(ratio <= 3)}: PostgreSQL import = {ratio:.1f}x psql \\copy; bound <= 3x")
+        print(
+            f"{verdict(ratio <= 3)}: PostgreSQL import = {ratio:.1f}x psql \\copy; own target "
+            "<= 3x (issue 17 bounds the SQLite import only)"
+        )
 
 
 if __name__ == "__main__":
