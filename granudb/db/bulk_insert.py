@@ -298,6 +298,18 @@ def _columns(
     return constant, bound
 
 
+def unsigned_zeros(values: dict[str, Any]) -> dict[str, Any]:
+    """Each column with -0.0 stored as 0.0. Why: SQLite keeps an integral REAL as an
+    integer and gives -0.0 back as 0.0, PostgreSQL keeps the sign; a measured velocity or
+    spin of "-0" means the same as 0, so every backend stores 0.0 and a file gets the same
+    content hash wherever it is imported. Columns without a zero are not copied."""
+    out = {}
+    for name, column in values.items():
+        column = np.asarray(column, dtype=np.float64)
+        out[name] = column + 0.0 if (column == 0).any() else column  # -0.0 + 0.0 is 0.0
+    return out
+
+
 def insert_rows(
     session: Any,
     dataset_id: int,

@@ -36,6 +36,7 @@ from granudb.db.bulk_insert import (
     frame_columns,
     insert_rows,
     rebuild_pays,
+    unsigned_zeros,
 )
 from granudb.db.models import (
     Collision,
@@ -379,9 +380,10 @@ def _store_block(
         if (column < 0).any():  # a reader checks required names; this is the last guard
             row = first_row + _first(column < 0)
             raise ValidationError(header, "(empty)", "is required", row=row)
+    values = unsigned_zeros(block.values)
     if hasher is not None:
-        hasher.add(runs, ids, block.values, block.notes)
-    return insert_rows(session, dataset.id, block.runs, ids, block.values, block.notes)
+        hasher.add(runs, ids, values, block.notes)
+    return insert_rows(session, dataset.id, block.runs, ids, values, block.notes)
 
 
 def insert_collisions(session: Any, dataset_id: int, frame: Any) -> int:
@@ -395,4 +397,4 @@ def insert_collisions(session: Any, dataset_id: int, frame: Any) -> int:
         for c in ("particle_id", "wall_id", "fluid_id")
     )
     runs, values, notes = frame_columns(frame)
-    return insert_rows(session, dataset_id, runs, ids, values, notes)
+    return insert_rows(session, dataset_id, runs, ids, unsigned_zeros(values), notes)
