@@ -40,20 +40,14 @@ def _versions(session: Session, name: str) -> list[Dataset]:
 
 
 def get_dataset(session: Session, name: str, version: str | None = None) -> Dataset:
-    """The dataset ``name`` at ``version`` (default: the most recently created version)."""
-    versions = _versions(session, name)
-    if not versions:
-        known = ", ".join(sorted({d.name for d in session.scalars(select(Dataset))})) or "none yet"
-        raise NotFoundError(f"dataset: {name!r} is not in the database (known: {known})")
-    if version is None:
-        return versions[-1]
-    for dataset in versions:
-        if dataset.version == version:
-            return dataset
-    raise NotFoundError(
-        f"dataset: {name!r} has no version {version!r} (versions: "
-        f"{', '.join(d.version for d in versions)})"
-    )
+    """The dataset ``name`` at ``version`` (default: the most recently created version);
+    found (and refused, with the known names or versions) by ``lookup_rows.dataset_row``."""
+    from granudb.db.lookup_rows import dataset_row
+
+    found = dataset_row(session.connection(), name, version)
+    dataset = session.get(Dataset, found.id)
+    assert dataset is not None  # the same transaction just read it
+    return dataset
 
 
 def get_or_create_dataset(
