@@ -144,21 +144,6 @@ def iter_collisions(
         yield data
 
 
-def count_collisions(
-    reader: Reader,
-    *,
-    dataset: str | None = None,
-    version: str | None = None,
-    particle: str | None = None,
-    wall: str | None = None,
-    fluid: str | None = None,
-) -> int:
-    """How many runs ``iter_collisions`` with the same filters yields (so a reader can
-    allocate its arrays once)."""
-    filters = {"dataset": dataset, "version": version, "particle": particle, "wall": wall}
-    return survey_collisions(reader, fluid=fluid, **filters)[0]
-
-
 def survey_collisions(
     reader: Reader,
     *,
@@ -168,8 +153,9 @@ def survey_collisions(
     wall: str | None = None,
     fluid: str | None = None,
 ) -> tuple[int, frozenset[str]]:
-    """(how many runs the filters select, the measured columns holding a value in any of
-    them), in one pass. Why: most datasets leave whole columns empty (the target sphere's
+    """(how many runs ``iter_collisions`` with the same filters yields, so a reader can
+    allocate its arrays once; the measured columns holding a value in any of them), in one
+    pass. Why: most datasets leave whole columns empty (the target sphere's
     six, spin, temperature); ``iter_collisions`` then skips them instead of converting a
     NULL per run. In one read transaction (``Database.reading()``, or a session's) the
     survey and the read see the same snapshot."""

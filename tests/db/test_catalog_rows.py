@@ -76,6 +76,16 @@ def test_a_missing_name_lists_the_known_ones(db: str) -> None:
     assert found.name == "Zerodur"
 
 
+def _refusals(*calls) -> list[str]:
+    """The NotFoundError message of each call (each must refuse)."""
+    messages = []
+    for call in calls:
+        with pytest.raises(NotFoundError) as caught:
+            call()
+        messages.append(str(caught.value))
+    return messages
+
+
 def test_core_lookups_agree_with_the_orm(cli, db: str, tmp_path) -> None:
     """The lookups a read of runs makes (``lookup_rows``) find what the ORM finds, and
     refuse with the same words."""
@@ -95,14 +105,12 @@ def test_core_lookups_agree_with_the_orm(cli, db: str, tmp_path) -> None:
                 "water": catalog.get_fluid(session, " water").id,
                 "published": sources.published_records(session),
             }
-            errors = []
-            for call in (lambda: datasets.get_dataset(session, "nope"),
-                         lambda: datasets.get_dataset(session, "ex", "9"),
-                         lambda: catalog.get_material(session, "nope"),
-                         lambda: catalog.get_fluid(session, "nope")):  # fmt: skip
-                with pytest.raises(NotFoundError) as caught:
-                    call()
-                errors.append(str(caught.value))
+            errors = _refusals(
+                lambda: datasets.get_dataset(session, "nope"),
+                lambda: datasets.get_dataset(session, "ex", "9"),
+                lambda: catalog.get_material(session, "nope"),
+                lambda: catalog.get_fluid(session, "nope"),
+            )
         with database.reading() as connection:
             latest = lookup_rows.dataset_row(connection, "ex")
             first = lookup_rows.dataset_row(connection, "ex", "1.0.0")
@@ -114,12 +122,10 @@ def test_core_lookups_agree_with_the_orm(cli, db: str, tmp_path) -> None:
             assert lookup_rows.fluid_id(connection, " water") == orm["water"]
             published = lookup_rows.published_rows(connection)
             assert published == orm["published"] and len(published) > 5
-            core_errors = []
-            for call in (lambda: lookup_rows.dataset_row(connection, "nope"),
-                         lambda: lookup_rows.dataset_row(connection, "ex", "9"),
-                         lambda: lookup_rows.material_id(connection, "nope"),
-                         lambda: lookup_rows.fluid_id(connection, "nope")):  # fmt: skip
-                with pytest.raises(NotFoundError) as caught:
-                    call()
-                core_errors.append(str(caught.value))
+            core_errors = _refusals(
+                lambda: lookup_rows.dataset_row(connection, "nope"),
+                lambda: lookup_rows.dataset_row(connection, "ex", "9"),
+                lambda: lookup_rows.material_id(connection, "nope"),
+                lambda: lookup_rows.fluid_id(connection, "nope"),
+            )
     assert core_errors == errors
