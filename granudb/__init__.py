@@ -17,7 +17,7 @@ _API = {
     "materials": "granudb.api.catalog",
     "fluids": "granudb.api.catalog",
     "collisions": "granudb.api.collisions",
-    "derive": "granudb.api.collisions",
+    "derive": "granudb.api.derive",
     "fit_walton": "granudb.api.fits",
     "fit_restitution": "granudb.api.fits",
     "fit_gap_viscosity": "granudb.api.fits",

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from granudb.api import _inputs
+from granudb.api import inputs
 from granudb.api.database import opened
 
 DRY_RESTITUTION = 0.97  # Joseph & Hunt 2004 §3: ē_dry = 0.97 ± 0.02 on Zerodur
@@ -138,8 +138,8 @@ def dem_model(
             "particles", particles, "need at least one particle and one wall", parameter=True
         )
     scenario = {
-        "diameter_m": _inputs.quantity(diameter, "diameter_m", "diameter"),
-        "speed_m_s": _inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
+        "diameter_m": inputs.quantity(diameter, "diameter_m", "diameter"),
+        "speed_m_s": inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
     }
     with opened(db) as database, database.session() as session:
         fluid_row = None if is_dry(fluid) else catalog.get_fluid(session, fluid)

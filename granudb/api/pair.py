@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from granudb.api import _inputs
+from granudb.api import inputs
 from granudb.api.database import opened
 
 
@@ -46,12 +46,12 @@ def pair(
                     name, given, "needs a fluid (a dry collision has none)", parameter=True
                 )
     values = {
-        "diameter_m": _inputs.quantity(diameter, "diameter_m", "diameter"),
-        "speed_m_s": _inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
-        "angle_rad": _inputs.angle(angle),
-        "temperature_c": _inputs.quantity(temperature, "temperature_c", "temperature"),
-        "viscosity_pa_s": _inputs.quantity(viscosity, "viscosity_pa_s", "viscosity"),
-        "wall_diameter_m": _inputs.quantity(wall_diameter, "wall_diameter_m", "wall_diameter"),
+        "diameter_m": inputs.quantity(diameter, "diameter_m", "diameter"),
+        "speed_m_s": inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
+        "angle_rad": inputs.angle(angle),
+        "temperature_c": inputs.quantity(temperature, "temperature_c", "temperature"),
+        "viscosity_pa_s": inputs.quantity(viscosity, "viscosity_pa_s", "viscosity"),
+        "wall_diameter_m": inputs.quantity(wall_diameter, "wall_diameter_m", "wall_diameter"),
     }
     with opened(db) as database, database.reading() as connection:
         result = derive_pair(

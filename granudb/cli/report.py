@@ -147,13 +147,13 @@ def _scenario(
 ) -> dict[str, object]:
     """The pair scenario's inputs in SI, as ``granudb pair`` reads them; an angle not
     given is 0° and said to be assumed."""
-    from granudb.api import _inputs
+    from granudb.api import inputs
 
     return {
         "fluid": None if fluid in (None, "dry") else fluid,
         "diameter_m": quantity(diameter, "diameter_m", "--diameter"),
         "speed_m_s": quantity(velocity, "impact_speed_m_s", "--velocity"),
-        "angle_rad": _inputs.angle(angle or "0 deg"),
+        "angle_rad": inputs.angle(angle or "0 deg"),
         "temperature_c": quantity(temperature, "temperature_c", "--temperature"),
         "viscosity_pa_s": quantity(viscosity, "viscosity_pa_s", "--viscosity"),
         "assumed": set() if angle is not None else {"incidence_angle_rad"},
