@@ -12,14 +12,14 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from granudb.lazy import platformdirs
+
 ENV_VAR = "GRANUDB_DATABASE_URL"
 
 
 def default_database_path() -> Path:
     """The embedded default SQLite file (its folder is created on first use)."""
-    from platformdirs import user_data_path
-
-    return user_data_path("granudb", appauthor=False) / "granudb.sqlite"
+    return platformdirs.user_data_path("granudb", appauthor=False) / "granudb.sqlite"
 
 
 def resolve_database_url(url: str | None = None) -> str:

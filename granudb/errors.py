@@ -50,6 +50,14 @@ class ValidationError(GranudbError):
         return str(self)
 
 
+class MissingInput(ValidationError):
+    """A required value was not given (``None``); the command line says it as a missing
+    option, with the command's usage."""
+
+    def __init__(self, field: str, rule: str = "is required") -> None:
+        super().__init__(field, "(missing)", rule, parameter=True)
+
+
 class NotFoundError(GranudbError):
     """A named thing (material, fluid, source, dataset) is not in the database."""
 
@@ -69,3 +77,13 @@ class DatabaseAccessError(GranudbError):
 class ConfirmationNeeded(GranudbError):
     """A destructive change was asked for without the person's consent (``--yes`` or a
     "y" at the prompt); nothing was changed."""
+
+
+class PackageError(GranudbError):
+    """A Data Package fails validation; ``problems`` lists every problem found."""
+
+    def __init__(self, problems: list[str], hint: str = "") -> None:
+        self.problems = problems
+        first = problems[0] if problems else "unknown problem"
+        more = f" (and {len(problems) - 1} more{hint})" if len(problems) > 1 else ""
+        super().__init__(f"package: {first}{more}; nothing was imported")

@@ -64,7 +64,6 @@ CASES = [
         ["materials", "add", "m", *MATERIAL, "--shear-modulus", "10 GPa"],
         "implies a Poisson ratio of 2, outside",
     ),
-    (["materials", "add", "m", *MATERIAL[:-2]], "--roughness: (missing) is required"),
     (["materials", "add", "GLASS", *MATERIAL], "material: 'GLASS' already exists as 'glass'"),
     (["materials", "add", " ", *MATERIAL], "material name: ' ' must not be empty"),
     (
@@ -132,10 +131,6 @@ CASES = [
             "120 %",
         ],
         "--glycerol-fraction: 120 % must be ≥ 0 and ≤ 1",
-    ),
-    (
-        ["fluids", "add", "f", "--reference-viscosity", "1 cP"],
-        "--reference-density: (missing) is required",
     ),
     (
         [

@@ -136,7 +136,7 @@ def test_add_update_remove_a_fluid(cli, db: str) -> None:
 
 def test_removing_a_material_in_use_says_by_what(cli, db: str) -> None:
     from granudb.api.database import connect as open_database
-    from granudb.db.catalog import get_material
+    from granudb.db.catalog_rows import entry_id
     from granudb.db.models import Collision, Dataset
 
     database = open_database(db)
@@ -149,8 +149,8 @@ def test_removing_a_material_in_use_says_by_what(cli, db: str) -> None:
                 Collision(
                     dataset_id=cli_added.id,
                     run=f"r{run}",
-                    particle_id=get_material(session, "steel").id,
-                    wall_id=get_material(session, "Zerodur").id,
+                    particle_id=entry_id(session.connection(), "material", "steel"),
+                    wall_id=entry_id(session.connection(), "material", "Zerodur"),
                     diameter_m=0.0127,
                     nominal_angle_rad=0.1,
                     v_n_in_m_s=0.3,

@@ -78,7 +78,7 @@ def test_stored_angle_and_derived_incidence_angle_are_two_columns(cli, db: str) 
         assert "nominal_angle_rad" in row
     import granudb
 
-    frame = granudb.collisions(db=db)
+    frame = granudb.collisions(db=db, wide=True)
     assert {"incidence_angle_rad", "nominal_angle_rad"} <= set(frame.columns)
     assert frame.attrs["units"]["incidence_angle_rad"] == "rad"
     assert len(spun) == len([r for r in rows if r["omega_in_rad_s"]])

@@ -39,5 +39,5 @@ def test_a_run_outside_its_fluids_data_is_listed_with_a_reason(cli, db: str, tmp
 
     import granudb
 
-    frame = granudb.collisions(db=db)
+    frame = granudb.collisions(db=db, wide=True)
     assert frame["derivation_note"].notna().sum() == 1

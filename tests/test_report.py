@@ -181,7 +181,7 @@ def test_default_output_name_in_the_current_folder(cli, db, tmp_path, monkeypatc
 @pytest.mark.parametrize(
     ("args", "expected"),
     [
-        (["--format", "pdf"], "--format: pdf must be html or md"),
+        (["--format", "pdf"], "--format: pdf must be one of html, md"),
         (["--output", "/no/such/folder/r.html"], "is in a folder that does not exist"),
         (["--velocity", "-1 m/s"], "--velocity: -1 m/s must be > 0"),
     ],

@@ -11,7 +11,7 @@ from sqlalchemy import func, select
 from support import dump_hash
 
 from granudb.api.database import connect as open_database
-from granudb.api.database import load_seed
+from granudb.api.schema import load_seed
 from granudb.db.models import Fluid, Material, PublishedValue
 from granudb.errors import ValidationError
 from granudb.resources import shipped_dir

@@ -19,58 +19,9 @@ import numpy as np
 from granudb.analysis._errors import physics_refusal
 from granudb.analysis.fluid_state import fluid_states_per_row
 from granudb.errors import ValidationError
-from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TARGET, MATERIAL_PROPERTIES, term
+from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TARGET, MATERIAL_PROPERTIES
+from granudb.vocabulary.listings import COLLISION_WIDE, units_of
 
-#: What ``collisions list`` shows by default, in every format: one line per run.
-DEFAULT_COLUMNS = [
-    "run",
-    "particle",
-    "wall",
-    "fluid",
-    "v_n_in_m_s",
-    "normal_restitution",
-    "rotational_restitution",
-    "effective_incidence",
-    "sliding_friction",
-    "normal_stokes_number",
-    "film_parameter",
-    "tangential_regime",
-]
-#: Every column, in presentation order (``--wide``); derived ones not named here follow.
-WIDE_COLUMNS = [
-    "dataset",
-    "version",
-    "run",
-    "particle",
-    "wall",
-    "fluid",
-    "diameter_m",
-    "incidence_angle_rad",
-    "nominal_angle_rad",
-    *[c for c in COLLISION_MEASURED if c not in ("diameter_m", "nominal_angle_rad")],
-    "viscosity_pa_s",
-    "normal_restitution",
-    "rotational_restitution",
-    "effective_incidence",
-    "effective_rebound",
-    "sliding_friction",
-    "normal_stokes_number",
-    "reynolds_number",
-    "min_gap_m",
-    "composite_roughness_m",
-    "film_parameter",
-    "roughness_exceeds_gap",
-    "rebound_expected",
-    "tangential_regime",
-    "quasi_static_valid",
-    "shear_strain",
-    "tangential_speed_m_s",
-    "lubricated_friction",
-    "effective_radius_m",
-    "reduced_modulus_pa",
-    "notes",
-    "derivation_note",
-]
 TANGENTIAL_REGIMES = ("stick", "slip_then_stick", "gross_slip")
 _MATERIAL = [c for c in MATERIAL_PROPERTIES if c not in ("correlation_length_m",)]
 
@@ -217,7 +168,7 @@ def collision_table(
         out.append({c: _values(chunk[c]) for c in names}, keep)
         del chunk
     if out.names is None:
-        empty = pd.DataFrame({c: [] for c in (WIDE_COLUMNS if columns is None else columns)})
+        empty = pd.DataFrame({c: [] for c in (COLLISION_WIDE if columns is None else columns)})
         empty.attrs["units"] = units_of(empty.columns)
         return empty
     arrays = out.arrays()
@@ -346,8 +297,8 @@ def _derive_stored(
     chunk["derivation_note"] = reason
     _blank_underivable(chunk, reason != None)  # noqa: E711 - elementwise on an object array
     return {
-        **{n: chunk[n] for n in WIDE_COLUMNS if n in chunk},
-        **{n: values for n, values in chunk.items() if n not in WIDE_COLUMNS},
+        **{n: chunk[n] for n in COLLISION_WIDE if n in chunk},
+        **{n: values for n, values in chunk.items() if n not in COLLISION_WIDE},
     }
 
 
@@ -382,8 +333,3 @@ def _blank_underivable(chunk: dict[str, np.ndarray], bad: np.ndarray) -> None:
             else:
                 column = np.where(bad, np.nan, column)
             chunk[name] = column
-
-
-def units_of(columns: Any) -> dict[str, str]:
-    """``{column: SI unit}`` for the columns that have one (for ``DataFrame.attrs``)."""
-    return {c: term(c).unit for c in columns if term(c).unit}

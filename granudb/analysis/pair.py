@@ -1,7 +1,7 @@
 """One scenario: a particle of a given size hits a wall (or a second sphere), in a fluid or
 dry, at a speed and an angle, without spin: every derived quantity and verdict.
 
-Inputs are SI floats; ``granudb.api.pair`` also accepts strings with units. Errors name
+Inputs are SI floats; ``granudb.pair`` also accepts strings with units. Errors name
 the Python parameters (``velocity``); the command line shows them as its options.
 """
 

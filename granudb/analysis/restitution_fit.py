@@ -28,6 +28,8 @@ RESTITUTION_MODELS = {
     ),
 }
 PARAMETER_NAMES = {"threshold": "fitted_critical_stokes", "exponential": "k"}
+#: The form fitted when none is named: Legendre et al.'s, the form of the prediction.
+DEFAULT_MODEL = "exponential"
 E_DRY_MAX = 1.0
 _INPUTS = ["dataset", "particle", "wall", "fluid", "normal_stokes_number", "normal_restitution"]
 
@@ -212,7 +214,7 @@ def _group_row(
     return row
 
 
-def restitution(frame: Any, model: str = "threshold") -> list[dict[str, Any]]:
+def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
     """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
     (figure 5).
 

@@ -1,6 +1,125 @@
-"""The public Python API: what ``import granudb`` offers, and what the command line calls.
+"""The public Python API: the whole product, and the one door of the command line.
 
-Every function takes ``db=`` (an opened database from ``connect``, a URL, a SQLite path,
-or nothing for the default) and accepts quantities as numbers in SI or as strings with
-units (``"12.7 mm"``), like the command line.
+Every command of ``granudb`` is a function here with the command's name (README, "In
+Python", has the table): ``granudb materials add`` is ``add_material``, an option
+``--angle-range`` is the parameter ``angle_range``, and an error names whichever the
+caller used. Every function takes ``db=`` (an opened database from ``connect``, a URL, a
+SQLite path, or nothing for the default) and accepts quantities as SI numbers or as
+strings with units (``"12.7 mm"``), checked by one gate (``granudb.api.inputs``).
+
+Modules load on first use, from the table below — the one place granudb's own modules
+are loaded lazily — so that ``import granudb`` and ``granudb --help`` stay fast and
+``granudb materials list`` never imports pandas.
 """
+
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+from granudb.config import ENV_VAR as DATABASE_ENV_VAR  # noqa: F401 (public: the --db variable)
+
+#: Public name → the module of ``granudb.api`` that defines it. The functions named after
+#: commands come first (``COMMAND_FUNCTIONS`` in ``granudb.cli.main`` maps each command
+#: to one of them); then what the command line's face uses to print results.
+NAMES: dict[str, str] = {
+    # database and schema
+    "connect": "database",
+    "db_upgrade": "schema",
+    "db_downgrade": "schema",
+    "db_current": "schema",
+    "db_history": "schema",
+    "db_seed": "schema",
+    # catalogue
+    "materials": "catalog",
+    "material": "catalog",
+    "fluids": "catalog",
+    "fluid": "catalog",
+    "sources": "catalog",
+    "source": "catalog",
+    "add_material": "catalog_changes",
+    "update_material": "catalog_changes",
+    "remove_material": "catalog_changes",
+    "add_fluid": "catalog_changes",
+    "update_fluid": "catalog_changes",
+    "remove_fluid": "catalog_changes",
+    "add_fluid_point": "catalog_changes",
+    "import_fluid_points": "catalog_changes",
+    # collisions and what is derived from them
+    "pair": "scenario",
+    "derive": "derivation",
+    "collisions": "collision_listing",
+    "import_collisions": "collision_changes",
+    "remove_collisions": "collision_changes",
+    "fit_walton": "fits",
+    "fit_restitution": "fits",
+    "fit_gap_viscosity": "fits",
+    "report": "reporting",
+    # datasets
+    "datasets": "dataset_versions",
+    "dataset": "dataset_versions",
+    "diff_datasets": "dataset_versions",
+    "edit_dataset": "dataset_versions",
+    "release_dataset": "dataset_versions",
+    "new_dataset_version": "dataset_versions",
+    "remove_dataset": "dataset_versions",
+    "export_dataset": "packages",
+    "validate_dataset": "packages",
+    "import_dataset": "packages",
+    "datasette_metadata": "datasette",
+    "database_file": "datasette",
+    # DEM
+    "dem_export": "dem",
+    "dem_verify": "dem",
+    # errors and version (from the base modules)
+    "GranudbError": "errors",
+    "ValidationError": "errors",
+    "ConfirmationNeeded": "errors",
+    "MissingInput": "errors",
+    "PackageError": "errors",
+    "__version__": "errors",
+}
+
+#: What the command line's face uses to print results; in ``granudb.api`` but not in
+#: ``granudb.__all__``.
+FACE: dict[str, str] = {
+    "display": "presentation",
+    "term": "presentation",
+    "derived_terms": "presentation",
+    "qualified_value": "scenario",
+    "verify_table": "dem",
+    "DEFAULT_COLLISION_COLUMNS": "presentation",
+    "FIT_TABLE_COLUMNS": "presentation",
+    "MATERIALS": "presentation",
+    "FLUIDS": "presentation",
+    "POINT_COLUMNS": "presentation",
+    "SOURCE_COLUMNS": "presentation",
+    "SOURCE_NARROW": "presentation",
+    "DATASET_COLUMNS": "presentation",
+    "DATASET_GROUP_COLUMNS": "presentation",
+    "DIFF_COLUMNS": "presentation",
+    "PUBLISHED_NARROW": "presentation",
+    "REPORT_FORMATS": "reporting",
+    "COLLISION_FILTERS": "collision_listing",
+    "RESTITUTION_MODELS": "fits",
+    "DEM_CODES": "dem",
+    "DEM_VALUE_SOURCES": "dem",
+    "parameter_of": "presentation",
+    "dataset_ref": "dataset_versions",
+    "load_seed": "schema",
+}
+
+__all__ = sorted({**NAMES, **FACE, "DATABASE_ENV_VAR": ""})
+
+
+def __getattr__(name: str) -> Any:
+    module = NAMES.get(name) or FACE.get(name)
+    if module is None:
+        raise AttributeError(f"module 'granudb.api' has no attribute {name!r}")
+    value = getattr(import_module(f"granudb.api.{module}"), name)
+    globals()[name] = value  # the next access does not come here again
+    return value
+
+
+def __dir__() -> list[str]:
+    return __all__

@@ -1,71 +1,117 @@
-"""``granudb.materials()`` and ``granudb.fluids()``: the catalogue as DataFrames (SI)."""
+"""Reading the catalogue, for Python users and the command line: materials, fluids and
+sources.
+
+``granudb materials list|show``, ``fluids list|show`` and ``sources list|show`` are
+``materials``, ``material``, ``fluids``, ``fluid``, ``sources`` and ``source``. They read
+through SQLAlchemy Core (``granudb.db.catalog_rows``), so a listing builds none of the
+ORM's classes; changes are ``granudb.api.catalog_changes``.
+"""
 
 from __future__ import annotations
 
 from typing import Any
 
+from granudb.api import inputs
 from granudb.api.database import opened
+from granudb.api.frames import records_frame
+from granudb.db import catalog_rows
+from granudb.db import sources as source_reads
+from granudb.vocabulary import FLUIDS, MATERIALS, Catalogue
+from granudb.vocabulary.catalogue import SOURCE_COLUMNS
 
 
-def _frame(records: list[dict[str, Any]], columns: list[str]) -> Any:
-    import pandas as pd
+def entry(catalogue: Catalogue, name: str, database: Any) -> dict[str, Any]:
+    """One material or fluid as ``material``/``fluid`` return it."""
+    with database.reading() as connection:
+        if catalogue is MATERIALS:
+            row = catalog_rows.get_material_row(connection, name)
+            record = catalog_rows.material_record(row)
+        else:
+            row = catalog_rows.get_fluid_row(connection, name)
+            record = catalog_rows.fluid_record(row)
+    record["citation"] = row.source.citation if row.source else None
+    record["created_at"] = row.created_at
+    record["updated_at"] = row.updated_at
+    if catalogue is FLUIDS:
+        record["points"] = catalog_rows.point_records(row)
+    return record
 
-    from granudb.vocabulary import term
 
-    frame = pd.DataFrame.from_records(records, columns=columns)
-    frame.attrs["units"] = {c: term(c).unit for c in columns if term(c).unit}
-    return frame
-
-
-def materials(db: Any = None) -> Any:
-    """Every material with its properties (SI, units in ``attrs["units"]``) and source.
+def materials(db: Any = None, *, as_frame: bool = True) -> Any:
+    """Every material with its properties (SI) and source, by name: a DataFrame (units in
+    ``attrs["units"]``), or a list of records with ``as_frame=False``.
 
     >>> import granudb
     >>> frame = granudb.materials(db=db)
     >>> float(frame.set_index("name").loc["glass", "youngs_modulus_pa"])
     60000000000.0
     """
-    from granudb.vocabulary import columns
+    with opened(db) as database, database.reading() as connection:
+        records = [catalog_rows.material_record(m) for m in catalog_rows.material_rows(connection)]
+    return records_frame(records, MATERIALS.columns) if as_frame else records
 
-    return _frame(material_records(db), columns.MATERIAL_COLUMNS)
+
+def material(name: str, *, db: Any = None) -> dict[str, Any]:
+    """One material: its properties (SI), source with the full citation, and when it was
+    added and last changed.
+
+    >>> import granudb
+    >>> granudb.material("STEEL", db=db)["density_kg_m3"]
+    7780.0
+    """
+    with opened(db) as database:
+        return entry(MATERIALS, inputs.text(name, "name"), database)
 
 
-def fluids(db: Any = None) -> Any:
-    """Every fluid with its reference values (SI), source and number of viscosity points.
+def fluids(db: Any = None, *, as_frame: bool = True) -> Any:
+    """Every fluid with its reference values (SI), sources and number of viscosity points:
+    a DataFrame, or a list of records with ``as_frame=False``.
 
     >>> import granudb
     >>> frame = granudb.fluids(db=db)
     >>> float(frame.set_index("name").loc["glycerol-45", "reference_viscosity_pa_s"])
     0.0045
     """
-    from granudb.vocabulary import columns
-
-    return _frame(fluid_records(db), columns.FLUID_COLUMNS)
-
-
-# The same as plain records (what ``granudb materials|fluids|sources list`` print). They
-# read through SQLAlchemy Core without building the ORM's classes (issue 17: start-up).
-
-
-def material_records(db: Any = None) -> list[dict[str, Any]]:
-    """Every material as an SI record, by name."""
-    from granudb.db import catalog_rows
-
     with opened(db) as database, database.reading() as connection:
-        return [catalog_rows.material_record(m) for m in catalog_rows.material_rows(connection)]
+        records = [catalog_rows.fluid_record(f) for f in catalog_rows.fluid_rows(connection)]
+    return records_frame(records, FLUIDS.columns) if as_frame else records
 
 
-def fluid_records(db: Any = None) -> list[dict[str, Any]]:
-    """Every fluid as an SI record (``points`` counts its viscosity points), by name."""
-    from granudb.db import catalog_rows
+def fluid(name: str, *, db: Any = None) -> dict[str, Any]:
+    """One fluid with its sources and its viscosity–temperature points (``points``: a
+    list of records ``temperature_c``, ``viscosity_pa_s``, ``density_kg_m3``, ``source``).
 
+    >>> import granudb
+    >>> len(granudb.fluid("glycerol-45", db=db)["points"]) > 2
+    True
+    """
+    with opened(db) as database:
+        return entry(FLUIDS, inputs.text(name, "name"), database)
+
+
+def sources(db: Any = None, *, as_frame: bool = True) -> Any:
+    """Every source (key, citation, DOI, …) by key: a DataFrame or a list of records.
+
+    >>> import granudb
+    >>> "joseph-hunt-2004" in set(granudb.sources(db=db)["key"])
+    True
+    """
     with opened(db) as database, database.reading() as connection:
-        return [catalog_rows.fluid_record(f) for f in catalog_rows.fluid_rows(connection)]
+        records = [catalog_rows.source_record(s) for s in catalog_rows.source_rows(connection)]
+    return records_frame(records, SOURCE_COLUMNS) if as_frame else records
 
 
-def source_records(db: Any = None) -> list[dict[str, Any]]:
-    """Every source (key, citation, DOI, …), by key."""
-    from granudb.db import catalog_rows
+def source(key: str, *, db: Any = None) -> dict[str, Any]:
+    """One source: its citation, how many stored rows cite it (``cited_by``), and the
+    numbers it printed as printed (``published_values``).
 
+    >>> import granudb
+    >>> granudb.source("joseph-hunt-2004", db=db)["year"]
+    2004
+    """
+    key = inputs.text(key, "key")
     with opened(db) as database, database.reading() as connection:
-        return [catalog_rows.source_record(s) for s in catalog_rows.source_rows(connection)]
+        record = catalog_rows.source_record(catalog_rows.get_source_row(connection, key))
+        record["cited_by"] = source_reads.source_usage(connection, key)
+        record["published_values"] = source_reads.published_records(connection, key)
+    return record

@@ -2,30 +2,31 @@
 
 ``connect()`` is what every public function uses when it is given a URL (or nothing): it
 opens the database (``granudb.db.engine``), and when the database is brand new it loads
-the shipped seed data (read by ``granudb.io.seed``, written by ``granudb.db.seed_store``)
-in the same transaction that creates the schema.
+the shipped seed data (``db_seed``'s loader, ``granudb.api.schema.load_seed``) in the
+same transaction that creates the schema, and says so on the ``granudb`` logger (the
+command line prints it on stderr).
 """
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from granudb import api
+from granudb.db.engine import Database, open_database
+
 if TYPE_CHECKING:
     from sqlalchemy.orm import Session
 
-    from granudb.db.engine import Database
+log = logging.getLogger("granudb")
 
 
-def load_seed(session: Session, folder: Path | None = None) -> list[str]:
-    """Load the seed files of ``folder`` (default: the shipped ``seed_data``) into the
-    session's transaction; returns one line per change plus a summary."""
-    from granudb.db.seed_store import apply_seed
-    from granudb.io.seed import read_seed
-
-    return apply_seed(session, read_seed(folder))
+def _seed(session: Session) -> list[str]:
+    # Through the API's table: the seed files and the ORM load only when a database is new.
+    return api.load_seed(session)
 
 
 def connect(url: str | Path | None = None) -> Database:
@@ -39,17 +40,16 @@ def connect(url: str | Path | None = None) -> Database:
     True
     >>> db.dispose()
     """
-    from granudb.db.engine import open_database
-
-    return open_database(None if url is None else str(url), on_create=load_seed)
+    database = open_database(None if url is None else str(url), on_create=_seed)
+    if database.created:
+        log.info("created %s and loaded the seed data", database.display_url)
+    return database
 
 
 @contextmanager
 def opened(db: object = None) -> Iterator[Database]:
     """The ``Database`` for ``db`` (an opened one is used as it is; a URL or path is opened
     and closed again afterwards)."""
-    from granudb.db.engine import Database
-
     if isinstance(db, Database):
         yield db
         return

@@ -18,18 +18,40 @@ on the first wall, and the comment says so.
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
+from granudb.analysis import fits
+from granudb.analysis.collisions import CollisionQuery, select_collisions
+from granudb.analysis.fluid_state import fluid_state
+from granudb.analysis.pair import derive_pair, is_dry
 from granudb.api import inputs
 from granudb.api.database import opened
+from granudb.db import catalog_rows, sources
+from granudb.dem import (
+    WRITER_NAMES,
+    DemModel,
+    PairParameters,
+    ParticleType,
+    Value,
+    lammps,
+    liggghts,
+    mercurydpm,
+    predicted_wet_restitution,
+    yade,
+)
+from granudb.dem.verify import Record, table, verify
+from granudb.errors import ValidationError
 
+#: The codes ``dem_export`` writes for (``dem_verify`` runs the first three).
+DEM_CODES = WRITER_NAMES
+WRITERS = {"liggghts": liggghts, "lammps": lammps, "yade": yade, "mercurydpm": mercurydpm}
 DRY_RESTITUTION = 0.97  # Joseph & Hunt 2004 §3: ē_dry = 0.97 ± 0.02 on Zerodur
 VALUE_SOURCES = ("published", "dataset", "predicted")
+DEM_VALUE_SOURCES = VALUE_SOURCES
 
 
 def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dict[str, Any]:
-    from granudb.db import sources
-
     found: dict[str, Any] = {}
     for row in sources.published_records(session):
         same_pair = (row["particle"], row["wall"]) == (particle, wall)
@@ -44,8 +66,6 @@ def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dic
 
 
 def _predicted(session: Any, particle: str, wall: str, fluid: str | None, scenario: dict) -> Any:
-    from granudb.analysis.pair import derive_pair
-
     return derive_pair(session, particle, wall, fluid=fluid, **scenario).derived
 
 
@@ -53,8 +73,6 @@ def _pair_values(
     session: Any, particle: Any, wall: str, fluid: Any, scenario: dict, values: str, dataset: Any
 ) -> tuple[Any, Any, Any]:
     """(restitution Value, friction Value, WetParameters or None) for one pair."""
-    from granudb.dem import Value, predicted_wet_restitution
-
     derived = _predicted(session, particle.name, wall, fluid.name if fluid else None, scenario)
     lubricated = derived.get("lubricated_friction_state") == "in_range" and fluid is not None
     friction = Value(
@@ -84,10 +102,6 @@ def _pair_values(
 def _dataset_values(
     session: Any, dataset: str, particle: str, wall: str, fluid: Any, friction: Any, dry: Any
 ) -> tuple[Any, Any]:
-    from granudb.analysis import fits
-    from granudb.analysis.collisions import CollisionQuery, select_collisions
-    from granudb.dem import Value
-
     query = CollisionQuery(
         dataset=dataset, particle=particle, wall=wall, fluid=fluid.name if fluid else "dry"
     )
@@ -113,20 +127,14 @@ def dem_model(
     particles: list[str],
     walls: list[str],
     *,
-    diameter: float | str,
-    velocity: float | str,
+    diameter: Any = None,
+    velocity: Any = None,
     fluid: str | None = None,
     values: str = "published",
     dataset: str | None = None,
     db: Any = None,
 ) -> Any:
     """The ``granudb.dem.DemModel`` for these particle and wall materials in ``fluid``."""
-    from granudb.analysis.fluid_state import fluid_state
-    from granudb.analysis.pair import is_dry
-    from granudb.db import catalog
-    from granudb.dem import DemModel, PairParameters, ParticleType
-    from granudb.errors import ValidationError
-
     if values not in VALUE_SOURCES:
         raise ValidationError(
             "values", values, f"must be one of {', '.join(VALUE_SOURCES)}", parameter=True
@@ -137,16 +145,19 @@ def dem_model(
         raise ValidationError(
             "particles", particles, "need at least one particle and one wall", parameter=True
         )
+    for name, given in (("diameter", diameter), ("velocity", velocity)):
+        if given is None:
+            raise inputs.missing(name)
     scenario = {
         "diameter_m": inputs.quantity(diameter, "diameter_m", "diameter"),
         "speed_m_s": inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
     }
-    with opened(db) as database, database.session() as session:
-        fluid_row = None if is_dry(fluid) else catalog.get_fluid(session, fluid)
+    with opened(db) as database, database.reading() as session:
+        fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(session, fluid)
         state = fluid_state(fluid_row) if fluid_row else None
         types, pairs = [], []
         for name in particles:
-            m = catalog.get_material(session, name)
+            m = catalog_rows.get_material_row(session, name)
             types.append(
                 ParticleType(
                     _type(m.name),
@@ -157,7 +168,7 @@ def dem_model(
                 )
             )
         for name in walls:
-            m = catalog.get_material(session, name)
+            m = catalog_rows.get_material_row(session, name)
             types.append(
                 ParticleType(
                     _type(m.name) + "_wall",
@@ -185,8 +196,6 @@ def _type(name: str) -> str:
 
 
 def _particle_pairs(particles: list[Any], on_wall: dict[str, Any]) -> list[Any]:
-    from granudb.dem import PairParameters, Value
-
     pairs = []
     for i, first in enumerate(particles):
         for second in particles[i:]:
@@ -208,11 +217,27 @@ def _particle_pairs(particles: list[Any], on_wall: dict[str, Any]) -> list[Any]:
 
 
 def dem_export(
-    code: str, particles: list[str], walls: list[str], *, clamp: bool = False, **options: Any
+    code: str,
+    particles: list[str],
+    walls: list[str],
+    *,
+    diameter: Any = None,
+    velocity: Any = None,
+    fluid: str | None = None,
+    values: str = "published",
+    dataset: str | None = None,
+    clamp: bool = False,
+    output: str | Path | None = None,
+    db: Any = None,
 ) -> str:
-    """The input fragment for ``code`` (liggghts, lammps, yade or mercurydpm); ``options``
-    as ``dem_model``. A value the code cannot take is refused naming its rule, or with
-    ``clamp=True`` written at the nearest allowed value with a comment.
+    """The input fragment for ``code`` (liggghts, lammps, yade or mercurydpm) for these
+    particle and wall materials in ``fluid``, every number commented with its source.
+
+    ``values`` says where e and μ_f come from: "published" (the paper's fits where the
+    database has them), "dataset" (``dataset``'s Walton fit) or "predicted". A value the
+    code cannot take is refused naming its rule, or with ``clamp=True`` written at the
+    nearest allowed value with a comment. With ``output`` the fragment is also written
+    to that new file (an existing one is refused). Returns the fragment.
 
     >>> import granudb
     >>> text = granudb.dem_export("liggghts", ["steel"], ["Zerodur"], diameter="12.7 mm",
@@ -220,30 +245,45 @@ def dem_export(
     >>> "coefficientFriction peratomtypepair 2" in text and "μ_f = 0.11 ± 0.003" in text
     True
     """
-    from importlib import import_module
-
-    from granudb.dem import WRITER_NAMES
-    from granudb.errors import ValidationError
-
-    if code not in WRITER_NAMES:
+    writer = WRITERS.get(inputs.choice(code, DEM_CODES, "code"))
+    target = None if output is None else Path(inputs.path(output, "output"))
+    if target is not None and (target.exists() or target.is_symlink()):
         raise ValidationError(
-            "code", code, f"must be one of {', '.join(WRITER_NAMES)}", parameter=True
+            "output", str(target), "exists already (choose a new file)", parameter=True
         )
-    model = dem_model(particles, walls, **options)
-    return import_module(f"granudb.dem.{code}").write(model, clamp=clamp)
+    model = dem_model(
+        particles, walls, diameter=diameter, velocity=velocity, fluid=fluid, values=values,
+        dataset=dataset, db=db,
+    )  # fmt: skip
+    text = writer.write(model, clamp=clamp)
+    if target is not None:
+        try:
+            with target.open("x", encoding="utf-8") as handle:
+                handle.write(text)
+        except OSError as exc:
+            raise ValidationError(
+                "output", str(target), f"cannot be written ({exc.strerror})", parameter=True
+            ) from None
+    return text
 
 
 def dem_verify(
     particles: list[str],
     walls: list[str],
     *,
-    codes: tuple[str, ...] | None = None,
+    diameter: Any = None,
+    velocity: Any = None,
+    fluid: str | None = None,
+    values: str = "published",
+    dataset: str | None = None,
     clamp: bool = False,
-    **options: Any,
-) -> list[Any]:
+    codes: tuple[str, ...] | None = None,
+    db: Any = None,
+) -> list[Record]:
     """Run the exported parameters in every installed code (LIGGGHTS, LAMMPS, Yade) on
     normal and oblique wall impacts and head-on sphere pairs; one record per run, and
-    "not checked" (never "passed") for a code that is not installed.
+    "not checked" (never "passed") for a code that is not installed. The options are
+    ``dem_export``'s; ``verify_table(records)`` prints them.
 
     >>> import granudb
     >>> records = granudb.dem_verify(["steel"], ["Zerodur"], codes=("liggghts",),
@@ -251,7 +291,13 @@ def dem_verify(
     >>> all(r.status == "not checked" or abs(r.e_rel_error) < 0.02 for r in records)
     True
     """
-    from granudb.dem.verify import verify
-
-    model = dem_model(particles, walls, **options)
+    model = dem_model(
+        particles, walls, diameter=diameter, velocity=velocity, fluid=fluid, values=values,
+        dataset=dataset, db=db,
+    )  # fmt: skip
     return verify(model, codes=codes or ("liggghts", "lammps", "yade"), clamp=clamp)
+
+
+def verify_table(records: list[Record]) -> str:
+    """``dem_verify``'s records as a plain-text table (target against achieved)."""
+    return table(records)

@@ -10,8 +10,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from granudb.errors import ValidationError
+from granudb.errors import MissingInput, ValidationError
 from granudb.vocabulary import check_value, unit_of_column
+from granudb.vocabulary.text import MAX_NAME, check_name
 
 
 def _as_parameter(exc: ValidationError, parameter: str) -> ValidationError:
@@ -82,3 +83,70 @@ def angle_range(value: Any, parameter: str = "angle_range") -> tuple[float, floa
     if low_rad > high_rad:
         raise ValidationError(parameter, value, "must have LOW ≤ HIGH", parameter=True)
     return (low_rad, high_rad)
+
+
+def missing(parameter: str, rule: str = "is required") -> MissingInput:
+    """The refusal of a required parameter that was not given (``None``)."""
+    return MissingInput(parameter, rule)
+
+
+def name(value: Any, parameter: str, *, max_length: int = MAX_NAME) -> str:
+    """A name from outside (a dataset, a version, a title): text that follows the shared
+    name rules (``granudb.vocabulary.text``), refused naming the parameter."""
+    try:
+        return check_name(parameter, text(value, parameter), max_length=max_length)
+    except ValidationError as exc:
+        raise _as_parameter(exc, parameter) from None
+
+
+def text(value: Any, parameter: str) -> str:
+    """A name or text given from outside: a ``str``, refused by name if anything else."""
+    if not isinstance(value, str):
+        if value is None:
+            raise missing(parameter)
+        raise ValidationError(parameter, repr(value)[:60], "must be text", parameter=True)
+    return value
+
+
+def choice(value: Any, allowed: tuple[str, ...] | list[str], parameter: str) -> str:
+    """One of ``allowed`` (text), refused by name with the list otherwise."""
+    if not isinstance(value, str) or value not in allowed:
+        shown = value if isinstance(value, str) else repr(value)[:60]
+        raise ValidationError(
+            parameter, shown, f"must be one of {', '.join(allowed)}", parameter=True
+        )
+    return value
+
+
+def flag(value: Any, parameter: str) -> bool:
+    """A yes/no filter: ``True`` or ``False`` (numpy's too), nothing else."""
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return bool(value)
+    raise ValidationError(parameter, repr(value)[:60], "must be True or False", parameter=True)
+
+
+def critical_stokes(value: Any) -> float:
+    """The critical normal Stokes number St_c below which no rebound is expected."""
+    number = quantity(value, "critical_stokes", "critical_stokes")
+    if number is None:
+        raise missing("critical_stokes")
+    return number
+
+
+def path(value: Any, parameter: str) -> str:
+    """A file or folder path: text or ``os.PathLike``."""
+    if isinstance(value, str) or hasattr(value, "__fspath__"):
+        return str(value)
+    if value is None:
+        raise missing(parameter)
+    raise ValidationError(parameter, repr(value)[:60], "must be a path", parameter=True)
+
+
+def sequence(value: Any, parameter: str) -> list[Any]:
+    """A list (or tuple) of values; a lone string is refused (it is not a list of
+    names)."""
+    if isinstance(value, list | tuple):
+        return list(value)
+    if value is None:
+        raise missing(parameter)
+    raise ValidationError(parameter, repr(value)[:60], "must be a list", parameter=True)

@@ -1,4 +1,5 @@
-"""Consent before anything is destroyed: say what will go, then ask or need ``--yes``.
+"""Consent before anything is destroyed, at the terminal: the ``confirm`` the command line
+passes to the API's destructive functions (``granudb.api.consent``).
 
 On a terminal the person answers y/N (default no); without a terminal (a script, a pipe,
 CI) there is nobody to ask, so the command refuses in one line unless ``--yes`` was given.
@@ -8,13 +9,12 @@ Either way a "no" changes nothing.
 from __future__ import annotations
 
 import sys
-from typing import Annotated
+from collections.abc import Callable
 
 import typer
 
-from granudb.errors import ConfirmationNeeded
-
-YesOption = Annotated[bool, typer.Option("--yes", "-y", help="Do it without asking (for scripts).")]
+from granudb import api
+from granudb.cli.output import note
 
 
 def interactive() -> bool:
@@ -22,22 +22,20 @@ def interactive() -> bool:
     return sys.stdin.isatty() and sys.stderr.isatty()
 
 
-def confirm(action: str, losses: list[str], yes: bool) -> None:
-    """Return when the person agreed to ``action`` losing ``losses``; else refuse.
+def asker(yes: bool) -> Callable[[str, list[str]], bool]:
+    """The ``confirm(action, losses)`` for a command run with or without ``--yes``."""
 
-    ``losses`` empty means nothing is lost: no question is asked.
-    """
-    if not losses or yes:
-        return
-    what = "; ".join(losses)
-    if not interactive():
-        raise ConfirmationNeeded(
-            f"{action}: loses {what}; run again with --yes to confirm (nothing was changed)"
-        )
-    from granudb.cli.output import note
+    def confirm(action: str, losses: list[str]) -> bool:
+        if yes:
+            return True
+        what = "; ".join(losses)
+        if not interactive():
+            raise api.ConfirmationNeeded(
+                f"{action}: loses {what}; run again with --yes to confirm (nothing was changed)"
+            )
+        note(f"{action} loses:")
+        for line in losses:
+            note(f"  {line}")
+        return typer.confirm("Proceed?", default=False, err=True)
 
-    note(f"{action} loses:")
-    for line in losses:
-        note(f"  {line}")
-    if not typer.confirm("Proceed?", default=False, err=True):
-        raise ConfirmationNeeded(f"{action}: not confirmed; nothing was changed")
+    return confirm

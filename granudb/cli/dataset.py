@@ -1,5 +1,5 @@
-"""``granudb dataset list|show|diff|export|validate|import``: share curated datasets as
-Frictionless Data Packages."""
+"""``granudb dataset list|show|diff|export|validate|import|edit|release|new-version|remove|
+remove-runs``: curated datasets, shared as Frictionless Data Packages."""
 
 from __future__ import annotations
 
@@ -8,19 +8,18 @@ from typing import Annotated
 
 import typer
 
-from granudb.cli.common import DbOption, Format, FormatOption, open_db
+from granudb import api
+from granudb.cli.confirm import asker
+from granudb.cli.options import DbOption, Format, FormatOption, YesOption, wraps
+from granudb.cli.output import emit, emit_one, note, say
 
 app = typer.Typer(
     help="Curated collision datasets: catalogue, export and import as Frictionless Data Packages.",
     no_args_is_help=True,
 )
 
-Name = Annotated[str, typer.Argument(help="Dataset name.")]
-Version = Annotated[
-    str | None, typer.Option("--version", help="Dataset version (default: newest).")
-]
-
-
+Ref = Annotated[str, typer.Argument(help="Dataset as NAME@VERSION (or NAME: the newest).")]
+PackagePath = Annotated[Path, typer.Argument(help="Package folder, datapackage.json or .zip.")]
 FullHash = Annotated[
     bool, typer.Option("--full-hash", help="Show the whole 64-digit content hash in a table.")
 ]
@@ -29,46 +28,36 @@ SHORT_HASH = 12
 
 
 @app.command("list")
+@wraps("datasets")
 def list_(
     full_hash: FullHash = False, db: DbOption = None, fmt: FormatOption = Format.table
 ) -> None:
     """Every dataset with its version, content hash, run count and source."""
-    from granudb.cli.output import emit
-    from granudb.db import dataset_catalog
-
-    database = open_db(db)
-    with database.session() as session:
-        records = dataset_catalog.dataset_records(session)
+    records = api.datasets(db=db, as_frame=False)
     if fmt is Format.table and not full_hash:
         for record in records:
             digest = record.get("content_hash")
             record["content_hash"] = f"{digest[:SHORT_HASH]}…" if digest else digest
-    emit(records, dataset_catalog.DATASET_COLUMNS, fmt, title="Datasets")
+    emit(records, api.DATASET_COLUMNS, fmt, title="Datasets")
 
 
 @app.command()
-def show(
-    name: Name, version: Version = None, db: DbOption = None, fmt: FormatOption = Format.table
-) -> None:
+@wraps("dataset")
+def show(name: Ref, db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """One dataset: metadata and run counts by particle, wall and fluid."""
-    from granudb.cli.output import emit, emit_one
-    from granudb.db import dataset_catalog, datasets
-
-    database = open_db(db)
-    with database.session() as session:
-        dataset = datasets.get_dataset(session, name, version)
-        record = dataset_catalog.dataset_record(session, dataset)
-        groups = dataset_catalog.group_counts(session, dataset)
+    record = api.dataset(name, db=db)
+    groups = record.pop("groups")
     if fmt is Format.json:
         emit_one(record, fmt, extra={"groups": groups})
     elif fmt is Format.csv:
-        emit(groups, ["particle", "wall", "fluid", "runs"], fmt)
+        emit(groups, api.DATASET_GROUP_COLUMNS, fmt)
     else:
-        emit_one(record, fmt, title=f"Dataset {name}")
-        emit(groups, ["particle", "wall", "fluid", "runs"], fmt, title="Runs by pair and fluid")
+        emit_one(record, fmt, title=f"Dataset {record['name']}")
+        emit(groups, api.DATASET_GROUP_COLUMNS, fmt, title="Runs by pair and fluid")
 
 
 @app.command()
+@wraps("diff_datasets")
 def diff(
     a: Annotated[str, typer.Argument(help="Dataset A as NAME or NAME@VERSION.")],
     b: Annotated[str, typer.Argument(help="Dataset B as NAME or NAME@VERSION.")],
@@ -76,77 +65,54 @@ def diff(
     fmt: FormatOption = Format.table,
 ) -> None:
     """Runs added, removed and changed from A to B (matched by run label)."""
-    from granudb.cli.output import emit, say
-    from granudb.db import dataset_catalog, datasets
-
-    database = open_db(db)
-    with database.session() as session:
-        first = datasets.get_dataset(session, *_split(a))
-        second = datasets.get_dataset(session, *_split(b))
-        changes = dataset_catalog.diff_datasets(session, first, second)
+    changes = api.diff_datasets(a, b, db=db)
     if fmt is Format.table:
         counts = {
-            k: sum(1 for c in changes if c["change"] == k) for k in ("added", "removed", "changed")
+            k: sum(c["change"] == k for c in changes) for k in ("added", "removed", "changed")
         }
         say(
             f"{a} → {b}: {counts['added']} added, {counts['removed']} removed, "
             f"{counts['changed']} changed"
         )
-    emit(changes, ["change", "run", "fields"], fmt, title="Differences")
-
-
-def _split(text: str) -> tuple[str, str | None]:
-    name, _, version = text.partition("@")
-    return name, version or None
+    emit(changes, api.DIFF_COLUMNS, fmt, title="Differences")
 
 
 @app.command()
+@wraps("export_dataset")
 def export(
-    name: Name,
+    dataset: Ref,
     output: Annotated[
         Path, typer.Option("--output", "-o", help="An empty folder, or a file ending in .zip.")
     ],
-    version: Version = None,
     db: DbOption = None,
 ) -> None:
     """Write the dataset as a Data Package (datapackage.json, CSVs, README, CITATION.cff)."""
-    from granudb.cli.output import say
-    from granudb.db.package_queries import export_data
-    from granudb.io.package_export import build_package, write_package
-
-    database = open_db(db)
-    with database.session() as session:
-        data = export_data(session, name, version)
-    write_package(build_package(data), output)
+    done = api.export_dataset(dataset, output, db=db)
     say(
-        f"exported dataset {data.dataset['name']} {data.dataset['version']} to {output} "
-        f"(content hash {data.content_hash[:16]}…)"
+        f"exported dataset {done.dataset} {done.version} to {done.path} "
+        f"(content hash {done.content_hash[:16]}…)"
     )
 
 
 @app.command()
-def validate(
-    path: Annotated[Path, typer.Argument(help="Package folder, datapackage.json or .zip.")],
-) -> None:
+@wraps("validate_dataset")
+def validate(path: PackagePath) -> None:
     """Check a package without importing it; lists every problem found."""
-    from granudb.cli.output import note, say
-    from granudb.io.package_import import PackageError, validate_package
-
-    result = validate_package(path)
+    result = api.validate_dataset(path)
     if result.problems:
         for problem in result.problems:
             note(f"problem: {problem}")
-        raise PackageError(result.problems)
-    rows = len(result.tables["collisions"])
+        raise api.PackageError(result.problems)
     say(
-        f"valid: {path} holds {rows} collisions, "
-        f"{len(result.tables['materials'])} materials, {len(result.tables['fluids'])} fluids"
+        f"valid: {path} holds {result.counts['collisions']} collisions, "
+        f"{result.counts['materials']} materials, {result.counts['fluids']} fluids"
     )
 
 
 @app.command("import")
+@wraps("import_dataset")
 def import_(
-    path: Annotated[Path, typer.Argument(help="Package folder, datapackage.json or .zip.")],
+    path: PackagePath,
     as_name: Annotated[
         str | None, typer.Option("--as", help="Import under this dataset name.")
     ] = None,
@@ -161,11 +127,7 @@ def import_(
     db: DbOption = None,
 ) -> None:
     """Validate and import a package in one transaction (all or nothing)."""
-    from granudb.cli.output import say
-    from granudb.io.package_import import import_package
-
-    database = open_db(db)
-    result = import_package(database, path, as_name=as_name, rename_conflicts=rename_conflicts)
+    result = api.import_dataset(path, as_name=as_name, rename_conflicts=rename_conflicts, db=db)
     for line in result.renamed:
         say(f"renamed {line}")
     say(
@@ -181,4 +143,102 @@ def import_(
         )
 
 
-from granudb.cli import dataset_lifecycle  # noqa: E402, F401 - registers remove, edit, release, …
+@app.command()
+@wraps("remove_dataset")
+def remove(
+    dataset: Annotated[str, typer.Argument(help="NAME@VERSION, or NAME for every version of it.")],
+    yes: YesOption = False,
+    db: DbOption = None,
+) -> None:
+    """Delete a dataset version (or all versions) with its runs; asks first.
+
+    A released version cannot be removed until a newer version is released.
+    """
+    for line in api.remove_dataset(dataset, confirm=asker(yes), db=db):
+        say(f"removed {line}")
+
+
+@app.command("remove-runs", hidden=True)
+@wraps("remove_collisions")
+def remove_runs(
+    dataset: Ref,
+    runs: Annotated[list[str], typer.Argument(help="Run labels to delete.")],
+    yes: YesOption = False,
+    db: DbOption = None,
+) -> None:
+    """Delete some runs of a draft dataset version (the same as ``collisions remove``)."""
+    count = api.remove_collisions(dataset, runs, confirm=asker(yes), db=db)
+    say(f"removed {count} runs from dataset {dataset}")
+
+
+@app.command()
+@wraps("edit_dataset")
+def edit(
+    dataset: Ref,
+    title: Annotated[str | None, typer.Option("--title")] = None,
+    description: Annotated[str | None, typer.Option("--description")] = None,
+    license: Annotated[
+        str | None, typer.Option("--license", help='SPDX id, e.g. "CC-BY-4.0".')
+    ] = None,
+    doi: Annotated[str | None, typer.Option("--doi", help="The dataset's own DOI.")] = None,
+    author: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--author",
+            help="'Family, Given; orcid=0000-0002-1825-0097; affiliation=Lab' (repeat for "
+            "each; replaces the list).",
+        ),
+    ] = None,
+    authors_json: Annotated[
+        str | None,
+        typer.Option(
+            "--authors-json",
+            help='JSON list of {"given_names","family_names","orcid","affiliation"}.',
+        ),
+    ] = None,
+    keyword: Annotated[
+        list[str] | None, typer.Option("--keyword", help="Repeat for each; replaces the list.")
+    ] = None,
+    db: DbOption = None,
+) -> None:
+    """Edit a draft version's metadata; prints each change (old → new). "" clears a field."""
+    diffs = api.edit_dataset(
+        dataset,
+        title=title,
+        description=description,
+        license=license,
+        doi=doi,
+        authors=authors_json if authors_json is not None else author or None,
+        keywords=keyword or None,
+        db=db,
+    )
+    for field, old, new in diffs:
+        say(f"{field}: {old!r} → {new!r}")
+    if not diffs:
+        say(f"dataset {dataset}: unchanged")
+
+
+@app.command()
+@wraps("release_dataset")
+def release(dataset: Ref, db: DbOption = None) -> None:
+    """Release a draft version: from now on it cannot change (a new version holds changes)."""
+    superseded = api.release_dataset(dataset, db=db)
+    say(f"released dataset {dataset}")
+    name, _ = api.dataset_ref(dataset)
+    for old in superseded:
+        say(f"superseded {name}@{old}")
+
+
+@app.command("new-version")
+@wraps("new_dataset_version")
+def new_version(
+    dataset: Ref,
+    version: Annotated[
+        str | None, typer.Option("--version", help="The new version, e.g. 1.1.0.")
+    ] = None,
+    db: DbOption = None,
+) -> None:
+    """Copy a version (metadata and runs) as a new draft version to change."""
+    content_hash = api.new_dataset_version(dataset, version, db=db)
+    name, _ = api.dataset_ref(dataset)
+    say(f"created draft {name}@{version} from {dataset} (content hash {content_hash[:16]}…)")

@@ -7,7 +7,8 @@ from typing import Annotated
 
 import typer
 
-from granudb.cli.options import DbOption
+from granudb import api
+from granudb.cli.options import DbOption, wraps
 
 app = typer.Typer(
     help="DEM inputs for LIGGGHTS, LAMMPS, Yade and MercuryDPM, checked by running the codes.",
@@ -19,9 +20,12 @@ Particles = Annotated[
 ]
 Walls = Annotated[list[str], typer.Option("--wall", help="Wall material (repeat for several).")]
 Fluid = Annotated[str | None, typer.Option("--fluid", help="The fluid, or omit / 'dry'.")]
-Diameter = Annotated[str, typer.Option("--diameter", help='Particle diameter, "12.7 mm".')]
+Diameter = Annotated[
+    str | None, typer.Option("--diameter", help='Particle diameter, "12.7 mm" (required).')
+]
 Velocity = Annotated[
-    str, typer.Option("--velocity", help='Characteristic impact speed, "0.3 m/s".')
+    str | None,
+    typer.Option("--velocity", help='Characteristic impact speed, "0.3 m/s" (required).'),
 ]
 Values = Annotated[
     str,
@@ -36,12 +40,13 @@ Clamp = Annotated[
 
 
 @app.command()
+@wraps("dem_export")
 def export(
     code: Annotated[str, typer.Option("--code", help="liggghts, lammps, yade or mercurydpm.")],
     particle: Particles,
     wall: Walls,
-    diameter: Diameter,
-    velocity: Velocity,
+    diameter: Diameter = None,
+    velocity: Velocity = None,
     fluid: Fluid = None,
     values: Values = "published",
     dataset: DatasetName = None,
@@ -52,41 +57,30 @@ def export(
     db: DbOption = None,
 ) -> None:
     """Write a ready-to-include input fragment, every number commented with its source."""
-    from granudb.api.dem import dem_export
-    from granudb.cli.common import open_db
-    from granudb.errors import ValidationError
-
-    text = dem_export(
+    text = api.dem_export(
         code,
         particle,
         wall,
-        clamp=clamp,
         diameter=diameter,
         velocity=velocity,
         fluid=fluid,
         values=values,
         dataset=dataset,
-        db=open_db(db),
+        clamp=clamp,
+        output=output,
+        db=db,
     )
     if output is None:
         typer.echo(text, nl=False)
-        return
-    if output.exists():
-        raise ValidationError("--output", str(output), "exists already (choose a new file)")
-    try:
-        output.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise ValidationError(
-            "--output", str(output), f"cannot be written ({exc.strerror})"
-        ) from None
 
 
 @app.command()
+@wraps("dem_verify")
 def verify(
     particle: Particles,
     wall: Walls,
-    diameter: Diameter,
-    velocity: Velocity,
+    diameter: Diameter = None,
+    velocity: Velocity = None,
     fluid: Fluid = None,
     values: Values = "published",
     dataset: DatasetName = None,
@@ -95,19 +89,15 @@ def verify(
 ) -> None:
     """Run the exported values in LIGGGHTS, LAMMPS and Yade (where installed): target
     against achieved e, and μ_f on oblique impacts. Codes not installed are "not checked"."""
-    from granudb.api.dem import dem_verify
-    from granudb.cli.common import open_db
-    from granudb.dem.verify import table
-
-    records = dem_verify(
+    records = api.dem_verify(
         particle,
         wall,
-        clamp=clamp,
         diameter=diameter,
         velocity=velocity,
         fluid=fluid,
         values=values,
         dataset=dataset,
-        db=open_db(db),
+        clamp=clamp,
+        db=db,
     )
-    typer.echo(table(records))
+    typer.echo(api.verify_table(records))

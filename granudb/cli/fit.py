@@ -11,113 +11,55 @@ from typing import Annotated, Any
 
 import typer
 
-from granudb.cli import options
-from granudb.cli.common import DbOption, Format, FormatOption, open_db
+from granudb import api
+from granudb.cli.options import DbOption, Format, FormatOption, collision_filters, wraps
+from granudb.cli.output import emit
 
 app = typer.Typer(
     help="Fit measured collisions: Walton β and μ_f, e(St), gap viscosity.", no_args_is_help=True
 )
 
-GROUP = ["dataset", "particle", "wall", "fluid"]
-TABLE_COLUMNS = {
-    "walton": [
-        *GROUP,
-        "model",
-        "rotational_restitution",
-        "sliding_friction",
-        "normal_restitution_mean",
-        "n_sticking",
-        "n_sliding",
-    ],
-    "restitution": [
-        *GROUP[:3],
-        "model",
-        "e_dry",
-        "parameter_name",
-        "parameter",
-        "n_runs",
-        "reason",
-    ],
-    "gap_viscosity": [
-        *GROUP,
-        "gap_viscosity_pa_s",
-        "ambient_viscosity_pa_s",
-        "gap_temperature_c",
-        "n_runs",
-        "reason",
-        "note",
-    ],
-}
-
 
 def _show(frame: Any, kind: str, fmt: Format, title: str) -> None:
-    from granudb.cli.output import emit
-
-    records = frame.to_dict("records")
     every = list(frame.columns)
-    shown = [c for c in TABLE_COLUMNS[kind] if c in every] if fmt is Format.table else every
-    emit(records, shown or every, fmt, title=title)
+    shown = [c for c in api.FIT_TABLE_COLUMNS[kind] if c in every] if fmt is Format.table else every
+    emit(frame.to_dict("records"), shown or every, fmt, title=title)
 
 
 @app.command()
+@collision_filters
+@wraps("fit_walton")
 def walton(
-    dataset: options.Dataset = None,
-    version: options.Version = None,
-    particle: options.Particle = None,
-    wall: options.Wall = None,
-    fluid: options.Fluid = None,
-    angle_range: options.AngleRange = None,
-    db: DbOption = None,
-    fmt: FormatOption = Format.table,
+    db: DbOption = None, fmt: FormatOption = Format.table, filters: dict | None = None
 ) -> None:
     """β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē."""
-    from granudb.api.fits import fit_walton
-
-    frame = fit_walton(
-        db=open_db(db),
-        dataset=dataset,
-        version=version,
-        particle=particle,
-        wall=wall,
-        fluid=fluid,
-        angle_range=angle_range,
-    )
+    frame = api.fit_walton(db=db, **(filters or {}))
     _show(frame, "walton", fmt, "Walton fits")
 
 
 @app.command()
+@collision_filters
+@wraps("fit_restitution")
 def restitution(
-    model: Annotated[str, typer.Option("--model", help="threshold or exponential.")] = "threshold",
-    dataset: options.Dataset = None,
-    version: options.Version = None,
-    particle: options.Particle = None,
-    wall: options.Wall = None,
+    model: Annotated[
+        str | None,
+        typer.Option("--model", help="exponential (the default) or threshold."),
+    ] = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
+    filters: dict | None = None,
 ) -> None:
-    """e against the normal Stokes number for immersed runs: e_dry and St_c (or k)."""
-    from granudb.api.fits import fit_restitution
-
-    frame = fit_restitution(
-        model, db=open_db(db), dataset=dataset, version=version, particle=particle, wall=wall
-    )
+    """e against the normal Stokes number for immersed runs: e_dry and k (or St_c)."""
+    frame = api.fit_restitution(model, db=db, **(filters or {}))
     _show(frame, "restitution", fmt, "Restitution against Stokes number")
 
 
 @app.command("gap-viscosity")
+@collision_filters
+@wraps("fit_gap_viscosity")
 def gap_viscosity(
-    dataset: options.Dataset = None,
-    version: options.Version = None,
-    particle: options.Particle = None,
-    wall: options.Wall = None,
-    fluid: options.Fluid = None,
-    db: DbOption = None,
-    fmt: FormatOption = Format.table,
+    db: DbOption = None, fmt: FormatOption = Format.table, filters: dict | None = None
 ) -> None:
     """Gap viscosity μ₀ fitting (5.8) to sliding runs, and the gap temperature."""
-    from granudb.api.fits import fit_gap_viscosity
-
-    frame = fit_gap_viscosity(
-        db=open_db(db), dataset=dataset, version=version, particle=particle, wall=wall, fluid=fluid
-    )
+    frame = api.fit_gap_viscosity(db=db, **(filters or {}))
     _show(frame, "gap_viscosity", fmt, "Gap viscosity (figure 14, table 2)")

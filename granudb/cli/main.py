@@ -21,20 +21,21 @@ import typer
 from typer import _click as click  # Typer ≥ 0.26 ships its own click
 from typer.core import TyperGroup
 
-from granudb.cli.options import DbOption
-from granudb.version import __version__
+from granudb import api
+from granudb.cli.options import DbOption, wraps
+from granudb.cli.output import show_notes, to_json
 
 # name → (module, attribute, one-line help). A Typer app attribute is a command group; a
 # function is a single command. The help must match the module's (tests/test_startup.py).
 COMMANDS: dict[str, tuple[str, str, str]] = {
     "materials": (
-        "granudb.cli.materials",
-        "app",
+        "granudb.cli.catalog",
+        "materials",
         "Particle and wall materials (ρ, E, ν, roughness).",
     ),
     "fluids": (
-        "granudb.cli.fluids",
-        "app",
+        "granudb.cli.catalog",
+        "fluids",
         "Fluids: density, viscosity and how it varies with temperature.",
     ),
     "sources": (
@@ -92,7 +93,30 @@ def load_command(name: str) -> click.Command:
         single.command(name)(target)
         command = typer.main.get_command(single)
     command.name = name
+    _missing_as_usage(command)
     return command
+
+
+def _missing_as_usage(command: click.Command) -> None:
+    """Make each leaf command say a required value the API found missing as click says a
+    missing option (with the command's usage, exit 2): "required" is decided once, by the
+    API, for Python and the command line alike."""
+    if isinstance(command, TyperGroup):
+        for child in command.commands.values():
+            _missing_as_usage(child)
+        return
+    original = command.invoke
+
+    def invoke(ctx: click.Context) -> Any:
+        try:
+            return original(ctx)
+        except api.MissingInput as exc:
+            param = next((p for p in command.params if p.name == exc.field), None)
+            if param is None:
+                raise
+            raise click.exceptions.MissingParameter(ctx=ctx, param=param) from None
+
+    command.invoke = invoke  # type: ignore[method-assign]
 
 
 class GranudbGroup(TyperGroup):
@@ -137,12 +161,10 @@ class GranudbGroup(TyperGroup):
             formatter.write_dl([(name, _shorten(text, width)) for name, text in rows])
 
     def invoke(self, ctx: typer.Context) -> Any:
-        from granudb.errors import GranudbError, ValidationError
-
         try:
             return super().invoke(ctx)
-        except GranudbError as exc:
-            shown = exc.as_option() if isinstance(exc, ValidationError) else str(exc)
+        except api.GranudbError as exc:
+            shown = exc.as_option() if isinstance(exc, api.ValidationError) else str(exc)
             message = shown.replace("\n", " ")
             typer.echo(f"Error: {message}", err=True)
             raise typer.Exit(exc.exit_code) from None
@@ -218,7 +240,7 @@ app = typer.Typer(
 
 def _version(value: bool) -> None:
     if value:
-        typer.echo(f"granudb {__version__}")
+        typer.echo(f"granudb {api.__version__}")
         raise typer.Exit()
 
 
@@ -232,6 +254,7 @@ def _root(
 
     Values go in with units ("190 GPa", "4.5 cP") and are stored in SI.
     """
+    show_notes()
 
 
 def _shorten(text: str, width: int) -> str:
@@ -241,13 +264,14 @@ def _shorten(text: str, width: int) -> str:
 
 
 @app.command("datasette-metadata")
+@wraps("datasette_metadata")
 def datasette_metadata(
     db: DbOption = None,
     print_path: bool = typer.Option(
         False,
         "--print-path",
         help="Print the SQLite file's path instead (for: datasette \"$(granudb "
-        'datasette-metadata --print-path)" -m metadata.json).',
+        'datasette-metadata --print-path)" -m metadata.json); granudb.database_file.',
     ),
 ) -> None:
     """Print Datasette metadata (titles, descriptions, units) for the database as JSON.
@@ -255,25 +279,10 @@ def datasette_metadata(
     Browse the database with: granudb datasette-metadata > metadata.json &&
     datasette "$(granudb datasette-metadata --print-path)" -m metadata.json
     """
-    from pathlib import Path
-
-    from sqlalchemy.engine import make_url
-
-    from granudb.cli.output import to_json
-    from granudb.config import resolve_database_url
-    from granudb.errors import ValidationError
-    from granudb.io.datasette import datasette_metadata as metadata
-
-    url = make_url(resolve_database_url(db))
-    path = url.database if url.get_backend_name() == "sqlite" and url.database else None
     if print_path:
-        if path is None or path == ":memory:":
-            raise ValidationError(
-                "--db", url.render_as_string(), "is not a SQLite file (Datasette reads SQLite)"
-            )
-        typer.echo(str(Path(path).resolve()))
+        typer.echo(str(api.database_file(db)))
         return
-    typer.echo(to_json(metadata(Path(path).stem if path else "granudb")))
+    typer.echo(to_json(api.datasette_metadata(db)))
 
 
 def main() -> None:

@@ -1,16 +1,24 @@
-"""The options several commands share, defined once: the database, the output format and
-the collision filters. Option names are the Python API's parameter names with dashes
-(``--angle-range`` ↔ ``angle_range``), so an error from the library names the option.
+"""What several commands share, defined once: the database and format options, ``--yes``,
+the collision filters, and the marker that names the API function a command wraps.
+
+Option names are the Python API's parameter names with dashes (``--angle-range`` ↔
+``angle_range``), so an error from the library names the option; a command passes what
+the user typed to the API unchanged (text with units, ``None`` for "not given") and the
+API's one gate checks it and applies the defaults, the same for Python and the command
+line.
 """
 
 from __future__ import annotations
 
+import functools
+import inspect
+from collections.abc import Callable
 from enum import StrEnum
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
-from granudb.config import ENV_VAR
+from granudb import api
 
 
 class Format(StrEnum):
@@ -23,7 +31,7 @@ DbOption = Annotated[
     str | None,
     typer.Option(
         "--db",
-        envvar=ENV_VAR,
+        envvar=api.DATABASE_ENV_VAR,
         show_envvar=True,
         help="Database: a SQLAlchemy URL or a SQLite file path "
         "(default: granudb.sqlite in the user data directory).",
@@ -32,47 +40,75 @@ DbOption = Annotated[
 FormatOption = Annotated[
     Format, typer.Option("--format", "-f", help="table for people; json or csv (SI) for scripts.")
 ]
-
-Dataset = Annotated[str | None, typer.Option("--dataset", help="Dataset name.")]
-Version = Annotated[
-    str | None, typer.Option("--version", help="Dataset version (default: newest).")
-]
-Particle = Annotated[str | None, typer.Option("--particle", help="Particle material.")]
-Wall = Annotated[str | None, typer.Option("--wall", help="Wall (or target sphere) material.")]
-Fluid = Annotated[str | None, typer.Option("--fluid", help="A fluid name, or 'dry'.")]
-MinNormalStokes = Annotated[
-    float | None, typer.Option("--min-normal-stokes", help="Lowest normal Stokes number St_n.")
-]
-MaxNormalStokes = Annotated[
-    float | None, typer.Option("--max-normal-stokes", help="Highest normal Stokes number St_n.")
-]
-AngleRange = Annotated[
-    str | None,
-    typer.Option(
-        "--angle-range",
-        help="Incidence angles ζ_in of the contact point's path, '10..40 deg'.",
-    ),
-]
-Regime = Annotated[
-    str | None,
-    typer.Option("--regime", help="Maw's tangential regime: stick, slip_then_stick, gross_slip."),
-]
-RoughnessExceedsGap = Annotated[
-    bool | None,
-    typer.Option(
-        "--roughness-exceeds-gap/--roughness-within-gap",
-        help="Only runs whose roughness exceeds (or is within) the EHD gap h_m.",
-        show_default=False,
-    ),
-]
-ReboundExpected = Annotated[
-    bool | None,
-    typer.Option(
-        "--rebound-expected/--no-rebound-expected",
-        help="Only runs with St_n above (or not above) St_c.",
-        show_default=False,
-    ),
-]
+YesOption = Annotated[bool, typer.Option("--yes", "-y", help="Do it without asking (for scripts).")]
 CriticalStokes = Annotated[
-    float, typer.Option("--critical-stokes", help="No rebound below this normal Stokes number.")
+    str | None,
+    typer.Option(
+        "--critical-stokes", help="No rebound below this normal Stokes number (default 10)."
+    ),
 ]
+
+#: The collision filters (``granudb.api.COLLISION_FILTERS``) as options, with their help.
+FILTER_HELP: dict[str, str] = {
+    "dataset": "Dataset name (NAME or NAME@VERSION).",
+    "version": "Dataset version (default: newest).",
+    "particle": "Particle material.",
+    "wall": "Wall (or target sphere) material.",
+    "fluid": "A fluid name, or 'dry'.",
+    "min_normal_stokes": "Lowest normal Stokes number St_n.",
+    "max_normal_stokes": "Highest normal Stokes number St_n.",
+    "angle_range": "Incidence angles ζ_in of the contact point's path, '10..40 deg'.",
+    "regime": "Maw's tangential regime: stick, slip_then_stick, gross_slip.",
+    "roughness_exceeds_gap": "Only runs whose roughness exceeds (or, with --no-, is within) "
+    "the EHD gap h_m.",
+    "rebound_expected": "Only runs with St_n above (or, with --no-, not above) St_c.",
+    "critical_stokes": "No rebound below this normal Stokes number (default 10).",
+}
+_FLAGS = ("roughness_exceeds_gap", "rebound_expected")
+
+
+def option_name(parameter: str) -> str:
+    """The option of an API parameter: ``angle_range`` → ``--angle-range``."""
+    return "--" + parameter.replace("_", "-")
+
+
+def _filter_parameter(name: str) -> inspect.Parameter:
+    if name in _FLAGS:
+        flag = option_name(name)
+        info = typer.Option(f"{flag}/--no-{flag[2:]}", help=FILTER_HELP[name], show_default=False)
+        annotation: Any = Annotated[bool | None, info]
+    else:
+        annotation = Annotated[str | None, typer.Option(option_name(name), help=FILTER_HELP[name])]
+    return inspect.Parameter(
+        name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation
+    )
+
+
+def collision_filters(command: Callable[..., None]) -> Callable[..., None]:
+    """Give ``command`` the collision filter options; they reach it as one keyword
+    ``filters`` holding the ones given (so each is written once, here, for every command
+    that selects runs)."""
+    signature = inspect.signature(command, eval_str=True)
+    own = [p for p in signature.parameters.values() if p.name != "filters"]
+    taken = {p.name for p in own}
+    added = [_filter_parameter(n) for n in api.COLLISION_FILTERS if n not in taken]
+
+    @functools.wraps(command)
+    def with_filters(**given: Any) -> None:
+        filters = {p.name: given.pop(p.name) for p in added}
+        command(**given, filters={k: v for k, v in filters.items() if v is not None})
+
+    with_filters.__signature__ = signature.replace(parameters=[*own, *added])  # type: ignore[attr-defined]
+    with_filters.__annotations__ = {}
+    return with_filters
+
+
+def wraps(function: str) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """Mark a command as the face of the public function ``granudb.<function>``
+    (tests/test_one_door.py walks the commands and checks every one names one)."""
+
+    def mark(command: Callable[..., None]) -> Callable[..., None]:
+        command.api_function = function  # type: ignore[attr-defined]
+        return command
+
+    return mark

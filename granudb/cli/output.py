@@ -9,12 +9,15 @@ from __future__ import annotations
 
 import csv
 import json
+import logging
 import math
 import sys
 from collections.abc import Sequence
 from typing import Any
 
+from granudb import api
 from granudb.cli.options import Format
+from granudb.lazy import rich_box, rich_console, rich_markup, rich_table, rich_text
 
 
 def _clean(value: Any) -> Any:
@@ -60,9 +63,7 @@ def to_json_value(value: Any) -> Any:
 
 
 def console(stderr: bool = False, soft_wrap: bool = False) -> Any:
-    from rich.console import Console
-
-    return Console(stderr=stderr, highlight=False, soft_wrap=soft_wrap)
+    return rich_console.Console(stderr=stderr, highlight=False, soft_wrap=soft_wrap)
 
 
 def note(message: str) -> None:
@@ -71,9 +72,8 @@ def note(message: str) -> None:
     if not sys.stderr.isatty():
         print(message, file=sys.stderr)
         return
-    from rich.markup import escape
-
-    console(stderr=True, soft_wrap=True).print(f"[dim]{escape(message)}[/dim]", emoji=False)
+    escaped = rich_markup.escape(message)
+    console(stderr=True, soft_wrap=True).print(f"[dim]{escaped}[/dim]", emoji=False)
 
 
 def say(message: str) -> None:
@@ -83,24 +83,17 @@ def say(message: str) -> None:
 
 
 def label(column: str) -> str:
-    """A table header for a column: ``youngs_modulus_pa`` → ``youngs modulus``."""
-    from granudb.vocabulary.units import UNITS
-
-    for suffix in sorted((s for s in UNITS if s and s != "fraction"), key=len, reverse=True):
-        if column.endswith("_" + suffix):
-            return column[: -len(suffix) - 1].replace("_", " ")
-    return column.replace("_", " ")
+    """A table header for a column: its title in the vocabulary (``youngs_modulus_pa`` →
+    ``Young's modulus``), else the name in words."""
+    return api.term(column).title
 
 
 def header(column: str, symbols: bool) -> str:
     """A table header: the symbol people read (``St_n``) when asked for and known, else
     the column name in words."""
     if symbols:
-        from granudb.vocabulary import term
-
-        symbol = term(column).symbol
-        if symbol:
-            return symbol  # the cells carry their units (``300 mm/s``)
+        # the cells carry their units (``300 mm/s``); a column without a symbol is named
+        return api.term(column).symbol or column.replace("_", " ")
     return label(column)
 
 
@@ -127,15 +120,11 @@ def emit(
         for row in rows:
             writer.writerow({k: spreadsheet_safe(_clean(v)) for k, v in row.items()})
     else:
-        from rich import box
-        from rich.table import Table
-        from rich.text import Text
-
-        from granudb.report.format import display
-
-        narrow = {"box": box.SIMPLE_HEAD, "padding": (0, 0), "show_edge": False}
+        narrow = {"box": rich_box.SIMPLE_HEAD, "padding": (0, 0), "show_edge": False}
         narrow = narrow if symbols else {}
-        table = Table(title=Text(title) if title else None, title_justify="left", **narrow)
+        table = rich_table.Table(
+            title=rich_text.Text(title) if title else None, title_justify="left", **narrow
+        )
         for column in columns:
             table.add_column(header(column, symbols), overflow="ellipsis", no_wrap=symbols)
         digits = 3 if symbols else 4
@@ -145,7 +134,10 @@ def emit(
                 for v in (row[c] for c in columns)
             )
             table.add_row(
-                *(Text(display(v, c, digits)) for v, c in zip(cells, columns, strict=True))
+                *(
+                    rich_text.Text(api.display(v, c, digits))
+                    for v, c in zip(cells, columns, strict=True)
+                )
             )
         console().print(table)
 
@@ -163,30 +155,27 @@ def emit_one(
     if fmt is Format.csv:
         emit([record], list(record), fmt)
         return
-    from rich.table import Table
-    from rich.text import Text
-
-    from granudb.report.format import display
-
-    table = Table(title=Text(title) if title else None, title_justify="left", show_header=False)
+    table = rich_table.Table(
+        title=rich_text.Text(title) if title else None, title_justify="left", show_header=False
+    )
     table.add_column("property", style="bold")
     table.add_column("value", overflow="fold")
     for column, value in record.items():
-        table.add_row(label(column), Text(display(value, column)))
+        table.add_row(label(column), rich_text.Text(api.display(value, column)))
     console().print(table)
 
 
-def human(column: str, value: Any) -> str:
-    """A value as a person reads it: ``200 nm`` for ``roughness_rms_m`` 2e-07, ``80 °C``."""
-    from granudb.report.format import display
+class NoteHandler(logging.Handler):
+    """Prints the library's remarks (the ``granudb`` logger: "created … and loaded the seed
+    data") as notes on stderr."""
 
-    if value is None:
-        return "(none)"
-    if isinstance(value, str):
-        return repr(value)
-    return display(value, column)
+    def emit(self, record: logging.LogRecord) -> None:
+        note(record.getMessage())
 
 
-def say_change(change: Any) -> None:
-    """What an update did, field by field, in engineering notation with units."""
-    say(change.describe(human))
+def show_notes() -> None:
+    """Print the library's INFO remarks on stderr (once, however often it is called)."""
+    logger = logging.getLogger("granudb")
+    logger.setLevel(logging.INFO)
+    if not any(isinstance(h, NoteHandler) for h in logger.handlers):
+        logger.addHandler(NoteHandler())

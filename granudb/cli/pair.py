@@ -1,27 +1,41 @@
-"""``granudb pair``: what happens when this particle hits that wall in this fluid."""
+"""``granudb pair``: what happens when this particle hits that wall in this fluid.
+
+A table for people shows the collision, the materials with their sources, every derived
+quantity with its symbol and relation, and the verdicts in words; JSON is the document
+``granudb.pair`` returns, CSV that document flattened to one row.
+"""
 
 from __future__ import annotations
 
+import sys
 from typing import Annotated, Any
 
 import typer
 
-from granudb.cli.options import CriticalStokes, DbOption, Format, FormatOption
+from granudb import api
+from granudb.cli.options import CriticalStokes, DbOption, Format, FormatOption, wraps
+from granudb.cli.output import console, emit, to_json
+from granudb.lazy import rich_table, rich_text
 
 
+@wraps("pair")
 def pair(
     particle: Annotated[str, typer.Argument(help="Particle material, e.g. steel.")],
     wall: Annotated[str, typer.Argument(help="Wall (or second particle) material, e.g. Zerodur.")],
-    diameter: Annotated[str, typer.Option("--diameter", help='Particle diameter, "12.7 mm".')],
+    diameter: Annotated[
+        str | None, typer.Option("--diameter", help='Particle diameter, "12.7 mm" (required).')
+    ] = None,
     velocity: Annotated[
-        str, typer.Option("--velocity", help='Impact speed V of the centre, "0.3 m/s".')
-    ],
+        str | None,
+        typer.Option("--velocity", help='Impact speed V of the centre, "0.3 m/s" (required).'),
+    ] = None,
     fluid: Annotated[
         str | None, typer.Option("--fluid", help="Fluid; omit (or 'dry') for a dry collision.")
     ] = None,
     angle: Annotated[
-        str, typer.Option("--angle", help='Incidence angle from the normal, "30 deg" (0 to < 90°).')
-    ] = "0 deg",
+        str | None,
+        typer.Option("--angle", help='Incidence angle from the normal, "30 deg" (default 0°).'),
+    ] = None,
     temperature: Annotated[
         str | None,
         typer.Option(
@@ -36,15 +50,12 @@ def pair(
         str | None,
         typer.Option("--wall-diameter", help="Diameter of a second sphere (default: a flat wall)."),
     ] = None,
-    critical_stokes: CriticalStokes = 10.0,
+    critical_stokes: CriticalStokes = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
 ) -> None:
     """Properties, every derived quantity and the regime verdicts for one collision."""
-    from granudb.api.pair import pair as derive_pair
-    from granudb.cli.common import open_db
-
-    document = derive_pair(
+    document = api.pair(
         particle,
         wall,
         diameter=diameter,
@@ -55,34 +66,29 @@ def pair(
         viscosity=viscosity,
         wall_diameter=wall_diameter,
         critical_stokes=critical_stokes,
-        db=open_db(db),
+        db=db,
     )
     if fmt is Format.json:
-        import sys
-
-        from granudb.cli.output import to_json
-
         sys.stdout.write(to_json(document) + "\n")
     elif fmt is Format.csv:
-        from granudb.cli.output import emit
-
         row = flatten(document)
         emit([row], list(row), fmt)
     else:
-        from granudb.cli.pair_table import print_pair
-
-        print_pair(document, critical_stokes)
+        print_pair(document)
 
 
 def flatten(document: dict[str, Any]) -> dict[str, Any]:
     """One CSV row of a pair document: nested records as ``particle_<column>``,
-    ``fluid_<column>``, ``inputs`` under their own names, derived values as they are."""
+    ``fluid_<column>``, ``inputs`` under their own names, derived values as they are,
+    verdicts as ``verdict_<key>`` sentences."""
     row: dict[str, Any] = {}
     for key, value in document.items():
         if key == "inputs":
             row.update(value)
         elif key == "sources":
             row["sources"] = "; ".join(value)
+        elif key == "verdicts":
+            row.update({f"verdict_{v['key']}": v["text"] for v in value})
         elif isinstance(value, dict):
             row.update({f"{key}_{k}": v for k, v in value.items()})
         elif value is None and key == "fluid":
@@ -90,3 +96,86 @@ def flatten(document: dict[str, Any]) -> dict[str, Any]:
         else:
             row[key] = value
     return row
+
+
+def print_pair(document: dict[str, Any]) -> None:
+    """The collision, the materials, the derived quantities and the verdicts as tables."""
+    Table, Text = rich_table.Table, rich_text.Text
+    out = console()
+    out.print(_collision_table(document))
+    particle, wall = document["particle"], document["wall"]
+    props = Table(title="Materials", title_justify="left")
+    props.add_column("property")
+    props.add_column(Text(particle["name"]))
+    props.add_column(Text(wall["name"]))
+    for column in ("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m"):
+        props.add_row(
+            api.term(column).title,
+            api.display(particle[column], column),
+            api.display(wall[column], column),
+        )
+    props.add_row("source", Text(_cite(particle)), Text(_cite(wall)))
+    out.print(props)
+
+    derived = Table(title="Derived quantities", title_justify="left")
+    derived.add_column("quantity")
+    derived.add_column("value", justify="right")
+    derived.add_column("relation", overflow="fold")
+    for name, described in api.derived_terms().items():
+        if name not in document or name == "incidence_angle_rad":
+            continue
+        label = f"{described.symbol} ({described.title.lower()})"
+        value = api.qualified_value(document, name)
+        derived.add_row(Text(label), Text(value), Text(described.description))
+    out.print(derived)
+
+    out.print("[bold]Verdicts[/bold]")
+    for verdict in document["verdicts"]:
+        style = "bold red" if verdict["raised"] else "green"
+        line = Text(f"{'⚠' if verdict['raised'] else '•'} {verdict['title']}: ", style=style)
+        line.append(verdict["text"], style="default")
+        out.print(line)
+    if document["sources"]:
+        out.print("[bold]Sources[/bold]")
+        for key, citation in document["sources"].items():
+            out.print(Text(f"[{key}] {citation}"))
+
+
+def _collision_table(document: dict[str, Any]) -> Any:
+    inputs, fluid = document["inputs"], document["fluid"]
+    table = rich_table.Table(title="Collision", title_justify="left", show_header=False)
+    table.add_column("quantity", style="bold")
+    table.add_column("value")
+    show = api.display
+    rows = [
+        ("particle", document["particle"]["name"]),
+        ("wall", document["wall"]["name"]),
+        ("fluid", fluid["name"] if fluid else "none (dry)"),
+        ("diameter", show(inputs["diameter_m"], "diameter_m")),
+        ("impact speed V", show(inputs["impact_speed_m_s"], "impact_speed_m_s")),
+        ("incidence angle", show(inputs["incidence_angle_rad"], "incidence_angle_rad")),
+        (
+            "v_n,in / v_t,in",
+            f"{show(inputs['v_n_in_m_s'], 'v_n_in_m_s')} / "
+            f"{show(inputs['v_t_in_m_s'], 'v_t_in_m_s')}",
+        ),
+    ]
+    if fluid:
+        rows += [
+            (
+                "viscosity μ",
+                f"{show(fluid['viscosity_pa_s'], 'viscosity_pa_s')} — {fluid['viscosity_basis']}",
+            ),
+            ("fluid density", show(fluid["density_kg_m3"], "density_kg_m3")),
+            ("temperature", show(fluid["temperature_c"], "temperature_c")),
+        ]
+    for name, value in rows:
+        table.add_row(name, rich_text.Text(str(value)))
+    return table
+
+
+def _cite(record: dict[str, Any]) -> str:
+    if not record.get("source"):
+        return "—"
+    locator = record.get("source_locator")
+    return f"{record['source']}" + (f", {locator}" if locator else "")

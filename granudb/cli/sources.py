@@ -6,7 +6,9 @@ from typing import Annotated
 
 import typer
 
-from granudb.cli.common import DbOption, Format, FormatOption, open_db
+from granudb import api
+from granudb.cli.options import DbOption, Format, FormatOption, wraps
+from granudb.cli.output import emit, emit_one
 
 app = typer.Typer(
     help="Sources (papers, correlations) cited by stored values.", no_args_is_help=True
@@ -14,49 +16,31 @@ app = typer.Typer(
 
 
 @app.command("list")
+@wraps("sources")
 def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """List every source."""
-    from granudb.api.catalog import source_records
-    from granudb.cli.output import emit
-    from granudb.db.catalog_rows import SOURCE_COLUMNS
-
-    records = source_records(db=open_db(db))
-    emit(
-        records,
-        ["key", "year", "kind", "citation", "doi"] if fmt is Format.table else SOURCE_COLUMNS,
-        fmt,
-        title="Sources",
-    )
+    records = api.sources(db=db, as_frame=False)
+    columns = api.SOURCE_NARROW if fmt is Format.table else api.SOURCE_COLUMNS
+    emit(records, columns, fmt, title="Sources")
 
 
 @app.command()
+@wraps("source")
 def show(
     key: Annotated[str, typer.Argument(help="Source key, e.g. joseph-hunt-2004.")],
     db: DbOption = None,
     fmt: FormatOption = Format.table,
 ) -> None:
     """Show a source, what cites it, and the published values it holds."""
-    from granudb.cli.output import emit, emit_one
-    from granudb.db import sources
-
-    database = open_db(db)
-    with database.session() as session:
-        source = sources.get_source(session, key)
-        record = sources.source_record(source)
-        usage = sources.source_usage(session, source)
-        published = sources.published_records(session, source)
+    record = api.source(key, db=db)
+    usage = record.pop("cited_by")
+    published = record.pop("published_values")
     if fmt is Format.json:
         emit_one(record, fmt, extra={"cited_by": usage, "published_values": published})
     elif fmt is Format.csv:
         emit(published, list(published[0]) if published else ["label"], fmt)
     else:
-        emit_one(
-            {**record, **{f"cited by {k}": v for k, v in usage.items()}}, fmt, title=f"Source {key}"
-        )
+        cited = {f"cited by {k}": v for k, v in usage.items()}
+        emit_one({**record, **cited}, fmt, title=f"Source {key}")
         if published:
-            emit(
-                published,
-                ["source_locator", "label", "quantity", "value_as_printed"],
-                fmt,
-                title="Published values",
-            )
+            emit(published, api.PUBLISHED_NARROW, fmt, title="Published values")

@@ -19,14 +19,15 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 from typing import Any
 
-from sqlalchemy import column, select, table
+from sqlalchemy import DateTime, column, select, table
 from sqlalchemy.engine import Connection
 from sqlalchemy.sql.expression import TableClause
 
 from granudb.errors import NotFoundError
+from granudb.vocabulary.catalogue import FLUIDS as FLUID_CATALOGUE
+from granudb.vocabulary.catalogue import MATERIALS as MATERIAL_CATALOGUE
+from granudb.vocabulary.catalogue import SOURCE_COLUMNS, Catalogue
 from granudb.vocabulary.text import name_key
-
-SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -53,6 +54,8 @@ class MaterialRow:
     yield_stress_pa: float | None
     source_locator: str | None
     source: SourceRow | None
+    created_at: Any
+    updated_at: Any
 
 
 @dataclass(frozen=True, slots=True)
@@ -79,6 +82,8 @@ class FluidRow:
     source: SourceRow | None
     density_source: SourceRow | None
     pressure_viscosity_source: SourceRow | None
+    created_at: Any
+    updated_at: Any
     points: tuple[FluidPointRow, ...]
 
 
@@ -93,8 +98,12 @@ def _stored(record: type) -> list[str]:
     return [f"{n}_id" if n in _REFERENCES else n for n in names]
 
 
+#: Columns read with a type, so every backend gives the same Python value.
+TYPED = {"created_at": DateTime(timezone=True), "updated_at": DateTime(timezone=True)}
+
+
 def _table(name: str, columns: list[str]) -> TableClause:
-    return table(name, *(column(c) for c in columns))
+    return table(name, *(column(c, TYPED.get(c)) for c in columns))
 
 
 SOURCES = _table("sources", ["id", *SOURCE_COLUMNS])
@@ -167,12 +176,55 @@ def _fluids(connection: Connection, name: str | None) -> dict[int, FluidRow]:
     }
 
 
+ENTRY_TABLES = {"material": MATERIALS, "fluid": FLUIDS}
+
+
+def entry_name(connection: Connection, kind: str, name: str) -> str | None:
+    """The stored spelling of the ``kind`` ("material" or "fluid") called ``name``
+    (case-insensitively), or ``None``."""
+    clause = ENTRY_TABLES[kind]
+    query = select(clause.c.name).where(clause.c.name_key == name_key(name))
+    return connection.execute(query).scalar_one_or_none()
+
+
+def entry_id(connection: Connection, kind: str, name: str) -> int:
+    """The id of the ``kind`` called ``name``; an error listing the known names if none."""
+    clause = ENTRY_TABLES[kind]
+    query = select(clause.c.id).where(clause.c.name_key == name_key(name))
+    found = connection.execute(query).scalar_one_or_none()
+    if found is None:
+        raise _not_found(connection, kind, name)
+    return int(found)
+
+
+def _not_found(connection: Connection, kind: str, name: str) -> NotFoundError:
+    clause = ENTRY_TABLES[kind]
+    names = connection.execute(select(clause.c.name).order_by(clause.c.name_key)).scalars()
+    known = ", ".join(names) or "none yet"
+    return NotFoundError(f"{kind}: {name!r} is not in the database (known: {known})")
+
+
+def source_id(connection: Connection, key: str) -> int:
+    """The id of the source ``key``; an error listing the known keys if none."""
+    found = connection.execute(select(SOURCES.c.id).where(SOURCES.c.key == key)).scalar()
+    if found is None:
+        keys = connection.execute(select(SOURCES.c.key).order_by(SOURCES.c.key)).scalars()
+        known = ", ".join(keys) or "none yet"
+        raise NotFoundError(f"source: {key!r} is not in the database (known: {known})")
+    return int(found)
+
+
+def get_source_row(connection: Connection, key: str) -> SourceRow:
+    """The source ``key``; an error listing the known keys if none."""
+    source_id(connection, key)
+    return next(s for s in source_rows(connection) if s.key == key)
+
+
 def get_material_row(connection: Connection, name: str) -> MaterialRow:
     """The material called ``name``; an error listing the known names if there is none."""
     found = material_rows(connection, name)
     if not found:
-        known = ", ".join(m.name for m in material_rows(connection)) or "none yet"
-        raise NotFoundError(f"material: {name!r} is not in the database (known: {known})")
+        raise _not_found(connection, "material", name)
     return found[0]
 
 
@@ -180,8 +232,7 @@ def get_fluid_row(connection: Connection, name: str) -> FluidRow:
     """The fluid called ``name`` with its points; an error listing the known names if none."""
     found = fluid_rows(connection, name)
     if not found:
-        known = ", ".join(f.name for f in fluid_rows(connection)) or "none yet"
-        raise NotFoundError(f"fluid: {name!r} is not in the database (known: {known})")
+        raise _not_found(connection, "fluid", name)
     return found[0]
 
 
@@ -196,45 +247,32 @@ def source_record(source: Any) -> dict[str, Any]:
     return {c: getattr(source, c) for c in SOURCE_COLUMNS}
 
 
+def _entry_record(catalogue: Catalogue, row: Any) -> dict[str, Any]:
+    """The listing columns of ``catalogue`` read off ``row`` (sources as their keys)."""
+    return {
+        c: source_key(getattr(row, c)) if c == "source" or c.endswith("_source")
+        else getattr(row, c, None)
+        for c in catalogue.columns
+    }  # fmt: skip
+
+
 def material_record(material: Any) -> dict[str, Any]:
     """A material as an SI record; a missing shear modulus is derived, G = E / (2(1 + ν))."""
+    record = _entry_record(MATERIAL_CATALOGUE, material)
     derived = material.shear_modulus_pa is None
-    shear = (
-        material.youngs_modulus_pa / (2.0 * (1.0 + material.poisson_ratio))
-        if derived
-        else material.shear_modulus_pa
-    )
-    return {
-        "name": material.name,
-        "description": material.description,
-        "density_kg_m3": material.density_kg_m3,
-        "youngs_modulus_pa": material.youngs_modulus_pa,
-        "poisson_ratio": material.poisson_ratio,
-        "roughness_rms_m": material.roughness_rms_m,
-        "correlation_length_m": material.correlation_length_m,
-        "shear_modulus_pa": shear,
-        "shear_modulus_derived": derived,
-        "yield_stress_pa": material.yield_stress_pa,
-        "source": source_key(material.source),
-        "source_locator": material.source_locator,
-    }
+    if derived:
+        record["shear_modulus_pa"] = material.youngs_modulus_pa / (
+            2.0 * (1.0 + material.poisson_ratio)
+        )
+    record["shear_modulus_derived"] = derived
+    return record
 
 
 def fluid_record(fluid: Any) -> dict[str, Any]:
-    return {
-        "name": fluid.name,
-        "description": fluid.description,
-        "glycerol_mass_fraction": fluid.glycerol_mass_fraction,
-        "reference_density_kg_m3": fluid.reference_density_kg_m3,
-        "reference_viscosity_pa_s": fluid.reference_viscosity_pa_s,
-        "reference_temperature_c": fluid.reference_temperature_c,
-        "pressure_viscosity_pa_inv": fluid.pressure_viscosity_pa_inv,
-        "source": source_key(fluid.source),
-        "source_locator": fluid.source_locator,
-        "density_source": source_key(fluid.density_source),
-        "pressure_viscosity_source": source_key(fluid.pressure_viscosity_source),
-        "points": len(fluid.points),
-    }
+    """A fluid as an SI record; ``points`` counts its viscosity–temperature points."""
+    record = _entry_record(FLUID_CATALOGUE, fluid)
+    record["points"] = len(fluid.points)
+    return record
 
 
 def point_records(fluid: Any) -> list[dict[str, Any]]:

@@ -213,11 +213,12 @@ def store_collisions(
 ) -> int:
     """Write every block of ``frames`` (``CollisionBlock``s or DataFrames) into ``target``
     in one write transaction."""
-    from granudb.db.sources import get_source
+    from granudb.db.catalog_rows import source_id as find_source
 
     rows = 0
     with database.session(write=True) as session:
-        source_id = get_source(session, target.source).id if target.source else None
+        connection = session.connection()
+        source_id = find_source(connection, target.source) if target.source else None
         dataset, _ = datasets.get_or_create_dataset(
             session,
             target.dataset,

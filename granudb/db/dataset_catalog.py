@@ -11,7 +11,6 @@ from sqlalchemy.orm import Session, aliased
 from granudb.db.datasets import COLUMNS
 from granudb.db.models import Collision, Dataset, Fluid, Material
 
-DATASET_COLUMNS = ["name", "version", "state", "title", "runs", "content_hash", "license", "source"]
 COMPARED = ["particle_id", "wall_id", "fluid_id", *COLUMNS, "notes"]
 
 

@@ -20,9 +20,9 @@ from sqlalchemy import select
 from sqlalchemy.orm import Session
 
 from granudb.db import datasets
+from granudb.db.catalog_rows import source_record
 from granudb.db.collision_store import insert_collisions
 from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
-from granudb.db.sources import source_record
 from granudb.db.upsert import same_value
 from granudb.errors import ConflictError
 

@@ -22,7 +22,7 @@ from contextlib import contextmanager
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from granudb.errors import GranudbError
+from granudb.errors import PackageError
 
 MAX_DESCRIPTOR_BYTES = 1_000_000
 MAX_DESCRIPTOR_DEPTH = 32
@@ -30,16 +30,6 @@ MAX_RESOURCE_BYTES = 2_000_000_000
 MAX_PACKAGE_BYTES = 4_000_000_000
 MAX_ZIP_ENTRIES = 100
 MAX_COMPRESSION_RATIO = 200  # a zip bomb expands thousands of times
-
-
-class PackageError(GranudbError):
-    """The package fails validation; ``problems`` lists every problem found."""
-
-    def __init__(self, problems: list[str], hint: str = "") -> None:
-        self.problems = problems
-        first = problems[0] if problems else "unknown problem"
-        more = f" (and {len(problems) - 1} more{hint})" if len(problems) > 1 else ""
-        super().__init__(f"package: {first}{more}; nothing was imported")
 
 
 def safe_relative(path: object) -> PurePosixPath | None:

@@ -7,14 +7,20 @@ This package sits at the bottom of the layers: it imports nothing of granudb but
 ``granudb.errors``.
 """
 
+from granudb.vocabulary.catalogue import (
+    CATALOGUES,
+    FLUID_PROPERTIES,
+    FLUIDS,
+    MATERIAL_PROPERTIES,
+    MATERIALS,
+    Catalogue,
+)
 from granudb.vocabulary.derived import DERIVED_TERMS
 from granudb.vocabulary.rules import RULES, Rule, check_record, check_value
 from granudb.vocabulary.terms import (
     COLLISION_MEASURED,
     COLLISION_TARGET,
     COLLISION_TEXT,
-    FLUID_PROPERTIES,
-    MATERIAL_PROPERTIES,
     TABLES,
     TERMS,
     Term,
@@ -23,6 +29,10 @@ from granudb.vocabulary.terms import (
 from granudb.vocabulary.units import UNITS, Unit, unit_of_column
 
 __all__ = [
+    "CATALOGUES",
+    "FLUIDS",
+    "MATERIALS",
+    "Catalogue",
     "COLLISION_MEASURED",
     "COLLISION_TARGET",
     "COLLISION_TEXT",

@@ -85,6 +85,8 @@ RULES: dict[str, Rule] = {
     "nominal_angle_rad": Rule(0.0, math.pi / 2, max_inclusive=False),
     "incidence_angle_rad": Rule(0.0, math.pi / 2, max_inclusive=False),
     "impact_speed_m_s": POSITIVE,
+    # No rebound below St_c: a threshold of the verdict, positive and finite.
+    "critical_stokes": POSITIVE,
     "reference_viscosity_pa_s": POSITIVE,
     "reference_density_kg_m3": POSITIVE,
     "yield_stress_pa": POSITIVE,

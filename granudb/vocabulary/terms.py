@@ -18,7 +18,9 @@ class Term:
 
     ``role`` is "stored" (a database column), "derived" (computed by
     ``granudb.physics.derive``) or "text"; ``symbol`` is what a table or report shows in
-    place of the machine name (``E*``); ``option`` the command-line option that sets it.
+    place of the machine name (``E*``); ``option`` the command-line option that sets it
+    (the Python parameter is the same name with underscores); ``example`` a value as
+    people type it, for help texts.
     """
 
     title: str
@@ -27,15 +29,20 @@ class Term:
     role: str = "stored"
     symbol: str | None = None
     option: str | None = None
+    example: str | None = None
 
 
 TERMS: dict[str, Term] = {
     # identity and provenance
     "name": Term("Name", None, "Unique name, matched case-insensitively."),
-    "description": Term("Description", None, "Free text."),
+    "description": Term("Description", None, "Free text.", option="--description"),
     "source": Term("Source", None, "Key of the source the values come from (sources.key)."),
     "source_locator": Term(
-        "Where in the source", None, "Table, figure or section of the source, e.g. 'table 1'."
+        "Where in the source",
+        None,
+        "Table, figure or section of the source, e.g. 'table 1'.",
+        option="--source-locator",
+        example="table 1",
     ),
     "key": Term("Key", None, "Short stable identifier of a source, e.g. joseph-hunt-2004."),
     "citation": Term("Citation", None, "Full citation."),
@@ -45,23 +52,51 @@ TERMS: dict[str, Term] = {
     "kind": Term("Kind", None, "journal-article, book, correlation, measurement, …"),
     "notes": Term("Notes", None, "Free text."),
     # materials
-    "density_kg_m3": Term("Density", "kg/m^3", "Mass density ρ."),
-    "youngs_modulus_pa": Term("Young's modulus", "Pa", "Young's modulus E."),
-    "poisson_ratio": Term("Poisson ratio", None, "Poisson ratio ν, in (−1, 0.5)."),
+    "density_kg_m3": Term(
+        "Density", "kg/m^3", "Mass density ρ.", option="--density", example="7780 kg/m^3"
+    ),
+    "youngs_modulus_pa": Term(
+        "Young's modulus",
+        "Pa",
+        "Young's modulus E.",
+        option="--youngs-modulus",
+        example="190 GPa",
+    ),
+    "poisson_ratio": Term(
+        "Poisson ratio",
+        None,
+        "Poisson ratio ν, in (−1, 0.5).",
+        option="--poisson-ratio",
+        example="0.27",
+    ),
     "roughness_rms_m": Term(
-        "RMS roughness", "m", "Root-mean-square surface roughness σ (Joseph & Hunt table 1: σ_s)."
+        "RMS roughness",
+        "m",
+        "Root-mean-square surface roughness σ (Joseph & Hunt table 1: σ_s).",
+        option="--roughness",
+        example="23.6 nm",
     ),
     "correlation_length_m": Term(
         "Roughness correlation length",
         "m",
         "Correlation length of the roughness profile (table 1: λ_p).",
+        option="--correlation-length",
+        example="48 um",
     ),
     "shear_modulus_pa": Term(
-        "Shear modulus", "Pa", "Shear modulus G; when empty, derived as E / (2(1 + ν))."
+        "Shear modulus",
+        "Pa",
+        "Shear modulus G; when empty, derived as E / (2(1 + ν)).",
+        option="--shear-modulus",
+        example="75 GPa",
     ),
     # fluids
     "glycerol_mass_fraction": Term(
-        "Glycerol mass fraction", None, "Mass fraction of glycerol in water, 0–1."
+        "Glycerol mass fraction",
+        None,
+        "Mass fraction of glycerol in water, 0–1.",
+        option="--glycerol-fraction",
+        example="45 %",
     ),
     "viscosity_pa_s": Term(
         "Dynamic viscosity",
@@ -69,6 +104,7 @@ TERMS: dict[str, Term] = {
         "Dynamic viscosity μ of the fluid at the temperature in question (1 cP = 1 mPa·s).",
         symbol="μ",
         option="--viscosity",
+        example="2.1 cP",
     ),
     "reference_viscosity_pa_s": Term(
         "Reference viscosity",
@@ -76,6 +112,7 @@ TERMS: dict[str, Term] = {
         "The fluid's viscosity at its reference temperature, as the source printed it.",
         symbol="μ_ref",
         option="--reference-viscosity",
+        example="4.5 cP",
     ),
     "reference_density_kg_m3": Term(
         "Reference density",
@@ -83,17 +120,21 @@ TERMS: dict[str, Term] = {
         "The fluid's density at its reference temperature.",
         symbol="ρ_f,ref",
         option="--reference-density",
+        example="1112 kg/m^3",
     ),
     "reference_temperature_c": Term(
         "Reference temperature",
         "degC",
         "Temperature at which the fluid's reference viscosity and density were given.",
         option="--reference-temperature",
+        example="20 degC",
     ),
     "pressure_viscosity_pa_inv": Term(
         "Pressure–viscosity coefficient",
         "1/Pa",
         "Barus coefficient C in μ(p) = μ₀ exp(C p); empty where not known.",
+        option="--pressure-viscosity",
+        example="6e-9 1/Pa",
     ),
     "temperature_c": Term(
         "Temperature",
@@ -101,6 +142,7 @@ TERMS: dict[str, Term] = {
         "Temperature of the fluid during the collision (sets its viscosity and density).",
         symbol="T",
         option="--temperature",
+        example="30 degC",
     ),
     "yield_stress_pa": Term(
         "Yield stress",
@@ -109,6 +151,7 @@ TERMS: dict[str, Term] = {
         "(Johnson 1985 §11.4). Empty where not known and for brittle solids.",
         symbol="Y",
         option="--yield-stress",
+        example="1.7 GPa",
     ),
     # datasets
     "version": Term("Version", None, "Version of the dataset (semantic versioning)."),
@@ -223,26 +266,6 @@ COLLISION_MEASURED = [
 ]
 #: The text columns of a collision as people and files name them.
 COLLISION_TEXT = ["run", "particle", "wall", "fluid", "notes"]
-
-#: A material's stored properties (SI), in the order tables and exports show them.
-MATERIAL_PROPERTIES = [
-    "density_kg_m3",
-    "youngs_modulus_pa",
-    "poisson_ratio",
-    "roughness_rms_m",
-    "correlation_length_m",
-    "shear_modulus_pa",
-    "yield_stress_pa",
-]
-#: A fluid's stored properties (SI).
-FLUID_PROPERTIES = [
-    "glycerol_mass_fraction",
-    "reference_density_kg_m3",
-    "reference_viscosity_pa_s",
-    "reference_temperature_c",
-    "pressure_viscosity_pa_inv",
-]
-
 
 TABLES: dict[str, str] = {
     "sources": "Publications, correlations and campaigns that stored numbers come from.",

@@ -297,7 +297,7 @@ def test_what_an_import_accepts_every_read_derives(cli, db: str, tmp_path: Path)
     assert len(rows) == len(temps)
     import granudb
 
-    frame = granudb.collisions(db=db, fluid="water")
+    frame = granudb.collisions(db=db, fluid="water", wide=True)
     assert frame["derivation_note"].isna().all()
     assert frame["normal_stokes_number"].notna().all()
 

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from support import dump_hash
 
-from granudb.api import datasets as api
+import granudb
 from granudb.errors import ConfirmationNeeded, ConflictError, NotFoundError, ValidationError
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "collisions_example.csv"
@@ -172,27 +172,35 @@ def test_released_is_immutable_and_a_new_version_holds_changes(cli, ex: str) -> 
 
 
 def test_python_api(ex: str) -> None:
-    diffs = api.edit_dataset(
-        "ex",
-        "1.0.0",
+    diffs = granudb.edit_dataset(
+        "ex@1.0.0",
         db=ex,
         authors=[{"family_names": "Hunt", "orcid": "0000-0001-5109-3700"}],
         keywords=["wet"],
     )
     assert [d[0] for d in diffs] == ["authors", "keywords"]
     with pytest.raises(ValidationError, match="check digit"):
-        api.edit_dataset(
+        granudb.edit_dataset(
             "ex", db=ex, authors=[{"family_names": "X", "orcid": "0000-0001-5109-3701"}]
         )
-    plan = api.run_removal_plan("ex", ["glass-g45-1"], db=ex)
-    assert api.remove_runs("ex", ["glass-g45-1"], db=ex, accepted=plan) == 1
+    asked: list[list[str]] = []
+
+    def agree(_action: str, losses: list[str]) -> bool:
+        asked.append(losses)
+        return True
+
+    assert granudb.remove_collisions("ex", ["glass-g45-1"], confirm=agree, db=ex) == 1
+    assert asked == [["1 runs of dataset ex@1.0.0 (glass-g45-1)"]]
     with pytest.raises(NotFoundError):
-        api.remove_runs("ex", ["glass-g45-1"], db=ex)
-    plan = api.removal_plan("ex", db=ex)
-    assert api.new_version("ex", "1.0.0", "2", db=ex)
-    with pytest.raises(ConfirmationNeeded):  # a version was added since the plan
-        api.remove_dataset("ex", db=ex, accepted=plan)
-    assert api.release_dataset("ex", "2", db=ex) == []
+        granudb.remove_collisions("ex", ["glass-g45-1"], db=ex)
+
+    def add_a_version_meanwhile(_action: str, _losses: list[str]) -> bool:
+        granudb.new_dataset_version("ex@1.0.0", "2", db=ex)
+        return True
+
+    with pytest.raises(ConfirmationNeeded):  # a version was added since the question
+        granudb.remove_dataset("ex", confirm=add_a_version_meanwhile, db=ex)
+    assert granudb.release_dataset("ex@2", db=ex) == []
     with pytest.raises(ConflictError, match="cannot be removed"):
-        api.remove_dataset("ex", db=ex)
-    assert api.remove_dataset("ex", "1.0.0", db=ex)
+        granudb.remove_dataset("ex", db=ex)
+    assert granudb.remove_dataset("ex@1.0.0", db=ex)

@@ -30,6 +30,12 @@ def _one_line(result, code: int, *expected: str) -> str:
     ("argv", "expected"),
     [
         (["pair", "steel", "glass"], "Missing option '--diameter'"),  # missing option
+        # required values are the API's to decide; the command line says a missing one so
+        (["materials", "add", "m", "--density", "1 g/cm^3"], "Missing option '--youngs-modulus'"),
+        (
+            ["fluids", "add", "f", "--reference-viscosity", "1 cP"],
+            "Missing option '--reference-density'",
+        ),
         (["materials", "show"], "Missing argument 'name'"),  # missing argument
         (["materials", "list", "--colour"], "No such option: --colour"),  # unknown option
         (["materials", "frobnicate"], "No such command 'frobnicate'"),  # unknown command

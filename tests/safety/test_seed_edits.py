@@ -8,9 +8,10 @@ import json
 import shutil
 from pathlib import Path
 
+import pytest
 from support import dump_hash, execute
 
-from granudb.api.seeding import reseed, seed_reverts
+import granudb
 from granudb.resources import shipped_dir
 
 
@@ -39,7 +40,7 @@ def test_an_edit_made_by_another_tool_is_kept_too(cli, db: str) -> None:
         "WHERE id = (SELECT min(id) FROM fluid_points)",
     )
     before = dump_hash(db)
-    lines = reseed(db)
+    lines = granudb.db_seed(db=db)
     assert any(line.startswith("kept your edit of fluid point") for line in lines)
     assert dump_hash(db) == before
 
@@ -53,7 +54,7 @@ def test_overwrite_edits_says_what_it_reverts_and_needs_yes(cli, db: str) -> Non
     assert len(lines) == 1 and "material steel: density_kg_m3 7000.0 → 7780.0" in lines[0]
     assert "--yes" in lines[0]
     assert dump_hash(db) == before
-    assert seed_reverts(db) == ["your edit of material steel: density_kg_m3 7000.0 → 7780.0"]
+    assert _reverts(db) == ["your edit of material steel: density_kg_m3 7000.0 → 7780.0"]
     assert dump_hash(db) == before  # the trial run changed nothing
     done = cli("db", "seed", "--overwrite-edits", "--yes", db=db)
     assert done.exit_code == 0, done.stderr
@@ -83,6 +84,19 @@ def test_a_seed_file_change_still_updates_an_unedited_value(cli, db: str, tmp_pa
         writer.writeheader()
         writer.writerows(rows)
     assert cli("materials", "update", "steel", "--density", "7000 kg/m^3", db=db).exit_code == 0
-    lines = reseed(db, folder=folder)
+    lines = granudb.db_seed(db=db, folder=folder)
     assert "updated material glass: youngs_modulus_pa 60000000000.0 → 63000000000.0" in lines
     assert _density(cli, db) == 7000.0
+
+
+def _reverts(db: str) -> list[str]:
+    """What ``db_seed(overwrite_edits=True)`` asks consent for (declined: nothing changes)."""
+    asked: list[str] = []
+
+    def decline(_action: str, losses: list[str]) -> bool:
+        asked.extend(losses)
+        return False
+
+    with pytest.raises(granudb.ConfirmationNeeded):
+        granudb.db_seed(overwrite_edits=True, confirm=decline, db=db)
+    return asked

@@ -1,0 +1,103 @@
+"""Sharing datasets as Frictionless Data Packages: ``granudb dataset export|validate|import``
+are ``export_dataset``, ``validate_dataset`` and ``import_dataset``.
+
+A package holds ``datapackage.json``, ``data/*.csv`` (collisions, materials, fluids,
+fluid_points, sources) with Table Schemas, a README and a CITATION.cff; README "Sharing
+datasets" says what is checked on the way in.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from granudb.api import inputs
+from granudb.api.database import opened
+from granudb.api.dataset_versions import dataset_ref
+from granudb.db.package_queries import export_data
+from granudb.db.package_store import PackageImport
+from granudb.io.package_export import build_package, write_package
+from granudb.io.package_import import import_package, validate_package
+
+
+@dataclass(frozen=True)
+class Exported:
+    """What ``export_dataset`` wrote: the dataset, its version and content hash, where."""
+
+    dataset: str
+    version: str
+    content_hash: str
+    path: Path
+
+
+@dataclass(frozen=True)
+class Validation:
+    """What ``validate_dataset`` found: every problem (none: valid) and the row counts."""
+
+    path: Path
+    problems: list[str]
+    counts: dict[str, int]
+
+    @property
+    def valid(self) -> bool:
+        return not self.problems
+
+
+def export_dataset(
+    dataset: str, output: str | Path, *, version: str | None = None, db: Any = None
+) -> Exported:
+    """Write a dataset version (``NAME`` or ``NAME@VERSION``) as a Data Package to
+    ``output``: an empty or new folder, or a file ending in ``.zip``.
+
+    >>> import granudb
+    >>> _ = granudb.import_collisions(example_csv, dataset="shared", db=db)
+    >>> granudb.export_dataset("shared", tmp / "shared.zip", db=db).path.name
+    'shared.zip'
+    """
+    name, version = dataset_ref(dataset, version)
+    target = Path(inputs.path(output, "output"))
+    with opened(db) as database, database.session() as session:
+        data = export_data(session, name, version)
+    written = write_package(build_package(data), target)
+    return Exported(data.dataset["name"], data.dataset["version"], data.content_hash, written)
+
+
+def validate_dataset(path: str | Path) -> Validation:
+    """Check a package (folder, ``datapackage.json`` or ``.zip``) without importing it;
+    every problem found is listed (``valid`` when there is none).
+
+    >>> import granudb
+    >>> _ = granudb.import_collisions(example_csv, dataset="checked", db=db)
+    >>> exported = granudb.export_dataset("checked", tmp / "checked.zip", db=db)
+    >>> granudb.validate_dataset(exported.path).counts["collisions"]
+    12
+    """
+    target = Path(inputs.path(path, "path"))
+    result = validate_package(target)
+    counts = {name: len(table) for name, table in result.tables.items()}
+    return Validation(target, list(result.problems), counts)
+
+
+def import_dataset(
+    path: str | Path,
+    *,
+    as_name: str | None = None,
+    rename_conflicts: bool = False,
+    db: Any = None,
+) -> PackageImport:
+    """Validate and import a package in one transaction (all or nothing), under its own
+    name or ``as_name``. A material or fluid whose name exists here with other values is a
+    conflict, unless ``rename_conflicts`` brings it in as ``NAME (package)``.
+
+    >>> import granudb
+    >>> _ = granudb.import_collisions(example_csv, dataset="ours", db=db)
+    >>> exported = granudb.export_dataset("ours", tmp / "ours.zip", db=db)
+    >>> granudb.import_dataset(exported.path, as_name="theirs", db=db).rows
+    12
+    """
+    target = Path(inputs.path(path, "path"))
+    if as_name is not None:
+        as_name = inputs.text(as_name, "as_name")
+    with opened(db) as database:
+        return import_package(database, target, as_name=as_name, rename_conflicts=rename_conflicts)

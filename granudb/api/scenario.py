@@ -1,0 +1,86 @@
+"""``granudb.pair``: what happens when this particle hits that wall in this fluid."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from granudb.analysis.pair import derive_pair, is_dry, pair_json
+from granudb.api import inputs
+from granudb.api.database import opened
+from granudb.errors import ValidationError
+from granudb.report.values import qualified_value
+from granudb.report.verdicts import verdicts
+
+__all__ = ["pair", "qualified_value"]
+
+
+def pair(
+    particle: str,
+    wall: str,
+    *,
+    diameter: Any = None,
+    velocity: Any = None,
+    angle: Any = None,
+    fluid: str | None = None,
+    temperature: Any = None,
+    viscosity: Any = None,
+    wall_diameter: Any = None,
+    critical_stokes: Any = None,
+    db: Any = None,
+) -> dict[str, Any]:
+    """Properties, every derived quantity and the verdicts for one collision (SI).
+
+    Quantities are SI numbers or strings with units (``"12.7 mm"``, ``"0.3 m/s"``,
+    ``"30 deg"``, ``"20 degC"``, ``"0.8 cP"``); ``diameter`` and ``velocity`` are
+    required, ``angle`` is 0 unless given; ``fluid=None`` or ``"dry"`` is a dry collision;
+    ``viscosity`` overrides the fluid's (what-if); ``critical_stokes`` is St_c of the
+    rebound verdict (default 10). The result is the document ``granudb pair --format
+    json`` prints: derived values at the top level under the vocabulary's names, the
+    inputs, the particle, wall and fluid with their sources, and ``verdicts`` (each with
+    its key, title, sentence and whether it is raised as a warning).
+
+    >>> import granudb
+    >>> result = granudb.pair("steel", "Zerodur", fluid="glycerol-37", diameter="12.7 mm",
+    ...                       velocity="0.3 m/s", angle="30 deg", db=db)
+    >>> round(result["reduced_modulus_pa"] / 1e9, 2)
+    65.64
+    """
+    particle = inputs.text(particle, "particle")
+    wall = inputs.text(wall, "wall")
+    if fluid is not None:
+        fluid = inputs.text(fluid, "fluid")
+    if is_dry(fluid):
+        for name, given in (("viscosity", viscosity), ("temperature", temperature)):
+            if given is not None:
+                raise ValidationError(
+                    name, given, "needs a fluid (a dry collision has none)", parameter=True
+                )
+    for name, given in (("diameter", diameter), ("velocity", velocity)):
+        if given is None:
+            raise inputs.missing(name)
+    st_c = 10.0 if critical_stokes is None else inputs.critical_stokes(critical_stokes)
+    values = {
+        "diameter_m": inputs.quantity(diameter, "diameter_m", "diameter"),
+        "speed_m_s": inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
+        "angle_rad": inputs.angle(0.0 if angle is None else angle),
+        "temperature_c": inputs.quantity(temperature, "temperature_c", "temperature"),
+        "viscosity_pa_s": inputs.quantity(viscosity, "viscosity_pa_s", "viscosity"),
+        "wall_diameter_m": inputs.quantity(wall_diameter, "wall_diameter_m", "wall_diameter"),
+    }
+    with opened(db) as database, database.reading() as connection:
+        result = derive_pair(
+            connection, particle, wall, fluid=fluid, critical_stokes=st_c, **values
+        )
+    document = pair_json(result)
+    said = verdicts(
+        document,
+        st_c,
+        immersed=document["fluid"] is not None,
+        materials=(document["particle"], document["wall"]),
+        fluid_name=document["fluid"]["name"] if document["fluid"] else None,
+    )
+    document["critical_stokes"] = st_c
+    document["verdicts"] = [
+        {"key": v.key, "title": v.name, "text": v.text, "raised": v.raised} for v in said
+    ]
+    return document

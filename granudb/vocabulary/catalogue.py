@@ -1,0 +1,158 @@
+"""The catalogue's two kinds of entry, materials and fluids, as one specification each.
+
+Everything that differs between a material and a fluid is written here once: the stored
+properties in the order every door shows them, which are needed to add one, defaults,
+the columns a narrow table shows, and names that are reserved. Everything else — the
+Python functions ``granudb.add_material`` / ``add_fluid`` …, the command-line options
+(``--density``, ``--reference-viscosity``), the listing columns of JSON, CSV and tables,
+the seed files' columns, the checks before a write — is generated from these two
+objects by one implementation (``granudb.db.catalog_changes``, ``granudb.api.catalog``,
+``granudb.cli.catalog``).
+
+A property's Python parameter and command-line option come from its term: the option
+``--youngs-modulus`` of ``youngs_modulus_pa`` is the parameter ``youngs_modulus``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from granudb.errors import ValidationError
+from granudb.vocabulary.terms import TERMS
+
+#: Text fields every catalogue entry has besides its properties.
+TEXT_FIELDS = ("description", "source_locator")
+
+
+@dataclass(frozen=True)
+class Catalogue:
+    """One kind of catalogue entry (``material`` or ``fluid``).
+
+    ``properties`` are the stored SI properties, in display order; ``required`` the ones
+    an entry cannot be added without; ``defaults`` what an omitted property is set to on
+    adding; ``companions`` columns a listing shows right after a property (a flag saying
+    the value was derived); ``trailing`` listing columns after the source (more sources,
+    counts); ``narrow`` what a table for people shows; ``reserved`` names an entry
+    cannot take (compared case-insensitively).
+    """
+
+    kind: str
+    plural: str
+    properties: tuple[str, ...]
+    required: tuple[str, ...]
+    narrow: tuple[str, ...]
+    defaults: dict[str, float] = field(default_factory=dict)
+    companions: dict[str, str] = field(default_factory=dict)
+    trailing: tuple[str, ...] = ()
+    reserved: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def columns(self) -> list[str]:
+        """Every column of a listing (JSON, CSV, DataFrame), in order."""
+        shown = ["name", "description"]
+        for name in self.properties:
+            shown.append(name)
+            if name in self.companions:
+                shown.append(self.companions[name])
+        return [*shown, "source", "source_locator", *self.trailing]
+
+    @property
+    def fields(self) -> frozenset[str]:
+        """The stored fields a user may set: the properties and the text fields."""
+        return frozenset((*self.properties, *TEXT_FIELDS))
+
+    @property
+    def parameters(self) -> dict[str, str]:
+        """Python parameter → stored column, for the properties and the text fields
+        (``youngs_modulus`` → ``youngs_modulus_pa``); the option is the parameter with
+        dashes."""
+        return {parameter_of(c): c for c in (*self.properties, *TEXT_FIELDS)}
+
+
+def parameter_of(column: str) -> str:
+    """The Python parameter (and, with dashes, the option) that sets ``column``."""
+    option = TERMS[column].option
+    return option.removeprefix("--").replace("-", "_") if option else column
+
+
+MATERIALS = Catalogue(
+    kind="material",
+    plural="materials",
+    properties=(
+        "density_kg_m3",
+        "youngs_modulus_pa",
+        "poisson_ratio",
+        "roughness_rms_m",
+        "correlation_length_m",
+        "shear_modulus_pa",
+        "yield_stress_pa",
+    ),
+    required=("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m"),
+    narrow=(
+        "name",
+        "density_kg_m3",
+        "youngs_modulus_pa",
+        "poisson_ratio",
+        "roughness_rms_m",
+        "shear_modulus_pa",
+        "source",
+    ),
+    companions={"shear_modulus_pa": "shear_modulus_derived"},
+)
+
+FLUIDS = Catalogue(
+    kind="fluid",
+    plural="fluids",
+    properties=(
+        "glycerol_mass_fraction",
+        "reference_density_kg_m3",
+        "reference_viscosity_pa_s",
+        "reference_temperature_c",
+        "pressure_viscosity_pa_inv",
+    ),
+    required=("reference_viscosity_pa_s", "reference_density_kg_m3"),
+    narrow=(
+        "name",
+        "glycerol_mass_fraction",
+        "reference_density_kg_m3",
+        "reference_viscosity_pa_s",
+        "reference_temperature_c",
+        "pressure_viscosity_pa_inv",
+        "points",
+        "source",
+    ),
+    defaults={"reference_temperature_c": 20.0},
+    trailing=("density_source", "pressure_viscosity_source", "points"),
+    reserved={"dry": "is reserved: 'dry' means no fluid"},
+)
+
+#: A fluid's measured point: viscosity (and density) at a temperature.
+POINT_COLUMNS = ["temperature_c", "viscosity_pa_s", "density_kg_m3", "source"]
+#: The columns of a source.
+SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
+#: What a table of sources shows.
+SOURCE_NARROW = ["key", "year", "kind", "citation", "doi"]
+
+CATALOGUES = {c.kind: c for c in (MATERIALS, FLUIDS)}
+MATERIAL_PROPERTIES = list(MATERIALS.properties)
+FLUID_PROPERTIES = list(FLUIDS.properties)
+
+
+def check_entry(catalogue: Catalogue, values: dict[str, float | None]) -> None:
+    """The rules between an entry's properties (each property's own range is
+    ``granudb.vocabulary.rules``): a material's explicit shear modulus G may differ from
+    E / (2(1 + ν)) (anisotropic or measured), but the Poisson ratio E, G imply,
+    ν = E/(2G) − 1, must lie in (−1, 0.5)."""
+    if catalogue.kind != "material":
+        return
+    shear, youngs = values.get("shear_modulus_pa"), values.get("youngs_modulus_pa")
+    if shear is None or youngs is None:
+        return
+    implied = youngs / (2.0 * shear) - 1.0
+    if not -1.0 < implied < 0.5:
+        raise ValidationError(
+            "shear_modulus_pa",
+            shear,
+            f"with youngs_modulus_pa {youngs:g} implies a Poisson ratio of {implied:.3g}, "
+            "outside (−1, 0.5)",
+        )

@@ -1,0 +1,109 @@
+"""The columns each listing shows, in order: collisions, datasets, fits, sources.
+
+A listing shows the same columns in every format (a table, JSON, CSV, a DataFrame);
+``--wide`` (``wide=True``) shows every column. These lists, like the catalogue's
+(``granudb.vocabulary.catalogue``), are the one place a listing's columns are named.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from granudb.vocabulary.terms import COLLISION_MEASURED, term
+
+#: What ``collisions list`` shows by default, in every format: one line per run.
+COLLISION_NARROW = [
+    "run",
+    "particle",
+    "wall",
+    "fluid",
+    "v_n_in_m_s",
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_incidence",
+    "sliding_friction",
+    "normal_stokes_number",
+    "film_parameter",
+    "tangential_regime",
+]
+#: Every column, in presentation order (``--wide``); derived ones not named here follow.
+COLLISION_WIDE = [
+    "dataset",
+    "version",
+    "run",
+    "particle",
+    "wall",
+    "fluid",
+    "diameter_m",
+    "incidence_angle_rad",
+    "nominal_angle_rad",
+    *[c for c in COLLISION_MEASURED if c not in ("diameter_m", "nominal_angle_rad")],
+    "viscosity_pa_s",
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_incidence",
+    "effective_rebound",
+    "sliding_friction",
+    "normal_stokes_number",
+    "reynolds_number",
+    "min_gap_m",
+    "composite_roughness_m",
+    "film_parameter",
+    "roughness_exceeds_gap",
+    "rebound_expected",
+    "tangential_regime",
+    "quasi_static_valid",
+    "shear_strain",
+    "tangential_speed_m_s",
+    "lubricated_friction",
+    "effective_radius_m",
+    "reduced_modulus_pa",
+    "notes",
+    "derivation_note",
+]
+#: A dataset in ``granudb dataset list`` (and ``granudb.datasets()``).
+DATASET_COLUMNS = ["name", "version", "state", "title", "runs", "content_hash", "license", "source"]
+#: A dataset's runs counted by pair and fluid (``dataset show``).
+DATASET_GROUP_COLUMNS = ["particle", "wall", "fluid", "runs"]
+#: A difference between two datasets (``dataset diff``).
+DIFF_COLUMNS = ["change", "run", "fields"]
+#: A published value as a table of a source shows it (``sources show``).
+PUBLISHED_NARROW = ["source_locator", "label", "quantity", "value_as_printed"]
+
+#: The group a fit's row is for.
+FIT_GROUP = ["dataset", "particle", "wall", "fluid"]
+#: What a table of each fit shows (JSON and CSV show every key the fit returns).
+FIT_NARROW = {
+    "walton": [
+        *FIT_GROUP,
+        "model",
+        "rotational_restitution",
+        "sliding_friction",
+        "normal_restitution_mean",
+        "n_sticking",
+        "n_sliding",
+    ],
+    "restitution": [
+        *FIT_GROUP,
+        "model",
+        "e_dry",
+        "parameter_name",
+        "parameter",
+        "n_runs",
+        "reason",
+    ],
+    "gap_viscosity": [
+        *FIT_GROUP,
+        "gap_viscosity_pa_s",
+        "ambient_viscosity_pa_s",
+        "gap_temperature_c",
+        "n_runs",
+        "reason",
+        "note",
+    ],
+}
+
+
+def units_of(columns: Iterable[str]) -> dict[str, str]:
+    """``{column: SI unit}`` for the columns that have one (a DataFrame's ``attrs``)."""
+    return {c: unit for c in columns if (unit := term(c).unit)}
