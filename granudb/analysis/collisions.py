@@ -16,10 +16,19 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis._errors import physics_refusal
 from granudb.analysis.fluid_state import fluid_states_per_row
+from granudb.analysis.refusals import physics_refusal
+from granudb.db.catalog_rows import fluid_rows_by_id
+from granudb.db.collision_queries import iter_collisions, reading, survey_collisions
 from granudb.errors import ValidationError
-from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TARGET, MATERIAL_PROPERTIES
+from granudb.lazy import pandas as pd
+from granudb.physics.derive import derive
+from granudb.vocabulary import (
+    COLLISION_MEASURED,
+    COLLISION_TARGET,
+    DERIVED_TERMS,
+    MATERIAL_PROPERTIES,
+)
 from granudb.vocabulary.listings import COLLISION_WIDE, units_of
 
 TANGENTIAL_REGIMES = ("stick", "slip_then_stick", "gross_slip")
@@ -121,8 +130,6 @@ def _matches(chunk: dict[str, np.ndarray], query: CollisionQuery) -> np.ndarray:
     for flag in ("roughness_exceeds_gap", "rebound_expected"):
         wanted = getattr(query, flag)
         if wanted is not None:
-            import pandas as pd
-
             values = pd.Series(chunk[flag], copy=False)
             keep &= (values.fillna(not wanted).astype(bool) == wanted).to_numpy(dtype=bool)
     return keep
@@ -149,11 +156,6 @@ def collision_table(
     in Arrow buffers and makes a new Python string per cell each time a column is read
     as objects: a report reads its group columns that way several times.
     """
-    import pandas as pd
-
-    from granudb.db.catalog_rows import fluid_rows_by_id
-    from granudb.db.collision_queries import iter_collisions, reading, survey_collisions
-
     session = reading(session)  # a Core connection: no ORM on a read of runs
     fluids = fluid_rows_by_id(session)
     chunk_filters = {k: v for k, v in filters.items() if k != "chunk_rows"}
@@ -230,8 +232,6 @@ def _values(column: Any) -> np.ndarray:
     """
     if column.dtype.kind in "biufcmM":
         return np.asarray(column)
-    import pandas as pd
-
     codes, distinct = pd.factorize(column, use_na_sentinel=True)
     if isinstance(column, np.ndarray):
         text = len(distinct) > 0 and all(isinstance(value, str) for value in distinct)
@@ -246,8 +246,6 @@ def _floats(frame: Any, name: str) -> np.ndarray:
     values = frame[name]
     if isinstance(values, np.ndarray) and values.dtype.kind == "f":
         return values
-    import pandas as pd
-
     return pd.to_numeric(values, errors="coerce").to_numpy(dtype=float)
 
 
@@ -257,8 +255,6 @@ def _derive_stored(
     """One chunk of stored runs (``iter_collisions``) with every derived column, as arrays
     in presentation order (no DataFrame per chunk: pandas would turn every text column into
     Arrow strings, to be turned back when the chunk is kept)."""
-    from granudb.physics.derive import derive
-
     c = {name: _floats(stored, name) for name in COLLISION_MEASURED}
     fluid_ids = np.nan_to_num(_floats(stored, "fluid_id"), nan=-1).astype(int)
     viscosity, density, reason = fluid_states_per_row(fluids, fluid_ids, c["temperature_c"])
@@ -322,8 +318,6 @@ def _blank_underivable(chunk: dict[str, np.ndarray], bad: np.ndarray) -> None:
     number is worse than none): None in object and flag columns, NaN in number columns."""
     if not bad.any():
         return
-    from granudb.vocabulary import DERIVED_TERMS
-
     for name in DERIVED_TERMS:
         if name in chunk:
             column = chunk[name]

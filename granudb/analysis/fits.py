@@ -22,6 +22,7 @@ import numpy as np
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
+from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
 from granudb.analysis.restitution_fit import (
     RESTITUTION_MODELS,
     restitution,
@@ -40,11 +41,9 @@ __all__ = [
     "walton_arrays",
 ]
 
-GROUP = ["dataset", "particle", "wall", "fluid"]
 DEFAULT_RESAMPLES = resampling.DEFAULT_RESAMPLES
 DEFAULT_SEED = 0
 CONFIDENCE_LEVEL = 0.95
-SPHERE_ON_WALL_FACTOR = 3.5  # B = 1 + 1/K², K² = 2/5 (PHYSICS.md §9)
 
 #: Every key of a ``walton`` result and what it means.
 WALTON_KEYS = {
@@ -118,67 +117,9 @@ _NUMBERS = [
 ]
 
 
-#: The columns a Walton fit reads (the group's, then its runs').
-WALTON_INPUTS = [*GROUP, "effective_incidence", "effective_rebound", "normal_restitution",
-                 "tangential_speed_m_s", "walton_factor"]  # fmt: skip
-
-
-def narrow(frame: Any, names: list[str]) -> Any:
-    """``frame`` with only those of ``names`` it has."""
-    return frame[[name for name in names if name in frame]]
-
-
-def group_frames(
-    frame: Any, keys: list[str], columns: list[str] | None = None, *, fill: dict | None = None
-) -> Any:
-    """(key, rows) per group of ``keys`` in sorted key order, rows in frame order; a row
-    with a missing key is in no group (``fill``: {key: value} for a key whose missing value
-    is a group of its own, as "dry" for the fluid). ``rows`` holds only ``columns`` (those
-    the frame has; default all).
-
-    Why this way: iterating a groupby first copies the whole frame sorted by group, and
-    taking each group's rows of every column copies the group keys too; here the groups are
-    found from the key columns alone (no copy of the frame), and each group copies only
-    the columns its fit reads, one group at a time (a third of a million runs, not all)."""
-    import pandas as pd
-
-    fill = fill or {}
-    by = [frame[k].fillna(fill[k]) if k in fill else frame[k] for k in keys]
-    indices = frame.groupby(by, sort=True).indices
-    names = list(frame.columns) if columns is None else [c for c in columns if c in frame]
-    for key in sorted(indices):
-        at = indices[key]
-        yield key, pd.DataFrame({name: frame[name].take(at) for name in names}, copy=False)
-
-
 def _groups(frame: Any) -> Any:
     runs = [name for name in WALTON_INPUTS if name not in GROUP]  # the key says the group
     return group_frames(frame, GROUP, runs, fill={"fluid": "dry"})
-
-
-def walton_arrays(group: Any) -> tuple[np.ndarray, ...]:
-    """Folded, Ψ_in-sorted (x, y, c = (1+e)B, e, n_folded, order) of one group's finite runs;
-    ``order`` indexes the group's rows."""
-    psi_in = group["effective_incidence"].to_numpy(dtype=float)
-    psi_out = group["effective_rebound"].to_numpy(dtype=float)
-    e = group["normal_restitution"].to_numpy(dtype=float)
-    v_t = (
-        group["tangential_speed_m_s"].to_numpy(dtype=float)
-        if "tangential_speed_m_s" in group
-        else psi_in
-    )
-    factor = (
-        group["walton_factor"].to_numpy(dtype=float)
-        if "walton_factor" in group
-        else np.full(len(group), SPHERE_ON_WALL_FACTOR)
-    )
-    factor = np.where(np.isfinite(factor), factor, SPHERE_ON_WALL_FACTOR)
-    finite = np.isfinite(psi_in) & np.isfinite(psi_out) & np.isfinite(e)
-    x, y = core.fold(psi_in, psi_out, v_t)
-    rows = np.flatnonzero(finite)
-    order = rows[np.argsort(x[rows], kind="stable")]
-    folded = int(np.sum((v_t < 0) & finite))
-    return x[order], y[order], (1 + e[order]) * factor[order], e[order], folded, order, factor
 
 
 def _interval(row: dict, name: str, values: np.ndarray, point: float) -> None:

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from granudb.analysis._errors import physics_refusal
+from granudb.analysis.refusals import physics_refusal
 from granudb.errors import ValidationError
 from granudb.physics.viscosity import ReferencedViscosity, TabulatedViscosity
 

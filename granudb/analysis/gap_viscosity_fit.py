@@ -30,10 +30,11 @@ import numpy as np
 
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
+from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
+from granudb.lazy import scipy_optimize
 from granudb.physics import contact, lubrication
 from granudb.physics._types import PhysicsInputError
 
-GROUP = ["dataset", "particle", "wall", "fluid"]
 RESAMPLES = resampling.DEFAULT_RESAMPLES
 SEED = 0
 LEVEL = 0.95
@@ -75,9 +76,7 @@ def _least_squares(measured: np.ndarray, group: Any) -> tuple[float, np.ndarray 
     if np.allclose(probe, g * 1e-3 ** (2 / 7), rtol=1e-9, atol=0.0):
         q = float(np.sum(measured * g) / np.sum(g * g))
         return (q**3.5 if q > 0 else math.nan), g
-    from scipy.optimize import minimize_scalar
-
-    result = minimize_scalar(
+    result = scipy_optimize.minimize_scalar(
         lambda s: float(np.sum((measured - model_friction(group, math.exp(s))) ** 2)),
         bounds=LOG_BOUNDS,
         method="bounded",
@@ -115,8 +114,6 @@ def _temperature(model: Any, viscosity: float) -> tuple[float, str]:
 
 def _sliding_runs(group: Any) -> tuple[Any, np.ndarray, str]:
     """The group's runs on the measured sliding line, their μ_f (2.9), or a reason."""
-    from granudb.analysis.fits import walton_arrays
-
     x, y, c, e, _, order, _ = walton_arrays(group)
     if len(x) < core.MIN_RUNS_FOR_PARAMETER:
         return None, np.empty(0), f"{len(x)} runs: too few for a Walton fit to find sliding runs"
@@ -201,8 +198,6 @@ def gap_viscosity(
     ``reason`` (one line whenever μ₀ or the temperature is missing, else '') and ``note``
     (the same text, the older name).
     """
-    from granudb.analysis.fits import WALTON_INPUTS, group_frames
-
     inputs = dict.fromkeys(
         [*WALTON_INPUTS, *_MODEL_INPUTS, "viscosity_pa_s", "roughness_exceeds_gap"]
     )

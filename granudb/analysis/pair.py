@@ -14,8 +14,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from sqlalchemy.engine import Connection
 
-from granudb.analysis._errors import physics_refusal
 from granudb.analysis.fluid_state import FluidState, fluid_state
+from granudb.analysis.refusals import physics_refusal
 from granudb.db import catalog_rows
 from granudb.errors import ValidationError
 from granudb.physics.derive import derive, scalar_view

@@ -15,6 +15,9 @@ from typing import Any
 
 import numpy as np
 
+from granudb.errors import ValidationError
+from granudb.lazy import scipy_optimize
+
 RESTITUTION_MODELS = {
     # name: (formula, citation)
     "threshold": (
@@ -145,11 +148,9 @@ def _fit(model: str, st: np.ndarray, e: np.ndarray, e_dry: float | None) -> tupl
     (``threshold_least_squares``); the exponential form by scipy's ``curve_fit``."""
     if model == "threshold":
         return threshold_least_squares(st, e, e_dry)
-    from scipy.optimize import curve_fit
-
     start = max(1.0, float(np.min(st)) * 0.5)
     if e_dry is None:
-        values, covariance = curve_fit(
+        values, covariance = scipy_optimize.curve_fit(
             lambda s, a, b: restitution_curve(model, s, a, b),
             st,
             e,
@@ -159,7 +160,7 @@ def _fit(model: str, st: np.ndarray, e: np.ndarray, e_dry: float | None) -> tupl
         )
         errors = np.sqrt(np.diag(covariance))
         return float(values[0]), float(errors[0]), float(values[1]), float(errors[1])
-    values, covariance = curve_fit(
+    values, covariance = scipy_optimize.curve_fit(
         lambda s, b: restitution_curve(model, s, e_dry, b),
         st,
         e,
@@ -225,10 +226,10 @@ def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
     ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
     ``reason`` (why the fit is empty, else '').
     """
-    from granudb.errors import ValidationError
-
     if model not in RESTITUTION_MODELS:
-        raise ValidationError("--model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}")
+        raise ValidationError(
+            "model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}", parameter=True
+        )
     st = frame["normal_stokes_number"].to_numpy(dtype=float)
     e = frame["normal_restitution"].to_numpy(dtype=float)
     finite_e = np.isfinite(e)

@@ -25,7 +25,7 @@ def derive(frame: Any, **options: Any) -> Any:
     """
     import inspect
 
-    from granudb.analysis._errors import physics_refusal
+    from granudb.analysis.refusals import physics_refusal
     from granudb.analysis.collisions import units_of
     from granudb.errors import ValidationError
     from granudb.physics.derive import derive as derive_arrays

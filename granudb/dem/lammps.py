@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 
 from granudb.dem import damping
-from granudb.dem._common import (
+from granudb.dem.deck import (
     Limited,
     check,
     check_poisson,

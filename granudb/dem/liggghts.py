@@ -20,7 +20,7 @@ comment, never the viscous model.
 
 from __future__ import annotations
 
-from granudb.dem._common import (
+from granudb.dem.deck import (
     Limited,
     check,
     check_poisson,

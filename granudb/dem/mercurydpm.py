@@ -13,7 +13,7 @@ Hertz contact time t_c ≈ 2.87(m*²/(R*E*²V))^{1/5} at the characteristic spee
 
 from __future__ import annotations
 
-from granudb.dem._common import (
+from granudb.dem.deck import (
     check,
     check_poisson,
     comment,

@@ -20,8 +20,8 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-from granudb.dem import _runners, lammps, liggghts, yade
-from granudb.dem._runners import Case
+from granudb.dem import runs, lammps, liggghts, yade
+from granudb.dem.runs import Case
 from granudb.dem.spec import DemModel
 from granudb.physics.impact import (
     GROSS_SLIP,
@@ -117,15 +117,15 @@ def _run_code(
 ) -> list[Record]:
     if code == "yade":
         script = tmp / "verify.py"
-        script.write_text(_runners.yade_script(model, fragment, todo))
+        script.write_text(runs.yade_script(model, fragment, todo))
         start = time.perf_counter()
-        output = _runners.run([binary, "-n", "-x", str(script)], tmp, timeout=600)
+        output = runs.run([binary, "-n", "-x", str(script)], tmp, timeout=600)
         per_case = (time.perf_counter() - start) / max(len(todo), 1)
         lines = [ln for ln in output.splitlines() if ln.startswith("GRANUDB ")]
         if len(lines) != len(todo):
-            _runners.parse(output, code)  # raises with the code's own last words
+            runs.parse(output, code)  # raises with the code's own last words
         return [
-            _record(model, code, c, _runners.parse(ln, code), "checked", seconds=per_case)
+            _record(model, code, c, runs.parse(ln, code), "checked", seconds=per_case)
             for c, ln in zip(todo, lines, strict=True)
         ]
 
@@ -133,14 +133,12 @@ def _run_code(
         index, case = index_case
         folder = tmp / f"case{index}"
         folder.mkdir()
-        build = _runners.liggghts_input if code == "liggghts" else _runners.lammps_input
+        build = runs.liggghts_input if code == "liggghts" else runs.lammps_input
         (folder / "in.granudb").write_text(build(model, fragment, case))
         start = time.perf_counter()
-        output = _runners.run(
-            [binary, "-in", "in.granudb", "-log", "none", "-echo", "none"], folder
-        )
+        output = runs.run([binary, "-in", "in.granudb", "-log", "none", "-echo", "none"], folder)
         seconds = time.perf_counter() - start
-        return _record(model, code, case, _runners.parse(output, code), "checked", seconds=seconds)
+        return _record(model, code, case, runs.parse(output, code), "checked", seconds=seconds)
 
     with ThreadPoolExecutor(max_workers=4) as pool:
         return list(pool.map(one, enumerate(todo)))

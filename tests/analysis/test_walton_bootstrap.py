@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from analysis.synthetic import walton_frame
 
-from granudb.analysis import fits
+from granudb.analysis import fits, groups
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as fast
 
@@ -31,7 +31,7 @@ CASES = [
 @pytest.mark.parametrize(("n", "options"), CASES)
 def test_block_search_decides_as_the_dense_prefix_sums(n: int, options: dict) -> None:
     for seed in range(3):
-        x, y, c, e, *_ = fits.walton_arrays(walton_frame(n, seed=seed, **options))
+        x, y, c, e, *_ = groups.walton_arrays(walton_frame(n, seed=seed, **options))
         runs = fast.Sorted(x, y, c, e)
         size = runs.blocks * fast.BLOCK_RUNS
         weights = fast.draw_counts(np.random.default_rng(seed), 30, n, size)
@@ -59,7 +59,7 @@ def straightforward(x, y, c, e, resamples: int, seed: int) -> core.Decision:
 
 
 def test_bootstrap_equals_the_straightforward_loop() -> None:
-    x, y, c, e, *_ = fits.walton_arrays(walton_frame(400, spin=30.0, seed=4))
+    x, y, c, e, *_ = groups.walton_arrays(walton_frame(400, spin=30.0, seed=4))
     boot = fast.bootstrap(x, y, c, e, 300, 9)
     model, beta, friction, restitution = straightforward(x, y, c, e, 300, 9)
     assert np.array_equal(boot.model, model)
@@ -97,7 +97,7 @@ def test_a_large_group_states_the_rule_and_recovers_the_truth() -> None:
 
 
 def test_too_few_distinct_runs_in_a_resample_give_no_split() -> None:
-    x, y, c, e, *_ = fits.walton_arrays(walton_frame(5, seed=1))
+    x, y, c, e, *_ = groups.walton_arrays(walton_frame(5, seed=1))
     runs = fast.Sorted(x, y, c, e)
     weights = np.zeros((1, runs.blocks * fast.BLOCK_RUNS))
     weights[0, [0, 4]] = [3, 2]  # two distinct runs: no line of two on each side

@@ -63,7 +63,7 @@ def test_a_run_that_dies_in_mpi_startup_is_tried_again(tmp_path) -> None:
     failure, not the code's answer, so the run is repeated; other failures are not."""
     import sys
 
-    from granudb.dem import _runners
+    from granudb.dem import runs
 
     counter = tmp_path / "count"
     script = tmp_path / "flaky.py"
@@ -77,8 +77,8 @@ def test_a_run_that_dies_in_mpi_startup_is_tried_again(tmp_path) -> None:
         "    sys.exit(1)\n"
         "print('GRANUDB ok')\n"
     )
-    assert "GRANUDB ok" in _runners.run([sys.executable, str(script)], tmp_path)
+    assert "GRANUDB ok" in runs.run([sys.executable, str(script)], tmp_path)
     assert counter.read_text() == "2"
     failing = tmp_path / "fails.py"
     failing.write_text("import sys; print('some other error'); sys.exit(3)\n")
-    assert "some other error" in _runners.run([sys.executable, str(failing)], tmp_path)
+    assert "some other error" in runs.run([sys.executable, str(failing)], tmp_path)

@@ -1,0 +1,138 @@
+"""The package reads one way: modules named for what they hold, imports at the top, no
+cycles, no reaching into another module's private names.
+
+Laziness has three homes only (README, "Layout"): ``granudb.lazy`` for heavy libraries,
+the API's table of names (``granudb.api.NAMES``) and the command table
+(``granudb.cli.main.COMMANDS``); every other import stands at the top of its module, so
+the import graph below is the whole graph.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parents[1] / "granudb"
+
+
+def _modules() -> dict[str, Path]:
+    found = {}
+    for path in PACKAGE.rglob("*.py"):
+        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        found[name] = path
+    return found
+
+
+MODULES = _modules()
+
+
+def _resolve(module: str, node: ast.ImportFrom) -> str:
+    if node.level == 0:
+        return node.module or ""
+    base = module.split(".")
+    if not MODULES[module].name == "__init__.py":
+        base = base[:-1]
+    base = base[: len(base) - node.level + 1]
+    return ".".join([*base, node.module] if node.module else base)
+
+
+def _imports(module: str) -> list[tuple[str, str | None, ast.stmt]]:
+    """(imported module, imported name or None, node) for every import of ``module``."""
+    tree = ast.parse(MODULES[module].read_text(encoding="utf-8"))
+    for block in ast.walk(tree):
+        if isinstance(block, ast.If) and getattr(block.test, "id", "") == "TYPE_CHECKING":
+            for inner in ast.walk(block):
+                inner._type_checking = True  # type: ignore[attr-defined]
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found += [(alias.name, None, node) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            source = _resolve(module, node)
+            for alias in node.names:
+                child = f"{source}.{alias.name}"
+                if child in MODULES:  # ``from granudb.db import catalog_rows``
+                    found.append((child, None, node))
+                else:
+                    found.append((source, alias.name, node))
+    return found
+
+
+def test_no_module_is_named_as_private_or_after_history() -> None:
+    names = [p.stem for p in PACKAGE.rglob("*.py") if p.stem != "__init__"]
+    assert [n for n in names if n.startswith("_") and not n.startswith("__")] == []
+    assert [n for n in names if n.endswith(("_extra", "_new", "_old", "_steps", "2"))] == []
+
+
+def test_nothing_imports_another_modules_private_names() -> None:
+    offences = []
+    for module in MODULES:
+        for source, name, node in _imports(module):
+            if name and name.startswith("_") and not name.startswith("__"):
+                offences.append(f"{module}:{node.lineno} imports {source}.{name}")
+    assert offences == []
+
+
+def test_imports_stand_at_the_top_of_their_module() -> None:
+    offences = []
+    for module, path in MODULES.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+                for inner in ast.walk(node):
+                    if isinstance(inner, ast.Import | ast.ImportFrom):
+                        offences.append(f"{module}:{inner.lineno} (in {node.name})")
+    assert offences == []
+
+
+def _graph() -> dict[str, set[str]]:
+    graph: dict[str, set[str]] = {m: set() for m in MODULES}
+    for module in MODULES:
+        for source, _name, node in _imports(module):
+            if source in MODULES and source != module and not _type_checking_only(node):
+                graph[module].add(source)
+    return graph
+
+
+def _type_checking_only(node: ast.stmt) -> bool:
+    return getattr(node, "_type_checking", False)
+
+
+def test_no_import_cycle() -> None:
+    """Tarjan's strongly connected components over the module graph: none larger than one
+    module (a package's ``__init__`` importing its own submodules excepted)."""
+    graph = _graph()
+    for module in graph:  # a package may import its submodules; they import the package
+        graph[module] = {t for t in graph[module] if not module.startswith(t + ".")}
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    cycles: list[list[str]] = []
+
+    def visit(node: str) -> None:
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        on_stack.add(node)
+        for target in graph[node]:
+            if target not in index:
+                visit(target)
+                low[node] = min(low[node], low[target])
+            elif target in on_stack:
+                low[node] = min(low[node], index[target])
+        if low[node] == index[node]:
+            component = []
+            while True:
+                member = stack.pop()
+                on_stack.discard(member)
+                component.append(member)
+                if member == node:
+                    break
+            if len(component) > 1:
+                cycles.append(sorted(component))
+
+    for module in sorted(graph):
+        if module not in index:
+            visit(module)
+    assert cycles == []
