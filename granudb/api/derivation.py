@@ -26,9 +26,9 @@ def derive(frame: Any, **options: Any) -> Any:
     import inspect
 
     from granudb.analysis.refusals import physics_refusal
-    from granudb.analysis.collisions import units_of
     from granudb.errors import ValidationError
     from granudb.physics.derive import derive as derive_arrays
+    from granudb.vocabulary.listings import units_of
 
     accepted = set(inspect.signature(derive_arrays).parameters)
     unknown = sorted(set(options) - accepted)

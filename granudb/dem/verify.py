@@ -20,7 +20,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-from granudb.dem import runs, lammps, liggghts, yade
+from granudb.dem import lammps, liggghts, runs, yade
 from granudb.dem.runs import Case
 from granudb.dem.spec import DemModel
 from granudb.physics.impact import (

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import pytest
 
-from granudb.api.database import opened
 import granudb
+from granudb.api.database import opened
 from granudb.db import catalog_rows, collision_queries, datasets, lookup_rows, sources
 from granudb.db.models import Base
 from granudb.errors import NotFoundError
