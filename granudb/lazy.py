@@ -4,9 +4,9 @@
 ``pair`` within 1.3× and 1.5× the time Python takes to import SQLAlchemy (the speed
 issue's bounds, measured by ``benchmarks/cli_latency.py``). pandas (about 0.30 s to
 import here), Pint (0.18 s, and its registry as much again), pyarrow (0.15 s), SciPy
-(0.08 s), NumPy (0.06 s) and Jinja2 (0.04 s) each cost more than a short command does,
-and most commands never touch them. So a module that needs one imports it from here, at
-the top of the module like any other import::
+(0.08 s), NumPy (0.06 s), Jinja2 (0.04 s), Alembic and SQLAlchemy's ORM each cost more
+than a short command does, and most commands never touch them. So a module that needs
+one imports it from here, at the top of the module like any other import::
 
     from granudb.lazy import pandas as pd
 
@@ -62,6 +62,12 @@ scipy_stats: Any = LazyModule("scipy.stats")
 jinja2: Any = LazyModule("jinja2")
 contourpy: Any = LazyModule("contourpy")
 platformdirs: Any = LazyModule("platformdirs")
+sqlalchemy_orm: Any = LazyModule("sqlalchemy.orm")
+alembic_command: Any = LazyModule("alembic.command")
+alembic_config: Any = LazyModule("alembic.config")
+alembic_script: Any = LazyModule("alembic.script")
+alembic_migration: Any = LazyModule("alembic.runtime.migration")
+alembic_errors: Any = LazyModule("alembic.util.exc")
 rich_console: Any = LazyModule("rich.console")
 rich_table: Any = LazyModule("rich.table")
 rich_text: Any = LazyModule("rich.text")

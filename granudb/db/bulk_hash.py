@@ -23,10 +23,13 @@ and the texts gathered in that order and hashed ``HASH_BLOCK_ROWS`` rows at a ti
 from __future__ import annotations
 
 import hashlib
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import numpy as np
 
+from granudb.lazy import pyarrow as pa
+from granudb.lazy import pyarrow_compute as pc
 from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
 from granudb.vocabulary import COLLISION_TARGET
 
@@ -48,9 +51,6 @@ def float_texts(values: Any) -> Any:
     every row (a diameter, a temperature) is formatted once; the ``.0`` that ``repr``
     adds to an integral value is looked for only when numpy finds an integral value.
     """
-    import pyarrow as pa
-    import pyarrow.compute as pc
-
     values = np.asarray(values, dtype=np.float64)
     bits = values.view(np.int64)
     if len(values) > 1 and (bits == bits[0]).all():  # bitwise: 0.0 and -0.0 differ
@@ -98,8 +98,6 @@ class BlockHasher:
         *,
         keeps_negative_zero: bool = True,
     ) -> None:
-        from concurrent.futures import ThreadPoolExecutor
-
         self._names = _Names(material_names, fluid_names)
         self._signed = keeps_negative_zero
         self._runs: list[Any] = []
@@ -141,9 +139,6 @@ class BlockHasher:
 
     def _compute(self) -> str:
         """The digest (on the worker thread: every block before it is formatted)."""
-        import pyarrow as pa
-        import pyarrow.compute as pc
-
         done = [future.result() for future in self._texts]
         self._texts = []
         digest = hashlib.sha256()
@@ -225,8 +220,6 @@ class _Gather:
 
     def take(self, arrays: list[Any]) -> Any:
         """``arrays`` (one per block) at ``rows``, in that order."""
-        import pyarrow as pa
-
         parts = [arrays[number].take(pa.array(local)) for number, local in self.parts]
         return pa.concat_arrays(parts).take(pa.array(self.back))
 
@@ -246,9 +239,6 @@ def _row_texts(
     """(names' code by row, each row's canonical text after its names): the floats, notes
     (and the target sphere's columns when the row has any), joined by the unit separator,
     then the record separator that ends the row. Runs on the worker thread."""
-    import pyarrow as pa
-    import pyarrow.compute as pc
-
     n = len(ids[0])
     columns = {c: _column(values.get(c)) for c in COLUMNS}
     texts = {c: float_texts(v) for c, v in columns.items() if v is not None}

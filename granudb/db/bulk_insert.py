@@ -30,12 +30,17 @@ every row already in the table too, so it is done only when ``rebuild_pays``. Th
 
 from __future__ import annotations
 
+import io
+import sqlite3
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from sqlalchemy.exc import DBAPIError
 
+from granudb.db.engine import BULK_CACHE_KEY
+from granudb.lazy import pyarrow as pa
+from granudb.lazy import pyarrow_csv as pacsv
 from granudb.vocabulary import COLLISION_MEASURED
 
 # Page cache for the length of a bulk load (KiB, negative = size rather than pages), so
@@ -171,8 +176,6 @@ def block_from_frame(frame: Any) -> CollisionBlock:
 
 def _bulk_cache(connection: Any, raw: Any) -> None:
     """Enlarge SQLite's page cache for this transaction (restored on check-in)."""
-    from granudb.db.engine import BULK_CACHE_KEY
-
     if BULK_CACHE_KEY not in connection.info:
         connection.info[BULK_CACHE_KEY] = raw.execute("PRAGMA cache_size").fetchone()[0]
         raw.execute(f"PRAGMA cache_size=-{BULK_CACHE_KIB}")
@@ -225,8 +228,6 @@ def _sqlite_insert(raw: Any, head: str, literals: list[str], bound: dict[str, An
     temperature) is bound once per statement as a numbered parameter that every row of
     the statement names, rather than once per row: the same exact double, fewer values
     boxed and bound."""
-    import sqlite3
-
     shared = [c for c, v in bound.items() if _constant(v)]
     per_row = {c: v for c, v in bound.items() if c not in shared}
     first = {c: bound[c][:1].tolist()[0] for c in shared}
@@ -354,11 +355,6 @@ def _copy(
 ) -> None:
     """COPY the rows as CSV written by Arrow (NULL = an unquoted empty field; every value
     quoted, so an empty text could never read as NULL)."""
-    import io
-
-    import pyarrow as pa
-    import pyarrow.csv as pacsv
-
     arrays = {name: pa.array(np.full(n, value, dtype=np.int64)) for name, value in constant.items()}
     for name, column in bound.items():
         if isinstance(column, list):

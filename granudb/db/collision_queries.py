@@ -17,6 +17,8 @@ from sqlalchemy.engine import Connection
 from granudb.db import lookup_rows
 from granudb.db.catalog_rows import MATERIALS, _table
 from granudb.db.lookup_rows import DATASETS
+from granudb.lazy import numpy as np
+from granudb.lazy import pandas as pd
 from granudb.vocabulary import COLLISION_MEASURED, MATERIAL_PROPERTIES
 
 #: Rows read and derived at a time: bounds the memory of a read of a million runs (the
@@ -51,9 +53,6 @@ def load_collisions(
     "dry" for dry runs), ordered by dataset, version and run label, as a DataFrame with
     ``particle_<property>`` and ``wall_<property>`` columns (``iter_collisions`` in one
     piece)."""
-    import numpy as np
-    import pandas as pd
-
     chunks = list(
         iter_collisions(
             reader, dataset=dataset, version=version, particle=particle, wall=wall, fluid=fluid
@@ -93,8 +92,6 @@ def iter_collisions(
     chunks (no SQLAlchemy row objects), each chunk becomes one object array and its
     columns numpy arrays at C speed, so a million runs read at the driver's pace in
     bounded memory. PostgreSQL streams through a server-side (named) cursor."""
-    import numpy as np
-
     connection = reading(reader)
     read = [c for c in COLLISION_MEASURED if measured is None or c in measured]
     query = _collision_select(
@@ -229,15 +226,11 @@ def _driver_chunks(connection: Any, query: Any, chunk_rows: int) -> Iterator[lis
 def _floats(values: Any) -> Any:
     """A float array (None is NaN); a value that is not a number (a bad stored cell)
     becomes NaN, as ``pandas.to_numeric(errors="coerce")`` makes it."""
-    import numpy as np
-
     if isinstance(values, np.ndarray) and values.dtype.kind == "f":
         return values.copy()  # a column of a float block: its own contiguous array
     try:
         return np.asarray(values, dtype=object).astype(float)
     except (TypeError, ValueError):
-        import pandas as pd
-
         return pd.to_numeric(pd.Series(list(values), dtype=object), errors="coerce").to_numpy(
             dtype=float
         )

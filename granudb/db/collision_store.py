@@ -38,6 +38,7 @@ from granudb.db.bulk_insert import (
     rebuild_pays,
     unsigned_zeros,
 )
+from granudb.db.catalog_rows import source_id as find_source
 from granudb.db.models import (
     Collision,
     CollisionImport,
@@ -47,6 +48,7 @@ from granudb.db.models import (
     name_key,
 )
 from granudb.errors import ConflictError, ValidationError
+from granudb.lazy import pyarrow as pa
 
 __all__ = ["BULK_CACHE_KIB", "ImportTarget", "insert_collisions", "store_collisions"]
 
@@ -213,8 +215,6 @@ def store_collisions(
 ) -> int:
     """Write every block of ``frames`` (``CollisionBlock``s or DataFrames) into ``target``
     in one write transaction."""
-    from granudb.db.catalog_rows import source_id as find_source
-
     rows = 0
     with database.session(write=True) as session:
         connection = session.connection()
@@ -321,8 +321,6 @@ class RunIndex:
         return len(set(runs)) != len(runs) or not self.as_set().isdisjoint(runs)
 
     def add(self, runs: list[str]) -> None:
-        import pyarrow as pa
-
         last, self._last = self._last, None
         if runs:
             hashes = last[1] if last is not None and last[0] is runs else self._hashes(runs)

@@ -10,6 +10,7 @@ from sqlalchemy.orm import Session, aliased
 
 from granudb.db.datasets import COLUMNS
 from granudb.db.models import Collision, Dataset, Fluid, Material
+from granudb.db.upsert import same_value
 
 COMPARED = ["particle_id", "wall_id", "fluid_id", *COLUMNS, "notes"]
 
@@ -83,7 +84,6 @@ def group_counts(session: Session, dataset: Dataset) -> list[dict[str, Any]]:
 
 def diff_datasets(session: Session, first: Dataset, second: Dataset) -> list[dict[str, Any]]:
     """Runs added in ``second``, removed from ``first``, and changed (field by field)."""
-    from granudb.db.upsert import same_value
 
     def load(dataset: Dataset) -> dict[str, dict[str, Any]]:
         rows = session.execute(

@@ -17,12 +17,14 @@ the same runs with the same values.
 from __future__ import annotations
 
 import hashlib
+import math
 from collections.abc import Iterable, Sequence
 from typing import Any
 
 from sqlalchemy import Integer, delete, func, insert, literal, select
 from sqlalchemy.orm import Session, aliased
 
+from granudb.db.lookup_rows import dataset_row
 from granudb.db.models import Collision, CollisionImport, Dataset, Fluid, Material, utcnow
 from granudb.errors import ConflictError, NotFoundError, ValidationError
 from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
@@ -42,8 +44,6 @@ def _versions(session: Session, name: str) -> list[Dataset]:
 def get_dataset(session: Session, name: str, version: str | None = None) -> Dataset:
     """The dataset ``name`` at ``version`` (default: the most recently created version);
     found (and refused, with the known names or versions) by ``lookup_rows.dataset_row``."""
-    from granudb.db.lookup_rows import dataset_row
-
     found = dataset_row(session.connection(), name, version)
     dataset = session.get(Dataset, found.id)
     assert dataset is not None  # the same transaction just read it
@@ -119,8 +119,6 @@ def _canonical(row: Sequence[object]) -> list[str]:
 
 def hash_frame(frame: Any) -> str:
     """The content hash of collisions given by name in a DataFrame (a package's table)."""
-    import math
-
     columns = ["run", "particle", "wall", "fluid", *COLUMNS, "notes"]
     values = [frame[c].tolist() if c in frame else [None] * len(frame) for c in columns]
     order = sorted(range(len(frame)), key=lambda i: str(values[0][i]).encode("utf-8"))

@@ -22,9 +22,11 @@ from sqlalchemy.engine import Connection, make_url
 from sqlalchemy.exc import DBAPIError, IntegrityError, OperationalError
 
 from granudb.config import default_database_path, resolve_database_url
+from granudb.db import migration
 from granudb.errors import DatabaseAccessError, GranudbError
+from granudb.lazy import sqlalchemy_orm
 
-if TYPE_CHECKING:  # the ORM is imported by the commands that use it (see ``reading``)
+if TYPE_CHECKING:  # the ORM is loaded by the commands that use it (see ``reading``)
     from sqlalchemy.orm import Session
 
 BUSY_TIMEOUT_S = 30.0
@@ -173,13 +175,11 @@ class Database:
         ``write=True`` takes SQLite's write lock at the start (``BEGIN IMMEDIATE``), so a
         write either waits for another writer and then runs whole, or does not start.
         """
-        from sqlalchemy.orm import Session
-
         if write:
             bind = self.engine.execution_options(sqlite_begin="IMMEDIATE")
         else:
             bind = self._read_bind()
-        session = Session(bind=bind, expire_on_commit=False)
+        session = sqlalchemy_orm.Session(bind=bind, expire_on_commit=False)
         try:
             yield session
             session.commit()
@@ -211,8 +211,6 @@ def open_database(
     revision is otherwise migrated forward, and one at an unknown (newer) revision is
     refused.
     """
-    from granudb.db import migration
-
     resolved = resolve_database_url(url)
     path = _sqlite_file(resolved)
     if path is not None:
@@ -223,10 +221,8 @@ def open_database(
         return database
 
     def _fill(connection: Connection) -> None:
-        from sqlalchemy.orm import Session
-
         assert on_create is not None
-        with Session(bind=connection) as session:
+        with sqlalchemy_orm.Session(bind=connection) as session:
             database.seed_report = on_create(session)
             session.flush()
 

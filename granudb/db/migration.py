@@ -18,6 +18,13 @@ from sqlalchemy.engine import Connection
 from sqlalchemy.exc import DBAPIError
 
 from granudb.errors import ConfirmationNeeded, SchemaError
+from granudb.lazy import (
+    alembic_command,
+    alembic_config,
+    alembic_errors,
+    alembic_migration,
+    alembic_script,
+)
 from granudb.resources import shipped_dir
 
 if TYPE_CHECKING:
@@ -27,11 +34,11 @@ if TYPE_CHECKING:
     from granudb.db.engine import Database
 
 
-def alembic_config(
+def configuration(
     connection: Connection | None = None, *, output: io.StringIO | None = None
 ) -> Config:
-    from alembic.config import Config
-
+    """Alembic's configuration for granudb's shipped migrations (on ``connection``)."""
+    Config = alembic_config.Config
     cfg = Config(output_buffer=output) if output is not None else Config()
     cfg.set_main_option("script_location", str(shipped_dir("migrations")))
     if connection is not None:
@@ -40,9 +47,7 @@ def alembic_config(
 
 
 def script_directory() -> ScriptDirectory:
-    from alembic.script import ScriptDirectory
-
-    return ScriptDirectory.from_config(alembic_config())
+    return alembic_script.ScriptDirectory.from_config(configuration())
 
 
 def head_revision() -> str:
@@ -52,9 +57,7 @@ def head_revision() -> str:
 
 
 def current_revision(connection: Connection) -> str | None:
-    from alembic.runtime.migration import MigrationContext
-
-    return MigrationContext.configure(connection).get_current_revision()
+    return alembic_migration.MigrationContext.configure(connection).get_current_revision()
 
 
 def _lock_for_schema_change(connection: Connection) -> None:
@@ -181,9 +184,7 @@ def ensure_current(
         if current == head:
             return False
         check_revision(current, connection)
-        from alembic import command
-
-        command.upgrade(alembic_config(connection), "head")
+        alembic_command.upgrade(configuration(connection), "head")
         if current is None and on_create is not None:
             on_create(connection)
         return current is None
@@ -298,9 +299,6 @@ def plan_downgrade(database: Database, revision: str) -> list[str]:
 def _run(
     database: Database, action: str, revision: str, *, accepted: list[str] | None = None
 ) -> tuple[str | None, str | None]:
-    from alembic import command
-    from alembic.util.exc import CommandError
-
     with schema_transaction(database) as connection:
         before = current_revision(connection)
         check_revision(before, connection)
@@ -315,8 +313,8 @@ def _run(
                     "nothing was changed"
                 )
         try:
-            getattr(command, action)(alembic_config(connection), revision)
-        except CommandError as exc:
+            getattr(alembic_command, action)(configuration(connection), revision)
+        except alembic_errors.CommandError as exc:
             raise SchemaError(f"revision: {revision!r} {str(exc).splitlines()[0]}") from None
         after = current_revision(connection)
     return before, after
