@@ -1,7 +1,7 @@
 r"""How fast does ``granudb collisions import`` load a large CSV, against the sqlite3 shell?
 
 Writes an N-row collision CSV (default 1,000,000) with units in the headers, imports it
-into a fresh SQLite database with ``granudb.io.collisions_csv.import_collisions`` (parse,
+into a fresh SQLite database with ``granudb.io.collision_import.import_collisions`` (parse,
 convert units, validate every rule, resolve names, bulk insert, all in one transaction),
 and in the same run loads the same file with the ``sqlite3`` shell's ``.import --csv`` into
 a plain table (no conversion, no validation: the floor for getting bytes into SQLite).
@@ -131,7 +131,7 @@ def timed_stages():
 def child(database_path: str, data: str) -> None:
     """The import alone, in this (fresh) process: prints seconds, stages, rows, peak MB."""
     from granudb.api.database import connect as open_database
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     database = open_database(database_path)
     with timed_stages():
@@ -163,7 +163,7 @@ def postgres(url: str, data: Path, rows: int) -> tuple[float, float]:
     from sqlalchemy.engine import make_url
 
     from granudb.api.database import connect as open_database
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     schema = "granudb_import_bench"
     admin = create_engine(url)

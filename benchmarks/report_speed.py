@@ -73,7 +73,7 @@ def main() -> None:
     parser.add_argument("--db", type=Path, default=None)
     args = parser.parse_args()
     from granudb.api.database import connect
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     with tempfile.TemporaryDirectory() as folder:
         folder = Path(folder)

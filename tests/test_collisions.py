@@ -210,7 +210,7 @@ def test_bad_files(cli, db: str, tmp_path: Path, content: bytes, expected: str) 
 def test_a_bad_last_row_after_ten_thousand_good_ones_writes_nothing(
     db: str, tmp_path: Path
 ) -> None:
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     rows = walton_rows(10_000, "steel", "", 0.34, 0.11, 0.97, 0.0, seed=1)
     rows.append(_with(run="last", v_n_in="-1"))
@@ -225,7 +225,7 @@ def test_a_bad_last_row_after_ten_thousand_good_ones_writes_nothing(
 
 def test_content_hash_does_not_depend_on_row_order(db: str, tmp_path: Path) -> None:
     from granudb.db import datasets
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     rows = walton_rows(200, "glass", "glycerol-45", 0.39, 0.15, 0.7, 0.01, seed=2)
     shuffled = list(rows)
@@ -251,7 +251,7 @@ def test_content_hash_does_not_depend_on_row_order(db: str, tmp_path: Path) -> N
 def test_fuzzed_numeric_cells_import_cleanly_or_refuse_cleanly(
     db: str, tmp_path: Path, cells: list[str]
 ) -> None:
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     row = GOOD[:4] + cells + ["", ""]
     path = write(tmp_path / "fuzz.csv", [row])
@@ -300,7 +300,7 @@ def test_walton_fit_recovers_the_published_dry_values(db: str, tmp_path: Path) -
     # β = 0.39, μ_f = 0.106 for glass; ē = 0.97): the fit must give them back within error.
     from granudb.analysis import fits
     from granudb.analysis.collisions import CollisionQuery, select_collisions
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     rows = walton_rows(120, "steel", "", 0.34, 0.11, 0.97, 0.01, seed=4) + walton_rows(
         120, "glass", "", 0.39, 0.106, 0.97, 0.01, seed=5

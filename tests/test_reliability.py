@@ -193,7 +193,7 @@ def test_a_full_disk_is_refused_in_one_line_with_nothing_written(db: str, tmp_pa
 
     from granudb.api.database import connect as open_database
     from granudb.errors import DatabaseAccessError
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     before = dump_hash(db)
     database = open_database(db)

@@ -17,8 +17,8 @@ from granudb.api.consent import Confirm, agreed, unchanged
 from granudb.api.database import opened
 from granudb.api.dataset_versions import dataset_ref
 from granudb.db import datasets as dataset_store
-from granudb.io.collisions_csv import ImportResult
-from granudb.io.collisions_csv import import_collisions as import_file
+from granudb.io.collision_import import ImportResult
+from granudb.io.collision_import import import_collisions as import_file
 
 
 def import_collisions(

@@ -1,6 +1,6 @@
 """Writing imported collisions: one transaction, names resolved, runs unique, all or nothing.
 
-The reader (``granudb.io.collisions_csv`` or a Data Package) yields checked SI DataFrames
+The reader (``granudb.io.collision_import`` or a Data Package) yields checked SI DataFrames
 with material and fluid names as text; here they are resolved to ids (case-insensitively),
 refused when a run label repeats, bulk-inserted, and the import recorded with the file's
 sha256, all inside one write transaction: a failure anywhere, in reading or writing, rolls

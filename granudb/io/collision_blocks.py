@@ -10,7 +10,7 @@ file's size) and each chunk is converted and checked with vectorized rules:
   as pandas parses it), converted to SI as ``granudb.io.tables.convert_frame`` does;
 * names: checked once per distinct name (a million rows name a handful of materials) with
   the vocabulary's own ``check_name`` rules, run labels and notes vectorized;
-* rules: ``collisions_csv.check_values``, the same function the pandas path runs.
+* rules: ``collision_file.check_values``, the same function the pandas path runs.
 
 Anything the fast path does not accept outright (a cell Arrow cannot cast, an empty
 required name, a label with spaces or control characters...) sends the chunk through the
@@ -21,6 +21,8 @@ re-read with Python's csv module for the row and the reason (``check_shape``).
 
 from __future__ import annotations
 
+import csv
+import io
 import re
 from collections.abc import Iterator
 from typing import Any
@@ -29,8 +31,13 @@ import numpy as np
 
 from granudb.db.bulk_insert import CollisionBlock, NameColumn, block_from_frame
 from granudb.errors import ValidationError
-from granudb.io import collisions_csv as csvmod
+from granudb.io import collision_file
 from granudb.io.reading import HashingFile, Prefetched, arrow_memory
+from granudb.io.tables import check_shape, convert_frame
+from granudb.io.units import round_significant
+from granudb.lazy import pyarrow as pa
+from granudb.lazy import pyarrow_compute as pc
+from granudb.lazy import pyarrow_csv as pacsv
 from granudb.vocabulary.text import (
     MAX_NAME,
     MAX_TEXT,
@@ -48,11 +55,9 @@ BLOCK_BYTES = 1 << 20
 
 
 def read_blocks(
-    source: Any, stream: HashingFile, chunk_rows: int = csvmod.CHUNK_ROWS
+    source: Any, stream: HashingFile, chunk_rows: int = collision_file.CHUNK_ROWS
 ) -> Iterator[CollisionBlock]:
     """The file's rows as checked ``CollisionBlock``s of ``chunk_rows`` rows."""
-    import pyarrow as pa
-
     headers = {column: cmap.header for column, cmap in source.mapping.items()}
     rows = 0
     try:
@@ -85,11 +90,6 @@ def _tables(source: Any, stream: HashingFile) -> Iterator[Any]:
     """The file as Arrow tables of whole records, every cell text, parsed ``READ_BYTES``
     at a time. (Arrow's own streaming reader reads many blocks ahead of the consumer:
     about 100 MB more peak memory on a million rows.)"""
-    import io
-
-    import pyarrow as pa
-    import pyarrow.csv as pacsv
-
     headers = [cmap.header for cmap in source.mapping.values()]
     parse = pacsv.ParseOptions(delimiter=source.delimiter, newlines_in_values=True)
     convert = pacsv.ConvertOptions(
@@ -125,8 +125,6 @@ def _tables(source: Any, stream: HashingFile) -> Iterator[Any]:
 def _chunks(tables: Iterator[Any], chunk_rows: int) -> Iterator[Any]:
     """Tables re-cut into tables of exactly ``chunk_rows`` rows (the last shorter), so
     checks and messages go chunk by chunk as they always did."""
-    import pyarrow as pa
-
     pending: list[Any] = []
     size = 0
     schema = None
@@ -145,8 +143,6 @@ def _chunks(tables: Iterator[Any], chunk_rows: int) -> Iterator[Any]:
 
 def _refuse_unparsable(source: Any, exc: Exception) -> None:
     """Arrow refused the file: find the row and reason with Python's csv module."""
-    from granudb.io.tables import check_shape
-
     message = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
     if "utf8" in message.lower() or "utf-8" in message.lower():
         raise ValidationError("FILE", source.path.name, "is not UTF-8 text") from None
@@ -162,15 +158,9 @@ def _refuse_unparsable(source: Any, exc: Exception) -> None:
 def _refuse_huge_cells(table: Any, source: Any) -> None:
     """A cell longer than Python's csv field limit was always refused by ``check_shape``
     (the file is not a table granudb reads); it still is, with the same message."""
-    import csv
-
-    import pyarrow.compute as pc
-
     limit = csv.field_size_limit()
     for column in table.columns:
         if (pc.max(pc.utf8_length(column)).as_py() or 0) > limit:
-            from granudb.io.tables import check_shape
-
             check_shape(source.path, source.delimiter)
 
 
@@ -181,8 +171,8 @@ def _block(table: Any, source: Any, headers: dict[str, str], first_row: int) -> 
     if values is None or texts is None:
         return _pandas_block(table, source, headers, first_row)
     runs, particle, wall, fluid, notes = texts
-    columns = {c: values.get(c, np.full(table.num_rows, np.nan)) for c in csvmod.NUMERIC}
-    csvmod.check_values(
+    columns = {c: values.get(c, np.full(table.num_rows, np.nan)) for c in collision_file.NUMERIC}
+    collision_file.check_values(
         columns,
         lambda header, pos: str(table.column(header)[pos].as_py()).strip(),
         source.mapping,
@@ -195,16 +185,14 @@ def _pandas_block(
     table: Any, source: Any, headers: dict[str, str], first_row: int
 ) -> CollisionBlock:
     """The earlier pandas path for one chunk: its exact refusal, or its checked rows."""
-    from granudb.io.tables import convert_frame
-
     raw = table.to_pandas()
     frame = convert_frame(
-        raw, source.mapping, table=csvmod.TABLE, first_row=first_row, decimal=source.decimal
+        raw, source.mapping, table=collision_file.TABLE, first_row=first_row, decimal=source.decimal
     )
-    for column in csvmod.NUMERIC + csvmod.TEXT:
+    for column in collision_file.NUMERIC + collision_file.TEXT:
         if column not in frame:
-            frame[column] = np.nan if column in csvmod.NUMERIC else None
-    csvmod._check_chunk(frame, raw, source.mapping, first_row)
+            frame[column] = np.nan if column in collision_file.NUMERIC else None
+    collision_file.check_chunk(frame, raw, source.mapping, first_row)
     frame.attrs["first_row"] = first_row
     frame.attrs["headers"] = headers
     return block_from_frame(frame)
@@ -212,11 +200,6 @@ def _pandas_block(
 
 def _numbers(table: Any, source: Any) -> dict[str, Any] | None:
     """Every numeric column in SI (NaN = empty), or None if any cell needs the pandas path."""
-    import pyarrow as pa
-    import pyarrow.compute as pc
-
-    from granudb.io.units import round_significant
-
     out: dict[str, Any] = {}
     for column, cmap in source.mapping.items():
         if not cmap.numeric:
@@ -282,8 +265,6 @@ def _name_ok(name: str) -> bool:
 
 def _texts(table: Any, mapping: dict[str, Any]) -> tuple[Any, ...] | None:
     """(runs, particle, wall, fluid, notes), or None if the pandas path must look."""
-    import pyarrow.compute as pc
-
     column = table.column(mapping["run"].header)
     if pc.any(pc.equal(column, "")).as_py():
         return None
@@ -292,7 +273,10 @@ def _texts(table: Any, mapping: dict[str, Any]) -> tuple[Any, ...] | None:
     runs = column.to_pylist()
     if _NAME_FORBIDDEN.search("".join(runs)) or max(map(len, runs)) > MAX_NAME:
         return None
-    names = [_names(table, mapping, c, c in csvmod.REQUIRED) for c in ("particle", "wall", "fluid")]
+    names = [
+        _names(table, mapping, c, c in collision_file.REQUIRED)
+        for c in ("particle", "wall", "fluid")
+    ]
     if any(n is None for n in names):
         return None
     notes = None

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from granudb.db.models import Base
+from granudb.version import __version__
 from granudb.vocabulary import TABLES, term
 
 #: Units Datasette cannot show: it multiplies values by their unit with Pint, and an
@@ -24,9 +26,6 @@ def datasette_metadata(database_name: str = "granudb") -> dict[str, Any]:
     foreign keys display the referenced row's ``name`` (or ``key`` for sources).
     ``database_name`` is what Datasette calls the file: its name without ``.sqlite``.
     """
-    from granudb.db.models import Base
-    from granudb.version import __version__
-
     tables: dict[str, Any] = {}
     for table in Base.metadata.sorted_tables:
         columns = {

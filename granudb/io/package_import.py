@@ -25,7 +25,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from granudb.db import datasets
+from granudb.db.package_store import MergeConflict, PackageContent, store_package
 from granudb.errors import ValidationError
+from granudb.io.collision_file import MAX_RESTITUTION
 from granudb.io.package_files import (
     MAX_RESOURCE_BYTES,
     PackageError,
@@ -34,7 +37,9 @@ from granudb.io.package_files import (
     safe_relative,
     sha256,
 )
-from granudb.io.package_schema import PRIMARY_KEYS, RESOURCES, check_schema, columns
+from granudb.io.package_schema import FOREIGN_KEYS, PRIMARY_KEYS, RESOURCES, check_schema, columns
+from granudb.lazy import numpy as np
+from granudb.lazy import pandas as pd
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import check_name, check_text
 
@@ -82,8 +87,6 @@ class Validated:
 
 
 def _rows(mask: Any) -> str:
-    import numpy as np
-
     index = np.flatnonzero(np.asarray(mask)) + 2  # spreadsheet rows: header is row 1
     shown = ", ".join(str(i) for i in index[:SHOWN_PER_PROBLEM])
     more = f" and {len(index) - SHOWN_PER_PROBLEM} more" if len(index) > SHOWN_PER_PROBLEM else ""
@@ -91,9 +94,6 @@ def _rows(mask: Any) -> str:
 
 
 def _read_table(name: str, path: Path, problems: list[str]) -> Any:
-    import numpy as np
-    import pandas as pd
-
     try:
         frame = pd.read_csv(
             path,
@@ -169,8 +169,6 @@ def _read_table(name: str, path: Path, problems: list[str]) -> Any:
 
 
 def _check_references(tables: dict[str, Any], problems: list[str]) -> None:
-    from granudb.io.package_schema import FOREIGN_KEYS
-
     for name, keys in FOREIGN_KEYS.items():
         frame = tables.get(name)
         if frame is None:
@@ -190,8 +188,6 @@ def _check_references(tables: dict[str, Any], problems: list[str]) -> None:
 
 
 def _check_restitution(tables: dict[str, Any], problems: list[str]) -> None:
-    from granudb.io.collisions_csv import MAX_RESTITUTION
-
     frame = tables.get("collisions")
     if frame is None:
         return
@@ -305,8 +301,6 @@ def _check_metadata(descriptor: dict[str, Any], problems: list[str]) -> None:
 
 def validate_root(root: Path) -> Validated:
     """Validate an unpacked package folder; never raises for data problems."""
-    import pandas as pd
-
     descriptor = read_descriptor(root)
     problems: list[str] = []
     tables: dict[str, Any] = {}
@@ -339,8 +333,6 @@ def _license(descriptor: dict[str, Any]) -> str | None:
 
 
 def _content(validated: Validated, as_name: str | None) -> Any:
-    from granudb.db.package_store import PackageContent
-
     descriptor = validated.descriptor
     name = as_name or descriptor.get("granudb:dataset") or descriptor["name"]
     package_id = descriptor.get("id")
@@ -367,9 +359,6 @@ def import_package(
     raise ``PackageError`` naming every problem or conflict, changing nothing, otherwise.
 
     Returns a ``PackageImport``; its ``declared_hash`` is the package's content hash."""
-    from granudb.db import datasets
-    from granudb.db.package_store import MergeConflict, store_package
-
     if as_name is not None:
         check_name("--as", as_name)
     validated = validate_package(path)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from granudb.io.units import check_unit_expression, registry
 from granudb.vocabulary import term
 from granudb.vocabulary.rules import RULES
 
@@ -170,8 +171,6 @@ def columns(resource: str) -> list[str]:
 
 
 def _same_unit(declared: str, expected: str) -> bool:
-    from granudb.io.units import check_unit_expression, registry
-
     try:
         spelled = check_unit_expression(declared)  # bounded cost: m**(9**9**9) never reaches Pint
         ureg = registry()

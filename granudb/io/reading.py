@@ -5,10 +5,14 @@ pool that gives memory back (used by the collision import, ``granudb.io.collisio
 from __future__ import annotations
 
 import hashlib
+import queue
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
+
+from granudb.lazy import pyarrow as pa
 
 #: Arrow's own setting of jemalloc's dirty-page decay, restored after an import.
 JEMALLOC_DEFAULT_DECAY_MS = 1000
@@ -54,8 +58,6 @@ def arrow_memory() -> Iterator[None]:
     benchmarks/import_speed.py). Arrays made here stay valid after the default is
     restored (each keeps its pool).
     """
-    import pyarrow as pa
-
     previous = pa.default_memory_pool()
     try:
         pa.set_memory_pool(pa.jemalloc_memory_pool())
@@ -83,17 +85,12 @@ class Prefetched:
     _END = object()
 
     def __init__(self, iterator: Iterator[Any]) -> None:
-        import queue
-        import threading
-
         self._queue: queue.Queue[tuple[Any, BaseException | None]] = queue.Queue(maxsize=1)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, args=(iterator,), daemon=True)
         self._thread.start()
 
     def _put(self, item: Any, error: BaseException | None = None) -> bool:
-        import queue
-
         while not self._stop.is_set():
             try:
                 self._queue.put((item, error), timeout=0.05)

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from granudb.io.tables import convert_frame, map_headers
+from granudb.lazy import pandas as pd
 from granudb.resources import shipped_dir
 from granudb.vocabulary import FLUID_PROPERTIES, MATERIAL_PROPERTIES
 from granudb.vocabulary.rules import check_record
@@ -49,8 +50,6 @@ PUBLISHED_TEXT = [
 
 def read_table(path: Path, numeric: list[str], text: list[str]) -> list[dict[str, Any]]:
     """A seed CSV as SI records (``None`` for empty cells)."""
-    import pandas as pd
-
     raw = pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig")
     mapping = map_headers(list(raw.columns), numeric, text, table=path.name)
     # Rows are numbered as a spreadsheet shows them: the header is row 1.

@@ -21,7 +21,9 @@ from pathlib import Path
 from typing import Any
 
 from granudb.errors import ValidationError
-from granudb.io.units import conversion
+from granudb.io.units import conversion, round_significant
+from granudb.lazy import numpy as np
+from granudb.lazy import pandas as pd
 from granudb.vocabulary.units import Unit, unit_of_column
 
 #: ``name``, ``name [unit]`` or ``name (unit)``; names are matched case-insensitively.
@@ -177,8 +179,6 @@ def _numbers(stripped: Any, decimal: str) -> tuple[Any, Any]:
     point is refused rather than guessed: in "1.234,5" it is a thousands separator, in
     "1.5" a mistake, and either reading could be wrong.
     """
-    import pandas as pd
-
     if decimal == ",":
         has_point = stripped.str.contains(".", regex=False).fillna(False)
         stripped = stripped.str.replace(",", ".", regex=False)
@@ -211,11 +211,6 @@ def convert_frame(
     row number (1-based, counting data rows) and column. ``decimal`` is the file's decimal
     separator ("." or ",").
     """
-    import numpy as np
-    import pandas as pd
-
-    from granudb.io.units import round_significant
-
     out = pd.DataFrame(index=frame.index)
     for column, cmap in mapping.items():
         raw = frame[cmap.header]

@@ -38,6 +38,8 @@ from functools import cache, lru_cache
 from typing import Any
 
 from granudb.errors import ValidationError
+from granudb.lazy import numpy as np
+from granudb.lazy import pint as pint
 from granudb.vocabulary.units import UNITS, SiValue, Unit, si_value
 
 #: Longest quantity (``"12.7 mm"``) and unit expression (``"kg/m^3"``) read, in characters.
@@ -52,8 +54,6 @@ MAX_DEPTH = 3
 @cache
 def registry() -> Any:
     """The program's single Pint registry (creating one is slow)."""
-    import pint
-
     ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     ureg.define("percent_wt = 0.01 = wt_percent")
     return ureg
@@ -239,8 +239,6 @@ def _fast_conversion(spelled: str, to: Unit) -> tuple[float, float] | None:
 
 def _pint_conversion(spelled: str, suffix: str) -> tuple[float, float]:
     """``_conversion`` through Pint, for expressions with units outside granudb's table."""
-    import pint
-
     to = UNITS[suffix]
     ureg = registry()
     try:
@@ -376,8 +374,6 @@ def round_significant(values: Any, digits: int = 15) -> Any:
     rounding to 15 significant digits gives back the decimal a person wrote, so values
     round-trip through export and import unchanged. Works on scalars and numpy arrays.
     """
-    import numpy as np
-
     x = np.asarray(values, dtype=float)
     out = x.copy()
     finite = np.isfinite(x) & (x != 0)

@@ -15,7 +15,7 @@ from support import execute  # noqa: E402
 
 from granudb.analysis.collisions import CollisionQuery, collision_table, select_collisions
 from granudb.api.database import connect
-from granudb.io.collisions_csv import import_collisions
+from granudb.io.collision_import import import_collisions
 
 
 @pytest.fixture

@@ -19,7 +19,7 @@ from granudb.analysis import fits  # noqa: E402
 from granudb.analysis.collisions import CollisionQuery, select_collisions  # noqa: E402
 from granudb.analysis.restitution_fit import _group_row  # noqa: E402
 from granudb.api.database import connect  # noqa: E402
-from granudb.io.collisions_csv import import_collisions  # noqa: E402
+from granudb.io.collision_import import import_collisions  # noqa: E402
 from granudb.report.build import REPORT_COLUMNS  # noqa: E402
 
 

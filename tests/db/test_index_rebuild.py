@@ -18,7 +18,8 @@ from support import GOOD_ROW, dump_hash, write_csv
 from granudb.api.database import connect as open_database
 from granudb.db import bulk_insert
 from granudb.errors import ValidationError
-from granudb.io.collisions_csv import estimate_rows, import_collisions
+from granudb.io.collision_file import estimate_rows
+from granudb.io.collision_import import import_collisions
 
 pytestmark = pytest.mark.sqlite_only
 

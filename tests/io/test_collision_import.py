@@ -89,7 +89,7 @@ def test_header_is_refused_before_the_write_transaction_opens(
     db: str, tmp_path: Path, monkeypatch, bad_header: list[str]
 ) -> None:
     import granudb.db.collision_store as store
-    from granudb.io.collisions_csv import import_collisions
+    from granudb.io.collision_import import import_collisions
 
     def no_transaction(*args, **kwargs):
         raise AssertionError("store_collisions (the write transaction) was reached")

@@ -23,7 +23,7 @@ from support import COLLISION_HEADER, GOOD_ROW, engine_for, write_csv
 from granudb.api.database import connect as open_database
 from granudb.db import bulk_hash, bulk_insert, datasets
 from granudb.errors import ValidationError
-from granudb.io.collisions_csv import import_collisions
+from granudb.io.collision_import import import_collisions
 
 TARGET = ["wall_diameter_m", "wall_v_n_in_m_s", "wall_v_t_in_m_s", "wall_omega_out_rad_s"]
 

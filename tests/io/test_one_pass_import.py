@@ -23,7 +23,7 @@ from support import GOOD_ROW, write_csv
 from granudb.api.database import connect as open_database
 from granudb.db import bulk_hash, datasets
 from granudb.io import collision_blocks
-from granudb.io.collisions_csv import import_collisions
+from granudb.io.collision_import import import_collisions
 
 
 def _rows(n: int, seed: int = 0) -> list[list[str]]:

@@ -1,18 +1,15 @@
-"""Importing measured collisions from CSV: streamed, validated, all or nothing.
+"""A collision CSV file: its columns, the rules every row obeys, and its header.
 
 The contract (README, "Importing collisions"): one row per run; text columns ``run``,
 ``particle``, ``wall``, ``fluid`` (empty = dry), ``notes``; numeric columns with their unit
 in the header (``v_n_in [mm/s]``, ``incidence_angle (deg)``, ``Temperature [degC]``;
 names case-insensitive) or under granudb's SI column name (``v_n_in_m_s``).
 
-The header is checked before the write transaction opens (``open_collision_file``): read
-with a size limit, every column mapped and every unit parsed (all header problems in one
-refusal), so a hostile header costs milliseconds and never holds SQLite's write lock. The
-rows are then read once, hashed as they are read (``granudb.io.collision_blocks``), in
-chunks (memory is bounded whatever the file's size), converted and checked with
-vectorized rules, and bulk-inserted by ``granudb.db.collision_store`` in one transaction:
-one bad row or ragged line anywhere rejects the whole file and nothing is written. A file
-(by sha256) is imported into a dataset at most once.
+The header is checked before any transaction opens (``open_collision_file``): read with a
+size limit, every column mapped and every unit parsed (all header problems in one
+refusal), so a hostile header costs milliseconds and never holds SQLite's write lock.
+The rows are checked with vectorized rules (``check_values``, ``check_chunk``) as
+``granudb.io.collision_blocks`` reads them.
 
 Semicolon-delimited files with decimal commas, as European spreadsheets write them, are
 read with ``delimiter=";"`` and ``decimal=","`` (``--delimiter ';' --decimal ','``); without
@@ -23,19 +20,20 @@ from __future__ import annotations
 
 import hashlib
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from granudb.db import datasets
 from granudb.errors import ValidationError
-from granudb.io.tables import ColumnMap
+from granudb.io.tables import ColumnMap, check_shape, csv_options, map_headers, read_header
 from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TEXT
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import (
+    MAX_NAME,
+    MAX_TEXT,
     check_name,
     check_text,
     name_forbidden_pattern,
@@ -73,15 +71,6 @@ ANGLE_TOLERANCE_RAD = math.radians(3.0)
 #: same speed.
 CHUNK_ROWS = 50_000
 TABLE = "collisions.csv"
-
-
-@dataclass
-class ImportResult:
-    dataset: str
-    version: str
-    rows: int
-    sha256: str
-    file_name: str
 
 
 @dataclass(frozen=True)
@@ -122,7 +111,7 @@ def _header_of(mapping: dict[str, Any], column: str) -> str:
     return mapping[column].header if column in mapping else column
 
 
-def _check_chunk(frame: Any, raw: Any, mapping: dict[str, Any], first_row: int) -> None:
+def check_chunk(frame: Any, raw: Any, mapping: dict[str, Any], first_row: int) -> None:
     """Every rule on one converted chunk (a DataFrame); raises on the first broken row."""
     columns = {c: frame[c] for c in REQUIRED if c in TEXT}
     columns.update({c: frame[c].to_numpy(dtype=float) for c in NUMERIC})
@@ -208,8 +197,6 @@ def _check_text(frame: Any, mapping: dict[str, Any], first_row: int) -> None:
     Found vectorized; the first offender is re-checked by ``check_name``/``check_text``,
     whose message is the one every other door gives.
     """
-    from granudb.vocabulary.text import MAX_NAME, MAX_TEXT
-
     for column in TEXT:
         values = frame[column]
         present = values.notna()
@@ -252,8 +239,6 @@ def open_collision_file(path: Path, *, delimiter: str = ",", decimal: str = ".")
     included) are checked as they are read, inside the transaction, which any refusal
     rolls back.
     """
-    from granudb.io.tables import check_shape, csv_options, map_headers, read_header
-
     delimiter, decimal = csv_options(delimiter, decimal)
     path = Path(path)
     if not path.is_file():
@@ -272,98 +257,3 @@ def open_collision_file(path: Path, *, delimiter: str = ",", decimal: str = ".")
             raise ValidationError("FILE", path.name, "is not UTF-8 text") from None
         raise
     return CollisionFile(path, delimiter, decimal, mapping)
-
-
-def import_collisions(
-    database: Any,
-    path: Path,
-    *,
-    dataset: str,
-    version: str = datasets.DEFAULT_VERSION,
-    source: str | None = None,
-    title: str | None = None,
-    license: str | None = None,
-    progress: Callable[[int], None] | None = None,
-    chunk_rows: int = CHUNK_ROWS,
-    delimiter: str = ",",
-    decimal: str = ".",
-) -> ImportResult:
-    """Import ``path`` into ``dataset`` (created if new), all or nothing.
-
-    This module reads the header (``open_collision_file``, before any transaction);
-    ``granudb.io.collision_blocks`` reads, hashes and checks the rows in one pass;
-    ``granudb.db.collision_store`` resolves names, refuses repeated runs, a repeated file
-    and temperatures outside a fluid's data, and writes everything in one transaction.
-    """
-    from granudb.db.collision_store import ImportTarget, store_collisions
-    from granudb.io.collision_blocks import (
-        HashingFile,
-        Prefetched,
-        arrow_memory,
-        read_blocks,
-    )
-
-    check_name("dataset", dataset)
-    check_name("version", version)
-    opened = open_collision_file(Path(path), delimiter=delimiter, decimal=decimal)
-    name = opened.path.name
-    stream = HashingFile(opened.path)
-    try:
-        with arrow_memory():
-            blocks = Prefetched(read_blocks(opened, stream, chunk_rows))
-
-            def digest() -> str:  # the reader thread stops before the rest is hashed
-                blocks.close()
-                return stream.hexdigest()
-
-            target = ImportTarget(
-                dataset,
-                version,
-                source,
-                title,
-                license,
-                "",
-                name,
-                digest,
-                expected_rows=estimate_rows(opened.path),
-            )
-            try:
-                rows = store_collisions(database, target, blocks, progress=progress)
-            finally:
-                blocks.close()
-            sha256 = stream.hexdigest()
-    finally:
-        stream.close()
-    return ImportResult(dataset, version, rows, sha256, name)
-
-
-def collision_frames(source: Path | CollisionFile, chunk_rows: int = CHUNK_ROWS) -> Iterator[Any]:
-    """The file's rows as checked SI DataFrames, chunk by chunk, names still as text.
-
-    ``source`` is a path (read as a comma-separated file) or what ``open_collision_file``
-    returned. Each frame's ``attrs["first_row"]`` is the spreadsheet row of its first line
-    (the header is row 1) and ``attrs["headers"]`` the file's header of each column, so
-    later checks can name the row and the column as the file does. (The import reads
-    ``CollisionBlock``s, ``granudb.io.collision_blocks``; this is the same rows as frames.)
-    """
-    import pandas as pd
-
-    from granudb.io.collision_blocks import HashingFile, read_blocks
-
-    if not isinstance(source, CollisionFile):
-        source = open_collision_file(Path(source))
-    stream = HashingFile(source.path)
-    try:
-        for block in read_blocks(source, stream, chunk_rows):
-            frame = pd.DataFrame({"run": block.runs})
-            for column, names in (("particle", block.particle), ("wall", block.wall)):
-                frame[column] = block.names_by_row(names)
-            frame["fluid"] = block.names_by_row(block.fluid)
-            for column in NUMERIC:
-                frame[column] = block.values.get(column, np.full(len(block), np.nan))
-            frame["notes"] = block.notes if block.notes is not None else None
-            frame.attrs["first_row"] = block.first_row
-            frame.attrs["headers"] = block.headers
-            yield frame
-    finally:
-        stream.close()

@@ -1,0 +1,124 @@
+"""Importing measured collisions from a CSV file: streamed, validated, all or nothing.
+
+``open_collision_file`` (``granudb.io.collision_file``) reads and maps the header before
+any transaction; the rows are then read once, hashed as they are read
+(``granudb.io.collision_blocks``), in chunks (memory is bounded whatever the file's size),
+converted and checked with vectorized rules, and bulk-inserted by
+``granudb.db.collision_store`` in one transaction: one bad row or ragged line anywhere
+rejects the whole file and nothing is written. A file (by sha256) is imported into a
+dataset at most once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from granudb.db import datasets
+from granudb.db.collision_store import ImportTarget, store_collisions
+from granudb.io.collision_blocks import HashingFile, Prefetched, arrow_memory, read_blocks
+from granudb.io.collision_file import (
+    CHUNK_ROWS,
+    NUMERIC,
+    CollisionFile,
+    estimate_rows,
+    open_collision_file,
+)
+from granudb.lazy import pandas as pd
+from granudb.vocabulary.text import check_name
+
+
+@dataclass
+class ImportResult:
+    dataset: str
+    version: str
+    rows: int
+    sha256: str
+    file_name: str
+
+
+def import_collisions(
+    database: Any,
+    path: Path,
+    *,
+    dataset: str,
+    version: str = datasets.DEFAULT_VERSION,
+    source: str | None = None,
+    title: str | None = None,
+    license: str | None = None,
+    progress: Callable[[int], None] | None = None,
+    chunk_rows: int = CHUNK_ROWS,
+    delimiter: str = ",",
+    decimal: str = ".",
+) -> ImportResult:
+    """Import ``path`` into ``dataset`` (created if new), all or nothing.
+
+    This module reads the header (``open_collision_file``, before any transaction);
+    ``granudb.io.collision_blocks`` reads, hashes and checks the rows in one pass;
+    ``granudb.db.collision_store`` resolves names, refuses repeated runs, a repeated file
+    and temperatures outside a fluid's data, and writes everything in one transaction.
+    """
+    check_name("dataset", dataset)
+    check_name("version", version)
+    opened = open_collision_file(Path(path), delimiter=delimiter, decimal=decimal)
+    name = opened.path.name
+    stream = HashingFile(opened.path)
+    try:
+        with arrow_memory():
+            blocks = Prefetched(read_blocks(opened, stream, chunk_rows))
+
+            def digest() -> str:  # the reader thread stops before the rest is hashed
+                blocks.close()
+                return stream.hexdigest()
+
+            target = ImportTarget(
+                dataset,
+                version,
+                source,
+                title,
+                license,
+                "",
+                name,
+                digest,
+                expected_rows=estimate_rows(opened.path),
+            )
+            try:
+                rows = store_collisions(database, target, blocks, progress=progress)
+            finally:
+                blocks.close()
+            sha256 = stream.hexdigest()
+    finally:
+        stream.close()
+    return ImportResult(dataset, version, rows, sha256, name)
+
+
+def collision_frames(source: Path | CollisionFile, chunk_rows: int = CHUNK_ROWS) -> Iterator[Any]:
+    """The file's rows as checked SI DataFrames, chunk by chunk, names still as text.
+
+    ``source`` is a path (read as a comma-separated file) or what ``open_collision_file``
+    returned. Each frame's ``attrs["first_row"]`` is the spreadsheet row of its first line
+    (the header is row 1) and ``attrs["headers"]`` the file's header of each column, so
+    later checks can name the row and the column as the file does. (The import reads
+    ``CollisionBlock``s, ``granudb.io.collision_blocks``; this is the same rows as frames.)
+    """
+    if not isinstance(source, CollisionFile):
+        source = open_collision_file(Path(source))
+    stream = HashingFile(source.path)
+    try:
+        for block in read_blocks(source, stream, chunk_rows):
+            frame = pd.DataFrame({"run": block.runs})
+            for column, names in (("particle", block.particle), ("wall", block.wall)):
+                frame[column] = block.names_by_row(names)
+            frame["fluid"] = block.names_by_row(block.fluid)
+            for column in NUMERIC:
+                frame[column] = block.values.get(column, np.full(len(block), np.nan))
+            frame["notes"] = block.notes if block.notes is not None else None
+            frame.attrs["first_row"] = block.first_row
+            frame.attrs["headers"] = block.headers
+            yield frame
+    finally:
+        stream.close()
