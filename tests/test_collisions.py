@@ -225,6 +225,7 @@ def test_a_bad_last_row_after_ten_thousand_good_ones_writes_nothing(
 
 def test_content_hash_does_not_depend_on_row_order(db: str, tmp_path: Path) -> None:
     from granudb.db import datasets
+    from granudb.db.content_hash import content_hash
     from granudb.io.collision_import import import_collisions
 
     rows = walton_rows(200, "glass", "glycerol-45", 0.39, 0.15, 0.7, 0.01, seed=2)
@@ -236,7 +237,7 @@ def test_content_hash_does_not_depend_on_row_order(db: str, tmp_path: Path) -> N
     with database.session() as session:
         first = datasets.get_dataset(session, "a")
         second = datasets.get_dataset(session, "b")
-        assert first.content_hash == second.content_hash == datasets.content_hash(session, first)
+        assert first.content_hash == second.content_hash == content_hash(session, first)
     database.dispose()
 
 

@@ -11,7 +11,6 @@ from pathlib import Path
 import pytest
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
-ARTIFACTS = Path(__file__).resolve().parent.parent / "test-artifacts"
 HOSTILE = "<script>alert(1)</script> *bold* [link](http://x) | pipe"
 
 
@@ -226,14 +225,13 @@ def test_html_renders_in_headless_chromium(cli, db, tmp_path) -> None:
     assert dom.stdout.count("<svg") >= 1 and 'id="fig-regime-map"' in dom.stdout
     console_errors = [line for line in dom.stderr.splitlines() if "CONSOLE" in line]
     assert console_errors == []
-    ARTIFACTS.mkdir(exist_ok=True)
     for name, size in (("report-desktop.png", "1200,1600"), ("report-phone.png", "390,844")):
         shot = subprocess.run(
             [
                 browser,
                 *flags,
                 f"--window-size={size}",
-                f"--screenshot={ARTIFACTS / name}",
+                f"--screenshot={tmp_path / name}",
                 html.as_uri(),
             ],
             capture_output=True,
@@ -241,7 +239,7 @@ def test_html_renders_in_headless_chromium(cli, db, tmp_path) -> None:
             timeout=120,
         )
         assert shot.returncode == 0, shot.stderr[-2000:]
-        assert (ARTIFACTS / name).stat().st_size > 10_000
+        assert (tmp_path / name).stat().st_size > 10_000
 
 
 def test_report_takes_the_query_filters_of_collisions_list(cli, db, tmp_path) -> None:

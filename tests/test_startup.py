@@ -44,7 +44,7 @@ def test_materials_list_json_imports_no_heavy_libraries(tmp_path) -> None:
 
 
 def test_a_dataset_report_imports_no_plotting_fitting_or_orm_library(tmp_path) -> None:
-    """Figures are written by ``granudb.report.svg``, the fits are numpy, and the runs and
+    """Figures are written by ``granudb.reporting.svg``, the fits are numpy, and the runs and
     catalogue are read through Core (``lookup_rows``, ``catalog_rows``): the report path
     is spared matplotlib, scipy, the ORM and the models (issue 17)."""
     from pathlib import Path

@@ -65,10 +65,20 @@ def test_no_module_is_named_as_private_or_after_history() -> None:
     assert [n for n in names if n.endswith(("_extra", "_new", "_old", "_steps", "2"))] == []
 
 
+#: Private names of other packages granudb needs, each with its reason.
+FOREIGN_PRIVATE = {
+    # Typer 0.26-0.28 ship their own copy of click (pinned in pyproject for start-up
+    # time); the command line's exceptions and context are that copy's.
+    "typer._click",
+}
+
+
 def test_nothing_imports_another_modules_private_names() -> None:
     offences = []
     for module in MODULES:
         for source, name, node in _imports(module):
+            if f"{source}.{name}" in FOREIGN_PRIVATE:
+                continue
             if name and name.startswith("_") and not name.startswith("__"):
                 offences.append(f"{module}:{node.lineno} imports {source}.{name}")
     assert offences == []

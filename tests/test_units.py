@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from granudb.errors import ValidationError
 from granudb.io.units import parse_quantity, round_significant
-from granudb.report.format import engineering
+from granudb.reporting.format import engineering
 
 
 @pytest.mark.parametrize(

@@ -33,7 +33,7 @@ from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
 from granudb.lazy import scipy_optimize
 from granudb.physics import contact, lubrication
-from granudb.physics._types import PhysicsInputError
+from granudb.physics.numeric import PhysicsInputError
 
 RESAMPLES = resampling.DEFAULT_RESAMPLES
 SEED = 0

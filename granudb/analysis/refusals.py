@@ -10,7 +10,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 from granudb.errors import ValidationError
-from granudb.physics._types import PhysicsInputError
+from granudb.physics.numeric import PhysicsInputError
 
 
 @contextmanager

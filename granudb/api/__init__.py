@@ -54,7 +54,7 @@ NAMES: dict[str, str] = {
     "fit_walton": "fits",
     "fit_restitution": "fits",
     "fit_gap_viscosity": "fits",
-    "report": "reporting",
+    "report": "lab_report",
     # datasets
     "datasets": "dataset_versions",
     "dataset": "dataset_versions",
@@ -99,7 +99,7 @@ FACE: dict[str, str] = {
     "DATASET_GROUP_COLUMNS": "presentation",
     "DIFF_COLUMNS": "presentation",
     "PUBLISHED_NARROW": "presentation",
-    "REPORT_FORMATS": "reporting",
+    "REPORT_FORMATS": "lab_report",
     "COLLISION_FILTERS": "collision_listing",
     "RESTITUTION_MODELS": "fits",
     "DEM_CODES": "dem",

@@ -22,7 +22,7 @@ from granudb.api.consent import Confirm, agreed, unchanged
 from granudb.api.database import opened
 from granudb.db import catalog_changes
 from granudb.io.seed import POINT_NUMERIC, read_table
-from granudb.report.format import display
+from granudb.reporting.format import display
 from granudb.vocabulary import FLUIDS, MATERIALS, Catalogue
 from granudb.vocabulary.text import check_text
 
@@ -312,8 +312,15 @@ def import_fluid_points(
     db: Any = None,
 ) -> list[str]:
     """Add every point of a CSV file (``temperature [degC]``, ``viscosity [cP]``, optional
-    ``density [kg/m^3]``; units in the headers), all or none."""
-    points = read_table(Path(file), POINT_NUMERIC, [])
+    ``density [kg/m^3]``; units in the headers), all or none. Returns one line per point.
+
+    >>> import granudb
+    >>> points = tmp / "water.csv"
+    >>> _ = points.write_text("temperature [degC],viscosity [cP]\\n21,0.978\\n24,0.911\\n")
+    >>> granudb.import_fluid_points("water", points, db=db)
+    ['added water at 21 °C: 0.978 mPa·s', 'added water at 24 °C: 0.911 mPa·s']
+    """
+    points = read_table(Path(inputs.path(file, "file")), POINT_NUMERIC, [])
     return _add_points(name, points, source, replace, db)
 
 

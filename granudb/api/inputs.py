@@ -8,9 +8,12 @@ option (``--diameter``).
 from __future__ import annotations
 
 import math
+import numbers
+from decimal import Decimal
 from typing import Any
 
 from granudb.errors import MissingInput, ValidationError
+from granudb.io.units import parse_quantity
 from granudb.vocabulary import check_value, unit_of_column
 from granudb.vocabulary.text import MAX_NAME, check_name
 
@@ -19,28 +22,51 @@ def _as_parameter(exc: ValidationError, parameter: str) -> ValidationError:
     return ValidationError(parameter, exc.value, exc.rule, row=exc.row, parameter=True)
 
 
+def number(value: Any, parameter: str) -> float | None:
+    """A bare number as a float: ``int``, ``float``, numpy's scalars, ``Decimal`` and
+    ``Fraction``; ``None`` stays. A bool, a complex number, NaN or ±inf is refused by name,
+    and so is anything that is not a number (text is parsed by ``quantity``, not here).
+
+    >>> import numpy as np
+    >>> number(np.float32(0.5), "velocity"), number(Decimal("12.7"), "diameter")
+    (0.5, 12.7)
+    """
+    if value is None:
+        return None
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        raise ValidationError(parameter, value, "must be a number, not True/False", parameter=True)
+    if isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
+        raise ValidationError(parameter, value, "must be a real number", parameter=True)
+    if not isinstance(value, numbers.Real | Decimal):
+        raise ValidationError(
+            parameter, repr(value)[:60], "must be a number or a quantity", parameter=True
+        )
+    result = float(value)
+    if not math.isfinite(result):
+        raise ValidationError(parameter, value, "must be a finite number", parameter=True)
+    return result
+
+
 def quantity(value: Any, column: str, parameter: str, *, check: bool = True) -> float | None:
     """``value`` in ``column``'s SI unit: a number is taken as SI, a string is parsed with
     its unit (``"190 GPa"``); the column's physical rule is checked (unless ``check`` is
-    false). ``None`` stays."""
+    false). ``None`` stays.
+
+    >>> quantity("4.5 cP", "viscosity_pa_s", "viscosity")
+    0.0045
+    """
     if value is None:
         return None
-    from granudb.io.units import parse_quantity
-
     try:
-        if isinstance(value, bool):
-            raise ValidationError(parameter, value, "must be a number or a quantity")
-        if isinstance(value, int | float):
-            number = float(value)
-            if not math.isfinite(number):
-                raise ValidationError(parameter, value, "must be a finite number")
+        if isinstance(value, str):
+            result = parse_quantity(value, unit_of_column(column), parameter)
         else:
-            number = parse_quantity(str(value), unit_of_column(column), parameter)
+            result = number(value, parameter)
         if check:
-            check_value(column, number, field=parameter, shown=str(value))
+            check_value(column, result, field=parameter, shown=str(value))
     except ValidationError as exc:
         raise _as_parameter(exc, parameter) from None
-    return number
+    return result
 
 
 def angle(value: Any, parameter: str = "angle") -> float:

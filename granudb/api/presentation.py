@@ -7,7 +7,7 @@ each listing. Light on purpose: loading this module imports neither numpy nor pa
 
 from __future__ import annotations
 
-from granudb.report.format import display
+from granudb.reporting.format import display
 from granudb.vocabulary import DERIVED_TERMS, FLUIDS, MATERIALS, Term, term
 from granudb.vocabulary.catalogue import (
     POINT_COLUMNS,

@@ -8,8 +8,8 @@ from granudb.analysis.pair import derive_pair, is_dry, pair_json
 from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.errors import ValidationError
-from granudb.report.values import qualified_value
-from granudb.report.verdicts import verdicts
+from granudb.reporting.values import qualified_value
+from granudb.reporting.verdicts import verdicts
 
 __all__ = ["pair", "qualified_value"]
 

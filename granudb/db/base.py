@@ -55,7 +55,7 @@ def finite_check(column: str) -> str:
     return f"{column} IS NULL OR ({column} >= -{FINITE_MAX} AND {column} <= {FINITE_MAX})"
 
 
-def _add_finite_checks(base: type[DeclarativeBase]) -> None:
+def add_finite_checks(base: type[DeclarativeBase]) -> None:
     """Every floating-point column refuses NaN and ±infinity, even from other tools."""
     for table in base.metadata.tables.values():
         for column in table.columns:

@@ -1,6 +1,6 @@
 """A dataset's content hash computed from the arrays an import inserts, not re-read.
 
-``granudb.db.datasets.content_hash`` defines the hash (sha256 over the runs sorted by the
+``granudb.db.content_hash`` defines the hash (sha256 over the runs sorted by the
 UTF-8 bytes of their labels, each written as names and ``repr`` of its SI floats) and
 computes it by reading every row back from the database and formatting it in Python, which
 took a fifth of a million-row import. An import into an empty dataset already holds exactly
@@ -8,7 +8,7 @@ the values it inserts (float64 arrays, the names the database resolved them to),
 same bytes are produced here, columnar: Arrow formats the floats (the shortest text that
 reads back as the same double, the digits ``repr`` writes too), sorts the labels bytewise
 and joins the fields, and only the rare float ``repr`` writes in exponent form is
-formatted by Python. Tests check the result against ``datasets.content_hash`` of the
+formatted by Python. Tests check the result against ``content_hash.content_hash`` of the
 stored rows.
 
 When: only the sort needs every row, so each block's text after its run label (names,
@@ -28,10 +28,9 @@ from typing import Any
 
 import numpy as np
 
+from granudb.db.content_hash import ALWAYS_HASHED, FIELD_SEPARATOR, ROW_SEPARATOR, TARGET_HASHED
 from granudb.lazy import pyarrow as pa
 from granudb.lazy import pyarrow_compute as pc
-from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
-from granudb.vocabulary import COLLISION_TARGET
 
 #: Rows formatted at once when hashing; bounds the text held in memory (~5 MB).
 HASH_BLOCK_ROWS = 20_000
@@ -39,7 +38,6 @@ HASH_BLOCK_ROWS = 20_000
 #: positional for 1e-4 <= |x| < 1e16, Arrow for about 1e-7 <= |x| < 1e10; zero is
 #: positional in both. Outside this range Python formats the (rare) value itself.
 _POSITIONAL_LOW, _POSITIONAL_HIGH = 1e-4, 1e10
-_ALWAYS = [c for c in COLUMNS if c not in COLLISION_TARGET]
 
 
 def float_texts(values: Any) -> Any:
@@ -130,7 +128,7 @@ class BlockHasher:
             self._digest = self._pool.submit(self._compute)
 
     def hexdigest(self) -> str:
-        """sha256 of the collected rows in ``datasets.content_hash``'s canonical form."""
+        """sha256 of the collected rows in ``granudb.db.content_hash``'s canonical form."""
         self.start()
         try:
             return self._digest.result()
@@ -158,7 +156,10 @@ class BlockHasher:
             rows = order[start : start + HASH_BLOCK_ROWS]
             plan = _Gather(starts, rows)
             line = pc.binary_join_element_wise(
-                plan.take(runs), prefixes.take(pa.array(codes[rows])), plan.take(texts), "\x1f"
+                plan.take(runs),
+                prefixes.take(pa.array(codes[rows])),
+                plan.take(texts),
+                FIELD_SEPARATOR,
             )
             digest.update(_data(line))
         return digest.hexdigest()
@@ -191,7 +192,7 @@ class _Names:
             if triple not in self.codes:
                 self.codes[triple] = len(self.prefixes)
                 self.prefixes.append(
-                    "\x1f".join(
+                    FIELD_SEPARATOR.join(
                         (
                             self.materials[triple[0]],
                             self.materials[triple[1]],
@@ -240,23 +241,25 @@ def _row_texts(
     (and the target sphere's columns when the row has any), joined by the unit separator,
     then the record separator that ends the row. Runs on the worker thread."""
     n = len(ids[0])
-    columns = {c: _column(values.get(c)) for c in COLUMNS}
+    columns = {c: _column(values.get(c)) for c in (*ALWAYS_HASHED, *TARGET_HASHED)}
     texts = {c: float_texts(v) for c, v in columns.items() if v is not None}
     empty = pa.array([""] * n, type=pa.string())
     note_texts = empty if notes is None else pc.fill_null(pa.array(notes, pa.string()), "")
-    kept = pc.binary_join_element_wise(*(texts.get(c, empty) for c in _ALWAYS), note_texts, "\x1f")
+    kept = pc.binary_join_element_wise(
+        *(texts.get(c, empty) for c in ALWAYS_HASHED), note_texts, FIELD_SEPARATOR
+    )
     has_target = np.zeros(n, dtype=bool)
-    for c in COLLISION_TARGET:
+    for c in TARGET_HASHED:
         if columns[c] is not None:
             has_target |= ~np.isnan(columns[c])
     if has_target.any():
         target = pc.binary_join_element_wise(
-            *(texts.get(c, empty) for c in COLLISION_TARGET), "\x1f"
+            *(texts.get(c, empty) for c in TARGET_HASHED), FIELD_SEPARATOR
         )
         kept = pc.if_else(
-            pa.array(has_target), pc.binary_join_element_wise(kept, target, "\x1f"), kept
+            pa.array(has_target), pc.binary_join_element_wise(kept, target, FIELD_SEPARATOR), kept
         )
-    return names.encode(ids), pc.binary_join_element_wise(kept, "", "\x1e")
+    return names.encode(ids), pc.binary_join_element_wise(kept, "", ROW_SEPARATOR)
 
 
 def _unsigned_zero(values: Any) -> Any:

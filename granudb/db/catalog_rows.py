@@ -102,14 +102,16 @@ def _stored(record: type) -> list[str]:
 TYPED = {"created_at": DateTime(timezone=True), "updated_at": DateTime(timezone=True)}
 
 
-def _table(name: str, columns: list[str]) -> TableClause:
+def lightweight_table(name: str, columns: list[str]) -> TableClause:
+    """A Core ``table()`` clause of ``columns`` typed as the models type them: reads
+    without building the ORM's mapped classes."""
     return table(name, *(column(c, TYPED.get(c)) for c in columns))
 
 
-SOURCES = _table("sources", ["id", *SOURCE_COLUMNS])
-MATERIALS = _table("materials", ["id", "name_key", *_stored(MaterialRow)])
-FLUIDS = _table("fluids", ["id", "name_key", *_stored(FluidRow)])
-FLUID_POINTS = _table("fluid_points", ["id", "fluid_id", *_stored(FluidPointRow)])
+SOURCES = lightweight_table("sources", ["id", *SOURCE_COLUMNS])
+MATERIALS = lightweight_table("materials", ["id", "name_key", *_stored(MaterialRow)])
+FLUIDS = lightweight_table("fluids", ["id", "name_key", *_stored(FluidRow)])
+FLUID_POINTS = lightweight_table("fluid_points", ["id", "fluid_id", *_stored(FluidPointRow)])
 #: Every lightweight table above, for the test that holds them to the models.
 TABLES = (SOURCES, MATERIALS, FLUIDS, FLUID_POINTS)
 

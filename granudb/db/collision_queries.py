@@ -14,8 +14,8 @@ from typing import Any
 from sqlalchemy import func, select
 from sqlalchemy.engine import Connection
 
-from granudb.db import lookup_rows
-from granudb.db.catalog_rows import MATERIALS, _table
+from granudb.db import catalog_rows, lookup_rows
+from granudb.db.catalog_rows import MATERIALS, lightweight_table
 from granudb.db.lookup_rows import DATASETS
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
@@ -30,7 +30,7 @@ _NUMBERS = [*_IDS, *COLLISION_MEASURED]
 _TEXT = ["run", "notes"]
 #: Core clauses (no ORM: a read needs no mapped classes; see ``lookup_rows``). A reader
 #: is a Core connection (``Database.reading()``) or a session, whose connection is used.
-COLLISIONS = _table("collisions", ["id", *_NUMBERS, *_TEXT])
+COLLISIONS = lightweight_table("collisions", ["id", *_NUMBERS, *_TEXT])
 TABLES = (COLLISIONS,)
 Reader = Any
 
@@ -194,14 +194,16 @@ def _collision_select(
         chosen = lookup_rows.dataset_row(connection, dataset, version)
         query = query.where(runs.dataset_id == chosen.id)
     if particle is not None:
-        query = query.where(runs.particle_id == lookup_rows.material_id(connection, particle))
+        query = query.where(
+            runs.particle_id == catalog_rows.entry_id(connection, "material", particle)
+        )
     if wall is not None:
-        query = query.where(runs.wall_id == lookup_rows.material_id(connection, wall))
+        query = query.where(runs.wall_id == catalog_rows.entry_id(connection, "material", wall))
     if fluid is not None:
         if fluid.strip().casefold() == "dry":
             query = query.where(runs.fluid_id.is_(None))
         else:
-            query = query.where(runs.fluid_id == lookup_rows.fluid_id(connection, fluid))
+            query = query.where(runs.fluid_id == catalog_rows.entry_id(connection, "fluid", fluid))
     return query.order_by(DATASETS.c.name, DATASETS.c.version, runs.run)
 
 

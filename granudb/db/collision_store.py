@@ -13,7 +13,7 @@ then "was this file imported before?" is answered at the end, and at the first r
 already in the dataset (a repeated file's first row), before the same transaction commits.
 When the dataset held no runs before, its content hash is computed from the inserted
 arrays (``granudb.db.bulk_hash``, formatting each block on a worker thread while it is
-inserted), the same value ``datasets.content_hash`` gives.
+inserted), the same value ``granudb.db.content_hash`` gives.
 """
 
 from __future__ import annotations
@@ -39,6 +39,7 @@ from granudb.db.bulk_insert import (
     unsigned_zeros,
 )
 from granudb.db.catalog_rows import source_id as find_source
+from granudb.db.content_hash import update_content_hash
 from granudb.db.models import (
     Collision,
     CollisionImport,
@@ -262,7 +263,7 @@ def store_collisions(
                 )
             )
             if hasher is None:
-                datasets.update_content_hash(session, dataset)
+                update_content_hash(session, dataset)
             else:
                 dataset.content_hash = hasher.hexdigest()
                 session.flush()

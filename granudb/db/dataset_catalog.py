@@ -8,9 +8,9 @@ from typing import Any
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session, aliased
 
-from granudb.db.datasets import COLUMNS
 from granudb.db.models import Collision, Dataset, Fluid, Material
 from granudb.db.upsert import same_value
+from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
 
 COMPARED = ["particle_id", "wall_id", "fluid_id", *COLUMNS, "notes"]
 

@@ -1,4 +1,4 @@
-"""Datasets: finding or creating one, its content hash, and its lifecycle.
+"""Datasets: finding or creating one, and its lifecycle.
 
 Lifecycle (as Granta MI's record versions, Zenodo's versioned records): a version is a
 ``draft`` (runs may be imported, removed, metadata edited), then ``released`` (immutable:
@@ -6,34 +6,23 @@ nothing imported into it, no run removed, no metadata changed but a DOI set once
 removed), then ``superseded`` once a newer version of the same name is released (it may
 then be removed). Changes go into a new draft version copied from a released one.
 
-The content hash identifies a dataset's measurements independently of database ids,
-insertion order and backend: sha256 over the collisions sorted by run label (UTF-8 byte
-order), each written as its run, particle, wall and fluid names and its SI values in
-``COLUMNS`` order (``repr`` of the float, empty for none), fields separated by U+001F and
-rows by U+001E. Two databases (or a database and a Data Package) with the same hash hold
-the same runs with the same values.
+The content hash is defined in ``granudb.db.content_hash``.
 """
 
 from __future__ import annotations
 
-import hashlib
-import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 from sqlalchemy import Integer, delete, func, insert, literal, select
-from sqlalchemy.orm import Session, aliased
+from sqlalchemy.orm import Session
 
+from granudb.db.content_hash import update_content_hash
 from granudb.db.lookup_rows import dataset_row
-from granudb.db.models import Collision, CollisionImport, Dataset, Fluid, Material, utcnow
+from granudb.db.models import Collision, CollisionImport, Dataset, utcnow
 from granudb.errors import ConflictError, NotFoundError, ValidationError
-from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
-from granudb.vocabulary import COLLISION_TARGET
 from granudb.vocabulary.text import check_name
 
-#: How many of ``COLUMNS`` every hashed row carries; the target sphere's velocities follow
-#: only when a row has any, so datasets hashed before they existed keep their hash.
-_ALWAYS_HASHED = len(COLUMNS) - len(COLLISION_TARGET)
 DEFAULT_VERSION = "1.0.0"
 
 
@@ -72,67 +61,6 @@ def get_or_create_dataset(
     session.add(dataset)
     session.flush()
     return dataset, True
-
-
-def content_hash(session: Session, dataset: Dataset) -> str:
-    """The dataset's content hash (see the module docstring)."""
-    particle, wall = aliased(Material), aliased(Material)
-    # Byte order of the UTF-8 run labels, on every backend (SQLite's BINARY collation,
-    # PostgreSQL's "C"), streamed so a million runs hash in bounded memory.
-    collation = "C" if session.get_bind().dialect.name == "postgresql" else "BINARY"
-    result = session.connection().execute(
-        select(
-            Collision.run,
-            particle.name,
-            wall.name,
-            Fluid.name,
-            *(getattr(Collision, c) for c in COLUMNS),
-            Collision.notes,
-        )
-        .join(particle, Collision.particle_id == particle.id)
-        .join(wall, Collision.wall_id == wall.id)
-        .outerjoin(Fluid, Collision.fluid_id == Fluid.id)
-        .where(Collision.dataset_id == dataset.id)
-        .order_by(Collision.run.collate(collation)),
-        execution_options={"yield_per": 20_000},
-    )
-    return hash_rows(result.partitions())
-
-
-def hash_rows(batches: Iterable[Iterable[Sequence[object]]]) -> str:
-    """sha256 of rows already in canonical order, (run, particle, wall, fluid, *COLUMNS,
-    notes), given in batches."""
-    digest = hashlib.sha256()
-    for rows in batches:
-        text = "".join("\x1f".join(_canonical(row)) + "\x1e" for row in rows)
-        digest.update(text.encode("utf-8"))
-    return digest.hexdigest()
-
-
-def _canonical(row: Sequence[object]) -> list[str]:
-    cells = ["" if v is None else repr(v) if type(v) is float else str(v) for v in row]
-    first_target = 4 + _ALWAYS_HASHED
-    target = cells[first_target : first_target + len(COLLISION_TARGET)]
-    kept = cells[:first_target] + [cells[-1]]
-    return kept + target if any(target) else kept
-
-
-def hash_frame(frame: Any) -> str:
-    """The content hash of collisions given by name in a DataFrame (a package's table)."""
-    columns = ["run", "particle", "wall", "fluid", *COLUMNS, "notes"]
-    values = [frame[c].tolist() if c in frame else [None] * len(frame) for c in columns]
-    order = sorted(range(len(frame)), key=lambda i: str(values[0][i]).encode("utf-8"))
-    rows = (
-        [None if isinstance(v, float) and math.isnan(v) else v for v in (c[i] for c in values)]
-        for i in order
-    )
-    return hash_rows([rows])
-
-
-def update_content_hash(session: Session, dataset: Dataset) -> str:
-    dataset.content_hash = content_hash(session, dataset)
-    session.flush()
-    return dataset.content_hash
 
 
 # --- lifecycle -------------------------------------------------------------------------

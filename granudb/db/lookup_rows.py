@@ -1,11 +1,12 @@
-"""Core lookups a read of stored runs needs: the ids of a dataset, material or fluid by
-name, a dataset's identity, and the published values; without the ORM.
+"""Core lookups a read of stored runs needs: a dataset's identity by name and version, and
+the published values; without the ORM (a material's or fluid's id is
+``catalog_rows.entry_id``).
 
 Why: a report (and any read of collisions) only reads. Building the ORM's mapped classes
 and compiling its queries cost a report on 100,000 runs about a sixth of its 2 s bound
 (issue 17), for a handful of lookups. These use lightweight ``table()`` clauses, like
 ``catalog_rows``, with the same names, the same case-insensitive matching and the same
-errors as the ORM functions in ``granudb.db.catalog`` and ``granudb.db.datasets``;
+errors as ``granudb.db.datasets``;
 ``tests/db/test_catalog_rows.py`` holds their columns to the models and both paths to the
 same answers.
 """
@@ -18,12 +19,11 @@ from typing import Any
 from sqlalchemy import select
 from sqlalchemy.engine import Connection
 
-from granudb.db.catalog_rows import FLUIDS, MATERIALS, SOURCES, _table
+from granudb.db.catalog_rows import FLUIDS, MATERIALS, SOURCES, lightweight_table
 from granudb.errors import NotFoundError
-from granudb.vocabulary.text import name_key
 
-DATASETS = _table("datasets", ["id", "name", "version", "content_hash"])
-PUBLISHED = _table(
+DATASETS = lightweight_table("datasets", ["id", "name", "version", "content_hash"])
+PUBLISHED = lightweight_table(
     "published_values",
     ["id", "source_id", "source_locator", "label", "quantity", "value", "uncertainty",
      "value_as_printed", "particle_id", "wall_id", "fluid_id", "condition"],
@@ -58,26 +58,6 @@ def dataset_row(connection: Connection, name: str, version: str | None = None) -
         f"dataset: {name!r} has no version {version!r} (versions: "
         f"{', '.join(d.version for d in versions)})"
     )
-
-
-def _id(connection: Connection, clause: Any, kind: str, name: str) -> int:
-    query = select(clause.c.id).where(clause.c.name_key == name_key(name))
-    found = connection.execute(query).scalar_one_or_none()
-    if found is None:
-        names = connection.execute(select(clause.c.name).order_by(clause.c.name_key)).scalars()
-        known = ", ".join(names) or "none yet"
-        raise NotFoundError(f"{kind}: {name!r} is not in the database (known: {known})")
-    return int(found)
-
-
-def material_id(connection: Connection, name: str) -> int:
-    """The id of the material called ``name`` (case-insensitively), as ``get_material``."""
-    return _id(connection, MATERIALS, "material", name)
-
-
-def fluid_id(connection: Connection, name: str) -> int:
-    """The id of the fluid called ``name`` (case-insensitively), as ``get_fluid``."""
-    return _id(connection, FLUIDS, "fluid", name)
 
 
 def published_rows(connection: Connection) -> list[dict[str, Any]]:

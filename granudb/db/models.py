@@ -28,7 +28,7 @@ from sqlalchemy import (
 )
 from sqlalchemy.orm import Mapped, mapped_column, relationship
 
-from granudb.db.base import Base, Timestamped, _add_finite_checks, name_key, utcnow
+from granudb.db.base import Base, Timestamped, add_finite_checks, name_key, utcnow
 
 __all__ = [
     "Base",
@@ -391,4 +391,4 @@ class PublishedValue(Base):
     )
 
 
-_add_finite_checks(Base)
+add_finite_checks(Base)

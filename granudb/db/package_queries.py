@@ -16,6 +16,7 @@ from sqlalchemy import inspect, select
 from sqlalchemy.orm import Session
 
 from granudb.db import datasets
+from granudb.db.content_hash import content_hash
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
 
 
@@ -131,4 +132,4 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
         ),
         "sources": [_values(s) for s in sources],
     }
-    return ExportData(dataset_metadata(dataset), datasets.content_hash(session, dataset), tables)
+    return ExportData(dataset_metadata(dataset), content_hash(session, dataset), tables)

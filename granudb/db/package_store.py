@@ -19,9 +19,9 @@ from typing import Any
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from granudb.db import datasets
 from granudb.db.catalog_rows import source_record
 from granudb.db.collision_store import insert_collisions
+from granudb.db.content_hash import update_content_hash
 from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
 from granudb.db.upsert import same_value
 from granudb.errors import ConflictError
@@ -243,5 +243,5 @@ def store_package(
         rows = insert_collisions(session, dataset.id, frame)
         result = merger.result
         result.dataset, result.version = content.dataset, content.version
-        result.rows, result.content_hash = rows, datasets.update_content_hash(session, dataset)
+        result.rows, result.content_hash = rows, update_content_hash(session, dataset)
         return result

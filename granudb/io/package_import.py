@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from granudb.db import datasets
+from granudb.db.content_hash import hash_frame
 from granudb.db.package_store import MergeConflict, PackageContent, store_package
 from granudb.errors import ValidationError
 from granudb.io.collision_file import MAX_RESTITUTION
@@ -366,7 +366,7 @@ def import_package(
         raise PackageError(validated.problems, hint="; `granudb dataset validate` lists them")
     declared = validated.descriptor.get("granudb:content_hash")
     if declared is not None:
-        computed = datasets.hash_frame(validated.tables["collisions"])
+        computed = hash_frame(validated.tables["collisions"])
         if declared != computed:
             raise PackageError(
                 [

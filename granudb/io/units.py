@@ -4,7 +4,7 @@ Inside granudb every number is SI and every name carries its unit
 (``youngs_modulus_pa``). People type ``"190 GPa"`` or ``"4.5 cP"``, and files carry units
 in their headers (``v_n_in [mm/s]``); this module turns both into a float in the column's
 unit with Pint, refusing a wrong dimension by field name. Formatting for people
-(``60 GPa``, ``130.5 nm``) is ``granudb.report.format``; the unit table both read is
+(``60 GPa``, ``130.5 nm``) is ``granudb.reporting.format``; the unit table both read is
 ``granudb.vocabulary.units``.
 
 Every unit expression, from any door (an option, a CSV header, a package schema), first

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from granudb.physics._types import Numeric, as_float
+from granudb.physics.numeric import Numeric, as_float
 
 
 def string_torsional_stiffness(density: Numeric, radius: Numeric, period: Numeric) -> Numeric:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from granudb.physics._types import Numeric, as_float, hypot
+from granudb.physics.numeric import Numeric, as_float, hypot
 
 #: Hertz contact duration prefactor, t_c ≈ 2.87 (m² / (R E*² V))^{1/5} (Johnson 1985 §11.4).
 CONTACT_TIME_FACTOR = 2.87

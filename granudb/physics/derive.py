@@ -10,7 +10,7 @@ rebound is expected. Where an
 input makes a quantity undefined (no measured rebound) that quantity is NaN, element by
 element; where a model is outside its range or lacks an input, a text state column names
 why (``elastic_state``, ``lubricated_friction_state``, ``roughness_regime``) so no NaN
-reaches a verdict silently. The steps live in ``granudb.physics._derive_steps``.
+reaches a verdict silently. The steps live in ``granudb.physics.quantities``.
 
 **The target.** Particle (1), target (2). The normal n points from the particle to the
 target, the tangential axis t along the particle's incoming tangential motion; spins
@@ -62,10 +62,10 @@ from typing import Any
 
 import numpy as np
 
-from granudb.physics import _derive_steps as steps
 from granudb.physics import flow, limits, lubrication, pair
-from granudb.physics._blocks import run_blocked
-from granudb.physics._types import Numeric, PhysicsInputError
+from granudb.physics import quantities as steps
+from granudb.physics.blocks import run_blocked
+from granudb.physics.numeric import Numeric, PhysicsInputError
 
 #: Friction coefficient assumed where asperities touch or the collision is dry; the paper's
 #: dry fits give 0.11 (steel) and 0.106 (glass) on Zerodur (§3).
@@ -220,7 +220,7 @@ def derive(
     recedes faster than the particle approaches, target velocities without a target
     diameter).
 
-    Large tables are computed in blocks of ``granudb.physics._blocks.BLOCK_ROWS`` rows on
+    Large tables are computed in blocks of ``granudb.physics.blocks.BLOCK_ROWS`` rows on
     ``threads`` threads (None: the calling thread only, which measured faster than two on
     two cores; n: a pool of n, at most the cores available); every row's result is the
     same whatever the blocks or threads.

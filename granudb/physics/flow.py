@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from granudb.physics._types import Numeric, as_float
+from granudb.physics.numeric import Numeric, as_float
 
 #: No rebound below this Stokes number "in the cited experiments" (Joseph & Hunt §1).
 CRITICAL_STOKES_NUMBER = 10.0

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from granudb.physics._types import Numeric, as_float
+from granudb.physics.numeric import Numeric, as_float
 
 #: Yield starts below the surface when p_max = 1.6 Y (Y in tension of the softer body;
 #: Johnson 1985, *Contact Mechanics*, §11.4 and §6.2).

@@ -13,7 +13,7 @@ from math import comb
 
 import numpy as np
 
-from granudb.physics._types import Numeric, as_float
+from granudb.physics.numeric import Numeric, as_float
 
 #: h_m = x₁ × this (the paper uses 1/3; Davis et al. 1986 give 1/4 to 1/3).
 GAP_FRACTION = 1.0 / 3.0

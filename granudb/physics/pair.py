@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from granudb.physics._types import Numeric, as_float
+from granudb.physics.numeric import Numeric, as_float
 
 #: Squared radius of gyration over R² of a solid sphere, K² = I/(mR²) = 2/5.
 SOLID_SPHERE_GYRATION = 0.4

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from granudb.physics._types import Numeric, PhysicsInputError, as_float
+from granudb.physics.numeric import Numeric, PhysicsInputError, as_float
 
 KELVIN = 273.15
 CHENG_RANGE_C = (0.0, 100.0)

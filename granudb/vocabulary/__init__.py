@@ -15,7 +15,7 @@ from granudb.vocabulary.catalogue import (
     MATERIALS,
     Catalogue,
 )
-from granudb.vocabulary.derived import DERIVED_TERMS
+from granudb.vocabulary.derived import DERIVED_TERMS, term
 from granudb.vocabulary.rules import RULES, Rule, check_record, check_value
 from granudb.vocabulary.terms import (
     COLLISION_MEASURED,
@@ -24,7 +24,6 @@ from granudb.vocabulary.terms import (
     TABLES,
     TERMS,
     Term,
-    term,
 )
 from granudb.vocabulary.units import UNITS, Unit, unit_of_column
 

@@ -1,9 +1,10 @@
 """The derived columns: everything ``granudb.physics.derive.derive`` computes, with the
-title, SI unit, symbol and relation a person reads (a test checks that the two agree)."""
+title, SI unit, symbol and relation a person reads (a test checks that the two agree);
+and ``term``, which finds any column's term, stored or derived."""
 
 from __future__ import annotations
 
-from granudb.vocabulary.terms import Term
+from granudb.vocabulary.terms import TERMS, Term
 
 
 def _derived(title: str, unit: str | None, symbol: str, description: str) -> Term:
@@ -169,3 +170,18 @@ DERIVED_TERMS: dict[str, Term] = {
         "Sliding friction", None, "μ_f", "μ_f = (Ψ_in − Ψ_out)/((1+e)B) (2.9)"
     ),
 }
+
+
+def term(column: str) -> Term:
+    """The term for any column, stored or derived; ids and foreign keys get a generic one."""
+    if column in TERMS:
+        return TERMS[column]
+    if column in DERIVED_TERMS:
+        return DERIVED_TERMS[column]
+    if column.endswith("_id"):
+        return Term(
+            column[:-3].replace("_", " ").capitalize(),
+            None,
+            f"Reference to {column[:-3].replace('_', ' ')}.",
+        )
+    return Term(column.replace("_", " ").capitalize(), None, "")

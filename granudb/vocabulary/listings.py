@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from granudb.vocabulary.terms import COLLISION_MEASURED, term
+from granudb.vocabulary.derived import term
+from granudb.vocabulary.terms import COLLISION_MEASURED
 
 #: What ``collisions list`` shows by default, in every format: one line per run.
 COLLISION_NARROW = [

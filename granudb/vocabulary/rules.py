@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from granudb.errors import ValidationError
+from granudb.lazy import numpy as np
 
 
 @dataclass(frozen=True)
@@ -47,8 +48,6 @@ class Rule:
     def holds_array(self, values: Any) -> Any:
         """Vectorized ``holds`` (NaN counts as "no value" and passes; required-ness is
         checked separately)."""
-        import numpy as np
-
         values = np.asarray(values, dtype=float)
         ok = np.isnan(values) | np.isfinite(values)
         if self.minimum is not None:

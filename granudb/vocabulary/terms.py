@@ -283,23 +283,6 @@ TABLES: dict[str, str] = {
 }
 
 
-def term(column: str) -> Term:
-    """The term for ``column``; ids and foreign keys get a generic one."""
-    if column in TERMS:
-        return TERMS[column]
-    from granudb.vocabulary.derived import DERIVED_TERMS
-
-    if column in DERIVED_TERMS:
-        return DERIVED_TERMS[column]
-    if column.endswith("_id"):
-        return Term(
-            column[:-3].replace("_", " ").capitalize(),
-            None,
-            f"Reference to {column[:-3].replace('_', ' ')}.",
-        )
-    return Term(column.replace("_", " ").capitalize(), None, "")
-
-
 #: The symbols people read for stored columns (derived ones carry theirs above).
 _SYMBOLS = {
     "diameter_m": "d",

@@ -3,7 +3,7 @@
 ``youngs_modulus_pa`` is in pascals because it ends in ``_pa``. This table says, for each
 suffix, how Pint spells the unit (for parsing at the edges), how an error message names
 the dimension, an example people can copy, and the unit a person reads in a table.
-Parsing lives in ``granudb.io.units`` and formatting in ``granudb.report.format``; both
+Parsing lives in ``granudb.io.units`` and formatting in ``granudb.reporting.format``; both
 read this one table. ``KNOWN_UNITS`` (below) holds the units people type that granudb
 converts itself, without importing Pint (``si_value``).
 """

@@ -3,14 +3,11 @@ a report on a million runs in bounded memory), on both backends."""
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pandas as pd
 import pytest
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "report"))
-from conftest import paper_rows, write_csv  # noqa: E402
+from paper_runs import paper_rows, write_csv  # noqa: E402
 from support import execute  # noqa: E402
 
 from granudb.analysis.collisions import CollisionQuery, collision_table, select_collisions

@@ -4,23 +4,20 @@ runs in bounded memory) give what the plain frame and a plain groupby give."""
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 from analysis.synthetic import walton_frame
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "report"))
-from conftest import paper_rows, write_csv  # noqa: E402
+from paper_runs import paper_rows, write_csv  # noqa: E402
 
 from granudb.analysis import fits  # noqa: E402
 from granudb.analysis.collisions import CollisionQuery, select_collisions  # noqa: E402
 from granudb.analysis.restitution_fit import _group_row  # noqa: E402
 from granudb.api.database import connect  # noqa: E402
 from granudb.io.collision_import import import_collisions  # noqa: E402
-from granudb.report.build import REPORT_COLUMNS  # noqa: E402
+from granudb.reporting.build import REPORT_COLUMNS  # noqa: E402
 
 
 def _same(a: object, b: object) -> bool:

@@ -9,6 +9,7 @@ from sqlalchemy import text
 
 from granudb.api.database import opened
 from granudb.db import datasets
+from granudb.db.content_hash import content_hash
 
 HEADER = (
     "run,particle,wall,fluid,diameter [mm],incidence_angle [deg],v_n_in [mm/s],"
@@ -40,6 +41,6 @@ def test_negative_zero_is_stored_as_zero_and_hashes_as_zero(cli, db: str, tmp_pa
         ).one()
         signed = datasets.get_dataset(session, "signed")
         plain = datasets.get_dataset(session, "plain")
-        assert signed.content_hash == datasets.content_hash(session, signed)
+        assert signed.content_hash == content_hash(session, signed)
         assert signed.content_hash == plain.content_hash  # the same measurements
     assert all(float(v) == 0.0 and math.copysign(1.0, float(v)) == 1.0 for v in stored)

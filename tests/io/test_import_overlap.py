@@ -3,7 +3,7 @@
 The content hash is formatted block by block on a worker thread (constant columns once,
 the names as one code per triple), SQLite rows go in many to a statement, and run labels
 are screened for surrounding spaces by Arrow. Each shortcut is pinned against the slow
-definition: ``datasets.content_hash`` of the stored rows, ``repr`` of each float, the rows
+definition: ``granudb.db.content_hash`` of the stored rows, ``repr`` of each float, the rows
 read back in file order, the pandas path's refusal.
 """
 
@@ -22,6 +22,7 @@ from support import COLLISION_HEADER, GOOD_ROW, engine_for, write_csv
 
 from granudb.api.database import connect as open_database
 from granudb.db import bulk_hash, bulk_insert, datasets
+from granudb.db.content_hash import content_hash
 from granudb.errors import ValidationError
 from granudb.io.collision_import import import_collisions
 
@@ -72,7 +73,7 @@ def test_hash_formatted_beside_the_insert_equals_the_stored_rows_hash(
     try:
         with database.session() as session:
             dataset = datasets.get_dataset(session, "d")
-            assert dataset.content_hash == datasets.content_hash(session, dataset)
+            assert dataset.content_hash == content_hash(session, dataset)
     finally:
         database.dispose()
 

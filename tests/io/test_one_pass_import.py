@@ -3,7 +3,7 @@
 The import reads the file once with Arrow (hashing it as it goes), checks columns, inserts
 only the columns with values and computes the dataset's content hash from the arrays it
 inserted. These tests pin that every shortcut gives what the slow definitions give: the
-content hash equals ``datasets.content_hash`` of the stored rows, the file's sha256 equals
+content hash equals ``granudb.db.content_hash`` of the stored rows, the file's sha256 equals
 hashlib's of the file, floats are formatted exactly as ``repr``, and line breaks inside
 quoted notes survive the reader's read boundaries.
 """
@@ -22,6 +22,7 @@ from support import GOOD_ROW, write_csv
 
 from granudb.api.database import connect as open_database
 from granudb.db import bulk_hash, datasets
+from granudb.db.content_hash import content_hash
 from granudb.io import collision_blocks
 from granudb.io.collision_import import import_collisions
 
@@ -52,7 +53,7 @@ def _stored_hash(db: str) -> tuple[str, str]:
     try:
         with database.session() as session:
             dataset = datasets.get_dataset(session, "d")
-            return dataset.content_hash, datasets.content_hash(session, dataset)
+            return dataset.content_hash, content_hash(session, dataset)
     finally:
         database.dispose()
 

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 from support import STEEL_ON_ZERODUR
 
-from granudb.physics._blocks import BLOCK_ROWS, run_blocked
-from granudb.physics._types import PhysicsInputError
+from granudb.physics.blocks import BLOCK_ROWS, run_blocked
 from granudb.physics.derive import derive
+from granudb.physics.numeric import PhysicsInputError
 
 ROWS = 2 * BLOCK_ROWS + 123  # two full blocks and a partial one
 

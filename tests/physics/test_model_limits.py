@@ -11,8 +11,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from granudb.physics import apparatus, contact, flow, limits, lubrication, viscosity
-from granudb.physics._types import PhysicsInputError
 from granudb.physics.derive import derive
+from granudb.physics.numeric import PhysicsInputError
 
 R = 12.7e-3 / 2
 STEEL_ZERODUR = {

@@ -12,8 +12,8 @@ from scipy.integrate import quad
 from support import STEEL_ON_ZERODUR
 
 from granudb.physics import contact, flow, impact, lubrication
-from granudb.physics._types import PhysicsInputError as ValidationError
 from granudb.physics.derive import derive
+from granudb.physics.numeric import PhysicsInputError as ValidationError
 from granudb.vocabulary import DERIVED_TERMS
 
 DERIVED_NAMES = tuple(DERIVED_TERMS)

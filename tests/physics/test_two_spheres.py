@@ -12,8 +12,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from granudb.physics import contact, flow, impact, pair
-from granudb.physics._types import PhysicsInputError
 from granudb.physics.derive import derive
+from granudb.physics.numeric import PhysicsInputError
 
 GLASS = {
     "density_kg_m3": 2540.0,

@@ -7,6 +7,8 @@ reports alike; the units come from ``granudb.vocabulary.units``.
 from __future__ import annotations
 
 import math
+import numbers
+import re
 from typing import Any
 
 from granudb.vocabulary.units import unit_of_column
@@ -99,10 +101,10 @@ def plus_minus(value: Any, error: Any, *, exact_below: float = 1e-9) -> str:
     >>> plus_minus(0.97, 0.0123)
     '0.970 ± 0.012'
     """
-    if not _number(value):
+    if not is_number(value):
         return "—"
     value = float(value)
-    if not _number(error):
+    if not is_number(error):
         return f"{value:.3g}"
     error = abs(float(error))
     if error <= exact_below * max(abs(value), 1e-300) or error == 0:
@@ -119,9 +121,9 @@ def plus_minus(value: Any, error: Any, *, exact_below: float = 1e-9) -> str:
 def interval(value: Any, low: Any, high: Any) -> str:
     """A value with an asymmetric interval, ``0.34 [0.30, 0.39]``, rounded like
     ``plus_minus`` on the larger half-width."""
-    if not _number(value):
+    if not is_number(value):
         return "—"
-    if not (_number(low) and _number(high)):
+    if not (is_number(low) and is_number(high)):
         return f"{float(value):.3g}"
     half = max(abs(float(high) - float(value)), abs(float(value) - float(low)))
     if half == 0:
@@ -133,12 +135,27 @@ def interval(value: Any, low: Any, high: Any) -> str:
     )
 
 
-def _number(value: Any) -> bool:
+def is_number(value: Any) -> bool:
+    """True for a finite real number (numpy's included); False for NaN, ±inf, a bool,
+    ``None`` or text.
+
+    >>> [is_number(v) for v in (1, 2.5, float("nan"), True, None, "3")]
+    [True, True, False, False, False, False]
+    """
     return (
-        isinstance(value, int | float)
+        isinstance(value, numbers.Real)
         and not isinstance(value, bool)
         and math.isfinite(float(value))
     )
+
+
+def as_number(value: Any) -> float:
+    """``value`` as a float when it is a finite real number, else NaN.
+
+    >>> as_number(3), as_number("3")
+    (3.0, nan)
+    """
+    return float(value) if is_number(value) else math.nan
 
 
 _SUPERSCRIPT = str.maketrans("0123456789+-−=()n/.", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁻⁼⁽⁾ⁿ⁄·")
@@ -159,7 +176,6 @@ def unicode_math(text: Any) -> str:
     >>> unicode_math("(μ₀U/(E*R))^{2/7} and a^{1/3}")
     '(μ₀U/(E*R))²⁄⁷ and a¹⁄³'
     """
-    import re
 
     def sup(match: re.Match[str]) -> str:
         body = match.group(1)

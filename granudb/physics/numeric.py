@@ -1,4 +1,6 @@
-"""Shared typing helpers for the physics kernels."""
+"""The kernels' numeric ground: ``Numeric`` (anything numpy reads as float), ``as_float``,
+a fast overflow-safe ``hypot``, and ``PhysicsInputError``, raised on input a relation
+cannot take."""
 
 from __future__ import annotations
 

@@ -12,19 +12,13 @@ from typing import Any
 
 import numpy as np
 
-from granudb.report.format import display, engineering, unicode_math
-from granudb.report.values import qualified_value
-from granudb.report.verdicts import GAP_DEFINITION, roughness_verdict
-from granudb.vocabulary import DERIVED_TERMS, TERMS
+from granudb.reporting.format import display, engineering, unicode_math
+from granudb.reporting.values import qualified_value
+from granudb.reporting.verdicts import GAP_DEFINITION, roughness_verdict
+from granudb.vocabulary import DERIVED_TERMS, MATERIAL_PROPERTIES, TERMS
 
-PROPERTY_COLUMNS = [
-    "density_kg_m3",
-    "youngs_modulus_pa",
-    "poisson_ratio",
-    "roughness_rms_m",
-    "correlation_length_m",
-    "shear_modulus_pa",
-]
+#: A material's stored properties, in the catalogue's own order.
+PROPERTY_COLUMNS = MATERIAL_PROPERTIES
 
 
 def _title(column: str) -> str:

@@ -1,8 +1,6 @@
-"""Fixtures for the report tests: a synthetic dataset of the paper's pairs, imported.
-
-Glass and steel on Zerodur, dry and in glycerol (37 % for steel, 45 % for glass), made
-with the Walton model of known β and μ_f (Joseph & Hunt §3–§4) and 1 % seeded noise on
-the rebound, so the fits have honest non-zero uncertainties.
+"""The paper's pairs as synthetic runs: glass and steel on Zerodur, dry and in glycerol (37 %
+for steel, 45 % for glass), made with the Walton model of known β and μ_f (Joseph & Hunt
+§3–§4) and 1 % seeded noise on the rebound, so the fits have honest non-zero uncertainties.
 """
 
 from __future__ import annotations
@@ -12,9 +10,8 @@ import math
 from pathlib import Path
 
 import numpy as np
-import pytest
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "collisions_example.csv"
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "collisions_example.csv"
 RADIUS_MM = 6.35
 #: (particle, fluid, β, μ_f, e, v_n,in in mm/s, temperature)
 PAPER_GROUPS = [
@@ -60,25 +57,3 @@ def write_csv(path: Path, rows: list[list[str]]) -> Path:
         writer.writerow(HEADER)
         writer.writerows(rows)
     return path
-
-
-@pytest.fixture
-def csv_writer():
-    """``write_csv(path, rows)`` for tests that make their own runs."""
-    return write_csv
-
-
-@pytest.fixture
-def paper_db(cli, db, tmp_path) -> str:
-    """A database with the synthetic paper dataset imported as ``paper``."""
-    source = write_csv(tmp_path / "paper.csv", paper_rows())
-    result = cli("collisions", "import", str(source), "--dataset", "paper", db=db)
-    assert result.exit_code == 0, result.stderr
-    return db
-
-
-@pytest.fixture
-def example_db(cli, db) -> str:
-    result = cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db)
-    assert result.exit_code == 0, result.stderr
-    return db

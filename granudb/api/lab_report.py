@@ -1,4 +1,4 @@
-"""``granudb.report``: an HTML or Markdown lab report for a pair or for stored runs.
+"""``granudb.reporting``: an HTML or Markdown lab report for a pair or for stored runs.
 
 With ``pair=(particle, wall)`` a scenario report (plus the stored runs of that pair),
 taking the scenario options of ``granudb.pair`` (a diameter or speed not given is
@@ -17,9 +17,9 @@ from granudb.api import inputs
 from granudb.api.collision_listing import collision_query
 from granudb.api.database import opened
 from granudb.errors import ValidationError
-from granudb.report.build import dataset_report, pair_report
-from granudb.report.render import render
-from granudb.report.write import check_output, write_report
+from granudb.reporting.build import dataset_report, pair_report
+from granudb.reporting.render import render
+from granudb.reporting.write import check_output, write_report
 
 #: The report's formats: one self-contained HTML file, or Markdown with SVG figures.
 REPORT_FORMATS = ("html", "md")

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from granudb.errors import ValidationError
-from granudb.report.render import render
+from granudb.reporting.render import render
 
 
 def default_name(report: dict[str, Any], fmt: str) -> str:

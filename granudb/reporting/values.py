@@ -6,8 +6,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from granudb.report.format import display
-from granudb.report.verdicts import ROUGHNESS_WORDS, _finite, _number
+from granudb.reporting.format import display, is_number
+from granudb.reporting.verdicts import ROUGHNESS_WORDS, in_words
 
 #: Quantities of (5.6)–(5.9) that need the fluid's pressure–viscosity coefficient.
 _NEEDS_PRESSURE_COEFFICIENT = (
@@ -26,10 +26,10 @@ def qualified_value(derived: Mapping[str, Any], name: str) -> str:
     value = derived.get(name)
     state = derived.get("lubricated_friction_state")
     if name == "lubricated_friction" and state == "above_limit":
-        return f"outside the model's range, not used ((5.8) gives {_number(value)})"
+        return f"outside the model's range, not used ((5.8) gives {in_words(value)})"
     if name == "roughness_regime" and value in ROUGHNESS_WORDS:
         return ROUGHNESS_WORDS[str(value)]
-    if _finite(value) or isinstance(value, bool | str):
+    if is_number(value) or isinstance(value, bool | str):
         return display(value, name)
     if name == "yield_speed_m_s":
         return "not known (no yield stress)"

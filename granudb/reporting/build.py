@@ -13,9 +13,17 @@ from __future__ import annotations
 from datetime import UTC, datetime
 from typing import Any
 
-from granudb.report import blocks, figures, references, tables
-from granudb.report.groups import colours, fluid_names, labels_of
-from granudb.report.verdicts import verdicts
+from sqlalchemy.engine import Connection
+
+from granudb.analysis import fits
+from granudb.analysis.collisions import CollisionQuery, select_collisions
+from granudb.analysis.fluid_state import fluid_model
+from granudb.analysis.pair import derive_pair
+from granudb.db import catalog_rows, lookup_rows
+from granudb.db import catalog_rows as catalog
+from granudb.reporting import blocks, figures, references, tables
+from granudb.reporting.groups import colours, fluid_names, labels_of
+from granudb.reporting.verdicts import verdicts
 from granudb.version import __version__
 
 #: The columns of the runs a report reads (tables, fits, figures and the flag): the runs are
@@ -79,8 +87,6 @@ def pair_report(
     typical speed) and the report says so at the top and in the scenario table;
     ``assumed`` names further inputs the caller defaulted (``incidence_angle_rad``).
     """
-    from granudb.analysis.pair import derive_pair
-
     assumed = set(assumed or ())
     if diameter_m is None:
         diameter_m, _ = DEFAULT_DIAMETER_M, assumed.add("diameter_m")
@@ -104,7 +110,6 @@ def pair_report(
     )
     report = _header(title or f"granudb report: {name}", query, database)
     _pair_sections(report, result, assumed, diameter_m, critical_stokes)
-    from granudb.analysis.collisions import CollisionQuery
 
     add_collisions(
         reader, report, CollisionQuery(particle=particle, wall=wall, fluid=fluid), pair=True
@@ -166,8 +171,6 @@ def dataset_report(
 ) -> dict[str, Any]:
     """A report on stored collisions (a dataset or any query). ``reader``: a Core
     connection (``Database.reading()``: no ORM on the report's path) or a session."""
-    from granudb.db import lookup_rows
-
     report = _header(title or f"granudb report: {query.describe()}", query_text, database)
     if query.dataset is not None:
         dataset = lookup_rows.dataset_row(_connection(reader), query.dataset, query.version)
@@ -182,15 +185,11 @@ def dataset_report(
 
 
 def _connection(reader: Any) -> Any:
-    from sqlalchemy.engine import Connection
-
     return reader if isinstance(reader, Connection) else reader.connection()
 
 
 def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict[str, str]]:
     """Property blocks of every material and fluid the runs use, and their citations."""
-    from granudb.db import catalog_rows as catalog
-
     blocks_out, keys = [], set()
     particles = sorted(set(frame["particle"].unique().tolist()))
     walls = sorted(set(frame["wall"].unique().tolist()) - set(particles))
@@ -212,11 +211,6 @@ def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict
 def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bool) -> dict:
     """The stored runs matching ``query``: flag, properties, fit tables and figures.
     Returns the citations of the materials and fluids involved."""
-    from granudb.analysis import fits
-    from granudb.analysis.collisions import select_collisions
-    from granudb.analysis.fluid_state import fluid_model
-    from granudb.db import catalog_rows, lookup_rows
-
     connection = _connection(reader)
     frame = select_collisions(connection, query, columns=REPORT_COLUMNS, shared_text=True)
     if frame.empty:

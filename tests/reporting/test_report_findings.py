@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from granudb.report.references import cited_in
+from granudb.reporting.references import cited_in
 
 
 def _report(cli, db, tmp_path: Path, *args: str, fmt: str = "html") -> str:

@@ -7,8 +7,8 @@ import re
 
 import numpy as np
 
-from granudb.report import figures, plots
-from granudb.report.groups import colours, group_keys, labels_of
+from granudb.reporting import figures, plots
+from granudb.reporting.groups import colours, group_keys, labels_of
 
 
 def _points(svg: str) -> int:
@@ -63,7 +63,7 @@ def test_group_keys_and_labels_treat_missing_fluids_as_dry() -> None:
 
 def test_a_large_group_states_its_resample_count_beside_the_interval() -> None:
     from granudb.analysis.walton_bootstrap import RESAMPLE_RULE
-    from granudb.report import tables
+    from granudb.reporting import tables
 
     fit = {
         "rotational_restitution": 0.34,

@@ -8,9 +8,9 @@ import math
 import re
 from pathlib import Path
 
-from granudb.report import tables
-from granudb.report.values import qualified_value
-from granudb.report.verdicts import verdicts
+from granudb.reporting import tables
+from granudb.reporting.values import qualified_value
+from granudb.reporting.verdicts import verdicts
 from granudb.vocabulary import DERIVED_TERMS
 
 

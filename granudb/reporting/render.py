@@ -11,6 +11,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
+from granudb.lazy import jinja2
+
 # Any ASCII punctuation may be backslash-escaped in CommonMark (spec §2.4); these are the
 # ones that can start emphasis, code, links, images, HTML, entities or a table cell.
 _MD_SPECIAL = re.compile(r"([\\`*_{}\[\]<>()#!|~&])")
@@ -33,14 +35,13 @@ def markdown_code(value: Any) -> str:
 
 
 def environment() -> Any:
-    from jinja2 import Environment, PackageLoader, StrictUndefined, select_autoescape
-
-    env = Environment(
-        loader=PackageLoader("granudb.report", "templates"),
-        autoescape=select_autoescape(
+    """Jinja2 with the package's templates, autoescaping HTML, failing on a missing name."""
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("granudb.reporting", "templates"),
+        autoescape=jinja2.select_autoescape(
             enabled_extensions=("html", "html.j2"), default_for_string=True, default=True
         ),
-        undefined=StrictUndefined,
+        undefined=jinja2.StrictUndefined,
         keep_trailing_newline=True,
         trim_blocks=False,
     )

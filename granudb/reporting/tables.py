@@ -10,12 +10,12 @@ table's note), and the paper's ± is shown as printed beside them.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import Any
 
-from granudb.report.format import display, interval, plus_minus
-from granudb.report.groups import fluid_name, group_label
+from granudb.analysis.walton_bootstrap import DEFAULT_RESAMPLES
+from granudb.reporting.format import display, interval, is_number, plus_minus
+from granudb.reporting.groups import fluid_name, group_label
 
 WALTON_PUBLISHED = ("rotational_restitution", "sliding_friction", "normal_restitution_mean")
 
@@ -86,10 +86,10 @@ def _reason_for(reason: str, symbol: str) -> str:
 def parameter_cell(fit: Mapping[str, Any], name: str, symbol: str) -> str:
     """β or μ_f with its bootstrap interval, or "not determined by these runs" and why."""
     value = fit.get(name)
-    if _finite(value):
+    if is_number(value):
         text = interval(value, fit.get(f"{name}_low"), fit.get(f"{name}_high"))
         share = fit.get(f"{name}_determined")
-        if _finite(share) and share < 0.995:
+        if is_number(share) and share < 0.995:
             text += f" (determined in {share:.0%} of resamples)"
         return text + resamples_said(fit)
     text = NOT_DETERMINED
@@ -97,7 +97,7 @@ def parameter_cell(fit: Mapping[str, Any], name: str, symbol: str) -> str:
     if why:
         text += f": {why}"
     bound = fit.get("sliding_friction_lower_bound")
-    if name == "sliding_friction" and _finite(bound):
+    if name == "sliding_friction" and is_number(bound):
         text += (
             f". Lower bound (2.10) at the largest Ψ_in: μ_f ≥ {bound:.2g} (a bound, not a value)"
         )
@@ -110,25 +110,19 @@ def model_cell(fit: Mapping[str, Any]) -> str:
     if not model:
         return f"none: {fit.get('reason') or 'too few runs'}"
     bic = {m: fit.get(f"bic_{m}") for m in ("sticking", "sliding", "split")}
-    others = [f"{m} {bic[m]:.4g}" for m in bic if m != model and _finite(bic[m])]
-    text = f"{model}: smallest BIC, {bic[model]:.4g}" if _finite(bic[model]) else str(model)
+    others = [f"{m} {bic[m]:.4g}" for m in bic if m != model and is_number(bic[m])]
+    text = f"{model}: smallest BIC, {bic[model]:.4g}" if is_number(bic[model]) else str(model)
     if others:
         text += f" (vs {', '.join(others)})"
     support = fit.get(f"model_support_{model}")
-    if _finite(support):
+    if is_number(support):
         text += f"; chosen in {support:.0%} of resamples"
     return text
-
-
-def _finite(value: Any) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
 
 
 def resamples_said(fit: Mapping[str, Any]) -> str:
     """Beside an interval made with other than the default count (a large group under the
     resample rule, or a count asked for): that count and the seed."""
-    from granudb.analysis.walton_bootstrap import DEFAULT_RESAMPLES
-
     count = fit.get("bootstrap_resamples")
     if not count or count == DEFAULT_RESAMPLES:
         return ""
@@ -201,11 +195,11 @@ def walton_table(
 
 
 def _restitution_cells(r: Mapping[str, Any]) -> tuple[str, str]:
-    if not _finite(r.get("e_dry")):
+    if not is_number(r.get("e_dry")):
         why = r.get("reason") or "the fit gave no value"
         return f"{NOT_DETERMINED}: {why}", NOT_DETERMINED
     source = r.get("e_dry_source") or "fitted"
-    if _finite(r.get("e_dry_stderr")):
+    if is_number(r.get("e_dry_stderr")):
         e_dry = f"{plus_minus(r['e_dry'], r['e_dry_stderr'])}: {source}"
     else:
         e_dry = f"{r['e_dry']:.3g}: {source}"
@@ -237,13 +231,13 @@ def restitution_table(restitution: list[dict[str, Any]], formula: str, source: s
 def _gap_cells(r: Mapping[str, Any]) -> tuple[str, str]:
     reason = r.get("reason") or r.get("note") or "not computed"
     mu0 = r.get("gap_viscosity_pa_s")
-    if not _finite(mu0):
+    if not is_number(mu0):
         return f"{NOT_DETERMINED}: {reason}", "not determined"
     low, high = r.get("gap_viscosity_low_pa_s"), r.get("gap_viscosity_high_pa_s")
-    scaled = [v * 1e3 if _finite(v) else v for v in (mu0, low, high)]
+    scaled = [v * 1e3 if is_number(v) else v for v in (mu0, low, high)]
     viscosity = f"{interval(*scaled)} mPa·s" + resamples_said(r)
     t = r.get("gap_temperature_c")
-    if not _finite(t):
+    if not is_number(t):
         return viscosity, f"not determined: {reason}"
     low_t, high_t = r.get("gap_temperature_low_c"), r.get("gap_temperature_high_c")
     return viscosity, f"{interval(t, low_t, high_t)} °C"

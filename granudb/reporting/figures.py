@@ -13,10 +13,15 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
+from sqlalchemy.engine import Connection
 
-from granudb.report import plots, plots_extra
-from granudb.report.format import display
-from granudb.report.groups import (
+from granudb.analysis import fits
+from granudb.db import catalog_rows
+from granudb.physics import flow
+from granudb.physics.derive import DRY_RESTITUTION, derive
+from granudb.reporting import plots
+from granudb.reporting.format import as_number, display, is_number
+from granudb.reporting.groups import (
     fluid_colours,
     fluid_name,
     fluid_names,
@@ -39,8 +44,6 @@ def _regime_grid(
     critical_stokes: float,
     lowest_viscosity: float,
 ) -> dict[str, Any]:
-    from granudb.physics.derive import derive
-
     velocity = np.geomspace(1e-3, 3.0, 120)
     viscosity = np.geomspace(lowest_viscosity, 1.0, 100)
     v_grid, mu_grid = np.meshgrid(velocity, viscosity)
@@ -54,7 +57,7 @@ def _regime_grid(
         fluid_density_kg_m3=fluid_density,
         critical_stokes=critical_stokes,
     )
-    regime = plots_extra.regime_names(out["rebound_expected"], out["roughness_regime"])
+    regime = plots.regime_names(out["rebound_expected"], out["roughness_regime"])
     with np.errstate(divide="ignore", invalid="ignore"):
         sigma_over_x1 = np.asarray(out["composite_roughness_m"] / out["elastic_length_m"], float)
     return {
@@ -88,7 +91,7 @@ def regime_map_figure(
         critical_stokes,
         AIR_VISCOSITY_PA_S / 2 if has_dry else 1e-4,
     )
-    svg = plots_extra.regime_map(
+    svg = plots.regime_map(
         grid["velocity"],
         grid["viscosity"],
         grid["regime"],
@@ -129,7 +132,7 @@ def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> np.ndar
     }
     keys = group_keys(frame["dataset"], frame["particle"], frame["wall"],
                       fluid_names(frame["fluid"]))  # fmt: skip
-    split = per_value(keys, lambda key: _number(splits.get(key))).astype(float)
+    split = per_value(keys, lambda key: as_number(splits.get(key))).astype(float)
     psi = frame["effective_incidence"].to_numpy(dtype=float)
     e = frame["normal_restitution"].to_numpy(dtype=float)
     names = np.array(["sliding", "sticking", "normal impact", "no rebound"], dtype=object)
@@ -141,19 +144,11 @@ def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> np.ndar
     return names[code]  # an object array of the names (shared strings, no copies)
 
 
-def _number(value: Any) -> float:
-    return float(value) if isinstance(value, int | float) else math.nan
-
-
 def pair_maps(
     reader: Any, frame: Any, walton: Sequence[Mapping[str, Any]], critical_stokes: float
 ) -> list[dict[str, Any]]:
     """One regime map per particle/wall pair, with every run of that pair on it.
     ``reader``: a Core connection or a session (the catalogue is read through Core)."""
-    from sqlalchemy.engine import Connection
-
-    from granudb.db import catalog_rows
-
     connection = reader if isinstance(reader, Connection) else reader.connection()
     regimes = measured_regimes(frame, walton)
     fluids = fluid_names(frame["fluid"])
@@ -254,9 +249,6 @@ def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) 
     """Per group, the predicted e(St_n) = e_dry exp(−35/St) of Legendre et al. (2006) with
     St the group's added-mass Stokes number (St_am = St_n (1 + ρ_f/(2ρ_p)), its median
     ratio in the group), 0 where St_n ≤ St_c, as ``derive``'s ``predicted_restitution``."""
-    from granudb.physics import flow
-    from granudb.physics.derive import DRY_RESTITUTION
-
     if "added_mass_stokes_number" not in frame:
         return []
     st_n = frame["normal_stokes_number"].to_numpy(float)
@@ -287,7 +279,7 @@ def restitution_figure(
     threshold fit when there is one (its St_c labelled as fitted)."""
     st_n = wet["normal_stokes_number"].to_numpy(float)
     curves = predicted_curves(wet, labels, critical_stokes)
-    svg = plots_extra.restitution_with_prediction(
+    svg = plots.restitution_with_prediction(
         st_n, wet["normal_restitution"].to_numpy(float), labels, colours, curves,
         critical_stokes, _restitution_curve(restitution, st_n),
     )  # fmt: skip
@@ -310,9 +302,7 @@ def restitution_figure(
 def _restitution_curve(
     restitution: Sequence[Mapping[str, Any]], st_n: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, str] | None:
-    from granudb.analysis import fits
-
-    fitted = [r for r in restitution if _finite(r.get("parameter")) and _finite(r.get("e_dry"))]
+    fitted = [r for r in restitution if is_number(r.get("parameter")) and is_number(r.get("e_dry"))]
     if not fitted:
         return None
     r = fitted[0]
@@ -329,10 +319,6 @@ def thinned(count: int) -> str:
         f" {plots.MAX_POINTS:,} of the {count:,} runs are drawn (a fixed-seed sample, each "
         "group its share; the legend gives each group's count); fits and tables use every run."
     )
-
-
-def _finite(value: Any) -> bool:
-    return isinstance(value, int | float) and math.isfinite(value)
 
 
 def _figure(figure_id: str, caption: str, svg: str, count: int = 0) -> dict[str, Any]:

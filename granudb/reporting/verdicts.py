@@ -10,14 +10,13 @@ of the regime map (``ROUGHNESS_WORDS``): asperity contact Λ < 1, uncertain 1 �
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from granudb.physics import flow, limits
 from granudb.physics.derive import DRY_FRICTION, DRY_RESTITUTION
-from granudb.report.format import display, engineering
+from granudb.reporting.format import display, engineering, is_number
 
 GAP_DEFINITION = "h_m = x₁/3, the EHD minimum gap of the normal approach (Joseph & Hunt §1, §4)"
 #: The three roughness states in words, shared by verdicts, tables and the regime map.
@@ -46,14 +45,10 @@ class Verdict:
     raised: bool = False  # a warning the reader must not miss
 
 
-def _finite(value: Any) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
-
-
-def _number(value: Any, unit: str = "", missing: str = "not known") -> str:
+def in_words(value: Any, unit: str = "", missing: str = "not known") -> str:
     """A number for a sentence (3 significant digits, engineering prefix with a unit), or
     the words ``missing`` when it is NaN or absent."""
-    if not _finite(value):
+    if not is_number(value):
         return missing
     return engineering(float(value), unit, 3) if unit else f"{float(value):.3g}"
 
@@ -91,7 +86,7 @@ def rebound_verdict(derived: Mapping[str, Any], critical_stokes: float, immersed
             f"(restitution set by the solids, ē ≈ {DRY_RESTITUTION:g} on Zerodur)."
         )
         return Verdict("rebound_expected", "Rebound", text)
-    if not _finite(st_n):
+    if not is_number(st_n):
         return Verdict(
             "rebound_expected",
             "Rebound",
@@ -123,7 +118,7 @@ def restitution_verdict(
             name,
             f"e = e_dry = {DRY_RESTITUTION:g} (dry; Joseph & Hunt §3).",
         )
-    if not _finite(e_pred):
+    if not is_number(e_pred):
         return Verdict(
             "predicted_restitution",
             name,
@@ -137,7 +132,7 @@ def restitution_verdict(
         )
         return Verdict("predicted_restitution", name, text)
     text = (
-        f"e ≈ {e_pred:.2f} at the added-mass Stokes number St = {_number(st)}. "
+        f"e ≈ {e_pred:.2f} at the added-mass Stokes number St = {in_words(st)}. "
         f"Form: {PREDICTION_FORM}. A prediction where nothing is measured, not a fit."
     )
     return Verdict("predicted_restitution", name, text)
@@ -149,7 +144,7 @@ def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verd
     sigma, x1, film = (
         derived.get(k) for k in ("composite_roughness_m", "elastic_length_m", "film_parameter")
     )
-    if not immersed or regime == "dry" or not _finite(x1):
+    if not immersed or regime == "dry" or not is_number(x1):
         return Verdict(
             "roughness_regime",
             "Roughness against gap",
@@ -158,9 +153,9 @@ def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verd
     if regime not in ROUGHNESS_WORDS:  # an older frame without the three-state column
         regime = "asperity_contact" if derived.get("roughness_exceeds_gap") else "film"
     numbers = (
-        f"σ = {_number(sigma, 'm')} (composite RMS); the EHD gap is h_m = x₁/4 … x₁/3 = "
-        f"{_number(x1 / 4, 'm')} … {_number(x1 / 3, 'm')} (Davis et al. 1986); "
-        f"Λ = h_m/σ = {_number(film)} with {GAP_DEFINITION}"
+        f"σ = {in_words(sigma, 'm')} (composite RMS); the EHD gap is h_m = x₁/4 … x₁/3 = "
+        f"{in_words(x1 / 4, 'm')} … {in_words(x1 / 3, 'm')} (Davis et al. 1986); "
+        f"Λ = h_m/σ = {in_words(film)} with {GAP_DEFINITION}"
     )
     if regime == "asperity_contact":
         return Verdict(
@@ -223,7 +218,7 @@ def friction_verdict(
         return Verdict(
             "lubricated_friction_state",
             name,
-            f"outside the model's range, not used: (5.8) evaluates to {_number(mu)}, above "
+            f"outside the model's range, not used: (5.8) evaluates to {in_words(mu)}, above "
             f"{bound}; a film cannot carry more shear than its limiting shear stress, so "
             "this is not a prediction. "
             + (
@@ -242,7 +237,7 @@ def friction_verdict(
         return Verdict(
             "lubricated_friction_state",
             name,
-            f"μ_f = {_number(mu)}, within the model's range (≤ {bound}); {use}",
+            f"μ_f = {in_words(mu)}, within the model's range (≤ {bound}); {use}",
         )
     return Verdict("lubricated_friction_state", name, "not computed.", raised=True)
 
@@ -270,10 +265,10 @@ def tangential_verdict(derived: Mapping[str, Any]) -> Verdict:
     regime = str(derived.get("tangential_regime"))
     psi, chi, mu = (derived.get(k) for k in ("maw_psi_in", "maw_chi", "friction_coefficient_used"))
     name = "Tangential regime (Maw)"
-    if not _finite(psi) or psi == 0:
+    if not is_number(psi) or psi == 0:
         return Verdict("tangential_regime", name, "stick. No tangential motion (normal impact).")
     numbers = (
-        f"ψ_in = {_number(psi)}, χ = {_number(chi)}, with μ_f = {_number(mu)} "
+        f"ψ_in = {in_words(psi)}, χ = {in_words(chi)}, with μ_f = {in_words(mu)} "
         f"({_friction_basis(derived)})"
     )
     if regime == "undetermined":
@@ -282,7 +277,7 @@ def tangential_verdict(derived: Mapping[str, Any]) -> Verdict:
             "tangential_regime",
             name,
             "undetermined: without a pressure–viscosity coefficient μ_f is known only to be "
-            f"≤ {_number(mu)}. At that bound ψ_in = {_number(psi)} and χ = {_number(chi)} give "
+            f"≤ {in_words(mu)}. At that bound ψ_in = {in_words(psi)} and χ = {in_words(chi)} give "
             f"{at_bound}; a smaller μ_f gives a larger ψ_in and more slip, so the regime lies "
             "between that and gross slip.",
             raised=True,
@@ -294,10 +289,10 @@ def tangential_verdict(derived: Mapping[str, Any]) -> Verdict:
 def quasi_static_verdict(derived: Mapping[str, Any]) -> Verdict:
     ratio = derived.get("quasi_static_ratio")
     name = "Hertz quasi-static"
-    words = f"contact radius / wavelength = {_number(ratio)}"
+    words = f"contact radius / wavelength = {in_words(ratio)}"
     if derived.get("quasi_static_valid"):
         return Verdict("quasi_static_valid", name, f"valid: {words} ≪ 1.")
-    if derived.get("elastic_state") == "yield_exceeded" and _finite(ratio) and ratio < 0.1:
+    if derived.get("elastic_state") == "yield_exceeded" and is_number(ratio) and ratio < 0.1:
         return Verdict(
             "quasi_static_valid",
             name,
@@ -316,9 +311,9 @@ def _yield_known(materials: Sequence[Mapping[str, Any]]) -> tuple[list[str], lis
     known = [
         f"{m['name']} (Y = {display(m['yield_stress_pa'], 'youngs_modulus_pa')})"
         for m in materials
-        if _finite(m.get("yield_stress_pa"))
+        if is_number(m.get("yield_stress_pa"))
     ]
-    unknown = [str(m["name"]) for m in materials if not _finite(m.get("yield_stress_pa"))]
+    unknown = [str(m["name"]) for m in materials if not is_number(m.get("yield_stress_pa"))]
     return known, unknown
 
 
@@ -332,13 +327,13 @@ def yield_verdict(
     )
     known, unknown = _yield_known(materials)
     name = "Yield"
-    pressure = f"p_max = {_number(p_max, 'Pa')}"
+    pressure = f"p_max = {in_words(p_max, 'Pa')}"
     if state == "yield_exceeded":
         return Verdict(
             "elastic_state",
             "Above the onset of yield",
-            f"above the onset of yield (V_y = {_number(v_y, 'm/s')}; v_N,in = "
-            f"{_number(v_n, 'm/s')}): {pressure} > 1.6 Y of "
+            f"above the onset of yield (V_y = {in_words(v_y, 'm/s')}; v_N,in = "
+            f"{in_words(v_n, 'm/s')}): {pressure} > 1.6 Y of "
             f"{', '.join(known) or 'the softer body'} (Johnson 1985 §11.4). Hertz's elastic "
             "relations (2.1), (2.2), (5.5) and the lubricated friction built on them are "
             "outside their range here.",
@@ -349,11 +344,11 @@ def yield_verdict(
             "elastic_state",
             name,
             f"elastic: {pressure} < 1.6 Y of the softer body ({', '.join(known) or 'both'}); yield "
-            f"would begin at V_y = {_number(v_y, 'm/s')} (Johnson 1985 §11.4).",
+            f"would begin at V_y = {in_words(v_y, 'm/s')} (Johnson 1985 §11.4).",
         )
     who = " and ".join(unknown) if unknown else "a body of the pair"
     partial = (
-        f" Known: {', '.join(known)}, not reached (V_y = {_number(v_y, 'm/s')} for it)."
+        f" Known: {', '.join(known)}, not reached (V_y = {in_words(v_y, 'm/s')} for it)."
         if known
         else ""
     )

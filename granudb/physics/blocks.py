@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -85,8 +86,6 @@ def run_blocked(
     asked = DEFAULT_THREADS if threads is None else max(1, threads)
     workers = min(asked, available_cores(), len(starts))
     if workers > 1:
-        from concurrent.futures import ThreadPoolExecutor  # only for large tables
-
         with ThreadPoolExecutor(max_workers=workers) as pool:
             try:
                 for _ in pool.map(work, starts):

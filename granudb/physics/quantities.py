@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from granudb.physics import contact, flow, impact, limits, lubrication, pair
-from granudb.physics._types import hypot
+from granudb.physics.numeric import hypot
 
 Arrays = dict[str, np.ndarray]
 

@@ -13,6 +13,9 @@ import math
 from collections.abc import Iterable
 from typing import Any
 
+from granudb.lazy import numpy as np
+from granudb.lazy import pandas as pd
+
 #: Colour-blind-safe palette (Okabe & Ito), then a few more distinct hues.
 PALETTE = [
     "#0072b2",
@@ -49,9 +52,6 @@ def group_label(particle: Any, wall: Any, fluid: Any) -> str:
 def per_value(values: Any, function: Any) -> Any:
     """``function`` of each element of ``values`` (an object array), called once per
     distinct value: 100,000 runs have a handful of fluids and pairs."""
-    import numpy as np
-    import pandas as pd
-
     codes, uniques = pd.factorize(np.asarray(values, dtype=object), use_na_sentinel=False)
     return np.array([function(u) for u in uniques] + [None], dtype=object)[codes]
 
@@ -64,9 +64,6 @@ def fluid_names(fluids: Any) -> Any:
 def group_keys(*columns: Any) -> Any:
     """Each row's tuple of ``columns`` values (an object array of tuples), built once per
     distinct combination."""
-    import numpy as np
-    import pandas as pd
-
     factors = [pd.factorize(np.asarray(c, dtype=object), use_na_sentinel=False) for c in columns]
     combined = np.zeros(len(factors[0][0]) if factors else 0, dtype=np.int64)
     for codes, uniques in factors:  # mixed radix: a handful of distinct values per column
@@ -99,9 +96,6 @@ def sorted_codes(values: Any) -> tuple[Any, list[Any]]:
 
     Why: hashing (``pandas.factorize``) then sorting the few distinct values is linear in
     the runs, where ``numpy.unique`` sorts a million strings."""
-    import numpy as np
-    import pandas as pd
-
     codes, uniques = pd.factorize(np.asarray(values, dtype=object), use_na_sentinel=False)
     order = sorted(range(len(uniques)), key=lambda i: uniques[i])
     rank = np.empty(len(order), dtype=np.intp)
@@ -111,8 +105,6 @@ def sorted_codes(values: Any) -> tuple[Any, list[Any]]:
 
 def fluid_colours(fluids: Iterable[Any]) -> dict[str, str]:
     """A colour per fluid name for the regime maps (colour by fluid), dry first."""
-    import numpy as np
-
     values = fluids if isinstance(fluids, np.ndarray) else np.asarray(list(fluids), dtype=object)
     distinct = set(per_value(values, fluid_name).tolist()) if len(values) else set()
     names = sorted(distinct, key=lambda n: (n != DRY, n))

@@ -1,5 +1,6 @@
-"""The report's own SVG canvas (``granudb.report.svg``, ``svg_draw``, ``contour``): ticks
-that read, text that stays text, well-formed XML, level lines where the field crosses."""
+"""The report's own SVG canvas (``granudb.reporting.svg``; level lines traced by contourpy
+in ``plots``): ticks that read, text that stays text, well-formed XML, level lines where the
+field crosses."""
 
 from __future__ import annotations
 
@@ -10,9 +11,9 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from granudb.report import plots, plots_extra
-from granudb.report.contour import level_lines
-from granudb.report.svg import Plot, Style, linear_ticks, log_ticks
+from granudb.reporting import plots
+from granudb.reporting.plots import level_lines
+from granudb.reporting.svg import Plot, Style, linear_ticks, log_ticks
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -92,14 +93,27 @@ def test_level_lines_skip_cells_without_values() -> None:
     assert level_lines(x, y, field, 0.0) == []
 
 
+def test_a_level_line_stops_where_the_field_has_no_value() -> None:
+    """The regime map's σ/x₁ is NaN where a quantity is undefined: no line is invented
+    across those cells, and where the field has values the line is on its level."""
+    x = y = np.linspace(0.0, 1.0, 21)
+    field = np.add.outer(y, x)  # level 1: the anti-diagonal x + y = 1
+    field[:, 15:] = np.nan  # no values for x ≥ 0.75
+    lines = level_lines(x, y, field, 1.0, log=False)
+    assert lines
+    for lx, ly in lines:
+        assert np.all(lx <= 0.70 + 1e-12)
+        np.testing.assert_allclose(lx + ly, 1.0, atol=1e-12)
+
+
 @pytest.mark.parametrize("point", [None, (0.3, 0.004)])
 def test_the_regime_map_shades_every_cell_and_draws_its_lines(point) -> None:
     velocity = np.geomspace(1e-3, 3.0, 12)
     viscosity = np.geomspace(1e-4, 1.0, 10)
-    names = list(plots_extra.REGIME_COLOURS)
+    names = list(plots.REGIME_COLOURS)
     regime = np.array([[names[(i + j) % 4] for i in range(12)] for j in range(10)], object)
     ratio = np.outer(viscosity, velocity) * 1e3
-    svg = plots_extra.regime_map(velocity, viscosity, regime, ratio, ratio * 50, 10.0,
+    svg = plots.regime_map(velocity, viscosity, regime, ratio, ratio * 50, 10.0,
                                  point=point, figure_id="fig-m")  # fmt: skip
     root = ET.fromstring(svg)
     rects = root.findall(f".//{SVG}g[@class='cells']/{SVG}rect")

@@ -1,0 +1,98 @@
+"""A dataset's content hash: the one definition.
+
+The content hash identifies a dataset's measurements independently of database ids,
+insertion order and backend: sha256 over the collisions sorted by run label (UTF-8 byte
+order), each written as its run, particle, wall and fluid names, its SI values in
+``ALWAYS_HASHED`` order (``repr`` of the float, empty for none) and its notes, then the
+target sphere's values (``TARGET_HASHED``) only when the row has any (so datasets hashed
+before the target's columns existed keep their hash); fields separated by
+``FIELD_SEPARATOR`` (U+001F), each row ended by ``ROW_SEPARATOR`` (U+001E). Two
+databases (or a database and a Data Package) with the same hash hold the same runs with
+the same values.
+
+Here it is computed from rows (read back from the database, or a package's table);
+``granudb.db.bulk_hash`` computes the same bytes columnar from the arrays an import
+inserts, from the constants below (tests hold the two equal).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+from sqlalchemy import select
+from sqlalchemy.orm import Session, aliased
+
+from granudb.db.models import Collision, Dataset, Fluid, Material
+from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TARGET
+
+FIELD_SEPARATOR = "\x1f"
+ROW_SEPARATOR = "\x1e"
+#: The names that open every row, after the run label.
+NAMES = ("particle", "wall", "fluid")
+#: The SI columns every row carries, in order, before its notes.
+ALWAYS_HASHED = tuple(c for c in COLLISION_MEASURED if c not in COLLISION_TARGET)
+#: The target sphere's columns, after the notes, only in a row that has any of them.
+TARGET_HASHED = tuple(COLLISION_TARGET)
+_ROW = ("run", *NAMES, *ALWAYS_HASHED, "notes", *TARGET_HASHED)
+
+
+def content_hash(session: Session, dataset: Dataset) -> str:
+    """The dataset's content hash (see the module docstring)."""
+    particle, wall = aliased(Material), aliased(Material)
+    # Byte order of the UTF-8 run labels, on every backend (SQLite's BINARY collation,
+    # PostgreSQL's "C"), streamed so a million runs hash in bounded memory.
+    collation = "C" if session.get_bind().dialect.name == "postgresql" else "BINARY"
+    result = session.connection().execute(
+        select(
+            Collision.run,
+            particle.name,
+            wall.name,
+            Fluid.name,
+            *(getattr(Collision, c) for c in ALWAYS_HASHED),
+            Collision.notes,
+            *(getattr(Collision, c) for c in TARGET_HASHED),
+        )
+        .join(particle, Collision.particle_id == particle.id)
+        .join(wall, Collision.wall_id == wall.id)
+        .outerjoin(Fluid, Collision.fluid_id == Fluid.id)
+        .where(Collision.dataset_id == dataset.id)
+        .order_by(Collision.run.collate(collation)),
+        execution_options={"yield_per": 20_000},
+    )
+    return hash_rows(result.partitions())
+
+
+def hash_rows(batches: Iterable[Iterable[Sequence[object]]]) -> str:
+    """sha256 of rows already in canonical order, each (run, particle, wall, fluid,
+    *ALWAYS_HASHED, notes, *TARGET_HASHED), given in batches."""
+    digest = hashlib.sha256()
+    for rows in batches:
+        text = "".join(FIELD_SEPARATOR.join(_canonical(row)) + ROW_SEPARATOR for row in rows)
+        digest.update(text.encode("utf-8"))
+    return digest.hexdigest()
+
+
+def _canonical(row: Sequence[object]) -> list[str]:
+    cells = ["" if v is None else repr(v) if type(v) is float else str(v) for v in row]
+    kept = len(cells) - len(TARGET_HASHED)
+    return cells if any(cells[kept:]) else cells[:kept]
+
+
+def hash_frame(frame: Any) -> str:
+    """The content hash of collisions given by name in a DataFrame (a package's table)."""
+    values = [frame[c].tolist() if c in frame else [None] * len(frame) for c in _ROW]
+    order = sorted(range(len(frame)), key=lambda i: str(values[0][i]).encode("utf-8"))
+    rows = (
+        [None if isinstance(v, float) and math.isnan(v) else v for v in (c[i] for c in values)]
+        for i in order
+    )
+    return hash_rows([rows])
+
+
+def update_content_hash(session: Session, dataset: Dataset) -> str:
+    dataset.content_hash = content_hash(session, dataset)
+    session.flush()
+    return dataset.content_hash
