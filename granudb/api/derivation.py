@@ -67,6 +67,10 @@ def _misnamed(columns: list[str]) -> None:
     """Refuse a column that is an input's near miss while that input is absent."""
     present = set(columns)
     for column in columns:
+        if column in OPTIONS:
+            raise ValidationError(
+                column, "(a column)", "is an option of derive, not a column: pass it by keyword"
+            )
         if column in _PARAMETERS:
             continue
         absent = [n for n in INPUTS if n not in present]
@@ -75,10 +79,6 @@ def _misnamed(columns: list[str]) -> None:
         if near:
             raise ValidationError(
                 column, "(a column)", f"is not an input of derive; did you mean {near[0]}?"
-            )
-        if column in OPTIONS:
-            raise ValidationError(
-                column, "(a column)", "is an option of derive, not a column: pass it by keyword"
             )
 
 

@@ -33,7 +33,7 @@ def number(value: Any, parameter: str) -> float | None:
     """
     if value is None:
         return None
-    if isinstance(value, bool) or type(value).__name__ == "bool_":
+    if isinstance(value, bool) or type(value).__name__ in ("bool_", "bool"):
         raise ValidationError(parameter, value, "must be a number, not True/False", parameter=True)
     if isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
         raise ValidationError(parameter, value, "must be a real number", parameter=True)
@@ -146,7 +146,7 @@ def choice(value: Any, allowed: tuple[str, ...] | list[str], parameter: str) -> 
 
 def flag(value: Any, parameter: str) -> bool:
     """A yes/no filter: ``True`` or ``False`` (numpy's too), nothing else."""
-    if isinstance(value, bool) or type(value).__name__ == "bool_":
+    if isinstance(value, bool) or type(value).__name__ in ("bool_", "bool"):
         return bool(value)
     raise ValidationError(parameter, repr(value)[:60], "must be True or False", parameter=True)
 

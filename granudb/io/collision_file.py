@@ -29,7 +29,7 @@ import numpy as np
 
 from granudb.errors import ValidationError
 from granudb.io.tables import ColumnMap, check_shape, csv_options, map_headers, read_header
-from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TEXT
+from granudb.vocabulary import COLLISION_MEASURED, COLLISION_REQUIRED, COLLISION_TEXT
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import (
     MAX_NAME,
@@ -42,18 +42,7 @@ from granudb.vocabulary.text import (
 
 NUMERIC = list(COLLISION_MEASURED)  # the measured columns, SI
 TEXT = list(COLLISION_TEXT)
-#: Empty spin cells mean "not measured" and stay empty (NULL); the angle is optional (it is
-#: derived from the velocities), and so are the target sphere's velocities.
-REQUIRED = [
-    "run",
-    "particle",
-    "wall",
-    "diameter_m",
-    "v_n_in_m_s",
-    "v_t_in_m_s",
-    "v_n_out_m_s",
-    "v_t_out_m_s",
-]
+REQUIRED = list(COLLISION_REQUIRED)
 #: Headers of earlier granudb files, read as today's columns.
 ALIASES = {"incidence_angle": "nominal_angle"}
 #: e = v_n_out / v_n_in above this is refused: energy from nowhere, beyond measurement error.

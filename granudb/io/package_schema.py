@@ -13,79 +13,59 @@ import math
 from typing import Any
 
 from granudb.io.units import check_unit_expression, registry
-from granudb.vocabulary import term
+from granudb.vocabulary import (
+    COLLISION_MEASURED,
+    COLLISION_REQUIRED,
+    FLUIDS,
+    MATERIALS,
+    POINT_COLUMNS,
+    SOURCE_COLUMNS,
+    SOURCE_REQUIRED,
+    Catalogue,
+    term,
+)
 from granudb.vocabulary.rules import RULES
 
-# (name, type, required) per resource, in file column order.
+#: Text columns of a package's tables (names, keys, citations); sources and locators too.
+_TEXT = {"key", "citation", "doi", "url", "kind", "notes", "name", "description", "run"}
+_TEXT |= {"particle", "wall", "fluid"}
+
+
+def _fields(columns: list[str], required: list[str]) -> list[tuple[str, str, bool]]:
+    def kind(column: str) -> str:
+        if column == "year":
+            return "integer"
+        text = column in _TEXT or column.endswith(("source", "_locator"))
+        return "string" if text else "number"
+
+    return [(c, kind(c), c in required) for c in columns]
+
+
+def _catalogue(spec: Catalogue) -> list[tuple[str, str, bool]]:
+    """A catalogue's table: name, description, its properties, its sources (each with a
+    locator); a property with a default is always stored, so it is required here."""
+    sources = ["source", "source_locator"]
+    for extra in spec.trailing:
+        if extra.endswith("_source"):
+            sources += [extra, extra.removesuffix("_source") + "_locator"]
+    required = ["name", *spec.required, *spec.defaults]
+    return _fields(["name", "description", *spec.properties, *sources], required)
+
+
+def _point_columns() -> list[str]:
+    return ["fluid", *(c for c in POINT_COLUMNS if c != "source"), "source", "source_locator"]
+
+
+#: (name, type, required) per resource, in file column order: generated from the
+#: vocabulary's catalogue specs and collision columns.
 RESOURCES: dict[str, list[tuple[str, str, bool]]] = {
-    "sources": [
-        ("key", "string", True),
-        ("citation", "string", True),
-        ("doi", "string", False),
-        ("url", "string", False),
-        ("year", "integer", False),
-        ("kind", "string", True),
-        ("notes", "string", False),
-    ],
-    "materials": [
-        ("name", "string", True),
-        ("description", "string", False),
-        ("density_kg_m3", "number", True),
-        ("youngs_modulus_pa", "number", True),
-        ("poisson_ratio", "number", True),
-        ("roughness_rms_m", "number", True),
-        ("correlation_length_m", "number", False),
-        ("shear_modulus_pa", "number", False),
-        ("yield_stress_pa", "number", False),
-        ("source", "string", False),
-        ("source_locator", "string", False),
-    ],
-    "fluids": [
-        ("name", "string", True),
-        ("description", "string", False),
-        ("glycerol_mass_fraction", "number", False),
-        ("reference_density_kg_m3", "number", True),
-        ("reference_viscosity_pa_s", "number", True),
-        ("reference_temperature_c", "number", True),
-        ("pressure_viscosity_pa_inv", "number", False),
-        ("source", "string", False),
-        ("source_locator", "string", False),
-        ("density_source", "string", False),
-        ("density_locator", "string", False),
-        ("pressure_viscosity_source", "string", False),
-        ("pressure_viscosity_locator", "string", False),
-    ],
-    "fluid_points": [
-        ("fluid", "string", True),
-        ("temperature_c", "number", True),
-        ("viscosity_pa_s", "number", True),
-        ("density_kg_m3", "number", False),
-        ("source", "string", False),
-        ("source_locator", "string", False),
-    ],
-    "collisions": [
-        ("run", "string", True),
-        ("particle", "string", True),
-        ("wall", "string", True),
-        ("fluid", "string", False),
-        ("diameter_m", "number", True),
-        ("wall_diameter_m", "number", False),
-        ("nominal_angle_rad", "number", False),
-        ("v_n_in_m_s", "number", True),
-        ("v_t_in_m_s", "number", True),
-        ("omega_in_rad_s", "number", False),
-        ("v_n_out_m_s", "number", True),
-        ("v_t_out_m_s", "number", True),
-        ("omega_out_rad_s", "number", False),
-        ("temperature_c", "number", False),
-        ("wall_v_n_in_m_s", "number", False),
-        ("wall_v_t_in_m_s", "number", False),
-        ("wall_omega_in_rad_s", "number", False),
-        ("wall_v_n_out_m_s", "number", False),
-        ("wall_v_t_out_m_s", "number", False),
-        ("wall_omega_out_rad_s", "number", False),
-        ("notes", "string", False),
-    ],
+    "sources": _fields(SOURCE_COLUMNS, SOURCE_REQUIRED),
+    "materials": _catalogue(MATERIALS),
+    "fluids": _catalogue(FLUIDS),
+    "fluid_points": _fields(_point_columns(), ["fluid", "temperature_c", "viscosity_pa_s"]),
+    "collisions": _fields(
+        ["run", "particle", "wall", "fluid", *COLLISION_MEASURED, "notes"], COLLISION_REQUIRED
+    ),
 }
 
 PRIMARY_KEYS = {

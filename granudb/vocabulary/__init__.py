@@ -13,12 +13,16 @@ from granudb.vocabulary.catalogue import (
     FLUIDS,
     MATERIAL_PROPERTIES,
     MATERIALS,
+    POINT_COLUMNS,
+    SOURCE_COLUMNS,
+    SOURCE_REQUIRED,
     Catalogue,
 )
 from granudb.vocabulary.derived import DERIVED_TERMS, term
 from granudb.vocabulary.rules import RULES, Rule, check_record, check_value
 from granudb.vocabulary.terms import (
     COLLISION_MEASURED,
+    COLLISION_REQUIRED,
     COLLISION_TARGET,
     COLLISION_TEXT,
     TABLES,
@@ -33,10 +37,14 @@ __all__ = [
     "MATERIALS",
     "Catalogue",
     "COLLISION_MEASURED",
+    "COLLISION_REQUIRED",
     "COLLISION_TARGET",
     "COLLISION_TEXT",
     "FLUID_PROPERTIES",
     "MATERIAL_PROPERTIES",
+    "POINT_COLUMNS",
+    "SOURCE_COLUMNS",
+    "SOURCE_REQUIRED",
     "DERIVED_TERMS",
     "RULES",
     "TABLES",

@@ -128,8 +128,9 @@ FLUIDS = Catalogue(
 
 #: A fluid's measured point: viscosity (and density) at a temperature.
 POINT_COLUMNS = ["temperature_c", "viscosity_pa_s", "density_kg_m3", "source"]
-#: The columns of a source.
+#: The columns of a source, and those every source has.
 SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
+SOURCE_REQUIRED = ["key", "citation", "kind"]
 #: What a table of sources shows.
 SOURCE_NARROW = ["key", "year", "kind", "citation", "doi"]
 

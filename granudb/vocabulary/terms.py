@@ -266,6 +266,19 @@ COLLISION_MEASURED = [
 ]
 #: The text columns of a collision as people and files name them.
 COLLISION_TEXT = ["run", "particle", "wall", "fluid", "notes"]
+#: What every collision row must have (a file's rows, a package's table). Empty spin cells
+#: mean "not measured"; the angle is derived from the velocities; the target sphere's
+#: velocities are for a free target only.
+COLLISION_REQUIRED = [
+    "run",
+    "particle",
+    "wall",
+    "diameter_m",
+    "v_n_in_m_s",
+    "v_t_in_m_s",
+    "v_n_out_m_s",
+    "v_t_out_m_s",
+]
 
 TABLES: dict[str, str] = {
     "sources": "Publications, correlations and campaigns that stored numbers come from.",
