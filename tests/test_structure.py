@@ -146,3 +146,26 @@ def test_no_import_cycle() -> None:
         if module not in index:
             visit(module)
     assert cycles == []
+
+
+def test_every_public_physics_relation_documents_each_argument_with_its_unit() -> None:
+    """numpydoc ``Parameters``: every argument of every public relation, with ``[unit]``
+    (``[-]`` when dimensionless)."""
+    import importlib
+    import inspect
+    import re
+
+    missing = []
+    for name in ("apparatus", "contact", "flow", "impact", "limits", "lubrication", "pair",
+                 "viscosity"):  # fmt: skip
+        module = importlib.import_module(f"granudb.physics.{name}")
+        for function_name, function in inspect.getmembers(module, inspect.isfunction):
+            if function.__module__ != module.__name__ or function_name.startswith("_"):
+                continue
+            doc = inspect.getdoc(function) or ""
+            section = doc.split("Parameters\n----------\n", 1)[-1] if "Parameters" in doc else ""
+            for argument in inspect.signature(function).parameters:
+                line = re.search(rf"^(?:\w+, )*{argument}(?:, \w+)* :[^\n]*", section, re.MULTILINE)
+                if line is None or not re.search(r"\[[^\]]+\]", line.group(0)):
+                    missing.append(f"{name}.{function_name}({argument})")
+    assert missing == []

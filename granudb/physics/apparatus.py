@@ -19,6 +19,12 @@ def string_torsional_stiffness(density: Numeric, radius: Numeric, period: Numeri
     R = 6.35 mm, as if R had been the diameter; granudb keeps the printed numbers and
     computes from the formula.
 
+    Parameters
+    ----------
+    density : density ρ of the sphere [kg/m³]
+    radius : sphere radius R [m]
+    period : torsional oscillation period τ [s]
+
     Examples
     --------
     >>> round(float(string_torsional_stiffness(7780.0, 6.35e-3, 6.648)) * 1e9, 2)
@@ -34,6 +40,11 @@ def lateral_contact_stiffness(
 ) -> Numeric:
     r"""Lateral (tangential) stiffness of a Hertz contact, κ = 8 a G* [N/m] (Appendix).
 
+    Parameters
+    ----------
+    contact_radius : contact radius a [m]
+    reduced_shear_modulus_pa : reduced shear modulus G* [Pa]
+
     Examples
     --------
     >>> round(float(lateral_contact_stiffness(212e-6, 14.07e9)) / 1e6, 1)
@@ -46,6 +57,12 @@ def time_scale_ratio(
     radius: Numeric, contact_stiffness: Numeric, string_stiffness: Numeric
 ) -> Numeric:
     r"""τ_string / τ_collision ≈ (1/R) √(κ_contact / K_s) [-] (A 2).
+
+    Parameters
+    ----------
+    radius : sphere radius R [m]
+    contact_stiffness : lateral contact stiffness κ [N/m]
+    string_stiffness : string torsional stiffness K_s [N·m]
 
     Examples
     --------
@@ -65,6 +82,12 @@ def consistent_time_scale_ratio(
     consistent form: the collision's tangential time scale is √(m/κ) and the string's
     √(I₀/K_s). Parameters: ``radius`` R [m], ``contact_stiffness`` κ [N/m],
     ``string_stiffness`` K_s [N·m].
+
+    Parameters
+    ----------
+    radius : sphere radius R [m]
+    contact_stiffness : lateral contact stiffness κ [N/m]
+    string_stiffness : string torsional stiffness K_s [N·m]
 
     Examples
     --------

@@ -93,6 +93,11 @@ def reduced_shear_modulus(
 def effective_radius(radius_1: Numeric, radius_2: Numeric = np.inf) -> Numeric:
     r"""Effective radius of curvature, 1/R = 1/R₁ + 1/R₂; a flat wall has R₂ = ∞ (thesis).
 
+    Parameters
+    ----------
+    radius_1 : radius of body 1 [m]
+    radius_2 : radius of body 2 [m]; ∞ for a flat wall
+
     Examples
     --------
     >>> float(effective_radius(6.35e-3))
@@ -106,6 +111,11 @@ def effective_radius(radius_1: Numeric, radius_2: Numeric = np.inf) -> Numeric:
 def effective_mass(mass_1: Numeric, mass_2: Numeric = np.inf) -> Numeric:
     r"""Effective mass, m = m₁m₂/(m₁+m₂) = 1/(1/m₁ + 1/m₂); a wall has m₂ = ∞.
 
+    Parameters
+    ----------
+    mass_1 : mass of body 1 [kg]
+    mass_2 : mass of body 2 [kg]; ∞ for a wall or a fixed sphere
+
     Examples
     --------
     >>> float(effective_mass(2.0, 2.0))
@@ -116,6 +126,11 @@ def effective_mass(mass_1: Numeric, mass_2: Numeric = np.inf) -> Numeric:
 
 def sphere_mass(density: Numeric, diameter: Numeric) -> Numeric:
     r"""Mass of a solid sphere, m = ρ π d³ / 6 [kg] from density [kg/m³] and diameter [m].
+
+    Parameters
+    ----------
+    density : density ρ of the sphere [kg/m³]
+    diameter : diameter d [m]
 
     Examples
     --------
@@ -129,6 +144,11 @@ def sphere_mass(density: Numeric, diameter: Numeric) -> Numeric:
 def composite_roughness(roughness_1: Numeric, roughness_2: Numeric) -> Numeric:
     r"""Composite RMS roughness of two surfaces, σ = √(σ₁² + σ₂²) [m] (tribology).
 
+    Parameters
+    ----------
+    roughness_1 : RMS roughness of surface 1 [m]
+    roughness_2 : RMS roughness of surface 2 [m]
+
     Examples
     --------
     >>> round(float(composite_roughness(0.1305e-6, 0.0155e-6)) * 1e9, 1)
@@ -140,6 +160,11 @@ def composite_roughness(roughness_1: Numeric, roughness_2: Numeric) -> Numeric:
 def wave_speed(youngs_modulus: Numeric, density: Numeric) -> Numeric:
     r"""Bulk elastic wave speed, c = √(E/ρ) [m/s] (thesis §3).
 
+    Parameters
+    ----------
+    youngs_modulus : Young's modulus E [Pa]
+    density : density ρ [kg/m³]
+
     Examples
     --------
     >>> round(float(wave_speed(190e9, 7780.0)))
@@ -150,6 +175,12 @@ def wave_speed(youngs_modulus: Numeric, density: Numeric) -> Numeric:
 
 def hertz_force(reduced_modulus_pa: Numeric, radius: Numeric, approach: Numeric) -> Numeric:
     r"""Static Hertz force, F = (4/3) E* R^{1/2} δ^{3/2} [N] (thesis (3.1)).
+
+    Parameters
+    ----------
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    radius : radius R (the effective radius for two bodies) [m]
+    approach : approach of the centres δ [m]
 
     Examples
     --------
@@ -170,6 +201,11 @@ def hertz_force(reduced_modulus_pa: Numeric, radius: Numeric, approach: Numeric)
 def contact_radius_from_approach(radius: Numeric, approach: Numeric) -> Numeric:
     r"""Hertz contact radius under approach δ, a = √(R δ) [m] (thesis (3.5)).
 
+    Parameters
+    ----------
+    radius : radius R (the effective radius for two bodies) [m]
+    approach : approach of the centres δ [m]
+
     Examples
     --------
     >>> float(contact_radius_from_approach(1e-2, 1e-6))
@@ -182,6 +218,12 @@ def elastic_energy(reduced_modulus_pa: Numeric, radius: Numeric, approach: Numer
     r"""Elastic energy stored at approach δ, W_el = (8/15) E* R^{1/2} δ^{5/2} [J].
 
     The integral of (3.1) over δ.
+
+    Parameters
+    ----------
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    radius : radius R (the effective radius for two bodies) [m]
+    approach : approach of the centres δ [m]
 
     Examples
     --------
@@ -205,6 +247,13 @@ def max_approach(
     Found by equating the kinetic energy ½mV² with the stored energy (8/15)E*R^{1/2}δ^{5/2}
     (Johnson 1985 §11.4). ``mass`` is the effective mass, ``speed`` the normal speed.
 
+    Parameters
+    ----------
+    mass : mass m (the effective mass for two bodies) [kg]
+    speed : impact speed V (the normal component for an oblique impact) [m/s]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    radius : radius R (the effective radius for two bodies) [m]
+
     Examples
     --------
     >>> round(float(max_approach(8.33e-3, 0.3, 65.6e9, 6.35e-3)) * 1e6, 3)
@@ -222,6 +271,13 @@ def contact_time(
     mass: Numeric, radius: Numeric, reduced_modulus_pa: Numeric, speed: Numeric
 ) -> Numeric:
     r"""Hertz contact duration, t_c ≈ 2.87 (m² / (R E*² V))^{1/5} [s] (Johnson §11.4).
+
+    Parameters
+    ----------
+    mass : mass m (the effective mass for two bodies) [kg]
+    radius : radius R (the effective radius for two bodies) [m]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    speed : impact speed V (the normal component for an oblique impact) [m/s]
 
     Examples
     --------
@@ -246,6 +302,11 @@ def contact_time_from_approach(approach: Numeric, speed: Numeric) -> Numeric:
     ``contact_time`` is (16/15)^{2/5} δ_max / V. ``derive`` has δ_max already, and a
     division is far cheaper than a fifth root.
 
+    Parameters
+    ----------
+    approach : maximum approach δ_max [m]
+    speed : normal impact speed V [m/s]
+
     Examples
     --------
     >>> delta = max_approach(8.33e-3, 0.3, 65.6e9, 6.35e-3)
@@ -263,6 +324,13 @@ def peak_impact_force(
     For a sphere of density ρ_p on a flat wall this equals the equivalent impact load
     (2.2) exactly (``hertz_impact_load``); for two spheres it uses the effective mass.
 
+    Parameters
+    ----------
+    mass : mass m (the effective mass for two bodies) [kg]
+    speed : impact speed V (the normal component for an oblique impact) [m/s]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    radius : radius R (the effective radius for two bodies) [m]
+
     Examples
     --------
     >>> m = float(sphere_mass(7780.0, 12.7e-3))
@@ -279,6 +347,13 @@ def hertz_impact_load(
     r"""Equivalent impact load, W = (4/3) R² E* (5π ρ_p V² / (4E*))^{3/5} [N] (2.2).
 
     ``speed`` is the normal component v_N,in for an oblique impact.
+
+    Parameters
+    ----------
+    radius : radius R (the effective radius for two bodies) [m]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    particle_density : particle density ρ_p [kg/m³]
+    speed : impact speed V (the normal component for an oblique impact) [m/s]
 
     Examples
     --------
@@ -298,6 +373,12 @@ def hertz_impact_load(
 def max_contact_radius(radius: Numeric, load: Numeric, reduced_modulus_pa: Numeric) -> Numeric:
     r"""Contact radius at the peak load, a = (3 R W / (4 E*))^{1/3} [m] (2.1).
 
+    Parameters
+    ----------
+    radius : radius R (the effective radius for two bodies) [m]
+    load : impact load W [N]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+
     Examples
     --------
     >>> round(float(max_contact_radius(6.35e-3, 132.07, 65.6e9)) * 1e6, 1)
@@ -308,6 +389,11 @@ def max_contact_radius(radius: Numeric, load: Numeric, reduced_modulus_pa: Numer
 
 def max_pressure(load: Numeric, contact_radius: Numeric) -> Numeric:
     r"""Maximum Hertz pressure, p_max = 3W / (2π a²) [Pa] (5.5).
+
+    Parameters
+    ----------
+    load : impact load W [N]
+    contact_radius : contact radius a [m]
 
     Examples
     --------
@@ -322,6 +408,12 @@ def max_pressure_from_impact(
 ) -> Numeric:
     r"""Maximum Hertz pressure of a sphere hitting a flat wall,
     p_max = (40 ρ_p V² E*⁴ / π⁴)^{1/5} [Pa] (5.5).
+
+    Parameters
+    ----------
+    particle_density : particle density ρ_p [kg/m³]
+    speed : impact speed V (the normal component for an oblique impact) [m/s]
+    reduced_modulus_pa : reduced modulus E* [Pa]
 
     Examples
     --------
@@ -346,6 +438,12 @@ def quasi_static_ratio(
     of the elastic waves it radiates, λ ≫ a (thesis (3.18); Johnson 1985 pp. 351–360).
     granudb calls the impact quasi-static when this ratio is below
     ``QUASI_STATIC_LIMIT``.
+
+    Parameters
+    ----------
+    contact_radius : contact radius a [m]
+    wave_speed_m_s : bulk elastic wave speed c [m/s]
+    contact_time_s : contact duration t_c [s]
 
     Examples
     --------

@@ -19,6 +19,13 @@ def reynolds_number(
 ) -> Numeric:
     r"""Particle Reynolds number, Re = 2 ρ_f R V / μ (Joseph & Hunt §1).
 
+    Parameters
+    ----------
+    fluid_density : fluid density ρ_f [kg/m³]
+    radius : radius R (the effective radius for two bodies) [m]
+    speed : impact speed V (the normal component for an oblique impact) [m/s]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+
     Examples
     --------
     Figure 3: a 12.7 mm glass sphere at 0.1193 m/s in 45 % glycerol (4.5 cP, 1112 kg/m³):
@@ -35,6 +42,13 @@ def stokes_number(
     r"""Stokes number, St = m V / (6π μ R²) = 2 ρ_p R V / (9 μ) (Joseph & Hunt §1).
 
     The ratio of the particle's inertia to the viscous force; equal to Re (ρ_p/ρ_f) / 9.
+
+    Parameters
+    ----------
+    particle_density : particle density ρ_p [kg/m³]
+    radius : radius R (the effective radius for two bodies) [m]
+    speed : impact speed V (the normal component for an oblique impact) [m/s]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
 
     Examples
     --------
@@ -59,6 +73,13 @@ def normal_stokes_number(
 
     Rebound is expected when St_n exceeds the critical Stokes number (about 10).
 
+    Parameters
+    ----------
+    particle_density : particle density ρ_p [kg/m³]
+    radius : radius R (the effective radius for two bodies) [m]
+    normal_speed : normal approach speed v_N,in [m/s]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+
     Examples
     --------
     >>> round(float(normal_stokes_number(2540.0, 6.35e-3, 0.1193 * 0.9397, 4.5e-3)), 1)
@@ -71,6 +92,13 @@ def speed_for_stokes_number(
     stokes: Numeric, particle_density: Numeric, radius: Numeric, viscosity: Numeric
 ) -> Numeric:
     r"""The speed giving Stokes number ``stokes``: V = 9 μ St / (2 ρ_p R) [m/s].
+
+    Parameters
+    ----------
+    stokes : Stokes number St [-]
+    particle_density : particle density ρ_p [kg/m³]
+    radius : radius R (the effective radius for two bodies) [m]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
 
     Examples
     --------
@@ -105,8 +133,12 @@ def added_mass_stokes_number(
 
     Parameters
     ----------
-    particle_density, fluid_density : ρ_p, ρ_f [kg/m³]; radius : R [m];
-    speed : V, the normal impact speed [m/s]; viscosity : μ [Pa·s]
+    particle_density : particle density ρ_p [kg/m³]
+    fluid_density : fluid density ρ_f [kg/m³]
+    radius : radius R (the effective radius for two bodies) [m]
+    speed : normal impact speed V [m/s]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    added_mass : added-mass coefficient C_M; 1/2 for a sphere [-]
 
     Examples
     --------
@@ -136,6 +168,13 @@ def predicted_restitution(
     added-mass Stokes number the form was fitted with (``added_mass_stokes_number``);
     ``dry_restitution`` defaults to Joseph & Hunt's ē_dry = 0.97 (§3). A NaN Stokes
     number (dry) gives e_dry.
+
+    Parameters
+    ----------
+    stokes : Stokes number St (the added-mass one the form was fitted with) [-]
+    dry_restitution : dry normal restitution e_dry [-]
+    critical_stokes : critical Stokes number St_c, no rebound below it [-]
+    coefficient : β_L of the exponential law [-]
 
     Examples
     --------

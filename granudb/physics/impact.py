@@ -28,6 +28,11 @@ STICK, SLIP_THEN_STICK, GROSS_SLIP = 0, 1, 2
 def normal_restitution(v_n_in: Numeric, v_n_out: Numeric) -> Numeric:
     r"""Normal coefficient of restitution e = v_n_out / v_n_in (§2, stored speeds positive).
 
+    Parameters
+    ----------
+    v_n_in : normal speed before impact v_N,in [m/s]
+    v_n_out : normal speed after impact (positive, away from the target) [m/s]
+
     Examples
     --------
     >>> float(normal_restitution(0.3, 0.291))
@@ -38,6 +43,12 @@ def normal_restitution(v_n_in: Numeric, v_n_out: Numeric) -> Numeric:
 
 def contact_point_velocity(v_t: Numeric, omega: Numeric, radius: Numeric) -> Numeric:
     r"""Tangential velocity of the contact point, v_T = v_t + ωR [m/s] (§2).
+
+    Parameters
+    ----------
+    v_t : tangential velocity of the centre v_t [m/s]
+    omega : angular velocity ω [rad/s]
+    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -52,6 +63,11 @@ def rotational_restitution(v_T_in: Numeric, v_T_out: Numeric) -> Numeric:
 
     −1 pure sliding, 0 rolling, +1 full recoil. Undefined (NaN, never ±inf) for a normal
     impact, v_T,in = 0.
+
+    Parameters
+    ----------
+    v_T_in : tangential velocity of the contact point before impact v_T,in [m/s]
+    v_T_out : tangential velocity of the contact point after impact v_T,out [m/s]
 
     Examples
     --------
@@ -68,6 +84,11 @@ def rotational_restitution(v_T_in: Numeric, v_T_out: Numeric) -> Numeric:
 def effective_incidence(v_T_in: Numeric, v_n_in: Numeric) -> Numeric:
     r"""Effective incidence angle Ψ_in = v_T,in / v_N,in = tan ζ_in (2.5).
 
+    Parameters
+    ----------
+    v_T_in : tangential velocity of the contact point before impact v_T,in [m/s]
+    v_n_in : normal speed before impact v_N,in [m/s]
+
     Examples
     --------
     >>> float(effective_incidence(0.1, 0.2))
@@ -79,6 +100,11 @@ def effective_incidence(v_T_in: Numeric, v_n_in: Numeric) -> Numeric:
 def effective_rebound(v_T_out: Numeric, v_n_in: Numeric) -> Numeric:
     r"""Effective rebound angle Ψ_out = v_T,out / v_N,in = e tan ζ_out (2.5).
 
+    Parameters
+    ----------
+    v_T_out : tangential velocity of the contact point after impact v_T,out [m/s]
+    v_n_in : normal speed before impact v_N,in [m/s]
+
     Examples
     --------
     >>> float(effective_rebound(-0.034, 0.2))
@@ -89,6 +115,10 @@ def effective_rebound(v_T_out: Numeric, v_n_in: Numeric) -> Numeric:
 
 def gyration_factor(gyration: Numeric = SOLID_SPHERE_GYRATION) -> Numeric:
     r"""1 + 1/K², the factor of the Walton relations; 7/2 for a solid sphere.
+
+    Parameters
+    ----------
+    gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
 
     Examples
     --------
@@ -109,6 +139,13 @@ def sliding_friction(
     Equals the sliding friction coefficient for a sliding collision; for a sticking one it
     is 2(1+β)Ψ_in / (7(1+e)) (2.10), a lower bound.
 
+    Parameters
+    ----------
+    psi_in : effective incidence Ψ_in [-]
+    psi_out : effective rebound Ψ_out [-]
+    restitution : normal restitution e [-]
+    gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
+
     Examples
     --------
     >>> round(float(sliding_friction(2.0, 2.0 - 0.11 * 1.97 * 3.5, 0.97)), 6)
@@ -121,6 +158,12 @@ def sliding_friction(
 
 def sticking_friction(psi_in: Numeric, beta: Numeric, restitution: Numeric) -> Numeric:
     r"""(2.10): μ_f = 2(1+β) Ψ_in / (7(1+e)), i.e. (2.9) with Ψ_out = −βΨ_in, K² = 2/5.
+
+    Parameters
+    ----------
+    psi_in : effective incidence Ψ_in [-]
+    beta : rotational restitution β [-]
+    restitution : normal restitution e [-]
 
     Examples
     --------
@@ -140,6 +183,14 @@ def walton_rebound(
     r"""Walton's Ψ_out: −βΨ_in when sticking (2.7), Ψ_in − μ_f(1+e)(1+1/K²) when sliding
     (2.6), whichever is larger (the collision slides only while it can).
 
+    Parameters
+    ----------
+    psi_in : effective incidence Ψ_in [-]
+    beta : rotational restitution β [-]
+    friction : sliding friction coefficient μ_f [-]
+    restitution : normal restitution e [-]
+    gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
+
     Examples
     --------
     >>> [round(float(x), 4) for x in walton_rebound(np.array([0.2, 2.0]), 0.34, 0.11, 0.97)]
@@ -152,6 +203,11 @@ def walton_rebound(
 
 def stiffness_ratio(reduced_shear_modulus_pa: Numeric, reduced_modulus_pa: Numeric) -> Numeric:
     r"""2G*/E*, the pair's (1−ν)/(2−ν) (exactly so for identical materials; see module doc).
+
+    Parameters
+    ----------
+    reduced_shear_modulus_pa : reduced shear modulus G* [Pa]
+    reduced_modulus_pa : reduced modulus E* [Pa]
 
     Examples
     --------
@@ -170,6 +226,11 @@ def maw_chi(ratio: Numeric, gyration: Numeric = SOLID_SPHERE_GYRATION) -> Numeri
 
     ``ratio`` is (1−ν)/(2−ν) for one material, or ``stiffness_ratio`` for a pair.
 
+    Parameters
+    ----------
+    ratio : (1−ν)/(2−ν) of the material, or the pair's stiffness ratio 2G*/E* [-]
+    gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
+
     Examples
     --------
     >>> round(float(maw_chi((1 - 0.27) / (2 - 0.27))), 4)
@@ -180,6 +241,13 @@ def maw_chi(ratio: Numeric, gyration: Numeric = SOLID_SPHERE_GYRATION) -> Numeri
 
 def maw_psi(ratio: Numeric, v_T: Numeric, friction: Numeric, v_n_in: Numeric) -> Numeric:
     r"""Maw's local contact angle ψ = 2(1−ν) v_T / (μ_f (2−ν) v_N,in) (2.4).
+
+    Parameters
+    ----------
+    ratio : (1−ν)/(2−ν) of the material, or the pair's stiffness ratio 2G*/E* [-]
+    v_T : tangential velocity of the contact point v_T [m/s]
+    friction : friction coefficient μ_f [-]
+    v_n_in : normal speed before impact v_N,in [m/s]
 
     Examples
     --------
@@ -195,6 +263,11 @@ def tangential_regime(psi_in: Numeric, chi: Numeric) -> np.ndarray:
     1 < ψ_in < 4χ−1 gross slip then stick, 1; ψ_in ≥ 4χ−1 gross slip throughout, 2.
     Names: ``TANGENTIAL_REGIME_NAMES[code]``.
 
+    Parameters
+    ----------
+    psi_in : effective incidence Ψ_in [-]
+    chi : Maw's modified radius of gyration χ [-]
+
     Examples
     --------
     >>> tangential_regime(np.array([0.5, 3.0, 6.0]), 1.4769).tolist()
@@ -207,6 +280,11 @@ def tangential_regime(psi_in: Numeric, chi: Numeric) -> np.ndarray:
 
 def rolling_friction_coefficient(rolling_length: Numeric, radius: Numeric) -> Numeric:
     r"""Rolling friction coefficient μ_r = λ_r / R (thesis (3.11)).
+
+    Parameters
+    ----------
+    rolling_length : rolling friction length λ_r [m]
+    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -221,6 +299,12 @@ def rolling_resistance_moment(
 ) -> Numeric:
     r"""Rolling resistance moment M_r = μ_r R_n R [N·m] (thesis (3.11)).
 
+    Parameters
+    ----------
+    rolling_coefficient : rolling friction coefficient μ_r [-]
+    normal_force : normal force R_n [N]
+    radius : radius R (the effective radius for two bodies) [m]
+
     Examples
     --------
     >>> float(rolling_resistance_moment(0.002, 10.0, 5e-3))
@@ -231,6 +315,11 @@ def rolling_resistance_moment(
 
 def restitution_from_energy(energy_returned: Numeric, energy_stored: Numeric) -> Numeric:
     r"""Restitution from energies, e = √(W′/W) (thesis (3.22)).
+
+    Parameters
+    ----------
+    energy_returned : energy returned in unloading W′ [J]
+    energy_stored : elastic energy stored at the peak W [J]
 
     Examples
     --------

@@ -77,6 +77,12 @@ def yield_speed_from_pressure(
     p_max computed with m* and R*. ``normal_speed`` V [m/s] is the speed p_max was
     computed at, ``max_pressure_pa`` [Pa], ``yield_stress`` Y [Pa].
 
+    Parameters
+    ----------
+    normal_speed : normal speed V at which p_max was computed [m/s]
+    max_pressure_pa : maximum Hertz pressure p_max [Pa]
+    yield_stress : yield stress Y of the softer body [Pa]
+
     Examples
     --------
     >>> from granudb.physics.contact import max_pressure_from_impact
@@ -98,6 +104,12 @@ def elastic_state(
     a yield stress is not known. Exceeded when p_max exceeds 1.6 × any known Y (the softer
     body yields no later); elastic only when both Y are known and neither is reached;
     otherwise unknown — never read as safe.
+
+    Parameters
+    ----------
+    max_pressure_pa : maximum Hertz pressure p_max [Pa]
+    particle_yield_stress : particle's yield stress Y [Pa]; NaN where not known
+    wall_yield_stress : target's yield stress Y [Pa]; NaN where not known
 
     Examples
     --------
@@ -128,6 +140,14 @@ def lubricated_friction_state(
     or the limiting-shear cap γ_max (Bair & Winer 1979): the model is outside its range,
     not a prediction; ``"in_range"`` otherwise.
 
+    Parameters
+    ----------
+    friction : lubricated friction μ_f from (5.8) [-]
+    immersed : whether the collision is in a liquid [bool]
+    has_pressure_coefficient : whether the fluid has a pressure–viscosity coefficient [bool]
+    dry_friction : dry friction coefficient μ_dry [-]
+    limiting_shear_slope : slope γ of the limiting shear stress τ_L = τ_L0 + γ p [-]
+
     Examples
     --------
     >>> code = lubricated_friction_state(np.array([0.02, 169.0, np.nan, np.nan]),
@@ -152,6 +172,11 @@ def friction_cap(
 ) -> Numeric:
     r"""The largest lubricated μ_f the film model may give: min(μ_dry, γ_max) [-] (§12).
 
+    Parameters
+    ----------
+    dry_friction : dry friction coefficient μ_dry [-]
+    limiting_shear_slope : slope γ of the limiting shear stress τ_L = τ_L0 + γ p [-]
+
     Examples
     --------
     >>> float(friction_cap(0.11))
@@ -167,6 +192,11 @@ def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
     ``"asperity_contact"`` σ > x₁/3 (above the largest gap), ``"uncertain"``
     x₁/4 < σ ≤ x₁/3, ``"film"`` σ ≤ x₁/4; ``"dry"`` where x₁ is NaN (no liquid).
     ``roughness`` σ [m], ``elastic_length`` x₁ [m].
+
+    Parameters
+    ----------
+    roughness : composite RMS roughness σ [m]
+    elastic_length : Davis's elastic length x₁ [m]; NaN where there is no liquid
 
     Examples
     --------
@@ -186,6 +216,11 @@ def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
 
 def names(states: tuple[str, ...], code: Numeric) -> np.ndarray:
     """Text states from the integer codes the verdict functions return (object array).
+
+    Parameters
+    ----------
+    states : the names of the states, by code [-]
+    code : integer state codes [-]
 
     Examples
     --------

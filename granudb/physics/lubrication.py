@@ -48,6 +48,13 @@ def davis_elastic_length(
 
     The scale of the gap at which the approaching sphere's pressure deforms the surfaces.
 
+    Parameters
+    ----------
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    approach_speed : normal approach speed v₀ [m/s]
+    radius : radius R (the effective radius for two bodies) [m]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+
     Examples
     --------
     Glass on Zerodur (E* = 38.25 GPa) at 0.1 m/s in 4.5 cP glycerol:
@@ -68,6 +75,11 @@ def davis_elastic_length(
 def ehd_min_gap(elastic_length: Numeric, fraction: float = GAP_FRACTION) -> Numeric:
     r"""Elastohydrodynamic minimum gap of a normal approach, h_m ≈ x₁/3 [m] (§1, §4).
 
+    Parameters
+    ----------
+    elastic_length : Davis's elastic length x₁ [m]; NaN where there is no liquid
+    fraction : h_m / x₁, 1/3 in the paper (Davis et al. give 1/4 to 1/3) [-]
+
     Examples
     --------
     >>> round(float(ehd_min_gap(141.8e-9)) * 1e9, 2)
@@ -80,6 +92,13 @@ def piezoviscous_length(
     eta_hat: Numeric, viscosity: Numeric, approach_speed: Numeric, radius: Numeric
 ) -> Numeric:
     r"""Piezoviscous length, x₃ = (η̂ μ₀ v₀ R)^{1/2} [m] (§1, Barnocky & Davis 1989).
+
+    Parameters
+    ----------
+    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    approach_speed : normal approach speed v₀ [m/s]
+    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -96,6 +115,12 @@ def barus_viscosity(
 ) -> Numeric:
     r"""Barus law, μ(p) = μ₀ exp(C p) [Pa·s] (§5).
 
+    Parameters
+    ----------
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    pressure_coefficient : Barus pressure–viscosity coefficient C [1/Pa]
+    pressure : pressure p [Pa]
+
     Examples
     --------
     >>> round(float(barus_viscosity(1e-3, 6e-9, 1e8)), 6)
@@ -106,6 +131,10 @@ def barus_viscosity(
 
 def chu_cameron_coefficient(pressure_coefficient: Numeric) -> Numeric:
     r"""η̂ = C/16, matching Chu–Cameron to Barus at low pressure [1/Pa] (§5).
+
+    Parameters
+    ----------
+    pressure_coefficient : Barus pressure–viscosity coefficient C [1/Pa]
 
     Examples
     --------
@@ -120,6 +149,12 @@ def chu_cameron_coefficient(pressure_coefficient: Numeric) -> Numeric:
 def chu_cameron_viscosity(viscosity: Numeric, eta_hat: Numeric, pressure: Numeric) -> Numeric:
     r"""Chu–Cameron law, μ(p) = μ₀ (1 + η̂ p)^{16} [Pa·s] (5.1).
 
+    Parameters
+    ----------
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
+    pressure : pressure p [Pa]
+
     Examples
     --------
     >>> round(float(chu_cameron_viscosity(1e-3, 375e-12, 1e8)), 6)
@@ -133,6 +168,10 @@ def friction_integral(c: Numeric) -> Numeric:
 
     With s = √(1−z²), A(c) = ∫₀¹ s (1 + c s)^{16} ds = Σ_{k=0}^{16} C(16,k) c^k/(k+2): a
     polynomial, evaluated by Horner's rule (no quadrature). A(0) = 1/2.
+
+    Parameters
+    ----------
+    c : c = η̂ p_max [-]
 
     Examples
     --------
@@ -165,6 +204,15 @@ def traction_film_thickness(
 
     ``tangential_speed`` U is the contact point's tangential speed, ``load`` W from (2.2).
 
+    Parameters
+    ----------
+    radius : radius R (the effective radius for two bodies) [m]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    tangential_speed : tangential speed of the contact point U [m/s]
+    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
+    load : impact load W [N]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+
     Examples
     --------
     >>> round(float(traction_film_thickness(6.35e-3, 1e-3, 0.1, 375e-12, 132.1, 65.64e9))
@@ -196,6 +244,17 @@ def lubricated_friction(
     The shear stress μ(r)U/h of the piezoviscous film integrated over the Hertz contact.
     Where U = 0 the result is 0 (μ_f ∝ U^{2/7} as U → 0). ``integral``: A(η̂ p_max) if
     the caller has it already (``friction_integral``), else it is computed here.
+
+    Parameters
+    ----------
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    tangential_speed : tangential speed of the contact point U [m/s]
+    load : impact load W [N]
+    film_thickness : film thickness h [m]
+    contact_radius : contact radius a [m]
+    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
+    max_pressure_pa : maximum Hertz pressure p_max [Pa]
+    integral : A(η̂ p_max) of (5.9) if already computed, else None [-]
 
     Examples
     --------
@@ -245,9 +304,15 @@ def lubricated_friction_dimensionless(
 
     Parameters
     ----------
-    viscosity : μ₀ [Pa·s]; tangential_speed : U [m/s]; reduced_modulus_pa : E* [Pa];
-    radius : R [m]; eta_hat : η̂ [1/Pa]; particle_density : ρ_p [kg/m³];
-    normal_speed : V = v_N,in [m/s]; integral : A(η̂ p_max) [-]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    tangential_speed : tangential speed of the contact point U [m/s]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    radius : radius R (the effective radius for two bodies) [m]
+    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
+    particle_density : particle density ρ_p [kg/m³]
+    normal_speed : normal approach speed v_N,in [m/s]
+    integral : A(η̂ p_max) of (5.9) [-]
+    factor : the constant of (5.10), 0.87 rounded; its exact value by default [-]
 
     Examples
     --------
@@ -269,6 +334,13 @@ def shear_strain(
     viscosity: Numeric, tangential_speed: Numeric, reduced_modulus_pa: Numeric, radius: Numeric
 ) -> Numeric:
     r"""The shear-strain regime axis of figure 15, (μ₀U/(E*R))^{2/7} [-] (§5).
+
+    Parameters
+    ----------
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    tangential_speed : tangential speed of the contact point U [m/s]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -299,6 +371,18 @@ def viscosity_for_friction(
     The paper fits μ₀ this way (figure 14) to find the temperature in the gap (table 2).
     K is the exact constant (``DIMENSIONLESS_FRICTION_FACTOR``) unless ``factor`` says
     otherwise.
+
+    Parameters
+    ----------
+    friction : measured friction coefficient μ_f [-]
+    tangential_speed : tangential speed of the contact point U [m/s]
+    reduced_modulus_pa : reduced modulus E* [Pa]
+    radius : radius R (the effective radius for two bodies) [m]
+    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
+    particle_density : particle density ρ_p [kg/m³]
+    normal_speed : normal approach speed v_N,in [m/s]
+    integral : A(η̂ p_max) of (5.9) [-]
+    factor : the constant K of (5.10); its exact value by default [-]
 
     Examples
     --------

@@ -115,8 +115,10 @@ def walton_sliding_rebound(
 
     Parameters
     ----------
-    psi_in : Ψ_in = v_T,in / v_N,in of the relative contact-point velocity [-]
-    friction : μ_f [-]; restitution : e [-]; factor : the Walton factor B [-]
+    psi_in : effective incidence Ψ_in [-]
+    friction : sliding friction coefficient μ_f [-]
+    restitution : normal restitution e [-]
+    factor : Walton factor B; 7/2 for a sphere on a wall or two equal spheres [-]
 
     Examples
     --------
@@ -131,6 +133,13 @@ def pair_sliding_friction(
 ) -> Numeric:
     r"""Friction from one collision of a pair, μ_f = (Ψ_in − Ψ_out) / ((1+e) B) [-]
     ((2.9) generalised, §9; B = 7/2 gives (2.9)).
+
+    Parameters
+    ----------
+    psi_in : effective incidence Ψ_in [-]
+    psi_out : effective rebound Ψ_out [-]
+    restitution : normal restitution e [-]
+    factor : Walton factor B; 7/2 for a sphere on a wall or two equal spheres [-]
 
     Examples
     --------
@@ -153,8 +162,10 @@ def pair_stokes_number(
 
     Parameters
     ----------
-    effective_mass : m* [kg]; speed : V [m/s]; viscosity : μ [Pa·s];
-    effective_radius : R* [m]
+    effective_mass : effective mass m* [kg]
+    speed : relative impact speed V [m/s]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    effective_radius : effective radius R* [m]
 
     Examples
     --------
@@ -180,6 +191,13 @@ def pair_normal_stokes_number(
 
     ``normal_speed`` is the relative normal approach speed v_N,in [m/s].
 
+    Parameters
+    ----------
+    effective_mass : effective mass m* [kg]
+    normal_speed : normal approach speed v_N,in [m/s]
+    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
+    effective_radius : effective radius R* [m]
+
     Examples
     --------
     >>> m = 2540.0 * np.pi * 12.7e-3**3 / 6
@@ -194,6 +212,11 @@ def contact_incidence_angle(v_T_in: Numeric, v_N_in: Numeric) -> Numeric:
 
     ``v_T_in`` is the relative tangential velocity of the contact point (spin counts),
     ``v_N_in`` the relative normal approach speed (> 0). In [0, π/2).
+
+    Parameters
+    ----------
+    v_T_in : tangential velocity of the contact point before impact v_T,in [m/s]
+    v_N_in : relative normal approach speed v_N,in (> 0) [m/s]
 
     Examples
     --------

@@ -36,6 +36,10 @@ def water_viscosity_cheng(temperature_c: Numeric) -> Numeric:
     r"""Viscosity of water, μ_w = 1.790 exp((−1230 − T)T / (36100 + 360T)) mPa·s,
     T in °C (Cheng 2008, eq. 21); returned in Pa·s.
 
+    Parameters
+    ----------
+    temperature_c : temperature T [°C]
+
     Examples
     --------
     >>> round(float(water_viscosity_cheng(20.0)) * 1e3, 3)
@@ -48,6 +52,10 @@ def water_viscosity_cheng(temperature_c: Numeric) -> Numeric:
 def glycerol_viscosity_cheng(temperature_c: Numeric) -> Numeric:
     r"""Viscosity of glycerol, μ_g = 12100 exp((−1233 + T)T / (9900 + 70T)) mPa·s
     (Cheng 2008, eq. 22); returned in Pa·s.
+
+    Parameters
+    ----------
+    temperature_c : temperature T [°C]
 
     Examples
     --------
@@ -63,6 +71,11 @@ def glycerol_water_viscosity(mass_fraction: Numeric, temperature_c: Numeric) -> 
 
     α = 1 − C_m + a b C_m (1 − C_m) / (a C_m + b (1 − C_m)), a = 0.705 − 0.0017 T,
     b = (4.9 + 0.036 T) a^{2.5}; C_m the glycerol mass fraction, T in °C.
+
+    Parameters
+    ----------
+    mass_fraction : glycerol mass fraction C_m [-]
+    temperature_c : temperature T [°C]
 
     Examples
     --------
@@ -87,6 +100,10 @@ def glycerol_water_viscosity(mass_fraction: Numeric, temperature_c: Numeric) -> 
 def water_density_volk(temperature_c: Numeric) -> Numeric:
     r"""Density of water, ρ_w = 1000 (1 − |(T − 3.98)/615|^{1.71}) kg/m³ (Volk & Kähler 2018).
 
+    Parameters
+    ----------
+    temperature_c : temperature T [°C]
+
     Examples
     --------
     >>> round(float(water_density_volk(20.0)), 2)
@@ -98,6 +115,10 @@ def water_density_volk(temperature_c: Numeric) -> Numeric:
 
 def glycerol_density_volk(temperature_c: Numeric) -> Numeric:
     r"""Density of glycerol, ρ_g = 1273 − 0.612 T kg/m³ (Volk & Kähler 2018, after Cheng).
+
+    Parameters
+    ----------
+    temperature_c : temperature T [°C]
 
     Examples
     --------
@@ -111,6 +132,11 @@ def glycerol_water_density(mass_fraction: Numeric, temperature_c: Numeric) -> Nu
     r"""Density of a water–glycerol mixture with volume contraction (Volk & Kähler 2018):
     ρ = ρ_ideal (1 + κ sin(C_m^{1.31} π)^{0.81}) [kg/m³], with
     1/ρ_ideal = C_m/ρ_g + (1 − C_m)/ρ_w and κ = 1.78×10⁻⁶ T² − 1.82×10⁻⁴ T + 1.41×10⁻².
+
+    Parameters
+    ----------
+    mass_fraction : glycerol mass fraction C_m [-]
+    temperature_c : temperature T [°C]
 
     Examples
     --------
