@@ -1,5 +1,5 @@
 """Fits of measured collisions: Walton's β and μ_f, restitution against Stokes number, and
-the gap viscosity of smooth sliding collisions (Joseph & Hunt §3–§5; PHYSICS.md §14).
+the gap viscosity of smooth sliding collisions (Joseph & Hunt §3–§5; docs/physics.md §14).
 
 All fits take the DataFrame of ``granudb.analysis.query.select_collisions`` (or any frame
 with the columns they read) and work per group (dataset × particle × wall × fluid). The

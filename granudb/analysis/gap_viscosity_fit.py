@@ -1,5 +1,5 @@
 """The gap viscosity μ₀ of smooth sliding collisions and the gap temperature it implies
-(Joseph & Hunt 2004 §5, figure 14, table 2; PHYSICS.md §6, §9, §14).
+(Joseph & Hunt 2004 §5, figure 14, table 2; docs/physics.md §6, §9, §14).
 
 Why this shape:
 

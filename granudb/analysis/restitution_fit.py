@@ -1,5 +1,5 @@
 """Restitution against the normal Stokes number, e(St_n), per (dataset, particle, wall)
-(Joseph & Hunt 2004 figure 5; PHYSICS.md §10).
+(Joseph & Hunt 2004 figure 5; docs/physics.md §10).
 
 Why this shape: e_dry is a restitution, so it is bounded by 1; when the group has dry runs
 their mean e is the measured dry limit and is used (fixed) instead of being fitted, and

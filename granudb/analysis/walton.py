@@ -1,5 +1,5 @@
 """The fitting core of Walton's three-parameter model with model selection and a bootstrap
-(Joseph & Hunt 2004 §2, (2.6)–(2.10); PHYSICS.md §5, §9, §14).
+(Joseph & Hunt 2004 §2, (2.6)–(2.10); docs/physics.md §5, §9, §14).
 
 Why this shape. Runs are folded by the sign of v_T,in first (the model is mirror-symmetric:
 a run with v_T,in < 0 has Ψ_in and Ψ_out negated), then sorted by the folded Ψ_in = x. Three

@@ -1,5 +1,5 @@
 """The Walton-fit bootstrap in O(n) per resample with a small constant (issue 13, issue 17;
-PHYSICS.md §14).
+docs/physics.md §14).
 
 Why this shape. Each resample draws n runs with replacement (integer weights on the runs,
 which are sorted once by the folded Ψ_in) and re-decides the model and the split exactly as

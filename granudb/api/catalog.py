@@ -41,6 +41,8 @@ def materials(db: Any = None, *, as_frame: bool = True) -> Any:
     """Every material with its properties (SI) and source, by name: a DataFrame (units in
     ``attrs["units"]``), or a list of records with ``as_frame=False``.
 
+    Examples
+    --------
     >>> import granudb
     >>> frame = granudb.materials(db=db)
     >>> float(frame.set_index("name").loc["glass", "youngs_modulus_pa"])
@@ -55,6 +57,8 @@ def material(name: str, *, db: Any = None) -> dict[str, Any]:
     """One material: its properties (SI), source with the full citation, and when it was
     added and last changed.
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.material("STEEL", db=db)["density_kg_m3"]
     7780.0
@@ -67,6 +71,8 @@ def fluids(db: Any = None, *, as_frame: bool = True) -> Any:
     """Every fluid with its reference values (SI), sources and number of viscosity points:
     a DataFrame, or a list of records with ``as_frame=False``.
 
+    Examples
+    --------
     >>> import granudb
     >>> frame = granudb.fluids(db=db)
     >>> float(frame.set_index("name").loc["glycerol-45", "reference_viscosity_pa_s"])
@@ -81,6 +87,8 @@ def fluid(name: str, *, db: Any = None) -> dict[str, Any]:
     """One fluid with its sources and its viscosity–temperature points (``points``: a
     list of records ``temperature_c``, ``viscosity_pa_s``, ``density_kg_m3``, ``source``).
 
+    Examples
+    --------
     >>> import granudb
     >>> len(granudb.fluid("glycerol-45", db=db)["points"]) > 2
     True
@@ -92,6 +100,8 @@ def fluid(name: str, *, db: Any = None) -> dict[str, Any]:
 def sources(db: Any = None, *, as_frame: bool = True) -> Any:
     """Every source (key, citation, DOI, …) by key: a DataFrame or a list of records.
 
+    Examples
+    --------
     >>> import granudb
     >>> "joseph-hunt-2004" in set(granudb.sources(db=db)["key"])
     True
@@ -105,6 +115,8 @@ def source(key: str, *, db: Any = None) -> dict[str, Any]:
     """One source: its citation, how many stored rows cite it (``cited_by``), and the
     numbers it printed as printed (``published_values``).
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.source("joseph-hunt-2004", db=db)["year"]
     2004

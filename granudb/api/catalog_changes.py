@@ -125,6 +125,8 @@ def add_material(
     ratio and roughness are required; a shear modulus not given is derived,
     G = E / (2(1 + ν)); with a ``yield_stress`` (in tension) yield starts at 1.6 Y.
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.add_material("PTFE", density="2.2 g/cm^3", youngs_modulus="0.5 GPa",
     ...                      poisson_ratio=0.46, roughness="0.2 um", db=db)["density_kg_m3"]
@@ -163,6 +165,8 @@ def update_material(
     """Change the given properties of a material (``None``: leave as it is), its source
     or its name; returns what changed, field by field.
 
+    Examples
+    --------
     >>> import granudb
     >>> print(granudb.update_material("glass", roughness="130.5 nm", db=db))
     unchanged material glass
@@ -186,6 +190,8 @@ def remove_material(name: str, *, confirm: Confirm | None = None, db: Any = None
     ``confirm(action, losses)`` is asked first (the command line's prompt); without it
     the call itself is the consent.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.add_material("test", density=1000, youngs_modulus=1e9,
     ...                          poisson_ratio=0.3, roughness=0, db=db)
@@ -212,6 +218,8 @@ def add_fluid(
     required, at ``reference_temperature`` (default 20 °C); the Barus
     ``pressure_viscosity`` coefficient is needed for the lubricated friction (5.8).
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.add_fluid("silicone oil", reference_viscosity="9.6 cP",
     ...                   reference_density="960 kg/m^3", db=db)["reference_temperature_c"]
@@ -245,6 +253,8 @@ def update_fluid(
 ) -> Update:
     """Change the given values of a fluid, its source or its name; returns what changed.
 
+    Examples
+    --------
     >>> import granudb
     >>> print(granudb.update_fluid("glycerol-45", reference_viscosity="4.5 cP", db=db))
     unchanged fluid glycerol-45
@@ -265,6 +275,8 @@ def remove_fluid(name: str, *, confirm: Confirm | None = None, db: Any = None) -
     """Remove a fluid (with its points) that no collision or published value uses;
     ``confirm`` as ``remove_material``.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.add_fluid("oil", reference_viscosity=0.1, reference_density=900, db=db)
     >>> granudb.remove_fluid("oil", db=db)
@@ -286,6 +298,8 @@ def add_fluid_point(
     """Add one measured point (temperature, viscosity[, density]) to a fluid; a point at a
     temperature the fluid has is refused unless ``replace``. Returns one line per point.
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.add_fluid_point("water", temperature="23 degC", viscosity="0.9325 cP", db=db)
     ['added water at 23 °C: 0.9325 mPa·s']
@@ -314,6 +328,8 @@ def import_fluid_points(
     """Add every point of a CSV file (``temperature [degC]``, ``viscosity [cP]``, optional
     ``density [kg/m^3]``; units in the headers), all or none. Returns one line per point.
 
+    Examples
+    --------
     >>> import granudb
     >>> points = tmp / "water.csv"
     >>> _ = points.write_text("temperature [degC],viscosity [cP]\\n21,0.978\\n24,0.911\\n")

@@ -40,6 +40,8 @@ def import_collisions(
     called as rows are read. Returns the dataset, version, row count and the file's
     sha256.
 
+    Examples
+    --------
     >>> import granudb
     >>> result = granudb.import_collisions(example_csv, dataset="example", db=db)
     >>> result.rows
@@ -77,6 +79,8 @@ def remove_collisions(
     NAME@VERSION); returns how many. ``confirm(action, losses)`` is asked first (the
     command line's prompt); without it the call itself is the consent.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="trimmed", db=db)
     >>> granudb.remove_collisions("trimmed", ["steel-dry-1"], db=db)

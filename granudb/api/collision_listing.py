@@ -111,6 +111,8 @@ def collisions(
     deg"``: ζ_in of the contact point's path), regime (stick, slip_then_stick,
     gross_slip), roughness_exceeds_gap, rebound_expected, critical_stokes.
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.collisions(db=db, fluid="dry").empty
     True

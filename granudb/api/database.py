@@ -34,6 +34,8 @@ def connect(url: str | Path | None = None) -> Database:
     ``GRANUDB_DATABASE_URL``, else ``granudb.sqlite`` in the user data folder), creating,
     migrating and seeding it on first use. Pass the result as ``db=`` to any function.
 
+    Examples
+    --------
     >>> import granudb
     >>> db = granudb.connect(tmp / "lab.sqlite")
     >>> db.created

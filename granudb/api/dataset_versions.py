@@ -140,6 +140,8 @@ def datasets(db: Any = None, *, as_frame: bool = True) -> Any:
     """Every dataset version with its state, title, run count, content hash, licence and
     source: a DataFrame, or a list of records with ``as_frame=False``.
 
+    Examples
+    --------
     >>> import granudb
     >>> list(granudb.datasets(db=db).columns)[:3]
     ['name', 'version', 'state']
@@ -153,6 +155,8 @@ def dataset(name: str, *, version: str | None = None, db: Any = None) -> dict[st
     """One dataset version (``name`` as NAME or NAME@VERSION): its metadata, and
     ``groups``, its runs counted by particle, wall and fluid.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="shown", db=db)
     >>> granudb.dataset("shown@1.0.0", db=db)["runs"]
@@ -170,6 +174,8 @@ def diff_datasets(a: str, b: str, *, db: Any = None) -> list[dict[str, Any]]:
     """The runs added, removed and changed from dataset ``a`` to ``b`` (each NAME or
     NAME@VERSION), matched by run label: one record (change, run, fields) per run.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="diffed", db=db)
     >>> granudb.diff_datasets("diffed", "diffed@1.0.0", db=db)
@@ -192,6 +198,8 @@ def remove_dataset(
     runs and import records; returns what was deleted. A released version cannot be
     removed until a newer version is released. ``confirm`` as ``remove_material``.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="removed", db=db)
     >>> granudb.remove_dataset("removed@1.0.0", db=db)
@@ -228,6 +236,8 @@ def edit_dataset(
     JSON text; ORCID check digits verified), ``keywords`` (a list of text). Returns
     (field, old, new) for each change.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="edited", db=db)
     >>> granudb.edit_dataset("edited", title="Example runs", db=db)
@@ -269,6 +279,8 @@ def release_dataset(dataset: str, *, version: str | None = None, db: Any = None)
     """Release a draft version: from now on it cannot change (a new version holds
     changes). Returns the versions it supersedes.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="released", db=db)
     >>> granudb.release_dataset("released@1.0.0", db=db)
@@ -285,6 +297,8 @@ def new_dataset_version(dataset: str, version: str | None = None, *, db: Any = N
     and import records — as a new draft ``version``; returns its content hash (the same
     as the copied version's).
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="versioned", db=db)
     >>> len(granudb.new_dataset_version("versioned@1.0.0", "1.1.0", db=db))

@@ -22,6 +22,8 @@ def database_file(db: Any = None) -> Path:
     """The SQLite file of ``db`` (a URL or a path; default as ``connect``), absolute;
     refused for a database that is not a SQLite file (Datasette reads SQLite).
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.database_file(tmp / "lab.sqlite").name
     'lab.sqlite'
@@ -42,6 +44,8 @@ def datasette_metadata(db: Any = None) -> dict[str, Any]:
     """Datasette ``metadata.json`` for the database (titles, descriptions, units), naming
     the database as Datasette does: its file name without ``.sqlite``.
 
+    Examples
+    --------
     >>> import granudb
     >>> "collisions" in granudb.datasette_metadata()["databases"]["granudb"]["tables"]
     True

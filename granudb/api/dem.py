@@ -239,6 +239,8 @@ def dem_export(
     nearest allowed value with a comment. With ``output`` the fragment is also written
     to that new file (an existing one is refused). Returns the fragment.
 
+    Examples
+    --------
     >>> import granudb
     >>> text = granudb.dem_export("liggghts", ["steel"], ["Zerodur"], diameter="12.7 mm",
     ...                           velocity="0.3 m/s", db=db)
@@ -285,6 +287,8 @@ def dem_verify(
     "not checked" (never "passed") for a code that is not installed. The options are
     ``dem_export``'s; ``verify_table(records)`` prints them.
 
+    Examples
+    --------
     >>> import granudb
     >>> records = granudb.dem_verify(["steel"], ["Zerodur"], codes=("liggghts",),
     ...                              diameter="12.7 mm", velocity="0.3 m/s", db=db)

@@ -155,6 +155,8 @@ def derive(frame: Any, **options: Any) -> Any:
     Returns a copy with the derived columns added (their units in ``attrs["units"]``).
     Refuses what it cannot compute correctly (see the module's docstring).
 
+    Examples
+    --------
     >>> import granudb, pandas as pd
     >>> scenarios = pd.DataFrame({
     ...     "particle_density_kg_m3": [7780.0], "particle_youngs_modulus_pa": [190e9],

@@ -36,6 +36,8 @@ def fit_walton(db: Any = None, *, as_frame: bool = True, **filters: Any) -> Any:
     6, 9), each with its bootstrap interval and the model chosen; ``filters`` as
     ``granudb.collisions``.
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.fit_walton(db=db, fluid="dry").empty  # no runs stored yet
     True
@@ -50,6 +52,8 @@ def fit_restitution(
     ``model`` "exponential" (e = e_dry exp(−k/St_n), Legendre et al. 2006; the default)
     or "threshold" (e = e_dry (1 − St_c/St_n)).
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.fit_restitution(db=db).empty
     True
@@ -62,6 +66,8 @@ def fit_gap_viscosity(db: Any = None, *, as_frame: bool = True, **filters: Any) 
     """The gap viscosity μ₀ that (5.8) needs to match the measured sliding friction, and
     the gap temperature it implies through the fluid's μ(T) (figure 14, table 2).
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.fit_gap_viscosity(db=db).empty
     True

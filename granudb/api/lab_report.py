@@ -51,6 +51,8 @@ def report(
     Markdown's figures go to a folder beside it); without, its text is returned (the
     Markdown's figures embedded as data URIs).
 
+    Examples
+    --------
     >>> import granudb
     >>> text = granudb.report(("steel", "Zerodur"), fluid="glycerol-37", db=db)
     >>> text.startswith("<!DOCTYPE html>")

@@ -50,6 +50,8 @@ def export_dataset(
     """Write a dataset version (``NAME`` or ``NAME@VERSION``) as a Data Package to
     ``output``: an empty or new folder, or a file ending in ``.zip``.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="shared", db=db)
     >>> granudb.export_dataset("shared", tmp / "shared.zip", db=db).path.name
@@ -67,6 +69,8 @@ def validate_dataset(path: str | Path) -> Validation:
     """Check a package (folder, ``datapackage.json`` or ``.zip``) without importing it;
     every problem found is listed (``valid`` when there is none).
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="checked", db=db)
     >>> exported = granudb.export_dataset("checked", tmp / "checked.zip", db=db)
@@ -90,6 +94,8 @@ def import_dataset(
     name or ``as_name``. A material or fluid whose name exists here with other values is a
     conflict, unless ``rename_conflicts`` brings it in as ``NAME (package)``.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="ours", db=db)
     >>> exported = granudb.export_dataset("ours", tmp / "ours.zip", db=db)

@@ -39,6 +39,8 @@ def pair(
     inputs, the particle, wall and fluid with their sources, and ``verdicts`` (each with
     its key, title, sentence and whether it is raised as a warning).
 
+    Examples
+    --------
     >>> import granudb
     >>> result = granudb.pair("steel", "Zerodur", fluid="glycerol-37", diameter="12.7 mm",
     ...                       velocity="0.3 m/s", angle="30 deg", db=db)

@@ -40,6 +40,8 @@ def db_upgrade(revision: str = "head", *, db: Any = None) -> tuple[str | None, s
     """Migrate the database forward to ``revision`` (default the newest; a new database
     is created and seeded); returns (revision before, revision after).
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.db_upgrade(db=tmp / "new.sqlite")[0] is None
     True
@@ -65,6 +67,8 @@ def db_downgrade(
     returns (before, after, what was lost). What would lose stored values is asked first
     (``confirm``); a downgrade that loses nothing runs at once.
 
+    Examples
+    --------
     >>> import granudb
     >>> _ = granudb.connect(tmp / "old.sqlite").dispose()
     >>> granudb.db_downgrade("0003", db=tmp / "old.sqlite")[1]
@@ -85,6 +89,8 @@ def db_current(*, db: Any = None) -> dict[str, Any]:
     """The database's schema revision, the newest this granudb knows, and whether they
     agree.
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.db_current(db=db)["up_to_date"]
     True
@@ -109,6 +115,8 @@ def db_history() -> list[dict[str, str | None]]:
     """Every schema revision granudb ships, newest first (revision, down_revision,
     message).
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.db_history()[-1]["down_revision"] is None
     True
@@ -132,6 +140,8 @@ def db_seed(
     the user changed — unless ``overwrite_edits``, which reverts them after asking
     ``confirm``. Returns one line per change plus a summary.
 
+    Examples
+    --------
     >>> import granudb
     >>> granudb.db_seed(db=db)[-1].startswith("seed:")
     True

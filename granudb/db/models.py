@@ -256,7 +256,7 @@ class SeedRecord(Base):
 class Collision(Base):
     """One measured impact of a particle on a wall (or a second particle).
 
-    Sign convention (Joseph & Hunt 2004 §2, PHYSICS.md §5), for the particle's centre of
+    Sign convention (Joseph & Hunt 2004 §2, docs/physics.md §5), for the particle's centre of
     mass in the wall's frame at the instants just before (``_in``) and after (``_out``)
     contact:
 

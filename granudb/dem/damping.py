@@ -1,7 +1,7 @@
-"""From a target e to the damping input each code needs (PHYSICS.md §13).
+"""From a target e to the damping input each code needs (docs/physics.md §13).
 
 All three runnable codes use the same contact law for a Hertz contact: an elastic force
-K δ^{3/2} with K = (4/3) E* √R* (PHYSICS.md §13) and a dashpot whose coefficient grows as
+K δ^{3/2} with K = (4/3) E* √R* (docs/physics.md §13) and a dashpot whose coefficient grows as
 δ^{1/4}, so that in the units of the contact
 
     m* δ̈ = −K δ^{3/2} − C √(m* K) δ^{1/4} δ̇ .                               (1)
@@ -12,7 +12,7 @@ law gives an e independent of the impact speed (Tsuji, Tanaka & Ishida 1992, Pow
 Technol. 71). What differs between codes is how they turn the e a user types into C:
 
 - LIGGGHTS ``model hertz``: γ_n = 2√(5/6) β √(S_n m*), S_n = 2E*√(R*δ), β the linear
-  spring–dashpot ratio ln e/√(π²+ln²e) (PHYSICS.md §13), i.e. C = √5 |ln e|/√(π²+ln²e).
+  spring–dashpot ratio ln e/√(π²+ln²e) (docs/physics.md §13), i.e. C = √5 |ln e|/√(π²+ln²e).
   Integrating (1) gives back e to 1e-6 (tests/dem/test_damping.py): its input is the target.
 - LAMMPS ``damping tsuji``: C = α(e), Tsuji's polynomial fit (LAMMPS pair_granular doc).
   It is not the inverse of (1): typed 0.97 gives 0.979, typed 0.5 gives 0.616 (LAMMPS
@@ -34,7 +34,7 @@ TSUJI_POLYNOMIAL = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
 
 
 def linear_damping_ratio(restitution: float) -> float:
-    """ζ = −ln e / √(π² + ln² e), the linear spring–dashpot ratio (PHYSICS.md §13)."""
+    """ζ = −ln e / √(π² + ln² e), the linear spring–dashpot ratio (docs/physics.md §13)."""
     log_e = math.log(restitution)
     return -log_e / math.sqrt(math.pi**2 + log_e**2)
 

@@ -6,7 +6,7 @@ src/GRANULAR/pair_granular.cpp and fix_wall_gran.cpp of that release):
 - ``hertz/material E η ν`` takes ONE E and ν and forms E_eff = E/(2(1−ν²)) as if both
   bodies were that material, and ``fix wall/gran`` converts E differently again (LAMMPS
   issue #4141). granudb therefore writes ``hertz k_n`` with k_n = (4/3)E* of the pair
-  and ``tangential mindlin k_t`` with k_t = 8G* (PHYSICS.md §13): force k_n √R* δ^{3/2},
+  and ``tangential mindlin k_t`` with k_t = 8G* (docs/physics.md §13): force k_n √R* δ^{3/2},
   tangential stiffness k_t a, identical for pairs and walls, no conversion in the code.
 - ``damping tsuji`` reads the η slot as e but maps it with a fitted polynomial that does
   not reproduce e on a Hertz contact; the e written is corrected (granudb.dem.damping), so
@@ -85,7 +85,7 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
         f"  mu_f = {describe(pair.friction)}",
         f"  k_n = 4/3 E* = {num(scales.hertz_stiffness)} Pa (E* = "
         f"{num(scales.reduced_modulus_pa)} Pa), k_t = 8 G* = {num(scales.mindlin_stiffness)} Pa "
-        "(PHYSICS.md section 13)",
+        "(granudb docs/physics.md section 13)",
         f"  tsuji input {num(e_in.value)} so that LAMMPS's alpha(e) gives e = "
         f"{num(pair.restitution.value)} on this Hertz contact (granudb.dem.damping)",
     ]

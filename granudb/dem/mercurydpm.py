@@ -8,7 +8,7 @@ is 2/(1/m₁+1/m₂) = 2m* (MercuryDPM source doc), ``setSlidingStiffness(2/7 k)
 ``setRollingFrictionCoefficient`` and ``speciesHandler.getMixedObject(s1, s2)`` for pairs.
 A linear spring–dashpot reproduces e exactly at any speed; its stiffness is set from the
 Hertz contact time t_c ≈ 2.87(m*²/(R*E*²V))^{1/5} at the characteristic speed (Johnson
-§11.4, PHYSICS.md §13), so collisions last as long as Hertz's at that speed.
+§11.4, docs/physics.md §13), so collisions last as long as Hertz's at that speed.
 """
 
 from __future__ import annotations

@@ -74,7 +74,7 @@ class ParticleType:
 
     @property
     def radius_m(self) -> float:
-        """Radius [m]; infinite for a flat wall (PHYSICS.md §1)."""
+        """Radius [m]; infinite for a flat wall (docs/physics.md §1)."""
         return math.inf if self.diameter_m is None else self.diameter_m / 2.0
 
     @property
@@ -87,7 +87,7 @@ class ParticleType:
 
 @dataclass(frozen=True)
 class WetParameters:
-    """An e(St) law e = e_max exp(−St_c/St) (Legendre et al. 2006, PHYSICS.md §10)."""
+    """An e(St) law e = e_max exp(−St_c/St) (Legendre et al. 2006, docs/physics.md §10)."""
 
     fluid_viscosity_pa_s: float
     critical_stokes: float
@@ -140,7 +140,7 @@ class PairParameters:
 
 @dataclass(frozen=True)
 class ContactScales:
-    """Hertz–Mindlin quantities of one pair (PHYSICS.md §1, §2, §9, §13)."""
+    """Hertz–Mindlin quantities of one pair (docs/physics.md §1, §2, §9, §13)."""
 
     reduced_modulus_pa: float  # E*, 1/E* = Σ(1−ν²)/E
     reduced_shear_modulus_pa: float  # G*, 1/G* = Σ(2−ν)/G
@@ -150,12 +150,12 @@ class ContactScales:
 
     @property
     def hertz_stiffness(self) -> float:
-        """k_n = (4/3) E* (force = k_n √R* δ^{3/2}), PHYSICS.md §13 [Pa]."""
+        """k_n = (4/3) E* (force = k_n √R* δ^{3/2}), docs/physics.md §13 [Pa]."""
         return 4.0 / 3.0 * self.reduced_modulus_pa
 
     @property
     def mindlin_stiffness(self) -> float:
-        """8 G*, so that k_t = 8 G* a with a = √(R* δ) (Mindlin; PHYSICS.md §13) [Pa]."""
+        """8 G*, so that k_t = 8 G* a with a = √(R* δ) (Mindlin; docs/physics.md §13) [Pa]."""
         return 8.0 * self.reduced_shear_modulus_pa
 
 
@@ -203,7 +203,7 @@ class DemModel:
         return tuple(t for t in self.types if t.is_wall)
 
     def contact(self, pair: PairParameters, speed: float | None = None) -> ContactScales:
-        """E*, G*, R*, m* and t_c of a pair (PHYSICS.md §1, §9; t_c from Johnson §11.4)."""
+        """E*, G*, R*, m* and t_c of a pair (docs/physics.md §1, §9; t_c from Johnson §11.4)."""
         a, b = self.type(pair.type_i), self.type(pair.type_j)
         e_star = float(
             reduced_modulus(
@@ -233,11 +233,11 @@ def predicted_wet_restitution(
     *,
     critical_stokes: float = 35.0,
 ) -> tuple[Value, WetParameters]:
-    """e_wet = e_dry exp(−β_L/St), St = 2ρ_p R V/(9μ) (Legendre et al. 2006; PHYSICS.md §10).
+    """e_wet = e_dry exp(−β_L/St), St = 2ρ_p R V/(9μ) (Legendre et al. 2006; docs/physics.md §10).
 
     Returns the constant e at the stated Stokes number (what a code without a wet model
     takes) and the law itself (for LIGGGHTS-style e(St) models). St here has no added
-    mass (Joseph & Hunt §1); PHYSICS.md §10 notes the added-mass variant.
+    mass (Joseph & Hunt §1); docs/physics.md §10 notes the added-mass variant.
     """
     st = float(stokes_number(particle.density_kg_m3, particle.radius_m, speed_m_s, viscosity_pa_s))
     law = WetParameters(

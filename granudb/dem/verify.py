@@ -3,7 +3,7 @@
 For every installed code (binary found with :func:`shutil.which`) each requested collision
 is run in a temporary directory: a sphere on a flat wall, normal and oblique, and head-on
 on a resting sphere of a particle pair. The rebound gives the achieved e (e = −v_N,out/
-v_N,in with relative velocities, PHYSICS.md §5, §9) and, for oblique impacts, Ψ_out to
+v_N,in with relative velocities, docs/physics.md §5, §9) and, for oblique impacts, Ψ_out to
 compare with Walton's sliding branch Ψ_out = Ψ_in − μ_f(1+e)(1+1/K²) and the achieved
 μ_f = (Ψ_in − Ψ_out)/((1+e)·7/2) (Joseph & Hunt (2.6), (2.9)). A code that is not
 installed gives records with status "not checked", never a pass.
@@ -168,7 +168,7 @@ def _record(
     if result is None:
         return Record(status=status, note=note, **base)  # type: ignore[arg-type]
     vx1, vz1, wy1, vz2 = result
-    e = (vz1 - vz2) / case.v_normal  # relative normal velocity out over in (PHYSICS.md §9)
+    e = (vz1 - vz2) / case.v_normal  # relative normal velocity out over in (docs/physics.md §9)
     fields: dict[str, object] = dict(
         achieved_e=e, e_rel_error=e / pair.restitution.value - 1.0, seconds=seconds
     )

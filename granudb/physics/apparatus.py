@@ -1,4 +1,4 @@
-"""The pendulum apparatus of Joseph & Hunt's Appendix (PHYSICS.md §7).
+"""The pendulum apparatus of Joseph & Hunt's Appendix (docs/physics.md §7).
 
 The sphere hangs on a string whose torsional stiffness must be small compared with the
 contact's lateral stiffness, so the string cannot change the spin during the collision.
@@ -76,7 +76,7 @@ def consistent_time_scale_ratio(
     radius: Numeric, contact_stiffness: Numeric, string_stiffness: Numeric
 ) -> Numeric:
     r"""Dimensionless ratio of the string's to the collision's time scale,
-    √(κ I₀ / (m K_s)) = R √(0.4 κ / K_s) [-] (PHYSICS.md §14), with I₀ = (2/5) m R².
+    √(κ I₀ / (m K_s)) = R √(0.4 κ / K_s) [-] (docs/physics.md §14), with I₀ = (2/5) m R².
 
     (A 2) as printed, (1/R)√(κ/K_s) (``time_scale_ratio``), has units of m⁻²; this is the
     consistent form: the collision's tangential time scale is √(m/κ) and the string's

@@ -1,4 +1,4 @@
-"""Pair properties and Hertz contact mechanics (PHYSICS.md §1–§2).
+"""Pair properties and Hertz contact mechanics (docs/physics.md §1–§2).
 
 All inputs SI: moduli [Pa], lengths [m], masses [kg], densities [kg/m³], speeds [m/s].
 Infinite values are allowed where a limit is meant (a flat wall has infinite radius and

@@ -1,4 +1,4 @@
-"""Fluid regime numbers of an immersed collision (PHYSICS.md §3).
+"""Fluid regime numbers of an immersed collision (docs/physics.md §3).
 
 Inputs SI: densities [kg/m³], radius [m] (the particle's, R = d/2), speeds [m/s],
 viscosity [Pa·s]. Results are dimensionless.

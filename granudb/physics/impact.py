@@ -1,4 +1,4 @@
-"""Oblique impact: the three-parameter model of Joseph & Hunt §2 (PHYSICS.md §5).
+"""Oblique impact: the three-parameter model of Joseph & Hunt §2 (docs/physics.md §5).
 
 Sign convention (as stored by granudb): normal speeds v_n_in > 0 towards the wall and
 v_n_out ≥ 0 away from it, so e = v_n_out / v_n_in (the paper's e = −v_N,out / v_N,in); the

@@ -1,4 +1,4 @@
-"""Where the models stop: yield (PHYSICS.md §11), the bounds of the lubricated friction
+"""Where the models stop: yield (docs/physics.md §11), the bounds of the lubricated friction
 (5.8) (§12) and the uncertain band of the EHD gap (§12).
 
 Each verdict is a small set of named states (text), never a NaN a reader could mistake
@@ -15,7 +15,7 @@ from granudb.physics.numeric import Numeric, as_float
 #: Johnson 1985, *Contact Mechanics*, §11.4 and §6.2).
 YIELD_PRESSURE_FACTOR = 1.6
 #: ρ_p V_y² / Y = YIELD_SPEED_CONSTANT (Y/E*)⁴ with the constant π⁴ 1.6⁵ / 40 = 25.5352…,
-#: from (5.5) with p_max = 1.6 Y (PHYSICS.md §11).
+#: from (5.5) with p_max = 1.6 Y (docs/physics.md §11).
 YIELD_SPEED_CONSTANT = np.pi**4 * YIELD_PRESSURE_FACTOR**5 / 40.0
 
 ELASTIC_STATES = ("elastic", "yield_exceeded", "unknown")
@@ -41,7 +41,7 @@ def yield_speed(
     particle_density: Numeric, yield_stress: Numeric, reduced_modulus_pa: Numeric
 ) -> Numeric:
     r"""Normal impact speed at the onset of yield, from ρ_p V_y²/Y = (π⁴ 1.6⁵/40)(Y/E*)⁴
-    [m/s] (PHYSICS.md §11: (5.5) with p_max = 1.6 Y, Johnson 1985 §11.4).
+    [m/s] (docs/physics.md §11: (5.5) with p_max = 1.6 Y, Johnson 1985 §11.4).
 
     Parameters
     ----------

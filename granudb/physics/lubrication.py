@@ -1,5 +1,5 @@
 """Lubrication of an immersed impact: EHD gap, piezoviscosity, lubricated friction
-(PHYSICS.md §3, §4 and §6; Joseph & Hunt §1 and §5).
+(docs/physics.md §3, §4 and §6; Joseph & Hunt §1 and §5).
 
 Two film thicknesses appear and must not be confused: the normal-approach gap
 h_m = x₁/3 (``ehd_min_gap``; tens of nanometres), compared with the surface roughness, and

@@ -1,4 +1,4 @@
-"""Two bodies in contact: a particle (1) and a target (2) that may move (PHYSICS.md §9).
+"""Two bodies in contact: a particle (1) and a target (2) that may move (docs/physics.md §9).
 
 The target is a flat wall (R₂ → ∞, m₂ → ∞), a fixed sphere (R₂ finite, m₂ → ∞) or a free
 sphere (both finite). With a free target every collision parameter is built from the
@@ -155,7 +155,7 @@ def pair_stokes_number(
     effective_mass: Numeric, speed: Numeric, viscosity: Numeric, effective_radius: Numeric
 ) -> Numeric:
     r"""Stokes number of a pair, St = m* V / (6π μ R*²) [-] (Davis, Serayssol & Hinch 1986,
-    J. Fluid Mech. 163, 479; PHYSICS.md §9).
+    J. Fluid Mech. 163, 479; docs/physics.md §9).
 
     For a sphere on a flat wall (m* = m, R* = R) it is Joseph & Hunt's 2ρ_p R V/(9μ);
     for two equal free spheres (m* = m/2, R* = R/2) it is twice that.

@@ -1,4 +1,4 @@
-"""Viscosity and density of the liquid at a temperature (PHYSICS.md §6, thermal correction).
+"""Viscosity and density of the liquid at a temperature (docs/physics.md §6, thermal correction).
 
 Two models, one interface (``viscosity(T)``, ``density(T)``, ``temperature_for_viscosity``):
 
@@ -79,7 +79,7 @@ def glycerol_water_viscosity(mass_fraction: Numeric, temperature_c: Numeric) -> 
 
     Examples
     --------
-    37 % and 78 % wt glycerol at the paper's ambient temperatures (PHYSICS.md §6 quotes
+    37 % and 78 % wt glycerol at the paper's ambient temperatures (docs/physics.md §6 quotes
     3.1 and 47.6 cP):
 
     >>> round(float(glycerol_water_viscosity(0.37, 21.5)) * 1e3, 2)

@@ -2,7 +2,7 @@
 
 A cell is a string, or a dict ``{"text", "colour"}`` for a group name shown with the
 colour its points have in every figure. The fits say what their data determine
-(PHYSICS.md §14): a parameter that is not determined is shown as "not determined by these
+(docs/physics.md §14): a parameter that is not determined is shown as "not determined by these
 runs" with the reason, never as a number; a μ_f lower bound is labelled as a bound;
 intervals are granudb's bootstrap intervals (how they were made is said once, in the
 table's note), and the paper's ± is shown as printed beside them.

@@ -108,7 +108,7 @@ def rebound_verdict(derived: Mapping[str, Any], critical_stokes: float, immersed
 def restitution_verdict(
     derived: Mapping[str, Any], critical_stokes: float, immersed: bool
 ) -> Verdict:
-    """The predicted wet restitution with its form and Stokes number named (PHYSICS.md §10)."""
+    """The predicted wet restitution with its form and Stokes number named (docs/physics.md §10)."""
     e_pred = derived.get("predicted_restitution")
     st = derived.get("added_mass_stokes_number")
     name = "Predicted restitution"
@@ -139,7 +139,7 @@ def restitution_verdict(
 
 
 def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verdict:
-    """σ against Davis's band of the gap, h_m = x₁/4 … x₁/3, with Λ (PHYSICS.md §4, §12)."""
+    """σ against Davis's band of the gap, h_m = x₁/4 … x₁/3, with Λ (docs/physics.md §4, §12)."""
     regime = str(derived.get("roughness_regime") or "")
     sigma, x1, film = (
         derived.get(k) for k in ("composite_roughness_m", "elastic_length_m", "film_parameter")
@@ -185,7 +185,7 @@ def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verd
 def friction_verdict(
     derived: Mapping[str, Any], immersed: bool, fluid_name: str | None = None
 ) -> Verdict:
-    """The lubricated friction (5.8) and whether it is used (PHYSICS.md §12)."""
+    """The lubricated friction (5.8) and whether it is used (docs/physics.md §12)."""
     state = str(derived.get("lubricated_friction_state") or ("dry" if not immersed else ""))
     mu = derived.get("lubricated_friction")
     cap = friction_cap()
@@ -320,7 +320,7 @@ def _yield_known(materials: Sequence[Mapping[str, Any]]) -> tuple[list[str], lis
 def yield_verdict(
     derived: Mapping[str, Any], materials: Sequence[Mapping[str, Any]] = ()
 ) -> Verdict:
-    """Onset of yield, p_max = 1.6 Y of the softer body (PHYSICS.md §11)."""
+    """Onset of yield, p_max = 1.6 Y of the softer body (docs/physics.md §11)."""
     state = str(derived.get("elastic_state") or "unknown")
     p_max, v_y, v_n = (
         derived.get(k) for k in ("max_pressure_pa", "yield_speed_m_s", "normal_speed_m_s")

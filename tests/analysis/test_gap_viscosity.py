@@ -1,5 +1,5 @@
 """Gap viscosity on synthetic sliding runs made with (5.10) at the paper's μ₀ (table 2),
-with 2 % velocity noise (issue 13 items 3 and 4; PHYSICS.md §6, §9)."""
+with 2 % velocity noise (issue 13 items 3 and 4; docs/physics.md §6, §9)."""
 
 from __future__ import annotations
 

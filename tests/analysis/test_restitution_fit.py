@@ -1,4 +1,4 @@
-"""Restitution fits e(St_n) on synthetic runs (issue 13 item 8; PHYSICS.md §10)."""
+"""Restitution fits e(St_n) on synthetic runs (issue 13 item 8; docs/physics.md §10)."""
 
 from __future__ import annotations
 

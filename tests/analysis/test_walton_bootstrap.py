@@ -1,5 +1,5 @@
 """The fast Walton bootstrap gives the straightforward bootstrap's statistic, and its
-large-group rule is stated and still recovers the truth (issue 13; PHYSICS.md §14)."""
+large-group rule is stated and still recovers the truth (issue 13; docs/physics.md §14)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Walton fit on synthetic runs of known truth (issue 13 items 1 and 2; PHYSICS.md §5, §14)."""
+"""Walton fit on synthetic runs of known truth (issue 13 items 1 and 2; docs/physics.md §5, §14)."""
 
 from __future__ import annotations
 

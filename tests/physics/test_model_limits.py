@@ -1,4 +1,4 @@
-"""Model limits and predictions of issue 13 (PHYSICS.md §10–§12, §14; items 3–9).
+"""Model limits and predictions of issue 13 (docs/physics.md §10–§12, §14; items 3–9).
 
 Each test fails on the code before issue 13; the comment says how.
 """
@@ -49,7 +49,9 @@ def _at(speed: float, degrees: float, **fluid) -> dict:
 
 def test_yield_constant_and_speed() -> None:
     assert float(limits.YIELD_SPEED_CONSTANT) == pytest.approx(np.pi**4 * 1.6**5 / 40, rel=1e-15)
-    assert float(limits.YIELD_SPEED_CONSTANT) == pytest.approx(25.5, abs=0.05)  # PHYSICS.md §11
+    assert float(limits.YIELD_SPEED_CONSTANT) == pytest.approx(
+        25.5, abs=0.05
+    )  # docs/physics.md §11
     # at V_y, (5.5) gives exactly p_max = 1.6 Y
     e_star = float(contact.reduced_modulus(190e9, 0.27, 91e9, 0.24))
     v_y = limits.yield_speed(7780.0, 1.5e9, e_star)

@@ -1,4 +1,4 @@
-"""The physics against the numbers Joseph & Hunt (2004) print (quoted in PHYSICS.md)."""
+"""The physics against the numbers Joseph & Hunt (2004) print (quoted in docs/physics.md)."""
 
 from __future__ import annotations
 
@@ -127,7 +127,7 @@ def test_hertz_contact_time_versus_the_printed_order_of_magnitude() -> None:
 def test_cheng_viscosity_for_the_table_2_ambient_rows(
     fraction: float, temperature: float, printed_cp: float
 ) -> None:
-    # PHYSICS.md §6: Cheng (2008) gives 1.0, 3.1 and 47.6 cP for the three ambient rows, and
+    # docs/physics.md §6: Cheng (2008) gives 1.0, 3.1 and 47.6 cP for the three ambient rows, and
     # the paper's ambient values (1, 3, 48 cP) agree within 10 %.
     model = viscosity.GlycerolWater(fraction)
     value = float(model.viscosity(temperature)) * 1e3
@@ -147,7 +147,7 @@ def test_gap_temperatures_of_table_2(fraction: float, gap_cp: float, printed_c: 
 
 
 def test_volk_kahler_density_of_the_figure_3_fluid() -> None:
-    # PHYSICS.md §3: 45 % wt glycerol, ρ_f ≈ 1112 kg/m³.
+    # docs/physics.md §3: 45 % wt glycerol, ρ_f ≈ 1112 kg/m³.
     assert float(viscosity.glycerol_water_density(0.45, 20.0)) == pytest.approx(1112, abs=1.5)
 
 

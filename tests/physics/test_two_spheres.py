@@ -1,4 +1,4 @@
-"""Two-sphere collisions (PHYSICS.md §9) and the contact point's incidence angle.
+"""Two-sphere collisions (docs/physics.md §9) and the contact point's incidence angle.
 
 Each test here fails on the code before issue 13 (no target velocities, St of the single
 particle, ζ_in of the centre's path, β = −inf for a normal impact).
