@@ -73,6 +73,12 @@ def _required(catalogue: Catalogue, given: dict[str, Any]) -> None:
             raise inputs.missing(parameter, f"is required to add a {catalogue.kind}")
 
 
+def _given(catalogue: Catalogue, arguments: dict[str, Any]) -> dict[str, Any]:
+    """The catalogue's parameters as the caller passed them (``locals()`` of a public
+    function whose keyword arguments are the spec's parameters)."""
+    return {parameter: arguments[parameter] for parameter in catalogue.parameters}
+
+
 def _add(catalogue: Catalogue, name: str, source: str | None, db: Any, given: dict) -> dict:
     _required(catalogue, given)
     values = _values(catalogue, given)
@@ -132,17 +138,7 @@ def add_material(
     ...                      poisson_ratio=0.46, roughness="0.2 um", db=db)["density_kg_m3"]
     2200.0
     """
-    given = {
-        "density": density,
-        "youngs_modulus": youngs_modulus,
-        "poisson_ratio": poisson_ratio,
-        "roughness": roughness,
-        "correlation_length": correlation_length,
-        "shear_modulus": shear_modulus,
-        "yield_stress": yield_stress,
-        "description": description,
-        "source_locator": source_locator,
-    }
+    given = _given(MATERIALS, locals())
     return _add(MATERIALS, name, source, db, given)
 
 
@@ -171,17 +167,7 @@ def update_material(
     >>> print(granudb.update_material("glass", roughness="130.5 nm", db=db))
     unchanged material glass
     """
-    given = {
-        "density": density,
-        "youngs_modulus": youngs_modulus,
-        "poisson_ratio": poisson_ratio,
-        "roughness": roughness,
-        "correlation_length": correlation_length,
-        "shear_modulus": shear_modulus,
-        "yield_stress": yield_stress,
-        "description": description,
-        "source_locator": source_locator,
-    }
+    given = _given(MATERIALS, locals())
     return _update(MATERIALS, name, source, rename, db, given)
 
 
@@ -225,15 +211,7 @@ def add_fluid(
     ...                   reference_density="960 kg/m^3", db=db)["reference_temperature_c"]
     20.0
     """
-    given = {
-        "reference_viscosity": reference_viscosity,
-        "reference_density": reference_density,
-        "reference_temperature": reference_temperature,
-        "pressure_viscosity": pressure_viscosity,
-        "glycerol_fraction": glycerol_fraction,
-        "description": description,
-        "source_locator": source_locator,
-    }
+    given = _given(FLUIDS, locals())
     return _add(FLUIDS, name, source, db, given)
 
 
@@ -259,15 +237,7 @@ def update_fluid(
     >>> print(granudb.update_fluid("glycerol-45", reference_viscosity="4.5 cP", db=db))
     unchanged fluid glycerol-45
     """
-    given = {
-        "reference_viscosity": reference_viscosity,
-        "reference_density": reference_density,
-        "reference_temperature": reference_temperature,
-        "pressure_viscosity": pressure_viscosity,
-        "glycerol_fraction": glycerol_fraction,
-        "description": description,
-        "source_locator": source_locator,
-    }
+    given = _given(FLUIDS, locals())
     return _update(FLUIDS, name, source, rename, db, given)
 
 

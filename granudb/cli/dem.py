@@ -8,7 +8,8 @@ from typing import Annotated
 import typer
 
 from granudb import api
-from granudb.cli.options import DbOption, wraps
+from granudb.cli.options import DbOption, Format, wraps
+from granudb.cli.output import to_json
 
 app = typer.Typer(
     help="DEM inputs for LIGGGHTS, LAMMPS, Yade and MercuryDPM, checked by running the codes.",
@@ -85,10 +86,15 @@ def verify(
     values: Values = "published",
     dataset: DatasetName = None,
     clamp: Clamp = False,
+    fmt: Annotated[
+        Format, typer.Option("--format", "-f", help="table for people; json for scripts.")
+    ] = Format.table,
     db: DbOption = None,
 ) -> None:
     """Run the exported values in LIGGGHTS, LAMMPS and Yade (where installed): target
-    against achieved e, and μ_f on oblique impacts. Codes not installed are "not checked"."""
+    against achieved e, and μ_f on oblique impacts, each judged against its tolerance (e
+    1 %, μ_f 3 %). Exits 1 when a run fails or nothing could be checked; codes not
+    installed are "not checked"."""
     records = api.dem_verify(
         particle,
         wall,
@@ -100,4 +106,9 @@ def verify(
         clamp=clamp,
         db=db,
     )
-    typer.echo(api.verify_table(records))
+    if fmt is Format.json:
+        typer.echo(to_json(api.verify_document(records)))
+    else:
+        typer.echo(api.verify_table(records))
+    if not api.verify_passed(records):
+        raise typer.Exit(1)

@@ -7,6 +7,11 @@ v_N,in with relative velocities, docs/physics.md §5, §9) and, for oblique impa
 compare with Walton's sliding branch Ψ_out = Ψ_in − μ_f(1+e)(1+1/K²) and the achieved
 μ_f = (Ψ_in − Ψ_out)/((1+e)·7/2) (Joseph & Hunt (2.6), (2.9)). A code that is not
 installed gives records with status "not checked", never a pass.
+
+Each checked record has a verdict against ``TOLERANCES``: e within 1 % of the exported e;
+on the sliding branch of an oblique impact, the achieved μ_f within 3 % of the exported
+μ_f (off the sliding branch μ_f from (2.9) is only a bound, and is not judged). A
+verification passes only when every checked record passes and at least one was checked.
 """
 
 from __future__ import annotations
@@ -32,6 +37,10 @@ from granudb.physics.impact import (
     stiffness_ratio,
     tangential_regime,
 )
+
+#: The largest relative error a verdict accepts, by quantity.
+TOLERANCES = {"restitution": 0.01, "friction": 0.03}
+PASS, FAIL, NOT_CHECKED = "pass", "fail", "not checked"
 
 #: Code name → the binary that runs it (Debian packages liggghts, lammps, yade).
 BINARIES = {"liggghts": "liggghts", "lammps": "lmp", "yade": "yade"}
@@ -60,6 +69,8 @@ class Record:
     regime: str | None = None  # Maw's regime of the oblique impact (sliding branch or not)
     seconds: float | None = None
     note: str = ""
+    verdict: str = NOT_CHECKED  # "pass", "fail" or "not checked"
+    reason: str = ""  # what failed, against which tolerance
 
 
 def installed_codes() -> dict[str, str | None]:
@@ -195,7 +206,38 @@ def _record(
             regime=TANGENTIAL_REGIME_NAMES[regime],
             note="" if regime == GROSS_SLIP else "not on the sliding branch: mu_f is a bound",
         )
+    fields.update(_verdict(fields))
     return Record(status=status, **base, **fields)  # type: ignore[arg-type]
+
+
+def _verdict(fields: dict[str, object]) -> dict[str, str]:
+    """Pass or fail against ``TOLERANCES``, with the failures said."""
+    failures = []
+    e_error = float(fields["e_rel_error"])  # type: ignore[arg-type]
+    if not abs(e_error) <= TOLERANCES["restitution"]:
+        failures.append(f"e {e_error:+.2%} (tolerance ±{TOLERANCES['restitution']:.0%})")
+    mu_error = fields.get("friction_rel_error")
+    sliding = fields.get("regime") == TANGENTIAL_REGIME_NAMES[GROSS_SLIP]
+    if sliding and not abs(float(mu_error)) <= TOLERANCES["friction"]:  # type: ignore[arg-type]
+        failures.append(f"mu_f {mu_error:+.2%} (tolerance ±{TOLERANCES['friction']:.0%})")
+    return {"verdict": FAIL if failures else PASS, "reason": "; ".join(failures)}
+
+
+def passed(records: Sequence[Record]) -> bool:
+    """True when at least one record was checked and every checked record passed."""
+    checked = [r for r in records if r.status == "checked"]
+    return bool(checked) and all(r.verdict == PASS for r in checked)
+
+
+def summary(records: Sequence[Record]) -> str:
+    """One line: how many runs passed, failed and were not checked, and the verdict."""
+    counts = {v: sum(r.verdict == v for r in records) for v in (PASS, FAIL, NOT_CHECKED)}
+    said = ", ".join(f"{n} {v}" for v, n in counts.items() if n)
+    if not any(r.status == "checked" for r in records):
+        return f"{said}: nothing was checked (no DEM code installed), so nothing passed"
+    verdict = "PASS" if passed(records) else "FAIL"
+    limits = f"e ±{TOLERANCES['restitution']:.0%}, mu_f ±{TOLERANCES['friction']:.0%}"
+    return f"{verdict}: {said} (tolerances {limits})"
 
 
 def table(records: Sequence[Record]) -> str:
@@ -203,7 +245,7 @@ def table(records: Sequence[Record]) -> str:
     head = (
         f"{'code':9} {'pair':16} {'kind':13} {'V m/s':>6} {'angle':>5} {'e target':>9} "
         f"{'e achieved':>10} {'err':>7} {'Psi_in':>7} {'Psi_out':>8} {'Walton':>8} "
-        f"{'mu':>6} {'mu ach.':>8} {'err':>7}"
+        f"{'mu':>6} {'mu ach.':>8} {'err':>7}  verdict"
     )
     rows = [head]
     for r in records:
@@ -223,5 +265,8 @@ def table(records: Sequence[Record]) -> str:
                 f"{r.target_friction:6.3f} {r.achieved_friction:8.4f} "
                 f"{r.friction_rel_error:+7.2%}"
             )
-        rows.append(line)
+        else:
+            line += " " * 50
+        rows.append(f"{line}  {r.verdict.upper()}" + (f" ({r.reason})" if r.reason else ""))
+    rows.append(summary(records))
     return "\n".join(rows)

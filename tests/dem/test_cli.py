@@ -91,3 +91,31 @@ def test_verify_runs_the_real_code(cli, db: str) -> None:
     assert out.exit_code == 0, out.stderr
     lines = [line for line in out.stdout.splitlines() if line.startswith("liggghts")]
     assert lines and all("not checked" not in line for line in lines)
+
+
+def test_verify_for_scripts_is_json_with_the_verdict(cli, db: str) -> None:
+    import json
+
+    require_binary("liggghts")
+    out = cli(
+        "dem", "verify", "--particle", "steel", "--wall", "Zerodur", *SCENARIO, "--format",
+        "json", db=db,
+    )  # fmt: skip
+    assert out.exit_code == 0, out.stderr
+    document = json.loads(out.stdout)
+    assert document["passed"] is True and document["summary"].startswith("PASS")
+    assert document["tolerances"] == {"restitution": 0.01, "friction": 0.03}
+    checked = [r for r in document["records"] if r["status"] == "checked"]
+    assert checked and {r["verdict"] for r in checked} == {"pass"}
+
+
+def test_a_failing_verification_exits_non_zero(cli, db: str) -> None:
+    """78 % glycerol: the codes' tangential damping gives μ_f off by more than 3 % on the
+    sliding branch (issue 26); the verdict says so and the command fails."""
+    require_binary("liggghts")
+    out = cli(
+        "dem", "verify", "--particle", "glass", "--wall", "Zerodur", *SCENARIO, "--fluid",
+        "glycerol-78", db=db,
+    )  # fmt: skip
+    assert out.exit_code == 1
+    assert "FAIL (mu_f" in out.stdout and out.stdout.splitlines()[-1].startswith("FAIL:")

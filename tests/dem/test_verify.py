@@ -53,3 +53,54 @@ def test_absent_code_is_not_checked(monkeypatch: pytest.MonkeyPatch, tmp_path: P
     records = dem_verify.verify(dry_model(), codes=["lammps"], workdir=tmp_path)
     assert records and {r.status for r in records} == {"not checked"}
     assert "not checked" in dem_verify.table(records)
+
+
+def _deck_with_e(model, restitution: float):
+    """``model`` with every pair's e replaced: a deliberately wrong deck."""
+    from dataclasses import replace
+
+    from granudb.dem.spec import DemModel, Value
+
+    pairs = [replace(p, restitution=Value(restitution, "deliberately wrong")) for p in model.pairs]
+    return DemModel(list(model.types), pairs, model.characteristic_velocity_m_s)
+
+
+@pytest.mark.parametrize("code", CODES)
+def test_a_deliberately_wrong_deck_fails(code: str, monkeypatch, tmp_path: Path) -> None:
+    """The deck the code runs gives e = 0.8 where 0.97 was asked: every normal run fails
+    with its error said, and the verification does not pass."""
+    require(code)
+    model = dry_model()
+    writer = dem_verify.WRITERS[code]
+    monkeypatch.setitem(
+        dem_verify.WRITERS,
+        code,
+        type("Wrong", (), {"write": staticmethod(lambda m, clamp=False: writer.write(
+            _deck_with_e(m, 0.8), clamp=clamp))}),
+    )  # fmt: skip
+    todo = dem_verify.cases(model, speeds=(0.3,), angles_deg=())
+    records = dem_verify.verify(model, todo, codes=[code], workdir=tmp_path)
+    assert records and all(r.verdict == "fail" for r in records), records
+    assert all("tolerance ±1%" in r.reason for r in records)
+    assert not dem_verify.passed(records)
+    assert dem_verify.summary(records).startswith("FAIL")
+
+
+def test_nothing_checked_is_not_a_pass(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    for code in CODES:
+        monkeypatch.setitem(dem_verify.BINARIES, code, "granudb-no-such-binary")
+    records = dem_verify.verify(dry_model(), codes=list(CODES), workdir=tmp_path)
+    assert not dem_verify.passed(records)
+    assert "nothing was checked" in dem_verify.summary(records)
+
+
+def test_verdicts_follow_the_tolerances() -> None:
+    from granudb.dem.runs import Case
+
+    model = dry_model()
+    case = Case("steel", "zerodur", 0.3, 0.0)
+    e = 0.97
+    just_in = dem_verify._record(model, "x", case, (0.0, 0.3 * e * 1.0099, 0.0, 0.0), "checked")
+    just_out = dem_verify._record(model, "x", case, (0.0, 0.3 * e * 1.0101, 0.0, 0.0), "checked")
+    assert (just_in.verdict, just_out.verdict) == ("pass", "fail")
+    assert "e +1.01%" in just_out.reason
