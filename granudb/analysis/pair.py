@@ -69,6 +69,32 @@ def is_dry(fluid: str | None) -> bool:
     return fluid is None or fluid.strip().casefold() == "dry"
 
 
+#: What the particle hits: a flat wall (R₂ = m₂ = ∞), a fixed sphere (R₂ finite, m₂ = ∞)
+#: or a free sphere at rest (both finite), docs/physics.md §9.
+TARGETS = ("wall", "fixed", "free")
+TARGET_WORDS = {"wall": "flat wall", "fixed": "fixed sphere", "free": "free sphere at rest"}
+
+
+def target_kind(target: str | None, wall_diameter_m: float | None) -> str:
+    """The one rule for what a scenario's target is: a second sphere's diameter makes it a
+    sphere, free unless ``target`` says fixed; without one it is a flat wall."""
+    if target is None:
+        return "wall" if wall_diameter_m is None else "free"
+    if target not in TARGETS:
+        raise ValidationError(
+            "target", target, f"must be one of {', '.join(TARGETS)}", parameter=True
+        )
+    if target == "wall" and wall_diameter_m is not None:
+        raise ValidationError(
+            "target", target, "is a flat wall, which has no wall_diameter", parameter=True
+        )
+    if target != "wall" and wall_diameter_m is None:
+        raise ValidationError(
+            "target", target, "is a sphere: give its wall_diameter", parameter=True
+        )
+    return target
+
+
 def _check_scenario(
     diameter_m: float, speed_m_s: float, angle_rad: float, critical_stokes: float
 ) -> None:
@@ -98,12 +124,17 @@ def derive_pair(
     temperature_c: float | None = None,
     viscosity_pa_s: float | None = None,
     wall_diameter_m: float | None = None,
+    target: str | None = None,
     critical_stokes: float = 10.0,
 ) -> PairResult:
     """Derive one scenario: ``particle`` hits ``wall`` (in ``fluid``) at ``speed_m_s``,
-    ``angle_rad`` from the normal, without spin. ``reader`` is a Core connection
+    ``angle_rad`` from the normal, without spin. The target is a flat wall, or with
+    ``wall_diameter_m`` a sphere, free and at rest unless ``target`` is "fixed"
+    (``target_kind``); m*, R*, the Walton factor, Hertz, the Stokes and Reynolds numbers
+    and the predicted e are those of that target. ``reader`` is a Core connection
     (``Database.reading()``, no ORM needed: issue 17's start-up bound) or a session."""
     _check_scenario(diameter_m, speed_m_s, angle_rad, critical_stokes)
+    target = target_kind(target, wall_diameter_m)
     if is_dry(fluid):
         for name, value in (("viscosity", viscosity_pa_s), ("temperature", temperature_c)):
             if value is not None:
@@ -118,6 +149,7 @@ def derive_pair(
     inputs = {
         "diameter_m": diameter_m,
         "wall_diameter_m": wall_diameter_m,
+        "target": target,
         "impact_speed_m_s": speed_m_s,
         "incidence_angle_rad": angle_rad,
         "v_n_in_m_s": speed_m_s * math.cos(angle_rad),
@@ -131,6 +163,7 @@ def derive_pair(
             **material_inputs("wall", second),
             diameter_m=diameter_m,
             wall_diameter_m=np.nan if wall_diameter_m is None else wall_diameter_m,
+            wall_v_n_in_m_s=0.0 if target == "free" else np.nan,
             v_n_in_m_s=inputs["v_n_in_m_s"],
             v_t_in_m_s=inputs["v_t_in_m_s"],
             fluid_density_kg_m3=state.density_kg_m3 if state else np.nan,

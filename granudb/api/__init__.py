@@ -87,6 +87,7 @@ FACE: dict[str, str] = {
     "term": "presentation",
     "derived_terms": "presentation",
     "qualified_value": "scenario",
+    "target_words": "scenario",
     "verify_table": "dem",
     "verify_passed": "dem",
     "verify_document": "dem",

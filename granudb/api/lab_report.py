@@ -13,6 +13,7 @@ import shlex
 from pathlib import Path
 from typing import Any
 
+from granudb.analysis.pair import TARGETS
 from granudb.api import inputs
 from granudb.api.collision_listing import collision_query
 from granudb.api.database import opened
@@ -38,18 +39,20 @@ def report(
     temperature: Any = None,
     viscosity: Any = None,
     wall_diameter: Any = None,
+    target: str | None = None,
     db: Any = None,
     **filters: Any,
 ) -> Any:
     """Write a lab report: properties with sources, derived quantities, verdicts with the
     roughness flag, fits next to published values, figures and methods.
 
-    ``pair`` is (particle, wall) for a scenario report; ``filters`` are the collision
-    filters of ``granudb.collisions`` (``fluid`` is also the pair's fluid). ``format``
-    is "html" or "md". With ``output`` (a file, or a folder to name it in) the report is
-    written there — an existing file only with ``force`` — and its path returned (the
-    Markdown's figures go to a folder beside it); without, its text is returned (the
-    Markdown's figures embedded as data URIs).
+    ``pair`` is (particle, wall) for a scenario report, with the scenario options of
+    ``granudb.pair`` (``wall_diameter`` and ``target`` for a second sphere); ``filters``
+    are the collision filters of ``granudb.collisions`` (``fluid`` is also the pair's
+    fluid). ``format`` is "html" or "md". With ``output`` (a file, or a folder to name it
+    in) the report is written there — an existing file only with ``force`` — and its
+    path returned (the Markdown's figures go to a folder beside it); without, its text is
+    returned (the Markdown's figures embedded as data URIs).
 
     Examples
     --------
@@ -65,8 +68,8 @@ def report(
             raise ValidationError(
                 "title", title[:40], "must be ≤ 300 printable characters", parameter=True
             )
-    target = None if output is None else Path(inputs.path(output, "output"))
-    check_output(target, force=force)
+    destination = None if output is None else Path(inputs.path(output, "output"))
+    check_output(destination, force=force)
     query = collision_query(**filters)
     scenario = {
         "diameter": diameter,
@@ -75,6 +78,7 @@ def report(
         "temperature": temperature,
         "viscosity": viscosity,
         "wall_diameter": wall_diameter,
+        "target": target,
     }
     asked = _asked(pair, fmt, title, {**filters, **scenario})
     with opened(db) as database, database.reading() as connection:
@@ -90,6 +94,7 @@ def report(
                 critical_stokes=query.critical_stokes,
                 **_scenario(query.fluid, diameter, velocity, angle, temperature, viscosity),
                 wall_diameter_m=inputs.quantity(wall_diameter, "wall_diameter_m", "wall_diameter"),
+                target=None if target is None else inputs.choice(target, TARGETS, "target"),
             )
         else:
             content = dataset_report(
@@ -99,8 +104,8 @@ def report(
                 database=database.display_url,
                 query=query,
             )
-    if target is not None:
-        return write_report(content, fmt, target, force=force)
+    if destination is not None:
+        return write_report(content, fmt, destination, force=force)
     if fmt == "md":
         for figure in content["figures"]:
             data = base64.b64encode(figure["svg"].encode("utf-8")).decode("ascii")

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from typing import Any
 
-from granudb.analysis.pair import derive_pair, is_dry, pair_json
+from granudb.analysis.pair import TARGET_WORDS, TARGETS, derive_pair, is_dry, pair_json
 from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.errors import ValidationError
+from granudb.reporting.format import display
 from granudb.reporting.values import qualified_value
 from granudb.reporting.verdicts import verdicts
 
@@ -25,6 +26,7 @@ def pair(
     temperature: Any = None,
     viscosity: Any = None,
     wall_diameter: Any = None,
+    target: str | None = None,
     critical_stokes: Any = None,
     db: Any = None,
 ) -> dict[str, Any]:
@@ -33,7 +35,9 @@ def pair(
     Quantities are SI numbers or strings with units (``"12.7 mm"``, ``"0.3 m/s"``,
     ``"30 deg"``, ``"20 degC"``, ``"0.8 cP"``); ``diameter`` and ``velocity`` are
     required, ``angle`` is 0 unless given; ``fluid=None`` or ``"dry"`` is a dry collision;
-    ``viscosity`` overrides the fluid's (what-if); ``critical_stokes`` is St_c of the
+    ``viscosity`` overrides the fluid's (what-if); ``wall_diameter`` makes the target a
+    sphere, free and at rest unless ``target="fixed"`` (``"wall"``, ``"fixed"``,
+    ``"free"``; echoed in ``inputs``); ``critical_stokes`` is St_c of the
     rebound verdict (default 10). The result is the document ``granudb pair --format
     json`` prints: derived values at the top level under the vocabulary's names, the
     inputs, the particle, wall and fluid with their sources, and ``verdicts`` (each with
@@ -69,9 +73,11 @@ def pair(
         "viscosity_pa_s": inputs.quantity(viscosity, "viscosity_pa_s", "viscosity"),
         "wall_diameter_m": inputs.quantity(wall_diameter, "wall_diameter_m", "wall_diameter"),
     }
+    if target is not None:
+        target = inputs.choice(target, TARGETS, "target")
     with opened(db) as database, database.reading() as connection:
         result = derive_pair(
-            connection, particle, wall, fluid=fluid, critical_stokes=st_c, **values
+            connection, particle, wall, fluid=fluid, critical_stokes=st_c, target=target, **values
         )
     document = pair_json(result)
     said = verdicts(
@@ -86,3 +92,11 @@ def pair(
         {"key": v.key, "title": v.name, "text": v.text, "raised": v.raised} for v in said
     ]
     return document
+
+
+def target_words(scenario_inputs: dict[str, Any]) -> str:
+    """What a scenario's particle hits, in words, with a sphere's diameter: "flat wall",
+    "free sphere at rest, d = 12.7 mm"."""
+    words = TARGET_WORDS[scenario_inputs["target"]]
+    diameter = scenario_inputs.get("wall_diameter_m")
+    return words if diameter is None else f"{words}, d = {display(diameter, 'diameter_m')}"

@@ -48,7 +48,15 @@ def pair(
     ] = None,
     wall_diameter: Annotated[
         str | None,
-        typer.Option("--wall-diameter", help="Diameter of a second sphere (default: a flat wall)."),
+        typer.Option(
+            "--wall-diameter",
+            help="Diameter of a second sphere, free and at rest unless --target fixed "
+            "(default: a flat wall).",
+        ),
+    ] = None,
+    target: Annotated[
+        str | None,
+        typer.Option("--target", help="wall, fixed or free (a second sphere's default)."),
     ] = None,
     critical_stokes: CriticalStokes = None,
     db: DbOption = None,
@@ -65,6 +73,7 @@ def pair(
         temperature=temperature,
         viscosity=viscosity,
         wall_diameter=wall_diameter,
+        target=target,
         critical_stokes=critical_stokes,
         db=db,
     )
@@ -150,6 +159,7 @@ def _collision_table(document: dict[str, Any]) -> Any:
     rows = [
         ("particle", document["particle"]["name"]),
         ("wall", document["wall"]["name"]),
+        ("target", api.target_words(inputs)),
         ("fluid", fluid["name"] if fluid else "none (dry)"),
         ("diameter", show(inputs["diameter_m"], "diameter_m")),
         ("impact speed V", show(inputs["impact_speed_m_s"], "impact_speed_m_s")),

@@ -37,8 +37,9 @@ def report(
     temperature: _scenario("--temperature", "fluid temperature.") = None,
     viscosity: _scenario("--viscosity", "override the fluid viscosity.") = None,
     wall_diameter: _scenario(
-        "--wall-diameter", "diameter of a second sphere (default: wall)."
+        "--wall-diameter", "diameter of a second sphere, free unless --target fixed."
     ) = None,
+    target: _scenario("--target", "wall, fixed or free (a second sphere's default).") = None,
     fmt: Annotated[str, typer.Option("--format", "-f", help="html or md.")] = "html",
     output: Annotated[
         Path | None,
@@ -67,6 +68,7 @@ def report(
         temperature=temperature,
         viscosity=viscosity,
         wall_diameter=wall_diameter,
+        target=target,
         db=db,
         **(filters or {}),
     )

@@ -57,6 +57,8 @@ def get_or_create_dataset(
     if found is not None:
         ensure_editable(found)
         return found, False
+    check_dataset_name(name)
+    check_version(version)
     dataset = Dataset(name=name, version=version, title=title, license=license, source_id=source_id)
     session.add(dataset)
     session.flush()
@@ -234,5 +236,27 @@ def new_version(session: Session, dataset: Dataset, version: str) -> Dataset:
     return copy
 
 
+#: Separates a dataset's name from its version in ``NAME@VERSION``; refused inside new
+#: names and versions so that every reference splits one way (datasets named before the
+#: rule stay reachable with an explicit version).
+VERSION_SEPARATOR = "@"
+
+
 def check_version(version: str) -> str:
-    return check_name("--version", version, max_length=50)
+    check_name("--version", version, max_length=50)
+    _no_separator("--version", version)
+    return version
+
+
+def check_dataset_name(name: str) -> str:
+    """A new dataset's name: the shared name rules, and no ``@``."""
+    check_name("--dataset", name, max_length=200)
+    _no_separator("--dataset", name)
+    return name
+
+
+def _no_separator(field: str, value: str) -> None:
+    if VERSION_SEPARATOR in value:
+        raise ValidationError(
+            field, value, f"must not contain '{VERSION_SEPARATOR}' (it separates NAME@VERSION)"
+        )

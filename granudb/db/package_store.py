@@ -22,6 +22,7 @@ from sqlalchemy.orm import Session
 from granudb.db.catalog_rows import source_record
 from granudb.db.collision_store import insert_collisions
 from granudb.db.content_hash import update_content_hash
+from granudb.db.datasets import check_dataset_name, check_version
 from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
 from granudb.db.upsert import same_value
 from granudb.errors import ConflictError
@@ -224,6 +225,8 @@ def store_package(
                 f"package: dataset {content.dataset} {content.version} already exists (use "
                 "--as NAME, or export a new version); nothing was imported"
             )
+        check_dataset_name(content.dataset)
+        check_version(content.version)
         merger = Merger(session, content.package, rename_conflicts)
         materials, fluids = _merge(merger, content.tables)
         dataset = Dataset(

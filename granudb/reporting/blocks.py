@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from granudb.analysis.pair import TARGET_WORDS
 from granudb.reporting.format import display, engineering, unicode_math
 from granudb.reporting.values import qualified_value
 from granudb.reporting.verdicts import GAP_DEFINITION, roughness_verdict
@@ -134,6 +135,7 @@ def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, A
     for name, label, column in (
         ("diameter_m", "Particle diameter", "diameter_m"),
         ("wall_diameter_m", "Second sphere diameter", "diameter_m"),
+        ("target", "Target", None),
         ("impact_speed_m_s", "Impact speed", "impact_speed_m_s"),
         ("incidence_angle_rad", "Incidence angle", "incidence_angle_rad"),
     ):
@@ -147,7 +149,7 @@ def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, A
                 "label": label,
                 "name": name,
                 "unit": "",
-                "value": display(value, column),
+                "value": TARGET_WORDS[value] if name == "target" else display(value, column),
                 "relation": how,
             }  # fmt: skip
         )

@@ -79,6 +79,7 @@ def pair_report(
     viscosity_pa_s: float | None,
     critical_stokes: float,
     wall_diameter_m: float | None = None,
+    target: str | None = None,
     assumed: set[str] | None = None,
 ) -> dict[str, Any]:
     """A report for one scenario, plus the stored runs of the same pair if there are any.
@@ -103,6 +104,7 @@ def pair_report(
         temperature_c=temperature_c,
         viscosity_pa_s=viscosity_pa_s,
         wall_diameter_m=wall_diameter_m,
+        target=target,
         critical_stokes=critical_stokes,
     )
     name = f"{result.particle['name']} on {result.wall['name']}" + (

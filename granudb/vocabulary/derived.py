@@ -43,12 +43,17 @@ DERIVED_TERMS: dict[str, Term] = {
         "ζ_in",
         "ζ_in of the contact point's path, atan(|v_T,in|/v_N,in): spin counts",
     ),
-    "reynolds_number": _derived("Reynolds number", None, "Re", "Re = 2ρ_f R V / μ (§1)"),
+    "reynolds_number": _derived(
+        "Reynolds number",
+        None,
+        "Re",
+        "Re = 2ρ_f R* V / μ, on the pair's effective radius R* (Davis et al. 1986; wall: R)",
+    ),
     "stokes_number": _derived(
         "Stokes number", None, "St", "St = m*V/(6πμR*²), Davis's pair form (wall: 2ρ_p R V/(9μ))"
     ),
     "normal_stokes_number": _derived(
-        "Normal stokes number", None, "St_n", "St_n = m* v_N,in/(6πμR*²) (§4, §9)"
+        "Normal Stokes number", None, "St_n", "St_n = m* v_N,in/(6πμR*²) (§4, §9)"
     ),
     "added_mass_stokes_number": _derived(
         "Added-mass Stokes number",
