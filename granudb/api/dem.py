@@ -95,8 +95,15 @@ def _pair_values(
     if fluid is None:
         return dry, friction, None
     restitution, law = predicted_wet_restitution(
-        dry, particle, fluid.viscosity_pa_s, scenario["speed_m_s"]
+        dry, particle, fluid.viscosity_pa_s, scenario["speed_m_s"], fluid.density_kg_m3
     )
+    if restitution.value == 0.0:
+        raise ValidationError(
+            f"restitution {particle.name}/{wall}",
+            "0",
+            "no rebound is predicted (normal Stokes number at or below the critical 10 at this "
+            "speed): no DEM contact law represents that; give a higher --velocity",
+        )
     return restitution, friction, law
 
 

@@ -105,7 +105,7 @@ def wet_note(pair: PairParameters) -> str | None:
         return None
     w = pair.wet
     return (
-        f"immersed: e(St) = {num(w.max_restitution)} exp(-{num(w.critical_stokes)}/St), "
+        f"immersed: e(St_am) = {num(w.max_restitution)} exp(-{num(w.coefficient)}/St_am), "
         f"mu_fluid = {num(w.fluid_viscosity_pa_s)} Pa s ({w.provenance}); the e written is the "
         f"value at the stated Stokes number"
     )

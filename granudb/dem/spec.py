@@ -26,7 +26,12 @@ from granudb.physics.contact import (
     shear_modulus,
     sphere_mass,
 )
-from granudb.physics.flow import stokes_number
+from granudb.physics.flow import (
+    CRITICAL_STOKES_NUMBER,
+    LEGENDRE_BETA,
+    added_mass_stokes_number,
+    predicted_restitution,
+)
 
 
 @dataclass(frozen=True)
@@ -87,22 +92,23 @@ class ParticleType:
 
 @dataclass(frozen=True)
 class WetParameters:
-    """An e(St) law e = e_max exp(−St_c/St) (Legendre et al. 2006, docs/physics.md §10)."""
+    """An e(St) law e = e_max exp(−β_L/St_am) (Legendre et al. 2006, docs/physics.md §10), St_am
+    the Stokes number with added mass."""
 
     fluid_viscosity_pa_s: float
-    critical_stokes: float
+    coefficient: float  # β_L
     max_restitution: float
     provenance: str
 
     def __post_init__(self) -> None:
         _positive("fluid_viscosity", self.fluid_viscosity_pa_s, "Pa s")
-        _positive("critical_stokes", self.critical_stokes, "")
+        _positive("coefficient", self.coefficient, "")
         if not 0.0 < self.max_restitution <= 1.0:
             raise ValidationError("max_restitution", self.max_restitution, "must be in (0, 1]")
 
     def restitution(self, stokes: float) -> float:
-        """e at Stokes number ``stokes``: e_max exp(−St_c/St) (Legendre et al. 2006)."""
-        return self.max_restitution * math.exp(-self.critical_stokes / stokes)
+        """e at the added-mass Stokes number ``stokes``: e_max exp(−β_L/St_am)."""
+        return self.max_restitution * math.exp(-self.coefficient / stokes)
 
 
 @dataclass(frozen=True)
@@ -230,28 +236,37 @@ def predicted_wet_restitution(
     particle: ParticleType,
     viscosity_pa_s: float,
     speed_m_s: float,
+    fluid_density_kg_m3: float,
     *,
-    critical_stokes: float = 35.0,
+    coefficient: float = LEGENDRE_BETA,
+    critical_stokes: float = CRITICAL_STOKES_NUMBER,
 ) -> tuple[Value, WetParameters]:
-    """e_wet = e_dry exp(−β_L/St), St = 2ρ_p R V/(9μ) (Legendre et al. 2006; docs/physics.md §10).
+    """e_wet = e_dry exp(−β_L/St_am) above St_c, 0 below (Legendre et al. 2006;
+    docs/physics.md §10), with the added-mass Stokes number St_am = (ρ_p + ρ_f/2) 2RV/(9μ):
+    the one prediction ``granudb pair`` and the reports make (``flow.predicted_restitution``).
 
     Returns the constant e at the stated Stokes number (what a code without a wet model
-    takes) and the law itself (for LIGGGHTS-style e(St) models). St here has no added
-    mass (Joseph & Hunt §1); docs/physics.md §10 notes the added-mass variant.
+    takes) and the law itself (for LIGGGHTS-style e(St) models, St being St_am).
     """
-    st = float(stokes_number(particle.density_kg_m3, particle.radius_m, speed_m_s, viscosity_pa_s))
+    st = float(
+        added_mass_stokes_number(
+            particle.density_kg_m3, fluid_density_kg_m3, particle.radius_m, speed_m_s,
+            viscosity_pa_s,
+        )
+    )  # fmt: skip
     law = WetParameters(
         viscosity_pa_s,
-        critical_stokes,
+        coefficient,
         dry.value,
-        f"predicted: e = e_dry exp(-{critical_stokes:g}/St) (Legendre et al. 2006), "
+        f"predicted: e = e_dry exp(-{coefficient:g}/St_am) (Legendre et al. 2006), "
         f"e_dry from {dry.provenance}",
     )
-    e = law.restitution(st)
+    e = float(predicted_restitution(st, dry.value, critical_stokes, coefficient))
     note = (
-        f"predicted: e = e_dry exp(-{critical_stokes:g}/St), St = {st:.3g} at V = "
-        f"{speed_m_s:g} m/s, mu = {viscosity_pa_s:g} Pa s (Legendre et al. 2006); "
-        f"e_dry = {dry.value:g} from {dry.provenance}"
+        f"predicted: e = e_dry exp(-{coefficient:g}/St_am), St_am = {st:.3g} (with added "
+        f"mass) at V = {speed_m_s:g} m/s, mu = {viscosity_pa_s:g} Pa s, rho_f = "
+        f"{fluid_density_kg_m3:g} kg/m3 (Legendre et al. 2006); e_dry = {dry.value:g} from "
+        f"{dry.provenance}"
     )
     return Value(e, note), law
 

@@ -143,6 +143,8 @@ def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, A
         if value is None and name == "wall_diameter_m":
             continue
         how = "assumed (not given; granudb's default)" if name in assumed else "given"
+        if name == "target" and value == "wall":
+            how = "no second sphere given"
         rows.append(
             {
                 "symbol": None,

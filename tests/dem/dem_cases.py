@@ -19,6 +19,7 @@ MU_STEEL = Value(0.11, "Joseph & Hunt 2004 §3, steel on Zerodur 0.11 +- 0.003")
 MU_GLASS = Value(0.106, "Joseph & Hunt 2004 §3, glass on Zerodur 0.106 +- 0.008")
 #: 37 % and 78 % glycerol at 20 °C: viscosity [Pa s] (fluid densities ~1090 and ~1200 kg/m³).
 FLUIDS = {"glycerol37": 3e-3, "glycerol78": 48e-3}
+FLUID_DENSITIES = {"glycerol37": 1090.0, "glycerol78": 1200.0}
 BINARIES = {"liggghts": "liggghts", "lammps": "lmp", "yade": "yade"}
 
 
@@ -35,17 +36,17 @@ def dry_model() -> DemModel:
 
 def wet_model(fluid: str, speed: float = 0.3) -> DemModel:
     """Immersed pairs: e predicted by e_dry exp(-35/St) at ``speed`` (Legendre et al. 2006)."""
-    mu = FLUIDS[fluid]
+    mu, rho_f = FLUIDS[fluid], FLUID_DENSITIES[fluid]
     pairs = []
     for particle, friction in ((GLASS, MU_GLASS), (STEEL, MU_STEEL)):
-        e, law = predicted_wet_restitution(E_DRY, particle, mu, speed)
+        e, law = predicted_wet_restitution(E_DRY, particle, mu, speed, rho_f)
         pairs.append(PairParameters(particle.name, "zerodur", e, friction, wet=law))
-    e_gs, law_gs = predicted_wet_restitution(E_DRY, GLASS, mu, speed)
+    e_gs, law_gs = predicted_wet_restitution(E_DRY, GLASS, mu, speed, rho_f)
     pairs += [
         PairParameters("glass", "glass", e_gs, MU_GLASS, wet=law_gs),
         PairParameters("glass", "steel", e_gs, MU_STEEL, wet=law_gs),
         PairParameters(
-            "steel", "steel", predicted_wet_restitution(E_DRY, STEEL, mu, speed)[0], MU_STEEL
+            "steel", "steel", predicted_wet_restitution(E_DRY, STEEL, mu, speed, rho_f)[0], MU_STEEL
         ),
     ]
     return DemModel([GLASS, STEEL, ZERODUR], pairs, speed)

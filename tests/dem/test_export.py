@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import pytest
 from dem.dem_cases import E_DRY, GLASS, MU_GLASS, ZERODUR, dry_model, wet_model
@@ -13,8 +14,17 @@ from granudb.errors import ValidationError
 
 
 def low_e_model() -> DemModel:
-    """Glass in 78 % glycerol at 0.1 m/s: St = 7.5, e = 0.97 exp(-35/7.5) = 0.009."""
-    return wet_model("glycerol78", speed=0.1)
+    """Glass in 78 % glycerol with e = 0.97 exp(-35/7.5) = 0.00912 (the law at St = 7.5,
+    which the prediction itself calls "no rebound": a value given, not predicted)."""
+    from dataclasses import replace
+
+    from granudb.dem.spec import Value
+
+    model = wet_model("glycerol78", speed=0.3)
+    low = Value(0.97 * math.exp(-35 / 7.5), "given: e at St = 7.5")
+    pairs = [replace(p, restitution=low) if "glass" in (p.type_i, p.type_j) else p
+             for p in model.pairs]  # fmt: skip
+    return DemModel(list(model.types), pairs, model.characteristic_velocity_m_s)
 
 
 def test_liggghts_matrices_are_full_and_commented() -> None:
@@ -44,7 +54,7 @@ def test_unrepresentable_restitution_is_refused_in_one_line(writer: object, rule
 
 def test_liggghts_clamp_writes_the_floor_with_a_comment() -> None:
     text = liggghts.write(low_e_model(), clamp=True)
-    assert "CLAMPED from 0.00893" in text and "\n    0.0501 0.0501 " in text
+    assert "CLAMPED from 0.00912" in text and "\n    0.0501 0.0501 " in text
 
 
 def test_liggghts_soft_particles_below_its_floor() -> None:

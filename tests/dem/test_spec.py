@@ -51,10 +51,10 @@ def test_contact_scales_match_physics() -> None:
 
 
 def test_predicted_wet_restitution_states_its_stokes_number() -> None:
-    e, law = predicted_wet_restitution(E_DRY, GLASS, 48e-3, 0.3)
-    st = 2 * 2540 * 6.35e-3 * 0.3 / (9 * 48e-3)
+    e, law = predicted_wet_restitution(E_DRY, GLASS, 48e-3, 0.3, 1200.0)
+    st = 2 * (2540 + 0.5 * 1200) * 6.35e-3 * 0.3 / (9 * 48e-3)  # with added mass
     assert e.value == pytest.approx(0.97 * math.exp(-35 / st))
-    assert f"St = {st:.3g}" in e.provenance and "Legendre" in e.provenance
+    assert f"St_am = {st:.3g}" in e.provenance and "Legendre" in e.provenance
     assert law.restitution(st) == pytest.approx(e.value)
 
 
