@@ -129,6 +129,11 @@ class GranudbGroup(TyperGroup):
     naming the path and exit 1. Only what is left is reported as an internal error.
     """
 
+    def main(self, args: Any = None, *rest: Any, **kwargs: Any) -> Any:
+        """``--db`` and ``--format`` before the command mean the same as after it."""
+        given = list(sys.argv[1:] if args is None else args)
+        return super().main(options_last(given), *rest, **kwargs)
+
     def make_context(self, *args: Any, **kwargs: Any) -> Any:
         # The top-level options are parsed here, outside ``invoke``.
         try:
@@ -189,6 +194,42 @@ class GranudbGroup(TyperGroup):
                 err=True,
             )
             raise typer.Exit(2) from None
+
+
+#: Options every command that reads a database (``--db``) or prints a listing
+#: (``--format``) takes, accepted before the command name too: ``granudb --db x.sqlite
+#: dataset list`` is ``granudb dataset list --db x.sqlite``.
+EVERYWHERE = {"--db", "--format", "-f"}
+
+
+def options_last(args: list[str]) -> list[str]:
+    """``args`` with the ``EVERYWHERE`` options that come before the command name moved
+    after the command's own arguments (where the command parses them).
+
+    >>> options_last(["--db", "x.sqlite", "dataset", "list"])
+    ['dataset', 'list', '--db', 'x.sqlite']
+    >>> options_last(["-f", "json", "materials", "list", "--db=y"])
+    ['materials', 'list', '--db=y', '-f', 'json']
+    """
+    moved: list[str] = []
+    index = 0
+    while index < len(args) and args[index].startswith("-") and args[index] != "--":
+        name = args[index].split("=", 1)[0]
+        if name not in EVERYWHERE:
+            return args if not moved else [*args[index:], *moved]
+        if "=" in args[index] or index + 1 >= len(args):
+            moved.append(args[index])
+            index += 1
+        else:
+            moved += args[index : index + 2]
+            index += 2
+    if not moved:
+        return args
+    rest = args[index:]
+    if "--" in rest:
+        cut = rest.index("--")
+        return [*rest[:cut], *moved, *rest[cut:]]
+    return [*rest, *moved]
 
 
 # Typer's own click raises these; the click package (installed for other tools) is not
@@ -252,7 +293,8 @@ def _root(
 ) -> None:
     """Materials-and-regime database for particle–wall collisions in liquids.
 
-    Values go in with units ("190 GPa", "4.5 cP") and are stored in SI.
+    Values go in with units ("190 GPa", "4.5 cP") and are stored in SI. --db and
+    --format may come before the command or after it.
     """
     show_notes()
 
