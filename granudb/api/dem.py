@@ -117,7 +117,11 @@ def _dataset_values(
         mu = fit.get("sliding_friction")
         if mu is not None and mu == mu:
             low, high = fit.get("sliding_friction_low"), fit.get("sliding_friction_high")
-            interval = f", 95 % interval {low:.3g}–{high:.3g}" if low is not None else ""
+            interval = ""
+            if low is not None and high is not None and high - low > 1e-9 * abs(mu):
+                interval = f", 95 % interval {low:.3g}–{high:.3g}"
+            elif low is not None:
+                interval = ", interval not determined (every resample gave the same value)"
             friction = Value(float(mu), f"dataset {dataset}: Walton fit{interval}")
         elif fit.get("reason"):
             friction = Value(

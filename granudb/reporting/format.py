@@ -91,11 +91,12 @@ def plus_minus(value: Any, error: Any, *, exact_below: float = 1e-9) -> str:
 
     The uncertainty keeps one or two significant digits and the value is rounded to the
     same decimal place, so ``0.34 ± 3.2e-05`` reads ``0.34000 ± 0.00003``. An uncertainty
-    below ``exact_below`` × |value| is floating-point noise of a perfect fit, shown as
-    ``± 0`` rather than ``± 1.4e-17``.
+    below ``exact_below`` × |value| is floating-point noise of a perfect fit: the value is
+    shown without a ± (never ``± 1.4e-17`` or ``± 0``), saying its uncertainty is not
+    determined.
 
     >>> plus_minus(0.10999999, 1.4e-17)
-    '0.11 ± 0 (exact fit)'
+    '0.11 (uncertainty not determined: a perfect fit)'
     >>> plus_minus(0.3412, 0.0712)
     '0.34 ± 0.07'
     >>> plus_minus(0.97, 0.0123)
@@ -108,7 +109,7 @@ def plus_minus(value: Any, error: Any, *, exact_below: float = 1e-9) -> str:
         return f"{value:.3g}"
     error = abs(float(error))
     if error <= exact_below * max(abs(value), 1e-300) or error == 0:
-        return f"{value:.3g} ± 0 (exact fit)"
+        return f"{value:.3g} (uncertainty not determined: a perfect fit)"
     decimals = _decimals_for(error)
     if error >= 1e4 or abs(value) >= 1e6 or (error < 1e-4 and abs(value) < 1e-3):
         exponent = math.floor(math.log10(abs(value) if value else error))
@@ -120,14 +121,22 @@ def plus_minus(value: Any, error: Any, *, exact_below: float = 1e-9) -> str:
 
 def interval(value: Any, low: Any, high: Any) -> str:
     """A value with an asymmetric interval, ``0.34 [0.30, 0.39]``, rounded like
-    ``plus_minus`` on the larger half-width."""
+    ``plus_minus`` on the larger half-width. An interval of no width (below 10⁻⁹ of the
+    value: every resample gave the same number) is not an interval: the value is shown
+    with "interval not determined", never as exact.
+
+    >>> interval(0.3412, 0.30, 0.39)
+    '0.34 [0.30, 0.39]'
+    >>> interval(0.96999999999999986, 0.96999999999999986, 0.97000000000000008)
+    '0.97 (interval not determined: every resample gave the same value)'
+    """
     if not is_number(value):
         return "—"
     if not (is_number(low) and is_number(high)):
         return f"{float(value):.3g}"
     half = max(abs(float(high) - float(value)), abs(float(value) - float(low)))
-    if half == 0:
-        return f"{float(value):.3g} [exact]"
+    if half <= 1e-9 * abs(float(value)) or half == 0:
+        return f"{float(value):.3g} (interval not determined: every resample gave the same value)"
     decimals = max(_decimals_for(half), 0)
     return (
         f"{_fixed(float(value), decimals)} "

@@ -1,0 +1,34 @@
+"""Numbers for people carry the precision their uncertainty supports: no float noise, and
+no "[exact]" for a fitted number (issue 24), even where three runs give a degenerate
+bootstrap (issue 23's case: three dry runs, one sticking)."""
+
+from __future__ import annotations
+
+import re
+
+from paper_runs import paper_rows, write_csv
+
+#: A number meant for people with more than six significant digits (float noise).
+NOISE = re.compile(r"(?<![\w.#/-])\d\.\d{7,}|(?<![\w.#/-])0\.0*[1-9]\d{6,}")
+
+
+def _text(html: str) -> str:
+    text = re.sub(r"<(svg|script|style)\b.*?</\1>", " ", html, flags=re.S)
+    return re.sub(r"<[^>]+>", " ", text)
+
+
+def test_three_runs_give_no_exact_interval_and_no_float_noise(cli, db, tmp_path) -> None:
+    rows = [r for r in paper_rows(runs_per_group=3) if r[3] == ""][:3]
+    rows = [[*r[:4], *r[4:]] for r in rows]
+    source = write_csv(tmp_path / "three.csv", rows)
+    assert cli("collisions", "import", str(source), "--dataset", "three", db=db).exit_code == 0
+    for fmt in ("html", "md"):
+        out = tmp_path / f"r.{fmt}"
+        result = cli("report", "--dataset", "three", "--format", fmt, "--output", str(out), db=db)
+        assert result.exit_code == 0, result.stderr
+        text = _text(out.read_text("utf-8"))
+        assert "[exact]" not in text and "(exact fit)" not in text
+        assert NOISE.findall(text) == []
+    listing = cli("fit", "walton", "--dataset", "three", db=db)
+    assert listing.exit_code == 0, listing.stderr
+    assert "[exact]" not in listing.stdout and NOISE.findall(listing.stdout) == []
