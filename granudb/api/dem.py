@@ -43,6 +43,7 @@ from granudb.dem import (
 )
 from granudb.dem.verify import TOLERANCES, Record, passed, summary, table, verify
 from granudb.errors import ValidationError
+from granudb.output_files import write_text
 
 #: The codes ``dem_export`` writes for (``dem_verify`` runs the first three).
 DEM_CODES = WRITER_NAMES
@@ -271,13 +272,7 @@ def dem_export(
     )  # fmt: skip
     text = writer.write(model, clamp=clamp)
     if target is not None:
-        try:
-            with target.open("x", encoding="utf-8") as handle:
-                handle.write(text)
-        except OSError as exc:
-            raise ValidationError(
-                "output", str(target), f"cannot be written ({exc.strerror})", parameter=True
-            ) from None
+        write_text(target, text, field="output")
     return text
 
 

@@ -11,6 +11,7 @@ with ``BEGIN IMMEDIATE`` so a writer waits for the lock up front instead of fail
 
 from __future__ import annotations
 
+import sqlite3
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -23,7 +24,7 @@ from sqlalchemy.exc import DBAPIError, IntegrityError, OperationalError
 
 from granudb.config import default_database_path, resolve_database_url
 from granudb.db import migration
-from granudb.errors import DatabaseAccessError, GranudbError
+from granudb.errors import DatabaseAccessError, GranudbError, SchemaError
 from granudb.lazy import sqlalchemy_orm
 
 if TYPE_CHECKING:  # the ORM is loaded by the commands that use it (see ``reading``)
@@ -101,6 +102,33 @@ def _check_sqlite_location(path: Path, is_default: bool) -> None:
             raise DatabaseAccessError(
                 f"database: folder {folder} does not exist (create it, or choose another --db)"
             )
+
+
+def recognise_sqlite(path: Path) -> None:
+    """Refuse an existing SQLite file that is not granudb's before anything writes to it.
+
+    Read through a read-only connection (``mode=ro``): the file's header (WAL mode) and
+    contents are untouched whatever it is. An empty or absent file is a new database.
+    """
+    if not path.is_file() or path.stat().st_size == 0:
+        return
+    try:
+        probe = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True)
+        try:
+            tables = {row[0] for row in probe.execute("SELECT name FROM sqlite_master")}
+        finally:
+            probe.close()
+    except sqlite3.DatabaseError as exc:
+        raise DatabaseAccessError(
+            f"database: {path} is not a SQLite database ({exc}); nothing was changed"
+        ) from None
+    tables = {t for t in tables if not t.startswith("sqlite_")}
+    if tables and "alembic_version" not in tables:
+        raise SchemaError(
+            "database: holds tables but no granudb schema revision "
+            f"({', '.join(sorted(tables)[:5])}…); it is not a granudb database; nothing "
+            "was changed"
+        )
 
 
 def translate_db_error(exc: DBAPIError) -> GranudbError:
@@ -215,6 +243,7 @@ def open_database(
     path = _sqlite_file(resolved)
     if path is not None:
         _check_sqlite_location(path, is_default=path == default_database_path())
+        recognise_sqlite(path)
     engine = make_engine(resolved)
     database = Database(resolved, engine)
     if not migrate:

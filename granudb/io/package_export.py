@@ -10,6 +10,7 @@ content hash (``granudb:content_hash``) lets the receiver check nothing changed 
 from __future__ import annotations
 
 import hashlib
+import io
 import json
 import re
 import zipfile
@@ -21,6 +22,7 @@ from granudb.db.package_queries import ExportData
 from granudb.errors import ConflictError, ValidationError
 from granudb.io.package_metadata import citation_cff, contributors, keywords, zenodo_json
 from granudb.io.package_schema import DESCRIPTIONS, columns, table_schema
+from granudb.output_files import write_bytes, write_folder
 from granudb.version import __version__
 
 PROFILE = "https://datapackage.org/profiles/2.0/datapackage.json"
@@ -209,40 +211,29 @@ def build_package(data: ExportData, created: str | None = None) -> dict[str, byt
     return files
 
 
-def _write_zip(files: dict[str, bytes], output: Path) -> None:
-    temporary = output.with_name(output.name + ".part")
-    try:
-        with zipfile.ZipFile(temporary, "w", compression=zipfile.ZIP_DEFLATED) as archive:
-            for path in sorted(files):
-                info = zipfile.ZipInfo(path, date_time=(2000, 1, 1, 0, 0, 0))
-                info.compress_type = zipfile.ZIP_DEFLATED
-                archive.writestr(info, files[path])
-        temporary.replace(output)
-    finally:
-        temporary.unlink(missing_ok=True)
+def _zip_bytes(files: dict[str, bytes]) -> bytes:
+    """The package as one zip archive (fixed timestamps: the same files, the same bytes)."""
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
+        for path in sorted(files):
+            info = zipfile.ZipInfo(path, date_time=(2000, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            archive.writestr(info, files[path])
+    return buffer.getvalue()
 
 
 def write_package(files: dict[str, bytes], output: Path, *, overwrite: bool = False) -> Path:
     """Write to a folder, or to a zip file when ``output`` ends in ``.zip``; an existing
-    file, or a folder that is not empty, is refused (nothing is overwritten)."""
-    is_zip = output.suffix.lower() == ".zip"
+    file, or a folder that is not empty, is refused (nothing is overwritten). Written
+    through ``granudb.output_files``: all or nothing, no symbolic link followed."""
     if not output.parent.is_dir():
         raise ValidationError("--output", str(output), "is in a folder that does not exist")
-    if is_zip and (output.exists() or output.is_symlink()) and not overwrite:
-        raise ConflictError(f"--output: {output} exists (remove it or choose another)")
-    if not is_zip and (output.is_file() or output.is_symlink() and not output.is_dir()):
+    if output.suffix.lower() == ".zip":
+        if (output.exists() or output.is_symlink()) and not overwrite:
+            raise ConflictError(f"--output: {output} exists (remove it or choose another)")
+        return write_bytes(output, _zip_bytes(files), replace=overwrite, field="--output")
+    if output.is_symlink() or output.is_file():
         raise ConflictError(f"--output: {output} exists and is not a folder (choose another)")
-    try:
-        if is_zip:
-            _write_zip(files, output)
-            return output
-        if output.exists() and any(output.iterdir()) and not overwrite:
-            raise ConflictError(f"--output: folder {output} is not empty (choose an empty one)")
-        for path, payload in files.items():
-            target = output / path
-            target.parent.mkdir(parents=True, exist_ok=True)
-            target.write_bytes(payload)
-    except OSError as exc:
-        reason = f"cannot be written ({exc.strerror or exc})"
-        raise ValidationError("--output", str(output), reason) from None
-    return output
+    if output.is_dir() and any(output.iterdir()) and not overwrite:
+        raise ConflictError(f"--output: folder {output} is not empty (choose an empty one)")
+    return write_folder(output, files, replace=overwrite, field="--output")

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from granudb.errors import ValidationError
+from granudb.output_files import write_text
 from granudb.reporting.render import render
 
 
@@ -21,39 +22,59 @@ def default_name(report: dict[str, Any], fmt: str) -> str:
 
 
 def check_output(path: Path | None, *, force: bool = False) -> None:
-    """Refuse, before any work, an output in a missing folder or an existing file
-    (unless ``force``). A folder is accepted: the file name is chosen later."""
-    if path is None or Path(path).is_dir():
+    """Refuse, before any work, an output in a missing folder, an existing file (unless
+    ``force``) or a symbolic link. A folder is accepted: the file name is chosen later."""
+    if path is None:
         return
     path = Path(path)
+    if path.is_dir() and not path.is_symlink():
+        return
     if not path.parent.is_dir():
         raise ValidationError("--output", str(path), "is in a folder that does not exist")
+    if path.is_symlink():
+        raise ValidationError("--output", str(path), "is a symbolic link (choose a new file)")
     if path.exists() and not force:
         raise ValidationError("--output", str(path), "exists (use --force to overwrite it)")
+
+
+def _figure_files(report: dict[str, Any], path: Path, force: bool) -> dict[Path, str]:
+    """The Markdown report's SVG files, each checked as the report is: a figures folder
+    that is a symbolic link, or a figure file that exists (without ``force``), is refused
+    before anything is written."""
+    folder = path.with_name(path.stem + "_figures")
+    if not report["figures"]:
+        return {}
+    if folder.is_symlink() or (folder.exists() and not folder.is_dir()):
+        raise ValidationError("--output", str(folder), "is not a folder granudb may write into")
+    files = {}
+    for figure in report["figures"]:
+        target = folder / f"{figure['id']}.svg"
+        if target.is_symlink():
+            raise ValidationError("--output", str(target), "is a symbolic link")
+        if target.exists() and not force:
+            raise ValidationError("--output", str(target), "exists (use --force to overwrite it)")
+        files[target] = '<?xml version="1.0" encoding="utf-8"?>\n' + figure["svg"]
+        figure["file"] = f"{folder.name}/{figure['id']}.svg"
+    return files
 
 
 def write_report(
     report: dict[str, Any], fmt: str, output: Path | None, *, force: bool = False
 ) -> Path:
     """Write ``report`` as ``fmt`` ("html" or "md") to ``output`` (default: a name made
-    from the title, in the current folder); returns the path written."""
+    from the title, in the current folder); returns the path written. Every file is
+    written through ``granudb.output_files`` (exclusive temporary file, atomic rename,
+    nothing left on failure)."""
     if fmt not in {"html", "md"}:
         raise ValidationError("--format", fmt, "must be html or md")
     path = Path(output) if output is not None else Path.cwd() / default_name(report, fmt)
-    if path.is_dir():
+    if path.is_dir() and not path.is_symlink():
         path = path / default_name(report, fmt)
     check_output(path, force=force)
-    if fmt == "md":
-        folder = path.with_name(path.stem + "_figures")
-        if report["figures"]:
-            folder.mkdir(exist_ok=True)
-        for figure in report["figures"]:
-            (folder / f"{figure['id']}.svg").write_text(
-                '<?xml version="1.0" encoding="utf-8"?>\n' + figure["svg"], encoding="utf-8"
-            )
-            figure["file"] = f"{folder.name}/{figure['id']}.svg"
+    figures = _figure_files(report, path, force) if fmt == "md" else {}
     text = render(report, fmt)
-    temporary = path.with_name(path.name + ".part")
-    temporary.write_text(text, encoding="utf-8")
-    temporary.replace(path)
-    return path
+    if figures:
+        next(iter(figures)).parent.mkdir(exist_ok=True)
+    for target, svg in figures.items():
+        write_text(target, svg, replace=force, field="--output")
+    return write_text(path, text, replace=force, field="--output")
