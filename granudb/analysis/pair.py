@@ -126,13 +126,16 @@ def derive_pair(
     wall_diameter_m: float | None = None,
     target: str | None = None,
     critical_stokes: float = 10.0,
+    dataset_id: int | None = None,
 ) -> PairResult:
     """Derive one scenario: ``particle`` hits ``wall`` (in ``fluid``) at ``speed_m_s``,
     ``angle_rad`` from the normal, without spin. The target is a flat wall, or with
     ``wall_diameter_m`` a sphere, free and at rest unless ``target`` is "fixed"
     (``target_kind``); m*, R*, the Walton factor, Hertz, the Stokes and Reynolds numbers
     and the predicted e are those of that target. ``reader`` is a Core connection
-    (``Database.reading()``, no ORM needed: issue 17's start-up bound) or a session."""
+    (``Database.reading()``, no ORM needed: issue 17's start-up bound) or a session.
+    With ``dataset_id`` the materials and fluid are read as that dataset's runs use them
+    (a release keeps the values it was released with)."""
     _check_scenario(diameter_m, speed_m_s, angle_rad, critical_stokes)
     target = target_kind(target, wall_diameter_m)
     if is_dry(fluid):
@@ -142,9 +145,9 @@ def derive_pair(
                     name, f"{value:g}", "needs a fluid (a dry collision has none)", parameter=True
                 )
     connection = reader if isinstance(reader, Connection) else reader.connection()
-    first = catalog_rows.get_material_row(connection, particle)
-    second = catalog_rows.get_material_row(connection, wall)
-    fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(connection, fluid)
+    first = catalog_rows.get_material_row(connection, particle, dataset_id)
+    second = catalog_rows.get_material_row(connection, wall, dataset_id)
+    fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(connection, fluid, dataset_id)
     state = fluid_state(fluid_row, temperature_c, viscosity_pa_s) if fluid_row else None
     inputs = {
         "diameter_m": diameter_m,

@@ -28,7 +28,8 @@ from granudb.analysis.fluid_state import fluid_state
 from granudb.analysis.pair import derive_pair, is_dry
 from granudb.api import inputs
 from granudb.api.database import opened
-from granudb.db import catalog_rows, sources
+from granudb.api.dataset_versions import dataset_ref
+from granudb.db import catalog_rows, lookup_rows, sources
 from granudb.dem import (
     WRITER_NAMES,
     DemModel,
@@ -67,15 +68,26 @@ def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dic
     return found
 
 
-def _predicted(session: Any, particle: str, wall: str, fluid: str | None, scenario: dict) -> Any:
-    return derive_pair(session, particle, wall, fluid=fluid, **scenario).derived
+def _predicted(
+    session: Any, particle: str, wall: str, fluid: str | None, scenario: dict, pinned: Any
+) -> Any:
+    return derive_pair(session, particle, wall, fluid=fluid, dataset_id=pinned, **scenario).derived
 
 
 def _pair_values(
-    session: Any, particle: Any, wall: str, fluid: Any, scenario: dict, values: str, dataset: Any
+    session: Any,
+    particle: Any,
+    wall: str,
+    fluid: Any,
+    scenario: dict,
+    values: str,
+    dataset: Any,
+    pinned: int | None = None,
 ) -> tuple[Any, Any, Any]:
-    """(restitution Value, friction Value, WetParameters or None) for one pair."""
-    derived = _predicted(session, particle.name, wall, fluid.name if fluid else None, scenario)
+    """(restitution Value, friction Value, WetParameters or None) for one pair; with
+    ``pinned`` (a dataset's id) the catalogue as that dataset's runs use it."""
+    fluid_name = fluid.name if fluid else None
+    derived = _predicted(session, particle.name, wall, fluid_name, scenario, pinned)
     lubricated = derived.get("lubricated_friction_state") == "in_range" and fluid is not None
     friction = Value(
         float(derived["friction_coefficient_used"]),
@@ -166,11 +178,14 @@ def dem_model(
         "speed_m_s": inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
     }
     with opened(db) as database, database.reading() as session:
-        fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(session, fluid)
+        pinned = None  # values=dataset: the catalogue as the dataset's runs use it
+        if values == "dataset":
+            pinned = lookup_rows.dataset_row(session, *dataset_ref(dataset)).id
+        fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(session, fluid, pinned)
         state = fluid_state(fluid_row) if fluid_row else None
         types, pairs = [], []
         for name in particles:
-            m = catalog_rows.get_material_row(session, name)
+            m = catalog_rows.get_material_row(session, name, pinned)
             types.append(
                 ParticleType(
                     _type(m.name),
@@ -181,7 +196,7 @@ def dem_model(
                 )
             )
         for name in walls:
-            m = catalog_rows.get_material_row(session, name)
+            m = catalog_rows.get_material_row(session, name, pinned)
             types.append(
                 ParticleType(
                     _type(m.name) + "_wall",
@@ -196,7 +211,7 @@ def dem_model(
         for particle in [t for t in types if not t.is_wall]:
             for wall in [t for t in types if t.is_wall]:
                 e, mu, law = _pair_values(
-                    session, particle, wall.name[:-5], state, scenario, values, dataset
+                    session, particle, wall.name[:-5], state, scenario, values, dataset, pinned
                 )
                 on_first_wall.setdefault(particle.name, (e, mu, law, wall.name))
                 pairs.append(PairParameters(particle.name, wall.name, e, mu, wet=law))

@@ -19,6 +19,7 @@ from sqlalchemy import func, or_, select
 from sqlalchemy.orm import Session
 
 from granudb.db import catalog_rows
+from granudb.db.catalog_revisions import keep_for_releases, revisions
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, PublishedValue
 from granudb.db.upsert import Change, same_value
 from granudb.errors import ConflictError, ValidationError
@@ -99,24 +100,26 @@ def update_entry(
     _check_fields(catalogue, values)
     row = _entry(session, catalogue, name)
     label = f"{catalogue.kind} {row.name}"
-    diffs = []
-    for column, new in values.items():
-        old = getattr(row, column)
-        if not same_value(old, new):
-            diffs.append((column, old, new))
-            setattr(row, column, new)
-    check_entry(catalogue, {c: getattr(row, c) for c in catalogue.properties})
-    if source is not None:
-        source_id = catalog_rows.source_id(session.connection(), source)
-        if row.source_id != source_id:
-            diffs.append(("source", row.source.key if row.source else None, source))
-            row.source_id = source_id
+    changed = {c: new for c, new in values.items() if not same_value(getattr(row, c), new)}
+    diffs = [(column, getattr(row, column), new) for column, new in changed.items()]
+    check_entry(catalogue, {c: changed.get(c, getattr(row, c)) for c in catalogue.properties})
+    source_id = None if source is None else catalog_rows.source_id(session.connection(), source)
+    if source_id is not None and row.source_id != source_id:
+        diffs.append(("source", row.source.key if row.source else None, source))
     if new_name is not None and new_name != row.name:
         check_entry_name(catalogue, new_name)
         clash = catalog_rows.entry_name(session.connection(), catalogue.kind, new_name)
         if clash is not None and name_key(clash) != row.name_key:
             raise ConflictError(f"{catalogue.kind}: {new_name!r} already exists")
         diffs.append(("name", row.name, new_name))
+    if not diffs:
+        return Change("unchanged", label, diffs)
+    keep_for_releases(session, catalogue.kind, row)  # a release keeps what it used
+    for column, new in changed.items():
+        setattr(row, column, new)
+    if source_id is not None:
+        row.source_id = source_id
+    if new_name is not None and new_name != row.name:
         row.name, row.name_key = new_name, name_key(new_name)
     session.flush()
     return Change("updated" if diffs else "unchanged", label, diffs)
@@ -165,6 +168,12 @@ def _unused(session: Session, catalogue: Catalogue, name: str) -> Any:
         raise ConflictError(
             f"{catalogue.kind}: {row.name!r} is still used by {'; '.join(uses)}; remove those first"
         )
+    kept = len(revisions(session, catalogue.kind, row.id))
+    if kept:
+        raise ConflictError(
+            f"{catalogue.kind}: {row.name!r} has {kept} revisions that released datasets "
+            "keep (a release never changes); it cannot be removed"
+        )
     return row
 
 
@@ -183,6 +192,7 @@ def add_fluid_points(
     connection = session.connection()
     fluid = catalog_rows.get_fluid_row(connection, name)
     fluid_id = catalog_rows.entry_id(connection, "fluid", name)
+    kept = False
     source_id = catalog_rows.source_id(connection, source) if source is not None else None
     stored = {
         p.temperature_c: p
@@ -198,6 +208,9 @@ def add_fluid_points(
         seen.add(t)
         existing = stored.get(t)
         new = point["viscosity_pa_s"] * 1e3
+        if not kept:
+            keep_for_releases(session, "fluid", session.get(Fluid, fluid_id))
+            kept = True
         if existing is not None and not replace:
             raise ConflictError(
                 f"fluid {fluid.name}: a point at {t:g} °C exists already "

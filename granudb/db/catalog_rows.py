@@ -19,7 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 from typing import Any
 
-from sqlalchemy import DateTime, column, select, table
+from sqlalchemy import DateTime, column, or_, select, table
 from sqlalchemy.engine import Connection
 from sqlalchemy.sql.expression import TableClause
 
@@ -109,8 +109,8 @@ def lightweight_table(name: str, columns: list[str]) -> TableClause:
 
 
 SOURCES = lightweight_table("sources", ["id", *SOURCE_COLUMNS])
-MATERIALS = lightweight_table("materials", ["id", "name_key", *_stored(MaterialRow)])
-FLUIDS = lightweight_table("fluids", ["id", "name_key", *_stored(FluidRow)])
+MATERIALS = lightweight_table("materials", ["id", "name_key", "revision_of", *_stored(MaterialRow)])
+FLUIDS = lightweight_table("fluids", ["id", "name_key", "revision_of", *_stored(FluidRow)])
 FLUID_POINTS = lightweight_table("fluid_points", ["id", "fluid_id", *_stored(FluidPointRow)])
 #: Every lightweight table above, for the test that holds them to the models.
 TABLES = (SOURCES, MATERIALS, FLUIDS, FLUID_POINTS)
@@ -138,8 +138,10 @@ def source_rows(connection: Connection) -> list[SourceRow]:
 
 
 def material_rows(connection: Connection, name: str | None = None) -> list[MaterialRow]:
-    """Every material by name (case-insensitively), or the one called ``name``."""
+    """Every material by name (case-insensitively), or the one called ``name``; live rows
+    only (a release's kept values are revisions, ``granudb.db.catalog_revisions``)."""
     query = select(*MATERIALS.c).order_by(MATERIALS.c.name_key)
+    query = query.where(MATERIALS.c.revision_of.is_(None))
     if name is not None:
         query = query.where(MATERIALS.c.name_key == name_key(name))
     sources = _sources(connection)
@@ -147,17 +149,21 @@ def material_rows(connection: Connection, name: str | None = None) -> list[Mater
 
 
 def fluid_rows(connection: Connection, name: str | None = None) -> list[FluidRow]:
-    """Every fluid by name with its points by temperature, or the one called ``name``."""
-    return list(_fluids(connection, name).values())
+    """Every live fluid by name with its points by temperature, or the one called
+    ``name``."""
+    return list(_fluids(connection, name, live=True).values())
 
 
 def fluid_rows_by_id(connection: Connection) -> dict[int, FluidRow]:
-    """Every fluid keyed by its id: stored runs name their fluid by id."""
+    """Every fluid keyed by its id, revisions included: stored runs name their fluid by
+    id, and a release's runs the revision it keeps."""
     return _fluids(connection, None)
 
 
-def _fluids(connection: Connection, name: str | None) -> dict[int, FluidRow]:
+def _fluids(connection: Connection, name: str | None, live: bool = False) -> dict[int, FluidRow]:
     query = select(*FLUIDS.c).order_by(FLUIDS.c.name_key)
+    if live:
+        query = query.where(FLUIDS.c.revision_of.is_(None))
     if name is not None:
         query = query.where(FLUIDS.c.name_key == name_key(name))
     found = connection.execute(query).mappings().all()
@@ -199,9 +205,19 @@ def entry_id(connection: Connection, kind: str, name: str) -> int:
     return int(found)
 
 
+def entry_ids(connection: Connection, kind: str, name: str) -> list[int]:
+    """The ids of the ``kind`` called ``name``: the live row and the revisions released
+    runs keep (a filter by name finds a release's runs too)."""
+    live = entry_id(connection, kind, name)
+    clause = ENTRY_TABLES[kind]
+    kept = connection.execute(select(clause.c.id).where(clause.c.revision_of == live))
+    return [live, *kept.scalars()]
+
+
 def _not_found(connection: Connection, kind: str, name: str) -> NotFoundError:
     clause = ENTRY_TABLES[kind]
-    names = connection.execute(select(clause.c.name).order_by(clause.c.name_key)).scalars()
+    live = select(clause.c.name).where(clause.c.revision_of.is_(None))
+    names = connection.execute(live.order_by(clause.c.name_key)).scalars()
     known = ", ".join(names) or "none yet"
     return NotFoundError(f"{kind}: {name!r} is not in the database (known: {known})")
 
@@ -222,20 +238,50 @@ def get_source_row(connection: Connection, key: str) -> SourceRow:
     return next(s for s in source_rows(connection) if s.key == key)
 
 
-def get_material_row(connection: Connection, name: str) -> MaterialRow:
-    """The material called ``name``; an error listing the known names if there is none."""
+#: The runs' references, to find the rows a dataset's runs use.
+_RUNS = lightweight_table("collisions", ["dataset_id", "particle_id", "wall_id", "fluid_id"])
+_RUN_REFERENCES = {"material": ("particle_id", "wall_id"), "fluid": ("fluid_id",)}
+
+
+def pinned_id(connection: Connection, kind: str, name: str, dataset_id: int) -> int:
+    """The id of the row called ``name`` that dataset ``dataset_id``'s runs use: a
+    revision when the dataset is a release that kept one, else the live row."""
+    ids = entry_ids(connection, kind, name)
+    used: set[int] = set()
+    for reference in _RUN_REFERENCES[kind]:
+        column = _RUNS.c[reference]
+        query = select(column).where(
+            _RUNS.c.dataset_id == dataset_id, or_(*(column == i for i in ids))
+        )
+        used |= set(connection.execute(query.distinct()).scalars())
+    return used.pop() if len(used) == 1 else ids[0]
+
+
+def get_material_row(
+    connection: Connection, name: str, dataset_id: int | None = None
+) -> MaterialRow:
+    """The material called ``name`` (as dataset ``dataset_id``'s runs use it, when
+    given); an error listing the known names if there is none."""
     found = material_rows(connection, name)
     if not found:
         raise _not_found(connection, "material", name)
-    return found[0]
+    if dataset_id is None:
+        return found[0]
+    chosen = pinned_id(connection, "material", name, dataset_id)
+    query = select(*MATERIALS.c).where(MATERIALS.c.id == chosen)
+    row = connection.execute(query).mappings().one()
+    return _build(MaterialRow, row, _sources(connection))
 
 
-def get_fluid_row(connection: Connection, name: str) -> FluidRow:
-    """The fluid called ``name`` with its points; an error listing the known names if none."""
+def get_fluid_row(connection: Connection, name: str, dataset_id: int | None = None) -> FluidRow:
+    """The fluid called ``name`` with its points (as dataset ``dataset_id``'s runs use
+    it, when given); an error listing the known names if none."""
     found = fluid_rows(connection, name)
     if not found:
         raise _not_found(connection, "fluid", name)
-    return found[0]
+    if dataset_id is None:
+        return found[0]
+    return fluid_rows_by_id(connection)[pinned_id(connection, "fluid", name, dataset_id)]
 
 
 # The records every door shows, built from an ORM object or a record above alike.

@@ -11,7 +11,7 @@ import itertools
 from collections.abc import Collection, Iterator, Sequence
 from typing import Any
 
-from sqlalchemy import func, select
+from sqlalchemy import func, or_, select
 from sqlalchemy.engine import Connection
 
 from granudb.db import catalog_rows, lookup_rows
@@ -195,16 +195,26 @@ def _collision_select(
         query = query.where(runs.dataset_id == chosen.id)
     if particle is not None:
         query = query.where(
-            runs.particle_id == catalog_rows.entry_id(connection, "material", particle)
+            _one_of(runs.particle_id, catalog_rows.entry_ids(connection, "material", particle))
         )
     if wall is not None:
-        query = query.where(runs.wall_id == catalog_rows.entry_id(connection, "material", wall))
+        query = query.where(
+            _one_of(runs.wall_id, catalog_rows.entry_ids(connection, "material", wall))
+        )
     if fluid is not None:
         if fluid.strip().casefold() == "dry":
             query = query.where(runs.fluid_id.is_(None))
         else:
-            query = query.where(runs.fluid_id == catalog_rows.entry_id(connection, "fluid", fluid))
+            ids = catalog_rows.entry_ids(connection, "fluid", fluid)
+            query = query.where(_one_of(runs.fluid_id, ids))
     return query.order_by(DATASETS.c.name, DATASETS.c.version, runs.run)
+
+
+def _one_of(column: Any, ids: list[int]) -> Any:
+    """``column`` equal to one of ``ids`` (a live row and its revisions), as plain
+    parameters: the query is also run through the driver directly, where an expanding
+    IN parameter cannot go."""
+    return or_(*(column == i for i in ids))
 
 
 def _driver_chunks(connection: Any, query: Any, chunk_rows: int) -> Iterator[list[tuple]]:

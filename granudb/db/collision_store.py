@@ -86,8 +86,10 @@ class NameIndex:
     name of a block."""
 
     def __init__(self, session: Any) -> None:
-        materials = list(session.execute(select(Material.id, Material.name)))
-        fluids = list(session.execute(select(Fluid.id, Fluid.name)))
+        live_materials = select(Material.id, Material.name).where(Material.revision_of.is_(None))
+        live_fluids = select(Fluid.id, Fluid.name).where(Fluid.revision_of.is_(None))
+        materials = list(session.execute(live_materials))
+        fluids = list(session.execute(live_fluids))
         self.materials = {name_key(n): i for i, n in materials}
         self.material_names = sorted((n for _, n in materials), key=str.casefold)
         self.material_by_id = {i: n for i, n in materials}
@@ -145,7 +147,9 @@ class FluidRanges:
         self.fluids = {
             name_key(name): (name, reference, *spans.get(fluid_id, (None, None, 0)))
             for fluid_id, name, reference in session.execute(
-                select(Fluid.id, Fluid.name, Fluid.reference_temperature_c)
+                select(Fluid.id, Fluid.name, Fluid.reference_temperature_c).where(
+                    Fluid.revision_of.is_(None)
+                )
             )
         }
 

@@ -17,6 +17,7 @@ from typing import Any
 from sqlalchemy import Integer, delete, func, insert, literal, select
 from sqlalchemy.orm import Session
 
+from granudb.db.catalog_revisions import follow_live_rows
 from granudb.db.content_hash import update_content_hash
 from granudb.db.lookup_rows import dataset_row
 from granudb.db.models import Collision, CollisionImport, Dataset, utcnow
@@ -232,6 +233,7 @@ def new_version(session: Session, dataset: Dataset, version: str) -> Dataset:
             ).where(CollisionImport.dataset_id == dataset.id),
         )
     )
+    follow_live_rows(session, copy.id)  # a draft follows today's catalogue
     update_content_hash(session, copy)
     return copy
 

@@ -60,6 +60,19 @@ def dataset_row(connection: Connection, name: str, version: str | None = None) -
     )
 
 
+def single_dataset_id(connection: Connection, frame: Any) -> int | None:
+    """The id of the one dataset version a frame of runs (columns ``dataset`` and
+    ``version``) comes from, or None when it holds several (or none): what a report reads
+    the catalogue as (a release keeps the values it used)."""
+    if "dataset" not in frame or "version" not in frame:
+        return None
+    versions = frame[["dataset", "version"]].drop_duplicates()
+    if len(versions) != 1:
+        return None
+    name, version = versions.iloc[0].tolist()
+    return dataset_row(connection, name, version).id
+
+
 def published_rows(connection: Connection) -> list[dict[str, Any]]:
     """Every published value with its source key and names, in stored order: the records
     of ``sources.published_records``."""

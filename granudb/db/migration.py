@@ -211,6 +211,17 @@ def downgrade(
 #: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
 #: rows that lose something, what happens to them). Checked constraints are not data.
 _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
+    "0005": [
+        *(
+            (
+                table,
+                "revision_of",
+                "revision_of IS NOT NULL",
+                "dropped (released datasets then read today's values)",
+            )
+            for table in ("materials", "fluids")
+        ),
+    ],  # fmt: skip
     "0004": [
         ("datasets", "authors", "authors IS NOT NULL", "dropped"),
         ("datasets", "keywords", "keywords IS NOT NULL", "dropped"),

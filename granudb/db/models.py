@@ -91,6 +91,9 @@ class Material(Timestamped, Base):
     yield_stress_pa: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
+    #: Set on a revision: the values this material had when a released dataset used it,
+    #: kept when the live row (this id) changed (``granudb.db.catalog_revisions``).
+    revision_of: Mapped[int | None] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
 
     source: Mapped[Source | None] = relationship(lazy="joined")
 
@@ -144,6 +147,8 @@ class Fluid(Timestamped, Base):
         ForeignKey("sources.id", ondelete="RESTRICT")
     )
     pressure_viscosity_locator: Mapped[str | None] = mapped_column(String(200))
+    #: Set on a revision: this fluid (with its points) as a released dataset used it.
+    revision_of: Mapped[int | None] = mapped_column(ForeignKey("fluids.id", ondelete="RESTRICT"))
 
     source: Mapped[Source | None] = relationship(foreign_keys=[source_id], lazy="joined")
     density_source: Mapped[Source | None] = relationship(

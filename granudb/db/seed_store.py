@@ -20,6 +20,7 @@ from typing import Any
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
+from granudb.db.catalog_revisions import keep_for_releases
 from granudb.db.models import (
     Fluid,
     FluidPoint,
@@ -164,6 +165,7 @@ def _seed_row(
     if row is None and record is not None and not overwrite_edits:
         return Change("kept", label, [("(row)", "removed or renamed by you", "seeded")])
     if row is None:
+        _keep_for_releases(session, model, key, None)
         row = model(**key, **values)
         session.add(row)
         session.flush()
@@ -182,6 +184,9 @@ def _seed_row(
                 kept.append((name, old, new))
                 continue
             applied.append((name, old, new, edited))
+        if applied:
+            _keep_for_releases(session, model, key, row)
+        for name, _, new, _ in applied:
             setattr(row, name, new)
         if any(edited for *_, edited in applied):
             change = Change("reverted", label, [a[:3] for a in applied])
@@ -225,3 +230,14 @@ def summarize(changes: list[Change]) -> list[str]:
         f"{counts['unchanged']} unchanged{extra}"
     )
     return lines
+
+
+def _keep_for_releases(session: Session, model: type, key: dict[str, Any], row: Any) -> None:
+    """Before the seed changes a material, a fluid or a fluid's points, keep what a
+    release used (``granudb.db.catalog_revisions``)."""
+    if model is Material and row is not None:
+        keep_for_releases(session, "material", row)
+    elif model is Fluid and row is not None:
+        keep_for_releases(session, "fluid", row)
+    elif model is FluidPoint:
+        keep_for_releases(session, "fluid", session.get(Fluid, key["fluid_id"]))

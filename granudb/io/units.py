@@ -134,6 +134,8 @@ def check_unit_expression(text: str) -> str:
         elif kind == "name":
             out.append(_name(match))
         elif kind == "number":
+            if out and out[-1] not in {"*", "/", "(", " "}:
+                out.append(" ")  # "m²1": a factor after an exponent, not "m**21"
             out.append(match.group())  # a factor: "10 cSt * 0.96 g/cm^3", "1/Pa"
         elif kind == "open":
             depth += 1

@@ -195,15 +195,16 @@ def _connection(reader: Any) -> Any:
 def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict[str, str]]:
     """Property blocks of every material and fluid the runs use, and their citations."""
     blocks_out, keys = [], set()
+    pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
     particles = sorted(set(frame["particle"].unique().tolist()))
     walls = sorted(set(frame["wall"].unique().tolist()) - set(particles))
     for role, names in (("Particle", particles), ("Wall", walls)):
         for name in names:
-            record = catalog.material_record(catalog.get_material_row(connection, name))
+            record = catalog.material_record(catalog.get_material_row(connection, name, pinned))
             blocks_out.append(blocks.material_block(role, record))
             keys.add(record.get("source"))
     for name in sorted(set(fluid_names(frame["fluid"]).tolist()) - {"dry"}):
-        record = catalog.fluid_record(catalog.get_fluid_row(connection, name))
+        record = catalog.fluid_record(catalog.get_fluid_row(connection, name, pinned))
         blocks_out.append(blocks.fluid_block(record))
         keys |= {record.get("source"), record.get("density_source"),
                  record.get("pressure_viscosity_source")}  # fmt: skip

@@ -16,7 +16,7 @@ import numpy as np
 from sqlalchemy.engine import Connection
 
 from granudb.analysis import fits
-from granudb.db import catalog_rows
+from granudb.db import catalog_rows, lookup_rows
 from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
 from granudb.reporting import plots
@@ -153,7 +153,11 @@ def pair_maps(
     regimes = measured_regimes(frame, walton)
     fluids = fluid_names(frame["fluid"])
     colours = fluid_colours(fluids.tolist())
-    densities = {f.name: f.reference_density_kg_m3 for f in catalog_rows.fluid_rows(connection)}
+    pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
+    densities = {
+        name: catalog_rows.get_fluid_row(connection, name, pinned).reference_density_kg_m3
+        for name in set(fluids.tolist()) - {"dry"}
+    }
     figures = []
     pairs = sorted(set(group_keys(frame["particle"], frame["wall"]).tolist()))
     for index, (particle, wall) in enumerate(pairs):
@@ -161,8 +165,10 @@ def pair_maps(
         runs = _run_series(frame[mask], fluids[mask], regimes[mask])
         wet = [densities[f] for f in set(fluids[mask].tolist()) if f in densities]
         figure = regime_map_figure(
-            catalog_rows.material_record(catalog_rows.get_material_row(connection, particle)),
-            catalog_rows.material_record(catalog_rows.get_material_row(connection, wall)),
+            catalog_rows.material_record(
+                catalog_rows.get_material_row(connection, particle, pinned)
+            ),
+            catalog_rows.material_record(catalog_rows.get_material_row(connection, wall, pinned)),
             float(np.nanmedian(frame.loc[mask, "diameter_m"].to_numpy(float))),
             float(np.median(wet)) if wet else math.nan,
             critical_stokes,

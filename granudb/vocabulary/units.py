@@ -216,7 +216,12 @@ def si_value(spelled: str) -> SiValue | None:
         power = int(match["exp"] or 1) * (-1 if match["op"].strip() == "/" else 1)
         if unit.offset is not None:
             temperature = unit
-        factor *= (prefix * unit.factor) ** power
+        try:
+            factor *= (prefix * unit.factor) ** power
+        except OverflowError:  # "Pm**21": beyond a float; not a unit anyone means
+            return None
+        if not math.isfinite(factor) or factor == 0.0:
+            return None
         radians += unit.radians * power
         for axis, exponent in enumerate(unit.dimension):
             dimension[axis] += exponent * power

@@ -156,7 +156,7 @@ def test_cli_downgrade_says_what_it_loses_and_needs_yes(cli, db: str) -> None:
     done = cli("db", "downgrade", "0002", "--yes", db=db)
     assert done.exit_code == 0, done.stderr
     assert "lost collisions.wall_v_n_in_m_s: 1 values dropped" in done.stdout
-    assert "schema: 0004 → 0002" in done.stdout
+    assert "schema: 0005 → 0002" in done.stdout
 
 
 def test_cli_downgrade_asks_on_a_terminal(cli, db: str, monkeypatch) -> None:
@@ -175,4 +175,4 @@ def test_cli_downgrade_asks_on_a_terminal(cli, db: str, monkeypatch) -> None:
     assert dump_hash(db) == before
     yes = runner.invoke(app, ["db", "downgrade", "base", "--db", db], input="y\n")
     assert yes.exit_code == 0, yes.stderr
-    assert "schema: 0004 → empty" in yes.stdout
+    assert "schema: 0005 → empty" in yes.stdout
