@@ -33,6 +33,8 @@ NAMES: dict[str, str] = {
     # catalogue
     "materials": "catalog",
     "material": "catalog",
+    "material_history": "catalog",
+    "fluid_history": "catalog",
     "fluids": "catalog",
     "fluid": "catalog",
     "sources": "catalog",

@@ -67,6 +67,35 @@ def material(name: str, *, db: Any = None) -> dict[str, Any]:
         return entry(MATERIALS, inputs.text(name, "name"), database)
 
 
+def material_history(name: str, *, db: Any = None) -> list[dict[str, Any]]:
+    """A material as it is and as released datasets keep it: the current values, then
+    each revision (newest first) with when it was kept and which dataset versions use it
+    (``granudb.db.catalog_revisions``: a release never changes).
+
+    Examples
+    --------
+    >>> import granudb
+    >>> [r["revision"] for r in granudb.material_history("Zerodur", db=db)]
+    ['current']
+    """
+    with opened(db) as database, database.reading() as connection:
+        return catalog_rows.entry_history(connection, "material", inputs.text(name, "name"))
+
+
+def fluid_history(name: str, *, db: Any = None) -> list[dict[str, Any]]:
+    """A fluid as it is and as released datasets keep it (with its points), newest first;
+    as ``material_history``.
+
+    Examples
+    --------
+    >>> import granudb
+    >>> [r["revision"] for r in granudb.fluid_history("water", db=db)]
+    ['current']
+    """
+    with opened(db) as database, database.reading() as connection:
+        return catalog_rows.entry_history(connection, "fluid", inputs.text(name, "name"))
+
+
 def fluids(db: Any = None, *, as_frame: bool = True) -> Any:
     """Every fluid with its reference values (SI), sources and number of viscosity points:
     a DataFrame, or a list of records with ``as_frame=False``.

@@ -101,6 +101,19 @@ def catalogue_app(catalogue: Any, help_text: str) -> typer.Typer:
 
     show.__doc__ = f"Show one {kind}, with the full citation of its source."
 
+    @app.command()
+    @wraps(f"{kind}_history")
+    def history(name: Name, db: DbOption = None, fmt: FormatOption = Format.table) -> None:
+        records = getattr(api, f"{kind}_history")(name, db=db)
+        shown = ("revision", "kept_at", *catalogue.narrow[1:-1], "used_by")
+        columns = shown if fmt is Format.table else ("revision", "kept_at", "used_by",
+                                                      *catalogue.columns)  # fmt: skip
+        emit(records, list(columns), fmt, title=f"{kind.capitalize()} {name}: history")
+
+    history.__doc__ = (
+        f"A {kind} as it is and as released datasets keep it (a release never changes)."
+    )
+
     app.command("add")(_changing(catalogue, f"add_{kind}", adding=True))
     app.command("update")(_changing(catalogue, f"update_{kind}", adding=False))
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 from typing import Any
 
-from sqlalchemy import DateTime, column, or_, select, table
+from sqlalchemy import DateTime, column, func, or_, select, table
 from sqlalchemy.engine import Connection
 from sqlalchemy.sql.expression import TableClause
 
@@ -238,9 +238,49 @@ def get_source_row(connection: Connection, key: str) -> SourceRow:
     return next(s for s in source_rows(connection) if s.key == key)
 
 
+def entry_history(connection: Connection, kind: str, name: str) -> list[dict[str, Any]]:
+    """The ``kind`` called ``name`` as it is and as released datasets keep it: the live
+    row, then its revisions newest first, each a record with ``revision`` ("current" or
+    its number), ``kept_at`` (when the live row moved on) and ``used_by`` (the dataset
+    versions whose runs use it, with their run counts)."""
+    ids = entry_ids(connection, kind, name)
+    by_id = fluid_rows_by_id(connection) if kind == "fluid" else None
+    records = []
+    for number, row_id in enumerate(ids):
+        if by_id is not None:
+            record = fluid_record(by_id[row_id])
+        else:
+            row = connection.execute(select(*MATERIALS.c).where(MATERIALS.c.id == row_id))
+            record = material_record(
+                _build(MaterialRow, row.mappings().one(), _sources(connection))
+            )
+        used = []
+        for reference in _RUN_REFERENCES[kind]:
+            column = _RUNS.c[reference]
+            query = (
+                select(_DATASETS.c.name, _DATASETS.c.version, func.count())
+                .join(_DATASETS, _DATASETS.c.id == _RUNS.c.dataset_id)
+                .where(column == row_id)
+                .group_by(_DATASETS.c.name, _DATASETS.c.version)
+            )
+            used += [
+                f"{n}@{v} ({c} runs as {reference[:-3]})" for n, v, c in connection.execute(query)
+            ]
+        kept = connection.execute(
+            select(ENTRY_TABLES[kind].c.updated_at).where(ENTRY_TABLES[kind].c.id == row_id)
+        ).scalar()
+        records.append(
+            {"revision": "current" if number == 0 else str(number),
+             "kept_at": None if number == 0 else kept, "used_by": "; ".join(sorted(used)),
+             **record}
+        )  # fmt: skip
+    return [records[0], *reversed(records[1:])]
+
+
 #: The runs' references, to find the rows a dataset's runs use.
 _RUNS = lightweight_table("collisions", ["dataset_id", "particle_id", "wall_id", "fluid_id"])
 _RUN_REFERENCES = {"material": ("particle_id", "wall_id"), "fluid": ("fluid_id",)}
+_DATASETS = lightweight_table("datasets", ["id", "name", "version"])
 
 
 def pinned_id(connection: Connection, kind: str, name: str, dataset_id: int) -> int:

@@ -104,3 +104,16 @@ def test_a_material_a_release_keeps_cannot_be_removed(opened) -> None:
     granudb.update_material("PTFE", roughness="0.3 um", db=opened)
     with pytest.raises(ConflictError, match="a release never changes"):
         granudb.remove_material("PTFE", db=opened)
+
+
+def test_history_shows_what_a_release_keeps(opened, cli, db) -> None:
+    granudb.import_collisions(EXAMPLE, dataset="rel", db=opened)
+    granudb.release_dataset("rel", db=opened)
+    granudb.update_material("steel", youngs_modulus="200 GPa", db=opened)
+    history = granudb.material_history("steel", db=opened)
+    assert [r["revision"] for r in history] == ["current", "1"]
+    assert history[0]["youngs_modulus_pa"] == pytest.approx(200e9) and history[0]["used_by"] == ""
+    assert history[1]["youngs_modulus_pa"] == pytest.approx(190e9)
+    assert history[1]["used_by"].startswith("rel@1.0.0 (") and history[1]["kept_at"]
+    table = cli("materials", "history", "steel", db=db)
+    assert table.exit_code == 0 and "current" in table.stdout and "rel@1.0.0" in table.stdout
