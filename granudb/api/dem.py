@@ -42,6 +42,7 @@ from granudb.dem import (
     predicted_wet_restitution,
     yade,
 )
+from granudb.dem.spec import identifier
 from granudb.dem.verify import TOLERANCES, Record, passed, summary, table, verify
 from granudb.errors import ValidationError
 from granudb.output_files import write_text
@@ -87,24 +88,26 @@ def _pair_values(
     """(restitution Value, friction Value, WetParameters or None) for one pair; with
     ``pinned`` (a dataset's id) the catalogue as that dataset's runs use it."""
     fluid_name = fluid.name if fluid else None
-    derived = _predicted(session, particle.name, wall, fluid_name, scenario, pinned)
+    derived = _predicted(session, particle.material, wall, fluid_name, scenario, pinned)
     lubricated = derived.get("lubricated_friction_state") == "in_range" and fluid is not None
     friction = Value(
         float(derived["friction_coefficient_used"]),
-        f"predicted: lubricated μ_f (5.8) of {particle.name}/{wall} at the stated speed"
+        f"predicted: lubricated μ_f (5.8) of {particle.material}/{wall} at the stated speed"
         if lubricated
         else "assumed: the dry friction 0.11 of Joseph & Hunt 2004 §3 (no value for this pair)",
     )
     dry = Value(DRY_RESTITUTION, "Joseph & Hunt 2004 §3: ē_dry = 0.97 ± 0.02 (assumed)")
     if values == "published":
-        found = _published(session, particle.name, wall, fluid.name if fluid else None)
+        found = _published(session, particle.material, wall, fluid.name if fluid else None)
         if "sliding_friction" in found:
             friction = Value(*found["sliding_friction"])
-        dry_found = _published(session, particle.name, wall, None)
+        dry_found = _published(session, particle.material, wall, None)
         if "normal_restitution_mean" in dry_found:
             dry = Value(*dry_found["normal_restitution_mean"])
     elif values == "dataset":
-        friction, dry = _dataset_values(session, dataset, particle.name, wall, fluid, friction, dry)
+        friction, dry = _dataset_values(
+            session, dataset, particle.material, wall, fluid, friction, dry
+        )
     if fluid is None:
         return dry, friction, None
     restitution, law = predicted_wet_restitution(
@@ -112,7 +115,7 @@ def _pair_values(
     )
     if restitution.value == 0.0:
         raise ValidationError(
-            f"restitution {particle.name}/{wall}",
+            f"restitution {particle.material}/{wall}",
             "0",
             "no rebound is predicted (normal Stokes number at or below the critical 10 at this "
             "speed): no DEM contact law represents that; give a higher --velocity",
@@ -183,44 +186,42 @@ def dem_model(
             pinned = lookup_rows.dataset_row(session, *dataset_ref(dataset)).id
         fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(session, fluid, pinned)
         state = fluid_state(fluid_row) if fluid_row else None
-        types, pairs = [], []
+        types, pairs, taken = [], [], set()
         for name in particles:
             m = catalog_rows.get_material_row(session, name, pinned)
             types.append(
                 ParticleType(
-                    _type(m.name),
+                    identifier(m.name, taken),
                     m.youngs_modulus_pa,
                     m.poisson_ratio,
                     m.density_kg_m3,
                     scenario["diameter_m"],
+                    material=m.name,
                 )
             )
         for name in walls:
             m = catalog_rows.get_material_row(session, name, pinned)
             types.append(
                 ParticleType(
-                    _type(m.name) + "_wall",
+                    identifier(f"{m.name}_wall", taken),
                     m.youngs_modulus_pa,
                     m.poisson_ratio,
                     m.density_kg_m3,
                     None,
                     is_wall=True,
+                    material=m.name,
                 )
             )
         on_first_wall = {}
         for particle in [t for t in types if not t.is_wall]:
             for wall in [t for t in types if t.is_wall]:
                 e, mu, law = _pair_values(
-                    session, particle, wall.name[:-5], state, scenario, values, dataset, pinned
+                    session, particle, wall.material, state, scenario, values, dataset, pinned
                 )
                 on_first_wall.setdefault(particle.name, (e, mu, law, wall.name))
                 pairs.append(PairParameters(particle.name, wall.name, e, mu, wet=law))
     pairs += _particle_pairs([t for t in types if not t.is_wall], on_first_wall)
     return DemModel(types, pairs, scenario["speed_m_s"])
-
-
-def _type(name: str) -> str:
-    return "".join(c if c.isalnum() or c in "_-" else "_" for c in name)
 
 
 def _particle_pairs(particles: list[Any], on_wall: dict[str, Any]) -> list[Any]:

@@ -15,12 +15,25 @@ def num(x: float) -> str:
     return f"{x:.10g}"
 
 
+#: Characters a comment must not carry into a deck: LAMMPS joins lines at a trailing ``&``
+#: and inside triple quotes before it strips comments; a C++ line comment continues past a
+#: trailing backslash; a control character may end a line anywhere.
+_COMMENT_SAFE = str.maketrans({'"': "'", "\\": "/", **{chr(c): " " for c in range(32)}})
+
+
 def comment(text: str, prefix: str = "# ", width: int = 96) -> list[str]:
-    """``text`` as comment lines of at most ``width`` characters."""
+    """``text`` as comment lines of at most ``width`` characters, with nothing in them a
+    code could read as more than a comment (``_COMMENT_SAFE``).
+
+    >>> comment('dataset "x" & more &')
+    ["# dataset 'x' & more and"]
+    """
     lines: list[str] = []
+    text = "\n".join(line.translate(_COMMENT_SAFE) for line in text.split("\n"))
     for paragraph in text.split("\n"):
         wrapped = textwrap.wrap(paragraph, width - len(prefix)) or [""]
-        lines.extend(prefix + w for w in wrapped)
+        # LAMMPS continues a line whose last printable character is "&", comment or not.
+        lines.extend(prefix + (w[:-1] + "and" if w.endswith("&") else w) for w in wrapped)
     return lines
 
 

@@ -14,6 +14,8 @@ measured value. Wall–wall pairs never touch and may be omitted.
 from __future__ import annotations
 
 import math
+import re
+import unicodedata
 from dataclasses import dataclass, field
 
 from granudb.errors import ValidationError
@@ -50,6 +52,122 @@ class Value:
             )
 
 
+#: What every code takes as a name: an ASCII letter, then letters, digits or underscores
+#: (LAMMPS fix and group IDs, MercuryDPM's C++ variables, Yade labels).
+IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,63}")
+#: Words a generated name must not be: C++ keywords (MercuryDPM), Python's (Yade), and
+#: LAMMPS's group names with a meaning.
+RESERVED = frozenset(
+    (
+        "all",
+        "and",
+        "auto",
+        "bool",
+        "break",
+        "case",
+        "catch",
+        "char",
+        "class",
+        "const",
+        "continue",
+        "default",
+        "delete",
+        "do",
+        "double",
+        "else",
+        "enum",
+        "explicit",
+        "extern",
+        "false",
+        "float",
+        "for",
+        "friend",
+        "goto",
+        "if",
+        "inline",
+        "int",
+        "long",
+        "mutable",
+        "namespace",
+        "new",
+        "not",
+        "operator",
+        "or",
+        "private",
+        "protected",
+        "public",
+        "register",
+        "return",
+        "short",
+        "signed",
+        "sizeof",
+        "static",
+        "struct",
+        "switch",
+        "template",
+        "this",
+        "throw",
+        "true",
+        "try",
+        "typedef",
+        "typename",
+        "union",
+        "unsigned",
+        "using",
+        "virtual",
+        "void",
+        "volatile",
+        "while",
+        "as",
+        "assert",
+        "async",
+        "await",
+        "def",
+        "del",
+        "elif",
+        "except",
+        "finally",
+        "from",
+        "global",
+        "import",
+        "in",
+        "is",
+        "lambda",
+        "nonlocal",
+        "pass",
+        "raise",
+        "with",
+        "yield",
+        "None",
+        "True",
+        "False",
+        "region",
+        "type",
+    )
+)
+
+
+def identifier(name: str, taken: set[str] | None = None) -> str:
+    """A name every code accepts, derived from a material's name: accents dropped, any
+    other character an underscore, an ``m_`` prefix where it would not start with a letter
+    or would be a reserved word, and a number where it would repeat one in ``taken``
+    (which is updated).
+
+    >>> [identifier(n) for n in ("steel", "stainless steel", "PTFE-1", "Glasä", "316L", "new")]
+    ['steel', 'stainless_steel', 'PTFE_1', 'Glasa', 'm_316L', 'm_new']
+    """
+    ascii_text = unicodedata.normalize("NFKD", name).encode("ascii", "ignore").decode()
+    text = re.sub(r"_+", "_", re.sub(r"[^A-Za-z0-9_]", "_", ascii_text)).strip("_")[:56]
+    if not text or not text[0].isalpha() or text in RESERVED:
+        text = f"m_{text}" if text else "m"
+    chosen, number = text, 2
+    while taken is not None and chosen in taken:
+        chosen, number = f"{text}_{number}", number + 1
+    if taken is not None:
+        taken.add(chosen)
+    return chosen
+
+
 @dataclass(frozen=True)
 class ParticleType:
     """One material and size; ``diameter_m=None`` with ``is_wall=True`` is a flat wall."""
@@ -60,10 +178,15 @@ class ParticleType:
     density_kg_m3: float
     diameter_m: float | None
     is_wall: bool = False
+    #: The catalogue's name of the material (any text); ``name`` is the identifier every
+    #: code's input takes (``identifier``).
+    material: str = ""
 
     def __post_init__(self) -> None:
-        if not self.name or not self.name.replace("_", "").replace("-", "").isalnum():
-            raise ValidationError("type name", repr(self.name), "must be letters, digits, _ or -")
+        if not IDENTIFIER.fullmatch(self.name) or self.name in RESERVED:
+            raise ValidationError(
+                "type name", repr(self.name), "must be an identifier (use dem.spec.identifier)"
+            )
         _positive(f"youngs_modulus {self.name}", self.youngs_modulus_pa, "Pa")
         _positive(f"density {self.name}", self.density_kg_m3, "kg/m^3")
         if not -1.0 < self.poisson_ratio <= 0.5:
