@@ -46,7 +46,7 @@ METHOD = (
 
 
 #: The columns (5.8) reads for each run (``model_friction``).
-_MODEL_INPUTS = ["effective_radius_m", "reduced_modulus_pa", "eta_hat_pa_inv", "v_n_in_m_s",
+_MODEL_INPUTS = ["effective_radius_m", "reduced_modulus_pa", "eta_hat_pa_inv", "normal_speed_m_s",
                  "tangential_speed_m_s", "effective_mass_kg", "particle_density_kg_m3"]  # fmt: skip
 
 
@@ -55,7 +55,7 @@ def model_friction(group: Any, viscosity: float) -> np.ndarray:
     radius = group["effective_radius_m"].to_numpy(dtype=float)
     e_star = group["reduced_modulus_pa"].to_numpy(dtype=float)
     eta_hat = group["eta_hat_pa_inv"].to_numpy(dtype=float)
-    vn = group["v_n_in_m_s"].to_numpy(dtype=float)
+    vn = group["normal_speed_m_s"].to_numpy(dtype=float)  # relative: a moving target's too
     u = np.abs(group["tangential_speed_m_s"].to_numpy(dtype=float))
     if "effective_mass_kg" in group:
         mass = group["effective_mass_kg"].to_numpy(dtype=float)
@@ -198,6 +198,8 @@ def gap_viscosity(
     ``reason`` (one line whenever μ₀ or the temperature is missing, else '') and ``note``
     (the same text, the older name).
     """
+    if "normal_speed_m_s" not in frame:  # a table of wall impacts only: the particle's own
+        frame = frame.assign(normal_speed_m_s=frame["v_n_in_m_s"])
     inputs = dict.fromkeys(
         [*WALTON_INPUTS, *_MODEL_INPUTS, "viscosity_pa_s", "roughness_exceeds_gap"]
     )

@@ -212,6 +212,12 @@ def downgrade(
 #: rows that lose something, what happens to them). Checked constraints are not data.
 _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
     "0005": [
+        (
+            "collisions",
+            "v_n_in_m_s",
+            "wall_v_n_in_m_s IS NOT NULL AND (v_n_in_m_s <= 0 OR v_n_out_m_s < 0)",
+            "removed (two-sphere runs the older schema cannot hold)",
+        ),
         *(
             (
                 table,

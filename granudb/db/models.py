@@ -329,9 +329,16 @@ class Collision(Base):
             "(nominal_angle_rad >= 0 AND nominal_angle_rad < 1.5707963267948966)",
             name="nominal_angle_range",
         ),
-        CheckConstraint("v_n_in_m_s > 0", name="v_n_in_positive"),
+        # With a free target (its wall_v_n_in given) the rules are on relative velocities:
+        # the particle may start at rest or move on forward (checked on import).
+        CheckConstraint(
+            "v_n_in_m_s > 0 OR wall_v_n_in_m_s IS NOT NULL", name="v_n_in_positive_or_free"
+        ),
         CheckConstraint("v_t_in_m_s >= 0", name="v_t_in_non_negative"),
-        CheckConstraint("v_n_out_m_s >= 0", name="v_n_out_non_negative"),
+        CheckConstraint(
+            "v_n_out_m_s >= 0 OR wall_v_n_in_m_s IS NOT NULL",
+            name="v_n_out_non_negative_or_free",
+        ),
         CheckConstraint(
             "temperature_c IS NULL OR temperature_c > -273.15", name="temperature_above_zero_k"
         ),

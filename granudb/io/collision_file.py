@@ -47,6 +47,10 @@ REQUIRED = list(COLLISION_REQUIRED)
 ALIASES = {"incidence_angle": "nominal_angle"}
 #: e = v_n_out / v_n_in above this is refused: energy from nowhere, beyond measurement error.
 MAX_RESTITUTION = 1.05
+#: Rules judged on relative velocities where a row has a free target (its wall_v_n_in):
+#: the particle may move forward after an equal-sphere impact, or start at rest when an
+#: approaching target hits it.
+RELATIVE_RULES = ("v_n_in_m_s", "v_n_out_m_s")
 #: How far a stated angle may differ from atan(v_t_in / v_n_in), the angle the velocities
 #: give. Velocities from high-speed video are good to about 2 % of the speed (a pixel or
 #: two of a track fifty to a hundred pixels long), which moves atan(v_t/v_n) by about
@@ -128,11 +132,16 @@ def check_values(
             raise ValidationError(
                 _header_of(mapping, column), "(empty)", "is required", row=first_row + pos
             )
+    target_in = columns.get("wall_v_n_in_m_s")
+    free = np.isfinite(target_in) if target_in is not None else None
     for column in NUMERIC:
         rule = RULES.get(column)
         if rule is None:
             continue
-        broken = ~rule.holds_array(columns[column])
+        values = columns[column]
+        if free is not None and column in RELATIVE_RULES:
+            values = np.where(free, np.nan, values)  # judged on relative velocities below
+        broken = ~rule.holds_array(values)
         if broken.any():
             pos = _first(broken)
             header = _header_of(mapping, column)
@@ -140,8 +149,11 @@ def check_values(
             raise ValidationError(
                 header, shown, rule.text + _in_units(column, mapping), row=first_row + pos
             )
-    v_n_in = columns["v_n_in_m_s"]
-    e = columns["v_n_out_m_s"] / v_n_in
+    v_n_in, v_n_out = columns["v_n_in_m_s"], columns["v_n_out_m_s"]
+    if free is not None and free.any():
+        v_n_in, v_n_out = _relative(columns, free, first_row)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = v_n_out / v_n_in
     too_high = e > MAX_RESTITUTION
     if too_high.any():
         pos = _first(too_high)
@@ -153,6 +165,36 @@ def check_values(
             row=first_row + pos,
         )
     _check_angle(columns, cell, mapping, first_row)
+
+
+def _relative(columns: dict[str, Any], free: Any, first_row: int) -> tuple[Any, Any]:
+    """The normal velocities of a row with a free target, relative (docs/physics.md §9):
+    the particle's speed towards the target minus the target's, before impact (must be
+    > 0: they approach), and the particle's speed away plus the target's along the normal,
+    after (must be ≥ 0: they separate; unknown without the target's rebound)."""
+    target_out = columns.get("wall_v_n_out_m_s")
+    target_out = np.zeros_like(free, dtype=float) * np.nan if target_out is None else target_out
+    v_in = np.where(free, columns["v_n_in_m_s"] - columns["wall_v_n_in_m_s"], columns["v_n_in_m_s"])
+    v_out = np.where(free, columns["v_n_out_m_s"] + target_out, columns["v_n_out_m_s"])
+    approaching = ~free | (v_in > 0)
+    if not approaching.all():
+        pos = _first(~approaching)
+        raise ValidationError(
+            "v_n_in - wall_v_n_in",
+            f"{v_in[pos]:.4g} m/s",
+            "must be > 0 (the particle and the target must approach)",
+            row=first_row + pos,
+        )
+    separating = ~free | np.isnan(v_out) | (v_out >= 0)
+    if not separating.all():
+        pos = _first(~separating)
+        raise ValidationError(
+            "v_n_out + wall_v_n_out",
+            f"{v_out[pos]:.4g} m/s",
+            "must be ≥ 0 (after impact the particle and the target separate)",
+            row=first_row + pos,
+        )
+    return v_in, v_out
 
 
 def _check_angle(

@@ -121,7 +121,12 @@ _TARGET_VELOCITIES = ("w_vn", "w_vt", "w_w", "w_vn_out", "w_vt_out", "w_w_out")
 def _validate(x: dict[str, np.ndarray]) -> None:
     """Refuse unphysical input in one line naming the field, the value and the rule."""
     _check("diameter_m", x["d"], x["d"] > 0, "must be > 0")
-    _check("v_n_in_m_s", x["vn"], x["vn"] > 0, "must be > 0 (the normal speed towards the wall)")
+    _check(
+        "v_n_in_m_s",
+        x["vn"],
+        np.isfinite(x["w_vn"]) | (x["vn"] > 0),  # a free target: the approach rule below
+        "must be > 0 (the normal speed towards the wall)",
+    )
     _check("v_t_in_m_s", x["vt"], x["vt"] >= 0, "must be ≥ 0 (the tangential axis points along it)")
     for name in ("particle_youngs_modulus_pa", "wall_youngs_modulus_pa"):
         _check(name, x[_INPUTS[name]], x[_INPUTS[name]] > 0, "must be > 0")

@@ -1,4 +1,4 @@
-"""catalogue revisions: a release keeps the values it used
+"""catalogue revisions: a release keeps the values it used; two-sphere velocity rules
 
 - materials, fluids: ``revision_of``. When a material or fluid that a released (or
   superseded) dataset uses is changed, its values before the change are kept as a
@@ -6,6 +6,10 @@
   it (``granudb.db.catalog_revisions``): a release never changes. Existing releases keep
   today's values, which are the values they were released with as far as the database
   knows.
+
+- collisions: ``v_n_in > 0`` and ``v_n_out ≥ 0`` hold for a wall or a fixed sphere; with a
+  free target (``wall_v_n_in`` given) the rules are on relative velocities, which the
+  import checks (an equal-sphere impact leaves the particle moving forward).
 
 The downgrade points every run back at the live row (a release then reads today's
 values) and drops the revisions; ``granudb db downgrade`` says how many and asks first.
@@ -27,7 +31,19 @@ branch_labels: str | Sequence[str] | None = None
 depends_on: str | Sequence[str] | None = None
 
 
+_RELAXED = {
+    "v_n_in_positive": ("v_n_in_positive_or_free", "v_n_in_m_s > 0"),
+    "v_n_out_non_negative": ("v_n_out_non_negative_or_free", "v_n_out_m_s >= 0"),
+}
+
+
 def upgrade() -> None:
+    with op.batch_alter_table("collisions") as batch:
+        for old, (new, rule) in _RELAXED.items():
+            batch.drop_constraint(op.f(f"ck_collisions_{old}"), type_="check")
+            batch.create_check_constraint(
+                op.f(f"ck_collisions_{new}"), f"{rule} OR wall_v_n_in_m_s IS NOT NULL"
+            )
     for table in ("materials", "fluids"):
         with op.batch_alter_table(table) as batch:
             batch.add_column(sa.Column("revision_of", sa.Integer(), nullable=True))
@@ -41,6 +57,14 @@ def upgrade() -> None:
 
 
 def downgrade() -> None:
+    op.execute(
+        "DELETE FROM collisions WHERE wall_v_n_in_m_s IS NOT NULL AND "
+        "(v_n_in_m_s <= 0 OR v_n_out_m_s < 0)"
+    )
+    with op.batch_alter_table("collisions") as batch:
+        for old, (new, rule) in _RELAXED.items():
+            batch.drop_constraint(op.f(f"ck_collisions_{new}"), type_="check")
+            batch.create_check_constraint(op.f(f"ck_collisions_{old}"), rule)
     for column, table in (("particle_id", "materials"), ("wall_id", "materials"),
                           ("fluid_id", "fluids")):  # fmt: skip
         op.execute(

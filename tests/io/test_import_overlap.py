@@ -47,7 +47,8 @@ def _rows(n: int) -> list[list[str]]:
         row[12] = "20" if row[3] else ""
         row[13] = f"note {i}" if i % 9 == 0 else ""
         target = i % 6 == 0
-        row += ["25.4", f"{rng.uniform(0, 9):.2f}", "0", "-0.0"] if target else ["", "", "", ""]
+        # the target moves away slower than the particle comes (m/s): they approach
+        row += ["25.4", f"{rng.uniform(0, 0.04):.4f}", "0", "-0.0"] if target else ["", "", "", ""]
         rows.append(row)
     return rows
 

@@ -94,11 +94,11 @@ def test_a_new_version_of_a_release_follows_the_live_catalogue(opened, tmp_path)
     assert old[0]["reduced_modulus_pa"] != new[0]["reduced_modulus_pa"]
 
 
-def test_a_material_a_release_keeps_cannot_be_removed(opened) -> None:
+def test_a_material_a_release_keeps_cannot_be_removed(opened, tmp_path) -> None:
     granudb.add_material("PTFE", density="2.2 g/cm^3", youngs_modulus="0.5 GPa",
                          poisson_ratio=0.46, roughness="0.2 um", db=opened)  # fmt: skip
     rows = EXAMPLE.read_text("utf-8").replace(",steel,", ",PTFE,")
-    (source := Path(opened.url.split("///", 1)[-1]).parent / "ptfe.csv").write_text(rows)
+    (source := tmp_path / "ptfe.csv").write_text(rows, encoding="utf-8")
     granudb.import_collisions(source, dataset="ptfe", db=opened)
     granudb.release_dataset("ptfe", db=opened)
     granudb.update_material("PTFE", roughness="0.3 um", db=opened)
