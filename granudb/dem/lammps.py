@@ -20,18 +20,7 @@ from __future__ import annotations
 
 import math
 
-from granudb.dem import damping
-from granudb.dem.deck import (
-    Limited,
-    check,
-    check_poisson,
-    comment,
-    describe,
-    header,
-    num,
-    pair_label,
-    wet_note,
-)
+from granudb.dem import damping, deck
 from granudb.dem.spec import DemModel, PairParameters, ParticleType
 from granudb.physics.contact import max_approach
 
@@ -53,13 +42,13 @@ def wall_variable(wall: ParticleType) -> str:
     return f"granudb_wall_{wall.name}"
 
 
-def tsuji_input(pair: PairParameters, clamp: bool) -> Limited:
+def tsuji_input(pair: PairParameters, clamp: bool) -> deck.Limited:
     """The e for ``damping tsuji`` that makes LAMMPS give the target e (or a refusal)."""
     e = pair.restitution.value
     low, high = damping.lammps_tsuji_range()
-    limited = check(
+    limited = deck.check(
         CODE,
-        f"restitution {pair_label(pair)}",
+        f"restitution {deck.pair_label(pair)}",
         e,
         low <= e <= high,
         f"damping tsuji reaches only {low:.4f} <= e <= {high:.5f} on a Hertz contact "
@@ -68,7 +57,9 @@ def tsuji_input(pair: PairParameters, clamp: bool) -> Limited:
         min(max(e, low), high),
         clamp,
     )
-    return Limited(damping.lammps_tsuji_input(limited.value, pair_label(pair)), limited.note)
+    return deck.Limited(
+        damping.lammps_tsuji_input(limited.value, deck.pair_label(pair)), limited.note
+    )
 
 
 def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
@@ -76,22 +67,24 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
     scales = model.contact(pair)
     e_in = tsuji_input(pair, clamp)
     args = (
-        f"hertz {num(scales.hertz_stiffness)} {num(e_in.value)} "
-        f"tangential mindlin {num(scales.mindlin_stiffness)} 1.0 {num(pair.friction.value)} "
+        f"hertz {deck.num(scales.hertz_stiffness)} {deck.num(e_in.value)} "
+        f"tangential mindlin {deck.num(scales.mindlin_stiffness)} 1.0 "
+        f"{deck.num(pair.friction.value)} "
         "damping tsuji"
     )
     notes = [
-        f"{pair_label(pair)}: e = {describe(pair.restitution)}",
-        f"  mu_f = {describe(pair.friction)}",
-        f"  k_n = 4/3 E* = {num(scales.hertz_stiffness)} Pa (E* = "
-        f"{num(scales.reduced_modulus_pa)} Pa), k_t = 8 G* = {num(scales.mindlin_stiffness)} Pa "
+        f"{deck.pair_label(pair)}: e = {deck.describe(pair.restitution)}",
+        f"  mu_f = {deck.describe(pair.friction)}",
+        f"  k_n = 4/3 E* = {deck.num(scales.hertz_stiffness)} Pa (E* = "
+        f"{deck.num(scales.reduced_modulus_pa)} Pa), "
+        f"k_t = 8 G* = {deck.num(scales.mindlin_stiffness)} Pa "
         "(granudb docs/physics.md section 13)",
-        f"  tsuji input {num(e_in.value)} so that LAMMPS's alpha(e) gives e = "
-        f"{num(pair.restitution.value)} on this Hertz contact (granudb.dem.damping)",
+        f"  tsuji input {deck.num(e_in.value)} so that LAMMPS's alpha(e) gives e = "
+        f"{deck.num(pair.restitution.value)} on this Hertz contact (granudb.dem.damping)",
     ]
     if e_in.note:
         notes.append("  " + e_in.note)
-    if (note := wet_note(pair)) is not None:
+    if (note := deck.wet_note(pair)) is not None:
         notes.append("  " + note)
     if pair.rolling_friction is not None:
         a, b = model.type(pair.type_i), model.type(pair.type_j)
@@ -104,9 +97,9 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
             )
         )
         k_roll = scales.mindlin_stiffness * math.sqrt(scales.radius_m * delta)
-        args += f" rolling sds {num(k_roll)} 0.0 {num(pair.rolling_friction.value)}"
+        args += f" rolling sds {deck.num(k_roll)} 0.0 {deck.num(pair.rolling_friction.value)}"
         notes.append(
-            f"  rolling mu_r = {describe(pair.rolling_friction)}; k_roll = 8 G* a_max at the "
+            f"  rolling mu_r = {deck.describe(pair.rolling_friction)}; k_roll = 8 G* a_max at the "
             f"characteristic speed ({a.name}/{b.name}), no rolling damping"
         )
     return args, notes
@@ -114,9 +107,9 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
 
 def write(model: DemModel, *, clamp: bool = False) -> str:
     """The fragment to include after ``create_box`` (atom_style sphere, units si)."""
-    check_poisson(CODE, model, -1.0, clamp)
-    out = header(CODE, VERSION, model)
-    out += comment(
+    deck.check_poisson(CODE, model, -1.0, clamp)
+    out = deck.header(CODE, VERSION, model)
+    out += deck.comment(
         "LAMMPS atom types are the particle types only: "
         + ", ".join(f"{type_number(model, t.name)} = {t.name}" for t in model.particles)
         + ". Needs atom_style sphere and comm_modify vel yes."
@@ -128,14 +121,14 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             pair = model.pair(a.name, b.name)
             assert pair is not None  # DemModel guarantees every particle pair
             args, notes = coefficients(model, pair, clamp)
-            out += [""] + [line for n in notes for line in comment(n)]
+            out += [""] + [line for n in notes for line in deck.comment(n)]
             out.append(
                 f"pair_coeff {type_number(model, a.name)} {type_number(model, b.name)} {args}"
             )
     for t in particles:
         out.append(f"group {group_name(t)} type {type_number(model, t.name)}")
     for wall in model.walls:
-        out += [""] + comment(
+        out += [""] + deck.comment(
             f"wall {wall.name}: set its geometry before including this file, e.g. "
             f'variable {wall_variable(wall)} string "zplane 0.0 NULL"'
         )
@@ -143,7 +136,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             pair = model.pair(t.name, wall.name)
             assert pair is not None
             args, notes = coefficients(model, pair, clamp)
-            out += [line for n in notes for line in comment(n)]
+            out += [line for n in notes for line in deck.comment(n)]
             out.append(
                 f"fix granudb_{wall.name}_{t.name} {group_name(t)} wall/gran granular {args} "
                 f"${{{wall_variable(wall)}}}"

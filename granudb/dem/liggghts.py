@@ -20,18 +20,7 @@ comment, never the viscous model.
 
 from __future__ import annotations
 
-from granudb.dem.deck import (
-    Limited,
-    check,
-    check_poisson,
-    comment,
-    describe,
-    header,
-    num,
-    ordered_pairs,
-    pair_label,
-    wet_note,
-)
+from granudb.dem import deck
 from granudb.dem.spec import DemModel, PairParameters
 
 CODE = "LIGGGHTS"
@@ -48,16 +37,16 @@ def pair_style(model: DemModel) -> str:
     return "model hertz tangential history" + (" rolling_friction cdt" if rolling else "")
 
 
-def restitution_input(pair: PairParameters, clamp: bool) -> Limited:
+def restitution_input(pair: PairParameters, clamp: bool) -> deck.Limited:
     """The coefficientRestitution to write: the target, within LIGGGHTS's sanity check."""
     e = pair.restitution.value
-    return check(
+    return deck.check(
         CODE,
-        f"restitution {pair_label(pair)}",
+        f"restitution {deck.pair_label(pair)}",
         e,
         e > RESTITUTION_FLOOR,
         f"refuses e <= {RESTITUTION_FLOOR:g} "
-        "(its sanity check: 0.05 < coefficientRestitution <= 1)",
+        "(its sanity deck.check: 0.05 < coefficientRestitution <= 1)",
         0.0501,
         clamp,
     )
@@ -65,68 +54,71 @@ def restitution_input(pair: PairParameters, clamp: bool) -> Limited:
 
 def write(model: DemModel, *, clamp: bool = False) -> str:
     """The fragment to include after ``create_box`` and before ``pair_style gran``."""
-    poisson = check_poisson(CODE, model, 0.0, clamp)
+    poisson = deck.check_poisson(CODE, model, 0.0, clamp)
     restitution = {
-        frozenset((a.name, b.name)): restitution_input(p, clamp) for a, b, p in ordered_pairs(model)
+        frozenset((a.name, b.name)): restitution_input(p, clamp)
+        for a, b, p in deck.ordered_pairs(model)
     }
-    out = header(CODE, VERSION, model)
-    out += comment(
+    out = deck.header(CODE, VERSION, model)
+    out += deck.comment(
         f"Use with: pair_style gran {pair_style(model)} ; pair_coeff * * ; walls as "
         f"fix ID all wall/gran {pair_style(model)} ... type N (N = the wall's type)."
     )
     moduli = [t.youngs_modulus_pa for t in model.types]
     if max(moduli) > HARD_LIMIT_PA:
-        out += comment(f"some E > {HARD_LIMIT_PA:g} Pa: LIGGGHTS's SI sanity check needs this")
+        out += deck.comment(f"some E > {HARD_LIMIT_PA:g} Pa: LIGGGHTS's SI sanity check needs this")
         out.append("hard_particles yes")
     if min(moduli) < SOFT_LIMIT_PA:
-        out += comment(f"some E < {SOFT_LIMIT_PA:g} Pa: LIGGGHTS's SI sanity check needs this")
+        out += deck.comment(f"some E < {SOFT_LIMIT_PA:g} Pa: LIGGGHTS's SI sanity check needs this")
         out.append("soft_particles yes")
     out += _per_type(
-        model, "youngsModulus", {t.name: Limited(t.youngs_modulus_pa) for t in model.types}
+        model, "youngsModulus", {t.name: deck.Limited(t.youngs_modulus_pa) for t in model.types}
     )
     out += _per_type(model, "poissonsRatio", poisson)
     out += _matrix(model, "coefficientRestitution", restitution, "restitution")
-    friction = {p.key: Limited(p.friction.value) for p in model.pairs}
+    friction = {p.key: deck.Limited(p.friction.value) for p in model.pairs}
     out += _matrix(model, "coefficientFriction", friction, "friction")
     if any(p.rolling_friction is not None for p in model.pairs):
         rolling = {
-            p.key: Limited(p.rolling_friction.value if p.rolling_friction else 0.0)
+            p.key: deck.Limited(p.rolling_friction.value if p.rolling_friction else 0.0)
             for p in model.pairs
         }
         out += _matrix(model, "coefficientRollingFriction", rolling, "rolling_friction")
     return "\n".join(out) + "\n"
 
 
-def _per_type(model: DemModel, prop: str, values: dict[str, Limited]) -> list[str]:
+def _per_type(model: DemModel, prop: str, values: dict[str, deck.Limited]) -> list[str]:
     lines = [""]
     for t in model.types:
         v = values[t.name]
         source = "material property of the type" if prop == "youngsModulus" else "material"
-        lines += comment(f"{t.name}: {prop} = {num(v.value)} ({source})")
+        lines += deck.comment(f"{t.name}: {prop} = {deck.num(v.value)} ({source})")
         if v.note:
-            lines += comment(v.note)
-    row = " ".join(num(values[t.name].value) for t in model.types)
+            lines += deck.comment(v.note)
+    row = " ".join(deck.num(values[t.name].value) for t in model.types)
     lines.append(f"fix granudb_{prop} all property/global {prop} peratomtype {row}")
     return lines
 
 
 def _matrix(
-    model: DemModel, prop: str, values: dict[frozenset[str], Limited], attribute: str
+    model: DemModel, prop: str, values: dict[frozenset[str], deck.Limited], attribute: str
 ) -> list[str]:
     """A full N×N ``peratomtypepair`` matrix (symmetric), each entry commented above it."""
     n = len(model.types)
     lines = [""]
-    for a, b, pair in ordered_pairs(model):
+    for a, b, pair in deck.ordered_pairs(model):
         value: object = getattr(pair, attribute)
         limited = values[pair.key]
-        shown = describe(value) if value is not None else "not known: 0 (no rolling resistance)"
-        lines += comment(
+        shown = (
+            deck.describe(value) if value is not None else "not known: 0 (no rolling resistance)"
+        )
+        lines += deck.comment(
             f"{model.index(a.name)}-{model.index(b.name)} {a.name}/{b.name}: {prop} = {shown}"
         )
         if limited.note:
-            lines += comment(limited.note)
-        if attribute == "restitution" and (note := wet_note(pair)):
-            lines += comment(
+            lines += deck.comment(limited.note)
+        if attribute == "restitution" and (note := deck.wet_note(pair)):
+            lines += deck.comment(
                 note + "; LIGGGHTS 3.8.0's 'viscous on' is not used (see the granudb.dem.liggghts "
                 "docstring: it does not reproduce e(St))"
             )
@@ -136,12 +128,12 @@ def _matrix(
         for b in model.types:
             pair = model.pair(a.name, b.name)
             if pair is None:
-                row.append(num(0.5 if attribute == "restitution" else 0.0))
+                row.append(deck.num(0.5 if attribute == "restitution" else 0.0))
             else:
-                row.append(num(values[pair.key].value))
+                row.append(deck.num(values[pair.key].value))
         rows.append(" ".join(row))
     if any(model.pair(a.name, b.name) is None for a in model.types for b in model.types):
-        lines += comment(f"wall/wall entries: {WALL_PLACEHOLDER}")
+        lines += deck.comment(f"wall/wall entries: {WALL_PLACEHOLDER}")
     lines.append(f"fix granudb_{prop} all property/global {prop} peratomtypepair {n} &")
     lines += [f"    {r} &" for r in rows[:-1]] + [f"    {rows[-1]}"]
     return lines

@@ -13,17 +13,7 @@ Hertz contact time t_c ≈ 2.87(m*²/(R*E*²V))^{1/5} at the characteristic spee
 
 from __future__ import annotations
 
-from granudb.dem.deck import (
-    check,
-    check_poisson,
-    comment,
-    describe,
-    header,
-    num,
-    ordered_pairs,
-    pair_label,
-    wet_note,
-)
+from granudb.dem import deck
 from granudb.dem.spec import DemModel
 
 CODE = "MercuryDPM"
@@ -42,14 +32,14 @@ API_NAMES = (
 
 def write(model: DemModel, *, clamp: bool = False) -> str:
     """C++ statements for ``setupInitialConditions()`` of a DPMBase subclass."""
-    check_poisson(CODE, model, -1.0, clamp)
+    deck.check_poisson(CODE, model, -1.0, clamp)
     rolling = any(p.rolling_friction is not None for p in model.pairs)
     species = (
         "LinearViscoelasticFrictionSpecies"
         if rolling
         else ("LinearViscoelasticSlidingFrictionSpecies")
     )
-    out = header(
+    out = deck.header(
         CODE,
         VERSION,
         model,
@@ -58,12 +48,14 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
     out.append(f"// species class: {species}; walls get a species too (density unused).")
     for t in model.types:
         out.append(f"auto* {t.name} = speciesHandler.copyAndAddObject({species}());")
-        out.append(f"{t.name}->setDensity({num(t.density_kg_m3)});  // {t.name} material value")
-    for a, b, pair in ordered_pairs(model):
+        out.append(
+            f"{t.name}->setDensity({deck.num(t.density_kg_m3)});  // {t.name} material value"
+        )
+    for a, b, pair in deck.ordered_pairs(model):
         scales = model.contact(pair)
-        e = check(
+        e = deck.check(
             CODE,
-            f"restitution {pair_label(pair)}",
+            f"restitution {deck.pair_label(pair)}",
             pair.restitution.value,
             0.0 < pair.restitution.value <= 1.0,
             "requires 0 < e <= 1",
@@ -77,28 +69,31 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             else (f"speciesHandler.getMixedObject({a.name}, {b.name})")
         )
         notes = [
-            f"{pair_label(pair)}: e = {describe(pair.restitution)}",
-            f"mu_f = {describe(pair.friction)}",
-            f"t_c = {num(scales.contact_time_s)} s: Hertz contact time at "
-            f"{num(model.characteristic_velocity_m_s)} m/s "
-            f"(E* = {num(scales.reduced_modulus_pa)} Pa, "
-            f"R* = {num(scales.radius_m)} m, m* = {num(scales.mass_kg)} kg); mass argument 2m*",
+            f"{deck.pair_label(pair)}: e = {deck.describe(pair.restitution)}",
+            f"mu_f = {deck.describe(pair.friction)}",
+            f"t_c = {deck.num(scales.contact_time_s)} s: Hertz contact time at "
+            f"{deck.num(model.characteristic_velocity_m_s)} m/s "
+            f"(E* = {deck.num(scales.reduced_modulus_pa)} Pa, "
+            f"R* = {deck.num(scales.radius_m)} m, m* = {deck.num(scales.mass_kg)} kg); "
+            "mass argument 2m*",
         ]
         if e.note:
             notes.append(e.note)
-        if (note := wet_note(pair)) is not None:
+        if (note := deck.wet_note(pair)) is not None:
             notes.append(note)
-        out += [line for n in notes for line in comment(n, "// ")]
+        out += [line for n in notes for line in deck.comment(n, "// ")]
         out.append(f"auto* {var} = {target};")
         out.append(
-            f"{var}->setCollisionTimeAndRestitutionCoefficient({num(scales.contact_time_s)}, "
-            f"{num(e.value)}, {num(2.0 * scales.mass_kg)});"
+            f"{var}->setCollisionTimeAndRestitutionCoefficient({deck.num(scales.contact_time_s)}, "
+            f"{deck.num(e.value)}, {deck.num(2.0 * scales.mass_kg)});"
         )
         out.append(f"{var}->setSlidingStiffness(2.0 / 7.0 * {var}->getStiffness());")
         out.append(f"{var}->setSlidingDissipation(2.0 / 7.0 * {var}->getDissipation());")
-        out.append(f"{var}->setSlidingFrictionCoefficient({num(pair.friction.value)});")
+        out.append(f"{var}->setSlidingFrictionCoefficient({deck.num(pair.friction.value)});")
         if rolling:
             mu_r = pair.rolling_friction.value if pair.rolling_friction else 0.0
-            source = describe(pair.rolling_friction) if pair.rolling_friction else "not known: 0"
-            out.append(f"{var}->setRollingFrictionCoefficient({num(mu_r)});  // {source}")
+            source = (
+                deck.describe(pair.rolling_friction) if pair.rolling_friction else "not known: 0"
+            )
+            out.append(f"{var}->setRollingFrictionCoefficient({deck.num(mu_r)});  // {source}")
     return "\n".join(out) + "\n"

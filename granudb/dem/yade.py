@@ -18,31 +18,19 @@ from __future__ import annotations
 
 import math
 
-from granudb.dem import damping
-from granudb.dem.deck import (
-    Limited,
-    check,
-    check_poisson,
-    comment,
-    describe,
-    header,
-    num,
-    ordered_pairs,
-    pair_label,
-    wet_note,
-)
+from granudb.dem import damping, deck
 from granudb.dem.spec import DemModel, PairParameters
 
 CODE = "Yade"
 VERSION = "2023.02a, Debian package yade"
 
 
-def betan(pair: PairParameters, clamp: bool) -> Limited:
+def betan(pair: PairParameters, clamp: bool) -> deck.Limited:
     """β_n for the pair, so that Yade's clamped Hertz law gives the target e."""
     e = pair.restitution.value
-    limited = check(
+    limited = deck.check(
         CODE,
-        f"restitution {pair_label(pair)}",
+        f"restitution {deck.pair_label(pair)}",
         e,
         e >= 0.01,
         "Hertz-Mindlin with viscous damping: e < 0.01 needs beta_n beyond its clamped-force "
@@ -50,50 +38,51 @@ def betan(pair: PairParameters, clamp: bool) -> Limited:
         0.01,
         clamp,
     )
-    return Limited(damping.yade_betan(limited.value), limited.note)
+    return deck.Limited(damping.yade_betan(limited.value), limited.note)
 
 
 def write(model: DemModel, *, clamp: bool = False) -> str:
     """Python to ``exec`` in a Yade script before building bodies and engines."""
-    check_poisson(CODE, model, -1.0, clamp)
-    out = header(CODE, VERSION, model)
-    out += comment(
+    deck.check_poisson(CODE, model, -1.0, clamp)
+    out = deck.header(CODE, VERSION, model)
+    out += deck.comment(
         "Defines granudb_material (name -> material id) and granudb_ip2. Use: "
         "InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(), "
         "Ig2_Facet_Sphere_ScGeom()], [granudb_ip2], [Law2_ScGeom_MindlinPhys_Mindlin()])."
     )
     if model.walls:
-        out += comment(
+        out += deck.comment(
             "Yade's wall geometry gives a wall contact the sphere's radius (R* = R/2): the "
             "contact is softer than Hertz's by 1/sqrt(2); e and mu_f are unaffected."
         )
     if any(p.rolling_friction is not None for p in model.pairs):
-        out += comment("rolling friction not exported: MindlinPhys has no rolling coefficient")
+        out += deck.comment("rolling friction not exported: MindlinPhys has no rolling coefficient")
     out += ["import math", "granudb_material = {}"]
     for t in model.types:
-        out += comment(f"{t.name}: material values of the type")
+        out += deck.comment(f"{t.name}: material values of the type")
         out.append(
             f"granudb_material[{t.name!r}] = O.materials.append(FrictMat(label={t.name!r}, "
-            f"young={num(t.youngs_modulus_pa)}, poisson={num(t.poisson_ratio)}, "
-            f"density={num(t.density_kg_m3)}, frictionAngle=0.0))"
+            f"young={deck.num(t.youngs_modulus_pa)}, poisson={deck.num(t.poisson_ratio)}, "
+            f"density={deck.num(t.density_kg_m3)}, frictionAngle=0.0))"
         )
     beta_rows, friction_rows = [], []
-    for a, b, pair in ordered_pairs(model):
+    for a, b, pair in deck.ordered_pairs(model):
         beta = betan(pair, clamp)
         ids = f"granudb_material[{a.name!r}], granudb_material[{b.name!r}]"
         notes = [
-            f"{pair_label(pair)}: e = {describe(pair.restitution)}; beta_n = {num(beta.value)} "
+            f"{deck.pair_label(pair)}: e = {deck.describe(pair.restitution)}; "
+            f"beta_n = {deck.num(beta.value)} "
             "gives it in Yade's Hertz-Mindlin law (granudb.dem.damping)",
-            f"{pair_label(pair)}: mu_f = {describe(pair.friction)}",
+            f"{deck.pair_label(pair)}: mu_f = {deck.describe(pair.friction)}",
         ]
         if beta.note:
             notes.append(beta.note)
-        if (note := wet_note(pair)) is not None:
+        if (note := deck.wet_note(pair)) is not None:
             notes.append(note)
-        beta_rows += [line for n in notes[:1] + notes[2:] for line in comment(n, "    # ")]
-        beta_rows.append(f"    ({ids}, {num(beta.value)}),")
-        friction_rows += comment(notes[1], "    # ")
-        friction_rows.append(f"    ({ids}, math.atan({num(pair.friction.value)})),")
+        beta_rows += [line for n in notes[:1] + notes[2:] for line in deck.comment(n, "    # ")]
+        beta_rows.append(f"    ({ids}, {deck.num(beta.value)}),")
+        friction_rows += deck.comment(notes[1], "    # ")
+        friction_rows.append(f"    ({ids}, math.atan({deck.num(pair.friction.value)})),")
     out.append("granudb_ip2 = Ip2_FrictMat_FrictMat_MindlinPhys(")
     out.append("  betan=MatchMaker(matches=(")
     out += beta_rows + ["  )),", "  frictAngle=MatchMaker(matches=("]
