@@ -210,3 +210,37 @@ def walton(
     figures 4, 6, 9). Keys: ``WALTON_KEYS``. ``resamples`` None follows
     ``walton_bootstrap.RESAMPLE_RULE`` (1000 for groups up to 10,000 runs)."""
     return [_walton_group(key, group, resamples, seed) for key, group in _groups(frame)]
+
+
+#: What a run is on Walton's plot, as its group's fit decided (the one classification the
+#: regime map, the Walton table and every export share).
+BRANCHES = ("sticking", "sliding", "no rebound", "not determined")
+
+
+def _group_key(value: Any) -> Any:
+    """A group's key part: no fluid is None whether written None, NaN or "dry"."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return None
+    return None if isinstance(value, str) and value.casefold() == "dry" else value
+
+
+def walton_branches(frame: Any, fits: list[dict[str, Any]]) -> np.ndarray:
+    """Each run's branch, exactly as its group's Walton fit counted it: runs folded by
+    the sign of v_T,in and sorted by Ψ_in as the fit sorts them, the first ``n_sticking``
+    of a group sticking and the rest sliding (model "sticking": all stick; "sliding":
+    all slide); a run without a rebound (e ≤ 0 or not measured) is "no rebound"; the runs
+    of a group the fit chose no model for are "not determined". An object array of
+    ``BRANCHES`` names, in the frame's row order."""
+    branches = np.full(len(frame), "not determined", dtype=object)
+    rebound = frame["normal_restitution"].to_numpy(dtype=float) > 0
+    branches[~rebound] = "no rebound"
+    chosen = {tuple(_group_key(f.get(g)) for g in GROUP): f for f in fits if f.get("model")}
+    keys = frame[GROUP].astype(object).where(frame[GROUP].notna(), None)
+    for key, rows in keys.groupby(GROUP, dropna=False, sort=False).indices.items():
+        fit = chosen.get(tuple(_group_key(k) for k in key))
+        if fit is None:
+            continue
+        order = walton_arrays(frame.iloc[rows])[5]
+        sticking = int(fit.get("n_sticking") or 0)
+        branches[rows[order]] = np.where(np.arange(len(order)) < sticking, "sticking", "sliding")
+    return branches

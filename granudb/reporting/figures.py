@@ -20,14 +20,12 @@ from granudb.db import catalog_rows, lookup_rows
 from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
 from granudb.reporting import plots
-from granudb.reporting.format import as_number, display, is_number
+from granudb.reporting.format import display, is_number
 from granudb.reporting.groups import (
     fluid_colours,
-    fluid_name,
     fluid_names,
     group_keys,
     group_label,
-    per_value,
     sorted_codes,
 )
 
@@ -122,26 +120,9 @@ def regime_map_figure(
 
 
 def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> np.ndarray:
-    """Each run's measured regime: no rebound, normal impact, or sticking/sliding by the
-    Walton split of its group (runs at or above the split Ψ_in slide)."""
-    splits = {
-        (f["dataset"], f["particle"], f["wall"], fluid_name(f.get("fluid"))): f.get(
-            "split_effective_incidence", math.nan
-        )
-        for f in walton
-    }
-    keys = group_keys(frame["dataset"], frame["particle"], frame["wall"],
-                      fluid_names(frame["fluid"]))  # fmt: skip
-    split = per_value(keys, lambda key: as_number(splits.get(key))).astype(float)
-    psi = frame["effective_incidence"].to_numpy(dtype=float)
-    e = frame["normal_restitution"].to_numpy(dtype=float)
-    names = np.array(["sliding", "sticking", "normal impact", "no rebound"], dtype=object)
-    with np.errstate(invalid="ignore"):
-        sliding = np.isfinite(split) & (psi >= split)
-        code = np.where(sliding, 0, 1)  # no split: all on the sticking line
-        code = np.where(np.isfinite(psi) & (psi > 0), code, 2)
-        code = np.where(e > 0, code, 3)
-    return names[code]  # an object array of the names (shared strings, no copies)
+    """Each run's measured branch, as the Walton fit of its group counted it (the one
+    classification: ``granudb.analysis.fits.walton_branches``)."""
+    return fits.walton_branches(frame, list(walton))
 
 
 def pair_maps(

@@ -167,7 +167,7 @@ def friction_vs_shear_strain(
 
 
 #: Marker per measured regime of a run on the regime map.
-RUN_MARKERS = {"sticking": "o", "sliding": "^", "no rebound": "x", "normal impact": "s"}
+RUN_MARKERS = {"sticking": "o", "sliding": "^", "no rebound": "x", "not determined": "s"}
 
 
 def draw_runs(plot: Plot, runs: Sequence[dict[str, Any]], colours: Mapping[str, str]) -> None:
