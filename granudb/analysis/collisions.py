@@ -9,18 +9,16 @@ columns empty and the reason in ``derivation_note``: one bad row never hides the
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from granudb.analysis.collision_query import CollisionQuery
 from granudb.analysis.fluid_state import fluid_states_per_row
 from granudb.analysis.refusals import physics_refusal
 from granudb.db.catalog_rows import fluid_rows_by_id
 from granudb.db.collision_queries import iter_collisions, reading, survey_collisions
-from granudb.errors import ValidationError
 from granudb.lazy import pandas as pd
 from granudb.physics.derive import derive
 from granudb.vocabulary import (
@@ -31,56 +29,7 @@ from granudb.vocabulary import (
 )
 from granudb.vocabulary.listings import COLLISION_WIDE, units_of
 
-TANGENTIAL_REGIMES = ("stick", "slip_then_stick", "gross_slip")
 _MATERIAL = [c for c in MATERIAL_PROPERTIES if c not in ("correlation_length_m",)]
-
-
-@dataclass(frozen=True)
-class CollisionQuery:
-    """Which collisions: every field ``None`` means "any". Field names are the Python
-    API's parameters and, with dashes, the command line's options."""
-
-    dataset: str | None = None
-    version: str | None = None
-    particle: str | None = None
-    wall: str | None = None
-    fluid: str | None = None
-    min_normal_stokes: float | None = None
-    max_normal_stokes: float | None = None
-    angle_range: tuple[float, float] | None = None
-    regime: str | None = None
-    roughness_exceeds_gap: bool | None = None
-    rebound_expected: bool | None = None
-    critical_stokes: float = 10.0
-
-    def describe(self) -> str:
-        parts = [
-            f"{k}={v}" for k, v in self.__dict__.items() if v is not None and k != "critical_stokes"
-        ]
-        return ", ".join(parts) or "all collisions"
-
-    def check(self) -> None:
-        """Refuse a query that cannot mean anything, naming the parameter."""
-        if self.regime is not None and self.regime not in TANGENTIAL_REGIMES:
-            raise ValidationError(
-                "regime",
-                self.regime,
-                f"must be one of {', '.join(TANGENTIAL_REGIMES)}",
-                parameter=True,
-            )
-        if not (math.isfinite(self.critical_stokes) and self.critical_stokes > 0):
-            raise ValidationError(
-                "critical_stokes", self.critical_stokes, "must be > 0", parameter=True
-            )
-        if self.angle_range is not None:
-            low, high = self.angle_range
-            if not 0 <= low <= high < math.pi / 2:
-                raise ValidationError(
-                    "angle_range",
-                    f"{math.degrees(low):g}..{math.degrees(high):g} deg",
-                    "must be LOW..HIGH with 0° ≤ LOW ≤ HIGH < 90°",
-                    parameter=True,
-                )
 
 
 def select_collisions(

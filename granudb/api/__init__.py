@@ -106,12 +106,12 @@ FACE: dict[str, str] = {
     "DIFF_COLUMNS": "presentation",
     "PUBLISHED_NARROW": "presentation",
     "REPORT_FORMATS": "lab_report",
-    "COLLISION_FILTERS": "collision_listing",
+    "COLLISION_FILTERS": "presentation",
     "RESTITUTION_MODELS": "fits",
     "DEM_CODES": "dem",
     "DEM_VALUE_SOURCES": "dem",
     "parameter_of": "presentation",
-    "dataset_ref": "dataset_versions",
+    "dataset_ref": "inputs",
     "load_seed": "schema",
 }
 

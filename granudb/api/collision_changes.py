@@ -15,7 +15,6 @@ from typing import Any
 from granudb.api import inputs
 from granudb.api.consent import Confirm, agreed, unchanged
 from granudb.api.database import opened
-from granudb.api.dataset_versions import dataset_ref
 from granudb.db import datasets as dataset_store
 from granudb.io.collision_import import ImportResult
 from granudb.io.collision_import import import_collisions as import_file
@@ -86,7 +85,7 @@ def remove_collisions(
     >>> granudb.remove_collisions("trimmed", ["steel-dry-1"], db=db)
     1
     """
-    name, version = dataset_ref(dataset, version)
+    name, version = inputs.dataset_ref(dataset, version)
     labels = [inputs.text(run, "runs") for run in inputs.sequence(runs, "runs")]
     action = f"collisions remove {dataset}"
     with opened(db) as database:

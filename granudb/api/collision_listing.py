@@ -12,17 +12,16 @@ from __future__ import annotations
 
 import difflib
 import re
-from dataclasses import fields
 from typing import Any
 
-from granudb.analysis.collisions import TANGENTIAL_REGIMES, CollisionQuery, select_collisions
+from granudb.analysis.collision_query import COLLISION_FILTERS, TANGENTIAL_REGIMES, CollisionQuery
+from granudb.analysis.collisions import select_collisions
 from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.errors import ValidationError
 from granudb.vocabulary.listings import COLLISION_NARROW
 
 #: The collision filters, in the order help texts list them.
-COLLISION_FILTERS: tuple[str, ...] = tuple(f.name for f in fields(CollisionQuery))
 _TEXT_FILTERS = ("dataset", "version", "particle", "wall", "fluid")
 _FLAG_FILTERS = ("roughness_exceeds_gap", "rebound_expected")
 

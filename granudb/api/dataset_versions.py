@@ -38,16 +38,6 @@ _DOI = re.compile(r"^10\.\d{4,9}/\S+$")
 AUTHOR_FIELDS = ("given_names", "family_names", "orcid", "affiliation")
 
 
-def dataset_ref(dataset: Any, version: Any = None) -> tuple[str, str | None]:
-    """(name, version) of a dataset given as ``NAME`` or ``NAME@VERSION`` (split at the
-    last ``@``), or as ``NAME`` with ``version`` explicitly (then taken as it is)."""
-    text = inputs.text(dataset, "dataset")
-    if version is not None:
-        return text, inputs.text(version, "version")
-    name, _, given = text.rpartition("@") if "@" in text else (text, "", "")
-    return name, given or None
-
-
 def check_orcid(value: str, field: str = "orcid") -> str:
     """The ORCID iD ``0000-0002-1825-0097`` if its form and ISO 7064 11,2 check digit are
     right (a bare iD, or the https://orcid.org/ URL), else ``ValidationError``."""
@@ -162,7 +152,7 @@ def dataset(name: str, *, version: str | None = None, db: Any = None) -> dict[st
     >>> granudb.dataset("shown@1.0.0", db=db)["runs"]
     12
     """
-    name, version = dataset_ref(name, version)
+    name, version = inputs.dataset_ref(name, version)
     with opened(db) as database, database.session() as session:
         chosen = store.get_dataset(session, name, version)
         record = dataset_catalog.dataset_record(session, chosen)
@@ -182,8 +172,8 @@ def diff_datasets(a: str, b: str, *, db: Any = None) -> list[dict[str, Any]]:
     []
     """
     with opened(db) as database, database.session() as session:
-        first = store.get_dataset(session, *dataset_ref(a))
-        second = store.get_dataset(session, *dataset_ref(b))
+        first = store.get_dataset(session, *inputs.dataset_ref(a))
+        second = store.get_dataset(session, *inputs.dataset_ref(b))
         return dataset_catalog.diff_datasets(session, first, second)
 
 
@@ -205,7 +195,7 @@ def remove_dataset(
     >>> granudb.remove_dataset("removed@1.0.0", db=db)
     ['dataset removed@1.0.0 (draft) with 12 runs and 1 import records']
     """
-    name, version = dataset_ref(dataset, version)
+    name, version = inputs.dataset_ref(dataset, version)
     action = f"dataset remove {dataset}"
     with opened(db) as database:
         with database.session() as session:
@@ -255,7 +245,7 @@ def edit_dataset(
     if not values:
         raise ValidationError("edit", dataset, "needs at least one option to change")
     checked = check_metadata(values)
-    name, version = dataset_ref(dataset, version)
+    name, version = inputs.dataset_ref(dataset, version)
     with opened(db) as database, database.session(write=True) as session:
         return store.edit_dataset(session, store.get_dataset(session, name, version), checked)
 
@@ -286,7 +276,7 @@ def release_dataset(dataset: str, *, version: str | None = None, db: Any = None)
     >>> granudb.release_dataset("released@1.0.0", db=db)
     []
     """
-    name, version = dataset_ref(dataset, version)
+    name, version = inputs.dataset_ref(dataset, version)
     with opened(db) as database, database.session(write=True) as session:
         chosen = store.get_dataset(session, name, version)
         return [d.version for d in store.release_dataset(session, chosen)]
@@ -307,7 +297,7 @@ def new_dataset_version(dataset: str, version: str | None = None, *, db: Any = N
     if version is None:
         raise inputs.missing("version", "is required: the new version, e.g. 1.1.0")
     new = inputs.name(version, "version")
-    name, old = dataset_ref(dataset)
+    name, old = inputs.dataset_ref(dataset)
     with opened(db) as database, database.session(write=True) as session:
         chosen = store.get_dataset(session, name, old)
         return store.new_version(session, chosen, new).content_hash or ""

@@ -23,12 +23,12 @@ from pathlib import Path
 from typing import Any
 
 from granudb.analysis import fits
-from granudb.analysis.collisions import CollisionQuery, select_collisions
+from granudb.analysis.collision_query import CollisionQuery
+from granudb.analysis.collisions import select_collisions
 from granudb.analysis.fluid_state import fluid_state
 from granudb.analysis.pair import derive_pair, is_dry
 from granudb.api import inputs
 from granudb.api.database import opened
-from granudb.api.dataset_versions import dataset_ref
 from granudb.db import catalog_rows, lookup_rows, sources
 from granudb.dem import (
     WRITER_NAMES,
@@ -183,7 +183,7 @@ def dem_model(
     with opened(db) as database, database.reading() as session:
         pinned = None  # values=dataset: the catalogue as the dataset's runs use it
         if values == "dataset":
-            pinned = lookup_rows.dataset_row(session, *dataset_ref(dataset)).id
+            pinned = lookup_rows.dataset_row(session, *inputs.dataset_ref(dataset)).id
         fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(session, fluid, pinned)
         state = fluid_state(fluid_row) if fluid_row else None
         types, pairs, taken = [], [], set()

@@ -176,3 +176,18 @@ def sequence(value: Any, parameter: str) -> list[Any]:
     if value is None:
         raise missing(parameter)
     raise ValidationError(parameter, repr(value)[:60], "must be a list", parameter=True)
+
+
+def dataset_ref(dataset: Any, version: Any = None) -> tuple[str, str | None]:
+    """(name, version) of a dataset given as ``NAME`` or ``NAME@VERSION`` (split at the
+    last ``@``: ``@`` is refused in new names and versions), or as ``NAME`` with ``version``
+    explicitly (then taken as it is: a name from before the rule stays reachable).
+
+    >>> dataset_ref("lab@2024"), dataset_ref("lab"), dataset_ref("a@b", "1")
+    (('lab', '2024'), ('lab', None), ('a@b', '1'))
+    """
+    given = text(dataset, "dataset")
+    if version is not None:
+        return given, text(version, "version")
+    name, _, version_text = given.rpartition("@") if "@" in given else (given, "", "")
+    return name, version_text or None

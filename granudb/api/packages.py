@@ -14,7 +14,6 @@ from typing import Any
 
 from granudb.api import inputs
 from granudb.api.database import opened
-from granudb.api.dataset_versions import dataset_ref
 from granudb.db.package_queries import export_data
 from granudb.db.package_store import PackageImport
 from granudb.io.package_export import build_package, write_package
@@ -57,7 +56,7 @@ def export_dataset(
     >>> granudb.export_dataset("shared", tmp / "shared.zip", db=db).path.name
     'shared.zip'
     """
-    name, version = dataset_ref(dataset, version)
+    name, version = inputs.dataset_ref(dataset, version)
     target = Path(inputs.path(output, "output"))
     with opened(db) as database, database.session() as session:
         data = export_data(session, name, version)

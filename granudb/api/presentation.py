@@ -7,6 +7,7 @@ each listing. Light on purpose: loading this module imports neither numpy nor pa
 
 from __future__ import annotations
 
+from granudb.analysis import collision_query
 from granudb.reporting.format import display
 from granudb.vocabulary import DERIVED_TERMS, FLUIDS, MATERIALS, Term, term
 from granudb.vocabulary.catalogue import (
@@ -50,3 +51,7 @@ __all__ = [
     "parameter_of",
     "term",
 ]
+
+
+#: The collision filters: the Python API's keyword parameters, the command line's options.
+COLLISION_FILTERS = collision_query.COLLISION_FILTERS

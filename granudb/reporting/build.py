@@ -16,7 +16,8 @@ from typing import Any
 from sqlalchemy.engine import Connection
 
 from granudb.analysis import fits
-from granudb.analysis.collisions import CollisionQuery, select_collisions
+from granudb.analysis.collision_query import CollisionQuery
+from granudb.analysis.collisions import select_collisions
 from granudb.analysis.fluid_state import fluid_model
 from granudb.analysis.pair import derive_pair
 from granudb.db import catalog_rows, lookup_rows
