@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from granudb.analysis.collision_query import CollisionQuery
-from granudb.analysis.fluid_state import fluid_states_per_row
+from granudb.analysis.fluid_state import assumptions_per_row, fluid_states_per_row
 from granudb.analysis.refusals import physics_refusal
 from granudb.db.catalog_rows import fluid_rows_by_id
 from granudb.db.collision_queries import iter_collisions, reading, survey_collisions
@@ -239,7 +239,8 @@ def _derive_stored(
     for name, values in result.items():
         if name not in chunk:
             chunk[name] = np.asarray(values)
-    chunk["derivation_note"] = reason
+    assumed = assumptions_per_row(fluids, fluid_ids, c["temperature_c"])
+    chunk["derivation_note"] = np.where(reason != None, reason, assumed)  # noqa: E711
     _blank_underivable(chunk, reason != None)  # noqa: E711 - elementwise on an object array
     return {
         **{n: chunk[n] for n in COLLISION_WIDE if n in chunk},

@@ -105,6 +105,34 @@ def fluid_state(
     )
 
 
+def assumptions_per_row(
+    fluids: dict[int, Fluid], fluid_ids: np.ndarray, temperatures: np.ndarray
+) -> np.ndarray:
+    """What ``fluid_states_per_row`` assumed for each row, in words (None: nothing): a wet
+    run without a temperature is taken at its fluid's reference temperature; a fluid
+    whose points give no density at the run's temperature lends its reference density."""
+    said = np.full(len(fluid_ids), None, dtype=object)
+    for fluid_id, fluid in fluids.items():
+        rows = fluid_ids == fluid_id
+        if not rows.any():
+            continue
+        missing = rows & np.isnan(temperatures)
+        if missing.any():
+            said[missing] = (
+                f"assumed: no temperature given, so {fluid.name} at its reference "
+                f"{fluid.reference_temperature_c:g} °C ({fluid.reference_viscosity_pa_s * 1e3:.4g}"
+                f" mPa·s, {fluid.reference_density_kg_m3:g} kg/m³)"
+            )
+        model = fluid_model(fluid)
+        given = rows & ~np.isnan(temperatures)
+        if model is not None and given.any() and not _has_density(model):
+            said[given] = (
+                f"assumed: {fluid.name}'s density at the run's temperature is not known; "
+                f"its reference density {fluid.reference_density_kg_m3:g} kg/m³ is used"
+            )
+    return said
+
+
 def fluid_states_per_row(
     fluids: dict[int, Fluid], fluid_ids: np.ndarray, temperatures: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

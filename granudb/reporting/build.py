@@ -36,7 +36,7 @@ REPORT_COLUMNS = [
     *("walton_factor", "rotational_restitution", "sliding_friction", "normal_stokes_number"),
     *("added_mass_stokes_number", "shear_strain", "effective_radius_m", "reduced_modulus_pa"),
     *("eta_hat_pa_inv", "effective_mass_kg", "roughness_exceeds_gap", "roughness_regime"),
-    *("composite_roughness_m", "film_parameter"),
+    *("composite_roughness_m", "film_parameter", "derivation_note"),
 ]
 
 #: Scenario inputs granudb assumes when ``report --pair`` is not given them.
@@ -54,6 +54,7 @@ def _header(title: str, query: str, database: str) -> dict[str, Any]:
         "dataset": None,
         "flags": [],
         "assumed": [],
+        "assumptions": [],
         "verdicts": [],
         "properties": [],
         "derived": [],
@@ -189,6 +190,16 @@ def dataset_report(
     return report
 
 
+def _assumptions(frame: Any) -> list[str]:
+    """What the derivation assumed for the runs, each said once with its run count."""
+    notes = frame.get("derivation_note", [])
+    counts: dict[str, int] = {}
+    for note in notes:
+        if isinstance(note, str) and note.startswith("assumed:"):
+            counts[note] = counts.get(note, 0) + 1
+    return [f"{n} run{'s' if n != 1 else ''}: {note}" for note, n in sorted(counts.items())]
+
+
 def _connection(reader: Any) -> Any:
     return reader if isinstance(reader, Connection) else reader.connection()
 
@@ -227,6 +238,7 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     if not pair:
         report["flags"].append(blocks.dataset_flag(frame))
         report["properties"], citations = _properties(connection, frame)
+    report["assumptions"] = _assumptions(frame)
     labels = labels_of(frame)
     palette = colours(labels)
     walton = fits.walton(frame)
