@@ -21,6 +21,7 @@ import uuid
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import pytest
 from typer.testing import CliRunner
@@ -133,6 +134,16 @@ def db(template_db: str, tmp_path: Path) -> Iterator[str]:
         yield str(path)
         return
     yield from _postgres_database(template_db)
+
+
+@pytest.fixture
+def opened(db: str) -> Iterator[Any]:
+    """``db`` opened with ``granudb.connect`` (for the Python API's ``db=``), disposed after."""
+    import granudb
+
+    database = granudb.connect(db)
+    yield database
+    database.dispose()
 
 
 @dataclass

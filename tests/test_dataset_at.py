@@ -14,13 +14,6 @@ from granudb.errors import ValidationError
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
 
 
-@pytest.fixture
-def opened(db: str):
-    database = granudb.connect(db)
-    yield database
-    database.dispose()
-
-
 def test_a_new_name_or_version_with_at_is_refused(opened) -> None:
     with pytest.raises(ValidationError, match="must not contain '@'"):
         granudb.import_collisions(EXAMPLE, dataset="lab@2024", db=opened)

@@ -15,13 +15,6 @@ from granudb.errors import ValidationError
 SCENARIO = {"diameter": "12.7 mm", "velocity": "0.3 m/s", "fluid": "water"}
 
 
-@pytest.fixture
-def opened(db: str):
-    database = granudb.connect(db)
-    yield database
-    database.dispose()
-
-
 def test_two_equal_free_spheres_halve_the_mass_and_double_st(opened) -> None:
     wall = granudb.pair("steel", "steel", **SCENARIO, db=opened)
     free = granudb.pair("steel", "steel", wall_diameter="12.7 mm", **SCENARIO, db=opened)

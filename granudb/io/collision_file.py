@@ -176,24 +176,16 @@ def _relative(columns: dict[str, Any], free: Any, first_row: int) -> tuple[Any, 
     target_out = np.zeros_like(free, dtype=float) * np.nan if target_out is None else target_out
     v_in = np.where(free, columns["v_n_in_m_s"] - columns["wall_v_n_in_m_s"], columns["v_n_in_m_s"])
     v_out = np.where(free, columns["v_n_out_m_s"] + target_out, columns["v_n_out_m_s"])
-    approaching = ~free | (v_in > 0)
-    if not approaching.all():
-        pos = _first(~approaching)
-        raise ValidationError(
-            "v_n_in - wall_v_n_in",
-            f"{v_in[pos]:.4g} m/s",
-            "must be > 0 (the particle and the target must approach)",
-            row=first_row + pos,
-        )
-    separating = ~free | np.isnan(v_out) | (v_out >= 0)
-    if not separating.all():
-        pos = _first(~separating)
-        raise ValidationError(
-            "v_n_out + wall_v_n_out",
-            f"{v_out[pos]:.4g} m/s",
-            "must be ≥ 0 (after impact the particle and the target separate)",
-            row=first_row + pos,
-        )
+    rules = (
+        ("v_n_in - wall_v_n_in", v_in, ~free | (v_in > 0),
+         "must be > 0 (the particle and the target must approach)"),
+        ("v_n_out + wall_v_n_out", v_out, ~free | np.isnan(v_out) | (v_out >= 0),
+         "must be ≥ 0 (after impact the particle and the target separate)"),
+    )  # fmt: skip
+    for field, values, holds, rule in rules:
+        if not holds.all():
+            pos = _first(~holds)
+            raise ValidationError(field, f"{values[pos]:.4g} m/s", rule, row=first_row + pos)
     return v_in, v_out
 
 

@@ -39,13 +39,6 @@ def _write(path: Path, rows: list[list[str]]) -> Path:
     return path
 
 
-@pytest.fixture
-def opened(db: str):
-    database = granudb.connect(db)
-    yield database
-    database.dispose()
-
-
 def test_equal_spheres_with_the_target_at_rest_import_and_give_e(opened, tmp_path) -> None:
     source = _write(tmp_path / "eq.csv", _equal_spheres(0.9, [200.0, 300.0, 400.0]))
     granudb.import_collisions(source, dataset="eq", db=opened)

@@ -45,13 +45,6 @@ def _state(database, name: str, tmp_path: Path, tag: str) -> dict[str, object]:
     }
 
 
-@pytest.fixture
-def opened(db: str):
-    database = granudb.connect(db)
-    yield database
-    database.dispose()
-
-
 def test_a_release_keeps_the_values_it_used(opened, tmp_path: Path) -> None:
     granudb.import_collisions(EXAMPLE, dataset="rel", db=opened)
     granudb.release_dataset("rel", db=opened)
