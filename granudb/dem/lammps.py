@@ -106,13 +106,18 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
 
 
 def write(model: DemModel, *, clamp: bool = False) -> str:
-    """The fragment to include after ``create_box`` (atom_style sphere, units si)."""
+    """The fragment to include once the atoms exist (after ``create_atoms`` or
+    ``read_data``; atom_style sphere, units si): its wall fixes act on groups made by atom
+    type, and a LAMMPS group holds the atoms that exist when it is made."""
     deck.check_poisson(CODE, model, -1.0, clamp)
     out = deck.header(CODE, VERSION, model)
     out += deck.comment(
         "LAMMPS atom types are the particle types only: "
         + ", ".join(f"{type_number(model, t.name)} = {t.name}" for t in model.particles)
-        + ". Needs atom_style sphere and comm_modify vel yes."
+        + ". Needs atom_style sphere and comm_modify vel yes. Include this file after the "
+        "atoms exist (after create_atoms or read_data), never straight after create_box: "
+        "its groups are made by type, and a LAMMPS group holds only the atoms that exist "
+        "when it is made, so the wall fixes would act on nothing."
     )
     out += ["", "pair_style granular"]
     particles = model.particles

@@ -111,3 +111,11 @@ def test_every_number_has_its_source() -> None:
     )
     for writer in (liggghts, lammps, yade, mercurydpm):
         assert "Joseph & Hunt 2004 §3, glass on Zerodur" in writer.write(model)
+
+
+def test_the_lammps_fragment_says_where_it_goes() -> None:
+    """Groups by type hold the atoms that exist when made: the fragment says to include it
+    after the atoms exist (granudb's own verify includes it there)."""
+    text = lammps.write(dry_model())
+    header = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
+    assert "after the atoms exist" in header and "never straight after create_box" in header
