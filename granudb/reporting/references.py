@@ -23,8 +23,9 @@ class Work:
     text: str
     doi: str | None = None
 
-    def entry(self) -> str:
-        return f"{self.text} https://doi.org/{self.doi}" if self.doi else self.text
+    def entry(self) -> dict[str, str | None]:
+        """The reference as a report lists it: its text and, with a DOI, its link."""
+        return {"text": self.text, "url": f"https://doi.org/{self.doi}" if self.doi else None}
 
 
 WORKS = [
@@ -191,21 +192,22 @@ def _strings(value: Any) -> Iterable[str]:
             yield from _strings(item)
 
 
-def references(report: dict[str, Any], citations: dict[str, str]) -> list[str]:
-    """The works the report cites, once each, in a stable order, with DOI.
+def references(report: dict[str, Any], citations: dict[str, str]) -> list[dict[str, str | None]]:
+    """The works the report cites, once each, in a stable order, each ``{"text", "url"}``
+    (the DOI's link, which the HTML and the Markdown show as links).
 
     ``citations`` maps database source keys to their stored citation text; a key granudb
     knows (``joseph-hunt-2004``) is listed with the curated entry, not a second time.
     """
     text = "\n".join(_strings(report))
-    listed: list[str] = []
+    listed: list[dict[str, str | None]] = []
     known = {work.key for work in WORKS}
     for work in WORKS:
         if work.key in citations or any(c in text for c in work.cited_as):
             listed.append(work.entry())
     for key, citation in sorted(citations.items()):
         if key not in known:
-            listed.append(f"[{key}] {citation}")
+            listed.append({"text": f"[{key}] {citation}", "url": None})
     return listed
 
 
