@@ -89,13 +89,20 @@ def _pair_values(
     ``pinned`` (a dataset's id) the catalogue as that dataset's runs use it."""
     fluid_name = fluid.name if fluid else None
     derived = _predicted(session, particle.material, wall, fluid_name, scenario, pinned)
-    lubricated = derived.get("lubricated_friction_state") == "in_range" and fluid is not None
-    friction = Value(
-        float(derived["friction_coefficient_used"]),
-        f"predicted: lubricated μ_f (5.8) of {particle.material}/{wall} at the stated speed"
-        if lubricated
-        else "assumed: the dry friction 0.11 of Joseph & Hunt 2004 §3 (no value for this pair)",
+    used = float(derived["friction_coefficient_used"])
+    lubricated = (
+        fluid is not None
+        and derived.get("lubricated_friction_state") == "in_range"
+        and used == derived.get("lubricated_friction")
     )
+    if lubricated:
+        said = f"predicted: lubricated μ_f (5.8) of {particle.material}/{wall} at the stated speed"
+    else:
+        why = "no value for this pair"
+        if fluid is not None:  # the export is of a normal impact: (5.8) has no sliding speed
+            why += "; the export has no sliding speed, so (5.8) gives no lubricated μ_f"
+        said = f"assumed: the dry friction {used:g} of Joseph & Hunt 2004 §3 ({why})"
+    friction = Value(used, said)
     dry = Value(DRY_RESTITUTION, "Joseph & Hunt 2004 §3: ē_dry = 0.97 ± 0.02 (assumed)")
     if values == "published":
         found = _published(session, particle.material, wall, fluid.name if fluid else None)

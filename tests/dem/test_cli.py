@@ -141,3 +141,16 @@ def test_a_failing_verification_exits_non_zero(cli, db: str) -> None:
     )  # fmt: skip
     assert out.exit_code == 1
     assert "FAIL (mu_f" in out.stdout and out.stdout.splitlines()[-1].startswith("FAIL:")
+
+
+def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
+    """Issue 26: a wet export is of a normal impact, so (5.8) has no sliding speed and
+    gives no μ_f; the 0.11 written is the dry value, and its label says so."""
+    import granudb
+
+    text = granudb.dem_export("liggghts", ["glass"], ["Zerodur"], fluid="glycerol-78",
+                              diameter="12.7 mm", velocity="0.3 m/s", values="predicted",
+                              db=db)  # fmt: skip
+    comments = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
+    assert "predicted: lubricated μ_f (5.8)" not in comments
+    assert "assumed: the dry friction 0.11" in comments and "no sliding speed" in comments
