@@ -173,7 +173,8 @@ def _relative(columns: dict[str, Any], free: Any, first_row: int) -> tuple[Any, 
     > 0: they approach), and the particle's speed away plus the target's along the normal,
     after (must be ≥ 0: they separate; unknown without the target's rebound)."""
     target_out = columns.get("wall_v_n_out_m_s")
-    target_out = np.zeros_like(free, dtype=float) * np.nan if target_out is None else target_out
+    if target_out is None:  # the target's rebound not measured: separation unknown
+        target_out = np.full(len(free), np.nan)
     v_in = np.where(free, columns["v_n_in_m_s"] - columns["wall_v_n_in_m_s"], columns["v_n_in_m_s"])
     v_out = np.where(free, columns["v_n_out_m_s"] + target_out, columns["v_n_out_m_s"])
     rules = (

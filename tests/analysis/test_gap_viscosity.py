@@ -148,3 +148,17 @@ def test_every_empty_fit_says_why_in_one_line() -> None:
     assert "asperity contact" in fit["reason"]
     for reason in (r["reason"] for r in fits.gap_viscosity(rough, {})):
         assert "\n" not in reason and "Error" not in reason
+
+
+def test_a_moving_target_is_fitted_at_the_relative_normal_speed() -> None:
+    """Issue 23: the target recedes at 0.2 m/s, so each particle's own v_N,in is the
+    relative speed plus 0.2; (5.8) depends on the relative speed, and the fit reads it
+    (``normal_speed_m_s``). Read at the particle's own speed the same runs give a wrong μ₀."""
+    runs = sliding_runs(11.5e-3, seed=5)
+    runs["normal_speed_m_s"] = runs["v_n_in_m_s"]  # relative speed of the contact
+    runs["v_n_in_m_s"] = runs["v_n_in_m_s"] + 0.2  # the particle's own, target receding
+    [fit] = fits.gap_viscosity(runs, {"glycerol-37": None})
+    assert fit["gap_viscosity_pa_s"] == pytest.approx(11.5e-3, rel=0.05)
+    wrong = runs.assign(normal_speed_m_s=runs["v_n_in_m_s"])
+    [biased] = fits.gap_viscosity(wrong, {"glycerol-37": None})
+    assert abs(biased["gap_viscosity_pa_s"] / 11.5e-3 - 1) > 0.10
