@@ -1,4 +1,4 @@
-"""Reading stored collisions as plain columns (not ORM objects) into a DataFrame.
+"""Reading stored collisions as plain columns (not ORM objects), chunk by chunk.
 
 One select gives each run with the ids of its dataset, particle, wall and fluid; names
 and properties are looked up per id. Rows come in chunks from the driver's cursor, so a
@@ -40,45 +40,18 @@ def reading(reader: Reader) -> Connection:
     return reader if isinstance(reader, Connection) else reader.connection()
 
 
-def load_collisions(
-    reader: Reader,
-    *,
-    dataset: str | None = None,
-    version: str | None = None,
-    particle: str | None = None,
-    wall: str | None = None,
-    fluid: str | None = None,
-) -> Any:
-    """The stored collisions matching the filters (names case-insensitive; ``fluid``
-    "dry" for dry runs), ordered by dataset, version and run label, as a DataFrame with
-    ``particle_<property>`` and ``wall_<property>`` columns (``iter_collisions`` in one
-    piece)."""
-    chunks = list(
-        iter_collisions(
-            reader, dataset=dataset, version=version, particle=particle, wall=wall, fluid=fluid
-        )
-    )
-    if not chunks:
-        return pd.DataFrame()
-    return pd.DataFrame(
-        {name: np.concatenate([c[name] for c in chunks]) for name in chunks[0]}, copy=False
-    )
-
-
 def iter_collisions(
     reader: Reader,
     *,
-    dataset: str | None = None,
-    version: str | None = None,
-    particle: str | None = None,
-    wall: str | None = None,
-    fluid: str | None = None,
     chunk_rows: int = CHUNK_ROWS,
     text: bool = True,
     measured: Collection[str] | None = None,
+    **filters: str | None,
 ) -> Iterator[dict[str, Any]]:
-    """The stored collisions matching the filters, in order, as dicts of numpy arrays of at
-    most ``chunk_rows`` runs each: ``dataset``, ``version``, ``run``, ``particle``,
+    """The stored collisions matching the ``filters`` (``dataset``, ``version``,
+    ``particle``, ``wall``, ``fluid``: names case-insensitive, ``fluid`` "dry" for dry
+    runs; ``None`` or not given: any), in order, as dicts of numpy arrays of at most
+    ``chunk_rows`` runs each: ``dataset``, ``version``, ``run``, ``particle``,
     ``wall`` (names), ``fluid_id`` (float, NaN for dry), every measured column, ``notes``
     and ``particle_<property>``/``wall_<property>``. ``text`` False: no ``run`` and
     ``notes`` (a reader that needs neither: every cell is then a number, and a chunk
@@ -94,9 +67,7 @@ def iter_collisions(
     bounded memory. PostgreSQL streams through a server-side (named) cursor."""
     connection = reading(reader)
     read = [c for c in COLLISION_MEASURED if measured is None or c in measured]
-    query = _collision_select(
-        connection, dataset, version, particle, wall, fluid, text=text, measured=read
-    )
+    query = _collision_select(connection, **filters, text=text, measured=read)
     sets = sorted(connection.execute(select(DATASETS.c.id, DATASETS.c.name, DATASETS.c.version)))
     set_ids = np.array([r[0] for r in sets], dtype=np.int64)
     set_names = np.array([r[1] for r in sets], dtype=object)
@@ -141,23 +112,16 @@ def iter_collisions(
         yield data
 
 
-def survey_collisions(
-    reader: Reader,
-    *,
-    dataset: str | None = None,
-    version: str | None = None,
-    particle: str | None = None,
-    wall: str | None = None,
-    fluid: str | None = None,
-) -> tuple[int, frozenset[str]]:
-    """(how many runs ``iter_collisions`` with the same filters yields, so a reader can
+def survey_collisions(reader: Reader, **filters: str | None) -> tuple[int, frozenset[str]]:
+    """(how many runs ``iter_collisions`` with the same ``filters`` (``dataset``,
+    ``version``, ``particle``, ``wall``, ``fluid``) yields, so a reader can
     allocate its arrays once; the measured columns holding a value in any of them), in one
     pass. Why: most datasets leave whole columns empty (the target sphere's
     six, spin, temperature); ``iter_collisions`` then skips them instead of converting a
     NULL per run. In one read transaction (``Database.reading()``, or a session's) the
     survey and the read see the same snapshot."""
     connection = reading(reader)
-    query = _collision_select(connection, dataset, version, particle, wall, fluid, text=False)
+    query = _collision_select(connection, **filters, text=False)
     runs = query.order_by(None).subquery()
     counts = [func.count(runs.c[name]) for name in COLLISION_MEASURED]
     row = connection.execute(select(func.count(), *counts).select_from(runs)).one()
@@ -167,12 +131,12 @@ def survey_collisions(
 
 def _collision_select(
     connection: Connection,
-    dataset: str | None,
-    version: str | None,
-    particle: str | None,
-    wall: str | None,
-    fluid: str | None,
     *,
+    dataset: str | None = None,
+    version: str | None = None,
+    particle: str | None = None,
+    wall: str | None = None,
+    fluid: str | None = None,
     text: bool,
     measured: Sequence[str] = COLLISION_MEASURED,
 ) -> Any:

@@ -52,19 +52,7 @@ def check_name(field: str, value: str, *, max_length: int = MAX_NAME) -> str:
         raise ValidationError(field, repr(value), "must not be empty")
     if value != value.strip():
         raise ValidationError(field, repr(value), "must not begin or end with spaces")
-    if len(value) > max_length:
-        raise ValidationError(
-            field, repr(value[:20] + "…"), f"must be at most {max_length} characters"
-        )
-    bad = _NAME_FORBIDDEN.search(value)
-    if bad:
-        raise ValidationError(
-            field,
-            repr(value[:40]),
-            f"must not contain {_describe(bad.group())} (control, bidirectional or "
-            "invisible characters)",
-        )
-    return value
+    return _within(field, value, max_length, _NAME_FORBIDDEN, "")
 
 
 def check_text(field: str, value: str | None, *, max_length: int = MAX_TEXT) -> str | None:
@@ -72,17 +60,23 @@ def check_text(field: str, value: str | None, *, max_length: int = MAX_TEXT) -> 
     ``ValidationError``."""
     if value is None:
         return None
+    return _within(field, value, max_length, _TEXT_FORBIDDEN, "; line breaks are \\n")
+
+
+def _within(field: str, value: str, max_length: int, forbidden: re.Pattern, note: str) -> str:
+    """``value`` if it is at most ``max_length`` long and holds no ``forbidden`` character
+    (``note`` ends the message), else ``ValidationError``."""
     if len(value) > max_length:
         raise ValidationError(
             field, repr(value[:20] + "…"), f"must be at most {max_length} characters"
         )
-    bad = _TEXT_FORBIDDEN.search(value)
+    bad = forbidden.search(value)
     if bad:
         raise ValidationError(
             field,
             repr(value[:40]),
             f"must not contain {_describe(bad.group())} (control, bidirectional or "
-            "invisible characters; line breaks are \\n)",
+            f"invisible characters{note})",
         )
     return value
 
