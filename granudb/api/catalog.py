@@ -48,9 +48,9 @@ def materials(db: Any = None, *, as_frame: bool = True) -> Any:
     >>> float(frame.set_index("name").loc["glass", "youngs_modulus_pa"])
     60000000000.0
     """
-    with opened(db) as database, database.reading() as connection:
-        records = [catalog_rows.material_record(m) for m in catalog_rows.material_rows(connection)]
-    return records_frame(records, MATERIALS.columns) if as_frame else records
+    return _listing(
+        catalog_rows.material_rows, catalog_rows.material_record, MATERIALS.columns, db, as_frame
+    )
 
 
 def material(name: str, *, db: Any = None) -> dict[str, Any]:
@@ -89,8 +89,9 @@ def fluid_history(name: str, *, db: Any = None) -> list[dict[str, Any]]:
     Examples
     --------
     >>> import granudb
-    >>> [r["revision"] for r in granudb.fluid_history("water", db=db)]
-    ['current']
+    >>> current = granudb.fluid_history("water", db=db)[0]
+    >>> current["revision"], current["points"]
+    ('current', 11)
     """
     with opened(db) as database, database.reading() as connection:
         return catalog_rows.entry_history(connection, "fluid", inputs.text(name, "name"))
@@ -103,13 +104,13 @@ def fluids(db: Any = None, *, as_frame: bool = True) -> Any:
     Examples
     --------
     >>> import granudb
-    >>> frame = granudb.fluids(db=db)
-    >>> float(frame.set_index("name").loc["glycerol-45", "reference_viscosity_pa_s"])
+    >>> records = {r["name"]: r for r in granudb.fluids(db=db, as_frame=False)}
+    >>> records["glycerol-45"]["reference_viscosity_pa_s"]
     0.0045
     """
-    with opened(db) as database, database.reading() as connection:
-        records = [catalog_rows.fluid_record(f) for f in catalog_rows.fluid_rows(connection)]
-    return records_frame(records, FLUIDS.columns) if as_frame else records
+    return _listing(
+        catalog_rows.fluid_rows, catalog_rows.fluid_record, FLUIDS.columns, db, as_frame
+    )
 
 
 def fluid(name: str, *, db: Any = None) -> dict[str, Any]:
@@ -135,9 +136,17 @@ def sources(db: Any = None, *, as_frame: bool = True) -> Any:
     >>> "joseph-hunt-2004" in set(granudb.sources(db=db)["key"])
     True
     """
+    return _listing(
+        catalog_rows.source_rows, catalog_rows.source_record, SOURCE_COLUMNS, db, as_frame
+    )
+
+
+def _listing(rows: Any, record: Any, columns: list[str], db: Any, as_frame: bool) -> Any:
+    """Every row ``rows(connection)`` reads, as ``record(row)``: a DataFrame of ``columns``
+    or the list of records."""
     with opened(db) as database, database.reading() as connection:
-        records = [catalog_rows.source_record(s) for s in catalog_rows.source_rows(connection)]
-    return records_frame(records, SOURCE_COLUMNS) if as_frame else records
+        records = [record(row) for row in rows(connection)]
+    return records_frame(records, columns) if as_frame else records
 
 
 def source(key: str, *, db: Any = None) -> dict[str, Any]:

@@ -9,6 +9,7 @@ from typing import Annotated
 import typer
 
 from granudb import api
+from granudb.cli import collisions
 from granudb.cli.confirm import asker
 from granudb.cli.options import DbOption, Format, FormatOption, YesOption, wraps
 from granudb.cli.output import emit, emit_one, note, say
@@ -158,17 +159,8 @@ def remove(
         say(f"removed {line}")
 
 
-@app.command("remove-runs", hidden=True)
-@wraps("remove_collisions")
-def remove_runs(
-    dataset: Ref,
-    runs: Annotated[list[str], typer.Argument(help="Run labels to delete.")],
-    yes: YesOption = False,
-    db: DbOption = None,
-) -> None:
-    """Delete some runs of a draft dataset version (the same as ``collisions remove``)."""
-    count = api.remove_collisions(dataset, runs, confirm=asker(yes), db=db)
-    say(f"removed {count} runs from dataset {dataset}")
+#: The same command as ``collisions remove``, kept under its older name.
+app.command("remove-runs", hidden=True)(collisions.remove)
 
 
 @app.command()
