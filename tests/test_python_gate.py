@@ -176,3 +176,21 @@ def test_a_missing_required_value_is_a_missing_input(tmp_path) -> None:
         assert "diameter" in line
     finally:
         db.dispose()
+
+
+def test_a_catalogue_value_the_specification_lacks_is_refused_by_name(tmp_path) -> None:
+    """``add_material`` and friends take the specification's values as keywords: a
+    misspelt one is a one-line refusal with the nearest name, and nothing is stored."""
+    db = granudb.connect(tmp_path / "g.sqlite")
+    try:
+        line = _refusal(
+            lambda: granudb.add_material(
+                "PTFE", densty=2200, youngs_modulus=5e8, poisson_ratio=0.46, roughness=0, db=db
+            )
+        )
+        assert line.startswith("densty") and "did you mean density?" in line, line
+        line = _refusal(lambda: granudb.update_fluid("water", viscosity="1 cP", db=db))
+        assert line.startswith("viscosity") and "viscosity?" in line, line
+        assert "PTFE" not in set(granudb.materials(db=db)["name"])
+    finally:
+        db.dispose()

@@ -12,19 +12,25 @@ string with its unit (``"190 GPa"``).
 
 from __future__ import annotations
 
+import difflib
+import inspect
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from granudb.api import inputs
 from granudb.api.catalog import entry
 from granudb.api.consent import Confirm, agreed, unchanged
 from granudb.api.database import opened
 from granudb.db import catalog_changes
+from granudb.errors import ValidationError
 from granudb.io.seed import POINT_NUMERIC, read_table
 from granudb.reporting.format import display
 from granudb.vocabulary import FLUIDS, MATERIALS, Catalogue
 from granudb.vocabulary.text import check_text
+
+F = TypeVar("F", bound=Callable[..., Any])
 
 
 @dataclass(frozen=True)
@@ -73,10 +79,36 @@ def _required(catalogue: Catalogue, given: dict[str, Any]) -> None:
             raise inputs.missing(parameter, f"is required to add a {catalogue.kind}")
 
 
-def _given(catalogue: Catalogue, arguments: dict[str, Any]) -> dict[str, Any]:
-    """The catalogue's parameters as the caller passed them (``locals()`` of a public
-    function whose keyword arguments are the spec's parameters)."""
-    return {parameter: arguments[parameter] for parameter in catalogue.parameters}
+def _given(catalogue: Catalogue, values: dict[str, Any]) -> dict[str, Any]:
+    """``values`` (a public function's ``**values``) if each is one of the catalogue's
+    parameters, else ``ValidationError`` with the nearest name."""
+    for parameter, value in values.items():
+        if parameter not in catalogue.parameters:
+            near = difflib.get_close_matches(parameter, catalogue.parameters, n=1)
+            rule = f"is not a value of a {catalogue.kind}" + (
+                f"; did you mean {near[0]}?" if near else ""
+            )
+            raise ValidationError(parameter, repr(value)[:60], rule, parameter=True)
+    return values
+
+
+def _takes(catalogue: Catalogue) -> Callable[[F], F]:
+    """The decorated function's ``**values`` are the catalogue's parameters: its signature
+    (``help()``, ``inspect``, editors that ask at run time) shows each as a keyword
+    argument defaulting to ``None``, generated from the specification as the command
+    line's options are."""
+
+    def decorate(function: F) -> F:
+        signature = inspect.signature(function)
+        name, *rest = (p for p in signature.parameters.values() if p.kind is not p.VAR_KEYWORD)
+        values = [
+            inspect.Parameter(parameter, inspect.Parameter.KEYWORD_ONLY, default=None)
+            for parameter in catalogue.parameters
+        ]
+        function.__signature__ = signature.replace(parameters=[name, *values, *rest])  # type: ignore[attr-defined]
+        return function
+
+    return decorate
 
 
 def _add(catalogue: Catalogue, name: str, source: str | None, db: Any, given: dict) -> dict:
@@ -112,24 +144,16 @@ def _remove(catalogue: Catalogue, name: str, confirm: Confirm | None, db: Any) -
             return catalog_changes.remove_entry(session, catalogue, name)
 
 
+@_takes(MATERIALS)
 def add_material(
-    name: str,
-    *,
-    density: Any = None,
-    youngs_modulus: Any = None,
-    poisson_ratio: Any = None,
-    roughness: Any = None,
-    correlation_length: Any = None,
-    shear_modulus: Any = None,
-    yield_stress: Any = None,
-    description: str | None = None,
-    source: str | None = None,
-    source_locator: str | None = None,
-    db: Any = None,
+    name: str, *, source: str | None = None, db: Any = None, **values: Any
 ) -> dict[str, Any]:
-    """Add a material; returns it as ``material`` does. Density, Young's modulus, Poisson
-    ratio and roughness are required; a shear modulus not given is derived,
-    G = E / (2(1 + ν)); with a ``yield_stress`` (in tension) yield starts at 1.6 Y.
+    """Add a material; returns it as ``material`` does. ``values``: ``density``,
+    ``youngs_modulus``, ``poisson_ratio`` and ``roughness`` (required),
+    ``correlation_length``, ``shear_modulus``, ``yield_stress`` (each an SI number or a
+    string with its unit), ``description`` and ``source_locator`` (text). A shear modulus
+    not given is derived, G = E / (2(1 + ν)); with a ``yield_stress`` (in tension) yield
+    starts at 1.6 Y.
 
     Examples
     --------
@@ -138,28 +162,20 @@ def add_material(
     ...                      poisson_ratio=0.46, roughness="0.2 um", db=db)["density_kg_m3"]
     2200.0
     """
-    given = _given(MATERIALS, locals())
-    return _add(MATERIALS, name, source, db, given)
+    return _add(MATERIALS, name, source, db, _given(MATERIALS, values))
 
 
+@_takes(MATERIALS)
 def update_material(
     name: str,
     *,
-    density: Any = None,
-    youngs_modulus: Any = None,
-    poisson_ratio: Any = None,
-    roughness: Any = None,
-    correlation_length: Any = None,
-    shear_modulus: Any = None,
-    yield_stress: Any = None,
-    description: str | None = None,
     source: str | None = None,
-    source_locator: str | None = None,
     rename: str | None = None,
     db: Any = None,
+    **values: Any,
 ) -> Update:
-    """Change the given properties of a material (``None``: leave as it is), its source
-    or its name; returns what changed, field by field.
+    """Change the given values of a material (those of ``add_material``; ``None``: leave
+    as it is), its source or its name; returns what changed, field by field.
 
     Examples
     --------
@@ -167,8 +183,7 @@ def update_material(
     >>> print(granudb.update_material("glass", roughness="130.5 nm", db=db))
     unchanged material glass
     """
-    given = _given(MATERIALS, locals())
-    return _update(MATERIALS, name, source, rename, db, given)
+    return _update(MATERIALS, name, source, rename, db, _given(MATERIALS, values))
 
 
 def remove_material(name: str, *, confirm: Confirm | None = None, db: Any = None) -> str:
@@ -187,22 +202,15 @@ def remove_material(name: str, *, confirm: Confirm | None = None, db: Any = None
     return _remove(MATERIALS, name, confirm, db)
 
 
+@_takes(FLUIDS)
 def add_fluid(
-    name: str,
-    *,
-    reference_viscosity: Any = None,
-    reference_density: Any = None,
-    reference_temperature: Any = None,
-    pressure_viscosity: Any = None,
-    glycerol_fraction: Any = None,
-    description: str | None = None,
-    source: str | None = None,
-    source_locator: str | None = None,
-    db: Any = None,
+    name: str, *, source: str | None = None, db: Any = None, **values: Any
 ) -> dict[str, Any]:
-    """Add a fluid; returns it as ``fluid`` does. The reference viscosity and density are
-    required, at ``reference_temperature`` (default 20 °C); the Barus
-    ``pressure_viscosity`` coefficient is needed for the lubricated friction (5.8).
+    """Add a fluid; returns it as ``fluid`` does. ``values``: ``reference_viscosity`` and
+    ``reference_density`` (required), at ``reference_temperature`` (default 20 °C),
+    ``pressure_viscosity`` (Barus; needed for the lubricated friction (5.8)),
+    ``glycerol_fraction`` (each an SI number or a string with its unit), ``description``
+    and ``source_locator`` (text).
 
     Examples
     --------
@@ -211,34 +219,29 @@ def add_fluid(
     ...                   reference_density="960 kg/m^3", db=db)["reference_temperature_c"]
     20.0
     """
-    given = _given(FLUIDS, locals())
-    return _add(FLUIDS, name, source, db, given)
+    return _add(FLUIDS, name, source, db, _given(FLUIDS, values))
 
 
+@_takes(FLUIDS)
 def update_fluid(
     name: str,
     *,
-    reference_viscosity: Any = None,
-    reference_density: Any = None,
-    reference_temperature: Any = None,
-    pressure_viscosity: Any = None,
-    glycerol_fraction: Any = None,
-    description: str | None = None,
     source: str | None = None,
-    source_locator: str | None = None,
     rename: str | None = None,
     db: Any = None,
+    **values: Any,
 ) -> Update:
-    """Change the given values of a fluid, its source or its name; returns what changed.
+    """Change the given values of a fluid (those of ``add_fluid``), its source or its
+    name; returns what changed.
 
     Examples
     --------
     >>> import granudb
-    >>> print(granudb.update_fluid("glycerol-45", reference_viscosity="4.5 cP", db=db))
-    unchanged fluid glycerol-45
+    >>> change = granudb.update_fluid("glycerol-45", reference_temperature="21 degC", db=db)
+    >>> change.action, change.changes
+    ('updated', [('reference_temperature_c', 20.0, 21.0)])
     """
-    given = _given(FLUIDS, locals())
-    return _update(FLUIDS, name, source, rename, db, given)
+    return _update(FLUIDS, name, source, rename, db, _given(FLUIDS, values))
 
 
 def remove_fluid(name: str, *, confirm: Confirm | None = None, db: Any = None) -> str:
