@@ -8,7 +8,7 @@ million runs read in bounded memory: 100,000 rows load in a fraction of a second
 from __future__ import annotations
 
 import itertools
-from collections.abc import Collection, Iterator, Sequence
+from collections.abc import Collection, Iterator, Mapping, Sequence
 from typing import Any
 
 from sqlalchemy import func, or_, select
@@ -28,6 +28,8 @@ CHUNK_ROWS = 50_000
 _IDS = ["dataset_id", "particle_id", "wall_id", "fluid_id"]
 _NUMBERS = [*_IDS, *COLLISION_MEASURED]
 _TEXT = ["run", "notes"]
+#: What ``iter_collisions`` and ``survey_collisions`` filter by.
+FILTERS = ("dataset", "version", "particle", "wall", "fluid")
 #: Core clauses (no ORM: a read needs no mapped classes; see ``lookup_rows``). A reader
 #: is a Core connection (``Database.reading()``) or a session, whose connection is used.
 COLLISIONS = lightweight_table("collisions", ["id", *_NUMBERS, *_TEXT])
@@ -67,7 +69,7 @@ def iter_collisions(
     bounded memory. PostgreSQL streams through a server-side (named) cursor."""
     connection = reading(reader)
     read = [c for c in COLLISION_MEASURED if measured is None or c in measured]
-    query = _collision_select(connection, **filters, text=text, measured=read)
+    query = _collision_select(connection, filters, text=text, measured=read)
     sets = sorted(connection.execute(select(DATASETS.c.id, DATASETS.c.name, DATASETS.c.version)))
     set_ids = np.array([r[0] for r in sets], dtype=np.int64)
     set_names = np.array([r[1] for r in sets], dtype=object)
@@ -121,7 +123,7 @@ def survey_collisions(reader: Reader, **filters: str | None) -> tuple[int, froze
     NULL per run. In one read transaction (``Database.reading()``, or a session's) the
     survey and the read see the same snapshot."""
     connection = reading(reader)
-    query = _collision_select(connection, **filters, text=False)
+    query = _collision_select(connection, filters, text=False)
     runs = query.order_by(None).subquery()
     counts = [func.count(runs.c[name]) for name in COLLISION_MEASURED]
     row = connection.execute(select(func.count(), *counts).select_from(runs)).one()
@@ -131,17 +133,16 @@ def survey_collisions(reader: Reader, **filters: str | None) -> tuple[int, froze
 
 def _collision_select(
     connection: Connection,
+    filters: Mapping[str, str | None],
     *,
-    dataset: str | None = None,
-    version: str | None = None,
-    particle: str | None = None,
-    wall: str | None = None,
-    fluid: str | None = None,
     text: bool,
     measured: Sequence[str] = COLLISION_MEASURED,
 ) -> Any:
     """The select of ``iter_collisions``: each run's ids, ``measured`` columns and (with
-    ``text``) its label and notes, filtered, in order."""
+    ``text``) its label and notes, filtered by ``filters`` (``FILTERS``), in order."""
+    unknown = set(filters) - set(FILTERS)
+    if unknown:
+        raise TypeError(f"not a filter of the stored collisions: {sorted(unknown)}")
     runs = COLLISIONS.c
     query = select(*(runs[name] for name in (*_IDS, *measured, *(_TEXT if text else ()))))
     first, second = (
@@ -154,17 +155,14 @@ def _collision_select(
         .join(first, runs.particle_id == first.c.id)
         .join(second, runs.wall_id == second.c.id)
     )
-    if dataset is not None:
-        chosen = lookup_rows.dataset_row(connection, dataset, version)
+    if filters.get("dataset") is not None:
+        chosen = lookup_rows.dataset_row(connection, filters["dataset"], filters.get("version"))
         query = query.where(runs.dataset_id == chosen.id)
-    if particle is not None:
-        query = query.where(
-            _one_of(runs.particle_id, catalog_rows.entry_ids(connection, "material", particle))
-        )
-    if wall is not None:
-        query = query.where(
-            _one_of(runs.wall_id, catalog_rows.entry_ids(connection, "material", wall))
-        )
+    for role in ("particle", "wall"):
+        if filters.get(role) is not None:
+            ids = catalog_rows.entry_ids(connection, "material", filters[role])
+            query = query.where(_one_of(runs[f"{role}_id"], ids))
+    fluid = filters.get("fluid")
     if fluid is not None:
         if fluid.strip().casefold() == "dry":
             query = query.where(runs.fluid_id.is_(None))

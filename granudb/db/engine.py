@@ -209,14 +209,9 @@ class Database:
             bind = self._read_bind()
         session = sqlalchemy_orm.Session(bind=bind, expire_on_commit=False)
         try:
-            yield session
-            session.commit()
-        except DBAPIError as exc:
-            session.rollback()
-            raise translate_db_error(exc) from None
-        except BaseException:
-            session.rollback()
-            raise
+            with _undone_on_error(session.rollback):
+                yield session
+                session.commit()
         finally:
             session.close()
 
@@ -255,15 +250,23 @@ def open_database(
             database.seed_report = on_create(session)
             session.flush()
 
-    try:
+    with _undone_on_error(engine.dispose):
         database.created = migration.ensure_current(database, _fill if on_create else None)
+    return database
+
+
+@contextmanager
+def _undone_on_error(undo: Callable[[], object]) -> Iterator[None]:
+    """Run ``undo`` when the block fails, then raise: a database error as granudb's one-line
+    error (``translate_db_error``), anything else (an interrupt too) as it is."""
+    try:
+        yield
     except DBAPIError as exc:
-        engine.dispose()
+        undo()
         raise translate_db_error(exc) from None
     except BaseException:
-        engine.dispose()
+        undo()
         raise
-    return database
 
 
 def table_names(database: Database) -> list[str]:
