@@ -11,6 +11,7 @@ import math
 from dataclasses import dataclass
 
 from granudb.errors import ValidationError
+from granudb.vocabulary.listings import STORED_FILTERS
 
 #: Maw's regimes as the ``regime`` filter names them.
 TANGENTIAL_REGIMES = ("stick", "slip_then_stick", "gross_slip")
@@ -33,6 +34,11 @@ class CollisionQuery:
     roughness_exceeds_gap: bool | None = None
     rebound_expected: bool | None = None
     critical_stokes: float = 10.0
+
+    @property
+    def stored(self) -> dict[str, str | None]:
+        """The filters that select the stored runs (``STORED_FILTERS``), by name."""
+        return {name: getattr(self, name) for name in STORED_FILTERS}
 
     def describe(self) -> str:
         parts = [

@@ -50,14 +50,10 @@ def select_collisions(
     return collision_table(
         session,
         shared_text=shared_text,
-        dataset=query.dataset,
-        version=query.version,
-        particle=query.particle,
-        wall=query.wall,
-        fluid=query.fluid,
         critical_stokes=query.critical_stokes,
         columns=columns,
         where=lambda frame: _matches(frame, query),
+        **query.stored,
     )
 
 

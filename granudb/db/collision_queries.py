@@ -20,6 +20,7 @@ from granudb.db.lookup_rows import DATASETS
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary import COLLISION_MEASURED, MATERIAL_PROPERTIES
+from granudb.vocabulary.listings import STORED_FILTERS
 
 #: Rows read and derived at a time: bounds the memory of a read of a million runs (the
 #: driver's row tuples of one chunk, about 40 MB), while a chunk stays large enough that
@@ -28,8 +29,6 @@ CHUNK_ROWS = 50_000
 _IDS = ["dataset_id", "particle_id", "wall_id", "fluid_id"]
 _NUMBERS = [*_IDS, *COLLISION_MEASURED]
 _TEXT = ["run", "notes"]
-#: What ``iter_collisions`` and ``survey_collisions`` filter by.
-FILTERS = ("dataset", "version", "particle", "wall", "fluid")
 #: Core clauses (no ORM: a read needs no mapped classes; see ``lookup_rows``). A reader
 #: is a Core connection (``Database.reading()``) or a session, whose connection is used.
 COLLISIONS = lightweight_table("collisions", ["id", *_NUMBERS, *_TEXT])
@@ -139,8 +138,8 @@ def _collision_select(
     measured: Sequence[str] = COLLISION_MEASURED,
 ) -> Any:
     """The select of ``iter_collisions``: each run's ids, ``measured`` columns and (with
-    ``text``) its label and notes, filtered by ``filters`` (``FILTERS``), in order."""
-    unknown = set(filters) - set(FILTERS)
+    ``text``) its label and notes, filtered by ``filters`` (``STORED_FILTERS``), in order."""
+    unknown = set(filters) - set(STORED_FILTERS)
     if unknown:
         raise TypeError(f"not a filter of the stored collisions: {sorted(unknown)}")
     runs = COLLISIONS.c

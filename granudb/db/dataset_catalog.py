@@ -11,6 +11,7 @@ from sqlalchemy.orm import Session, aliased
 from granudb.db.models import Collision, Dataset, Fluid, Material
 from granudb.db.upsert import same_value
 from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
+from granudb.vocabulary.listings import DATASET_DESCRIPTION
 
 COMPARED = ["particle_id", "wall_id", "fluid_id", *COLUMNS, "notes"]
 
@@ -47,11 +48,7 @@ def dataset_record(session: Session, dataset: Dataset) -> dict[str, Any]:
         or 0
     )
     return {
-        "name": dataset.name,
-        "version": dataset.version,
-        "title": dataset.title,
-        "description": dataset.description,
-        "license": dataset.license,
+        **{field: getattr(dataset, field) for field in DATASET_DESCRIPTION},
         "state": dataset.state,
         "released_at": dataset.released_at,
         "doi": dataset.doi,

@@ -26,6 +26,7 @@ from granudb.lazy import (
     alembic_script,
 )
 from granudb.resources import shipped_dir
+from granudb.vocabulary import COLLISION_TARGET
 
 if TYPE_CHECKING:
     from alembic.config import Config
@@ -236,17 +237,8 @@ _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
     ],
     "0003": [
         ("materials", "yield_stress_pa", "yield_stress_pa IS NOT NULL", "dropped"),
-        *(
-            ("collisions", c, f"{c} IS NOT NULL", "dropped")
-            for c in (
-                "wall_v_n_in_m_s",
-                "wall_v_t_in_m_s",
-                "wall_omega_in_rad_s",
-                "wall_v_n_out_m_s",
-                "wall_v_t_out_m_s",
-                "wall_omega_out_rad_s",
-            )
-        ),
+        # 0003 added the free target sphere's velocities: the vocabulary's COLLISION_TARGET
+        *(("collisions", c, f"{c} IS NOT NULL", "dropped") for c in COLLISION_TARGET),
         ("collisions", "omega_in_rad_s", "omega_in_rad_s IS NULL", "not measured, become 0.0"),
         ("collisions", "omega_out_rad_s", "omega_out_rad_s IS NULL", "not measured, become 0.0"),
         (

@@ -30,6 +30,12 @@ from sqlalchemy.orm import Mapped, mapped_column, relationship
 
 from granudb.db.base import Base, Timestamped, add_finite_checks, name_key, utcnow
 
+
+def _positive_if_given(column: str, name: str) -> CheckConstraint:
+    """The rule of an optional positive value: ``column`` NULL (not given) or > 0."""
+    return CheckConstraint(f"{column} IS NULL OR {column} > 0", name=name)
+
+
 __all__ = [
     "Base",
     "Collision",
@@ -103,16 +109,9 @@ class Material(Timestamped, Base):
         CheckConstraint("youngs_modulus_pa > 0", name="youngs_modulus_positive"),
         CheckConstraint("poisson_ratio > -1 AND poisson_ratio < 0.5", name="poisson_ratio_range"),
         CheckConstraint("roughness_rms_m >= 0", name="roughness_non_negative"),
-        CheckConstraint(
-            "correlation_length_m IS NULL OR correlation_length_m > 0",
-            name="correlation_length_positive",
-        ),
-        CheckConstraint(
-            "shear_modulus_pa IS NULL OR shear_modulus_pa > 0", name="shear_modulus_positive"
-        ),
-        CheckConstraint(
-            "yield_stress_pa IS NULL OR yield_stress_pa > 0", name="yield_stress_positive"
-        ),
+        _positive_if_given("correlation_length_m", "correlation_length_positive"),
+        _positive_if_given("shear_modulus_pa", "shear_modulus_positive"),
+        _positive_if_given("yield_stress_pa", "yield_stress_positive"),
     )
 
 
@@ -176,10 +175,7 @@ class Fluid(Timestamped, Base):
         CheckConstraint(
             "reference_temperature_c > -273.15", name="reference_temperature_above_zero_k"
         ),
-        CheckConstraint(
-            "pressure_viscosity_pa_inv IS NULL OR pressure_viscosity_pa_inv > 0",
-            name="pressure_viscosity_positive",
-        ),
+        _positive_if_given("pressure_viscosity_pa_inv", "pressure_viscosity_positive"),
     )
 
 
@@ -203,7 +199,7 @@ class FluidPoint(Base):
         UniqueConstraint("fluid_id", "temperature_c"),
         CheckConstraint("temperature_c > -273.15", name="temperature_above_zero_k"),
         CheckConstraint("viscosity_pa_s > 0", name="viscosity_positive"),
-        CheckConstraint("density_kg_m3 IS NULL OR density_kg_m3 > 0", name="density_positive"),
+        _positive_if_given("density_kg_m3", "density_positive"),
     )
 
 
@@ -321,9 +317,7 @@ class Collision(Base):
         Index("ix_collisions_fluid_id", "fluid_id"),
         CheckConstraint("length(run) > 0", name="run_not_empty"),
         CheckConstraint("diameter_m > 0", name="diameter_positive"),
-        CheckConstraint(
-            "wall_diameter_m IS NULL OR wall_diameter_m > 0", name="wall_diameter_positive"
-        ),
+        _positive_if_given("wall_diameter_m", "wall_diameter_positive"),
         CheckConstraint(
             "nominal_angle_rad IS NULL OR "
             "(nominal_angle_rad >= 0 AND nominal_angle_rad < 1.5707963267948966)",

@@ -18,6 +18,7 @@ from sqlalchemy.orm import Session
 from granudb.db import datasets
 from granudb.db.content_hash import content_hash
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
+from granudb.vocabulary.listings import DATASET_DESCRIPTION
 
 
 @dataclass(frozen=True)
@@ -49,11 +50,7 @@ def dataset_metadata(dataset: Dataset) -> dict[str, Any]:
     schema has them (JSON text) and are empty lists otherwise."""
     source = dataset.source
     return {
-        "name": dataset.name,
-        "version": dataset.version,
-        "title": dataset.title,
-        "description": dataset.description,
-        "license": dataset.license,
+        **{field: getattr(dataset, field) for field in DATASET_DESCRIPTION},
         "doi": dataset.doi,
         "created_at": dataset.created_at,
         "authors": _json_list(getattr(dataset, "authors", None)),

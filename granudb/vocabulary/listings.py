@@ -62,8 +62,14 @@ COLLISION_WIDE = [
     "notes",
     "derivation_note",
 ]
+#: What a read of stored collisions selects by: names (case-insensitive), ``fluid``
+#: "dry" for dry runs (``granudb.db.collision_queries``).
+STORED_FILTERS = ("dataset", "version", "particle", "wall", "fluid")
 #: A dataset in ``granudb dataset list`` (and ``granudb.datasets()``).
 DATASET_COLUMNS = ["name", "version", "state", "title", "runs", "content_hash", "license", "source"]
+#: The descriptive fields a dataset's record starts with, as stored (``dataset show`` and
+#: the metadata of a package export).
+DATASET_DESCRIPTION = ["name", "version", "title", "description", "license"]
 #: A dataset's runs counted by pair and fluid (``dataset show``).
 DATASET_GROUP_COLUMNS = ["particle", "wall", "fluid", "runs"]
 #: A difference between two datasets (``dataset diff``).
