@@ -26,15 +26,26 @@ def _show(frame: Any, kind: str, fmt: Format, title: str) -> None:
     emit(frame.to_dict("records"), shown or every, fmt, title=title)
 
 
-@app.command()
-@collision_filters
-@wraps("fit_walton")
-def walton(
-    db: DbOption = None, fmt: FormatOption = Format.table, filters: dict | None = None
-) -> None:
-    """β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē."""
-    frame = api.fit_walton(db=db, **(filters or {}))
-    _show(frame, "walton", fmt, "Walton fits")
+def _fit_command(kind: str, help_text: str, title: str) -> None:
+    """``granudb fit <kind>``: a fit with no options of its own (``granudb.fit_<kind>``
+    with the collision filters), shown by ``_show``."""
+    function = f"fit_{kind}"
+
+    @collision_filters
+    @wraps(function)
+    def command(
+        db: DbOption = None, fmt: FormatOption = Format.table, filters: dict | None = None
+    ) -> None:
+        _show(getattr(api, function)(db=db, **(filters or {})), kind, fmt, title)
+
+    app.command(kind.replace("_", "-"), help=help_text)(command)
+
+
+_fit_command(
+    "walton",
+    "β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē.",
+    "Walton fits",
+)
 
 
 @app.command()
@@ -54,12 +65,8 @@ def restitution(
     _show(frame, "restitution", fmt, "Restitution against Stokes number")
 
 
-@app.command("gap-viscosity")
-@collision_filters
-@wraps("fit_gap_viscosity")
-def gap_viscosity(
-    db: DbOption = None, fmt: FormatOption = Format.table, filters: dict | None = None
-) -> None:
-    """Gap viscosity μ₀ fitting (5.8) to sliding runs, and the gap temperature."""
-    frame = api.fit_gap_viscosity(db=db, **(filters or {}))
-    _show(frame, "gap_viscosity", fmt, "Gap viscosity (figure 14, table 2)")
+_fit_command(
+    "gap_viscosity",
+    "Gap viscosity μ₀ fitting (5.8) to sliding runs, and the gap temperature.",
+    "Gap viscosity (figure 14, table 2)",
+)
