@@ -30,6 +30,7 @@ NAMES: dict[str, str] = {
     "db_current": "schema",
     "db_history": "schema",
     "db_seed": "schema",
+    "grant_role": "database",
     # catalogue
     "materials": "catalog",
     "material": "catalog",

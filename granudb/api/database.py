@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from granudb import api
+from granudb.db import roles
 from granudb.db.engine import Database, open_database
 
 if TYPE_CHECKING:
@@ -60,3 +61,24 @@ def opened(db: object = None) -> Iterator[Database]:
         yield database
     finally:
         database.dispose()
+
+
+def grant_role(account: str, *, role: str, db: object = None) -> list[str]:
+    """Make the PostgreSQL login ``account`` (created if new, without a password) a
+    ``role`` of this database: "reader" (reads everything), "contributor" (also imports
+    into, edits and removes drafts) or "curator" (also the catalogue, releases and
+    removals); run it as an administrator. Returns what was done. SQLite has no accounts
+    (the file's permissions decide) and refuses. README "Reliability" states the rules.
+
+    Examples
+    --------
+    >>> import granudb
+    >>> granudb.grant_role("lab reader", role="reader", db=db)
+    Traceback (most recent call last):
+    ...
+    granudb.errors.ValidationError: ROLE: lab reader must be a PostgreSQL role name: ...
+    """
+    roles.check_account(account)
+    roles.check_role(role)
+    with opened(db) as database, database.changing() as connection:
+        return roles.grant(connection, account, role)

@@ -193,7 +193,8 @@ def remove_dataset(
     >>> import granudb
     >>> _ = granudb.import_collisions(example_csv, dataset="removed", db=db)
     >>> granudb.remove_dataset("removed@1.0.0", db=db)
-    ['dataset removed@1.0.0 (draft) with 12 runs and 1 import records']
+    ["dataset removed@1.0.0 (id ...: name 'removed', version '1.0.0', draft) with 12 runs
+    and 1 import records"]
     """
     name, version = inputs.dataset_ref(dataset, version)
     action = f"dataset remove {dataset}"

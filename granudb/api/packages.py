@@ -19,6 +19,9 @@ from granudb.db.package_store import PackageImport
 from granudb.io.package_export import build_package, write_package
 from granudb.io.package_import import import_package, validate_package
 
+#: Problems a validation prints before it counts the rest.
+SHOWN_PROBLEMS = 20
+
 
 @dataclass(frozen=True)
 class Exported:
@@ -41,6 +44,15 @@ class Validation:
     @property
     def valid(self) -> bool:
         return not self.problems
+
+    @property
+    def shown(self) -> list[str]:
+        """What the command line prints: the first ``SHOWN_PROBLEMS`` problems, then one
+        line "… and N more" (a descriptor of 50,000 junk resources is 21 lines)."""
+        if len(self.problems) <= SHOWN_PROBLEMS:
+            return list(self.problems)
+        rest = len(self.problems) - SHOWN_PROBLEMS
+        return [*self.problems[:SHOWN_PROBLEMS], f"… and {rest} more problems"]
 
 
 def export_dataset(
@@ -66,7 +78,9 @@ def export_dataset(
 
 def validate_dataset(path: str | Path) -> Validation:
     """Check a package (folder, ``datapackage.json`` or ``.zip``) without importing it;
-    every problem found is listed (``valid`` when there is none).
+    every problem found is listed (``valid`` when there is none; ``shown``: the first 20
+    and a count). The collisions are read in blocks and not kept: memory does not grow
+    with their number (README "Sharing datasets").
 
     Examples
     --------
@@ -77,9 +91,8 @@ def validate_dataset(path: str | Path) -> Validation:
     12
     """
     target = Path(inputs.path(path, "path"))
-    result = validate_package(target)
-    counts = {name: len(table) for name, table in result.tables.items()}
-    return Validation(target, list(result.problems), counts)
+    result = validate_package(target, keep_collisions=False)
+    return Validation(target, list(result.problems), dict(result.counts))
 
 
 def import_dataset(

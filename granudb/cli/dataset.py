@@ -101,7 +101,7 @@ def validate(path: PackagePath) -> None:
     """Check a package without importing it; lists every problem found."""
     result = api.validate_dataset(path)
     if result.problems:
-        for problem in result.problems:
+        for problem in result.shown:
             note(f"problem: {problem}")
         raise api.PackageError(result.problems)
     say(

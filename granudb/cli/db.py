@@ -1,7 +1,9 @@
-"""``granudb db upgrade|downgrade|current|history|seed``: the schema and the seed data."""
+"""``granudb db upgrade|downgrade|current|history|seed|grant``: the schema, the seed data
+and the accounts of a shared PostgreSQL server."""
 
 from __future__ import annotations
 
+from enum import StrEnum
 from typing import Annotated
 
 import typer
@@ -80,4 +82,26 @@ def seed(
     keeps (and reports) every value you changed, unless --overwrite-edits."""
     lines = api.db_seed(overwrite_edits=overwrite_edits, confirm=asker(yes), db=db)
     for line in lines:
+        say(line)
+
+
+class Role(StrEnum):
+    reader = "reader"
+    contributor = "contributor"
+    curator = "curator"
+
+
+@app.command()
+@wraps("grant_role")
+def grant(
+    account: Annotated[str, typer.Argument(metavar="ROLE", help="PostgreSQL login role.")],
+    role: Annotated[Role, typer.Option("--as", help="What the account may do.")],
+    db: DbOption = None,
+) -> None:
+    """Give a PostgreSQL account (created if new) the reader, contributor or curator role.
+
+    reader: reads everything. contributor: also imports into, edits and removes drafts.
+    curator: also the catalogue, releases and removals. SQLite has no accounts: refused.
+    """
+    for line in api.grant_role(account, role=role.value, db=db):
         say(line)

@@ -21,6 +21,7 @@ from granudb.db.catalog_revisions import follow_live_rows
 from granudb.db.content_hash import update_content_hash
 from granudb.db.lookup_rows import dataset_row
 from granudb.db.models import Collision, CollisionImport, Dataset, utcnow
+from granudb.db.roles import require_curator
 from granudb.errors import ConflictError, NotFoundError, ValidationError
 from granudb.vocabulary.text import check_name
 
@@ -103,13 +104,18 @@ def datasets_to_remove(session: Session, name: str, version: str | None) -> list
                 f"newer version first (`granudb dataset new-version {label(dataset)} "
                 "--version NEW`, then `granudb dataset release`)"
             )
+        if dataset.state != DRAFT:
+            require_curator(session.connection(), f"removing the {dataset.state} {label(dataset)}")
     return chosen
 
 
 def removal_losses(session: Session, chosen: list[Dataset]) -> list[str]:
-    """What removing ``chosen`` deletes, one phrase per version (for the confirmation)."""
+    """What removing ``chosen`` deletes, one phrase per version (for the confirmation):
+    the id, name and version spelled out (``lab@2024`` version 1 and ``lab`` version
+    ``2024@1`` read differently), the state and the run count."""
     return [
-        f"dataset {label(d)} ({d.state}) with {_counts(session, Collision, d)} runs and "
+        f"dataset {label(d)} (id {d.id}: name {d.name!r}, version {d.version!r}, {d.state}) "
+        f"with {_counts(session, Collision, d)} runs and "
         f"{_counts(session, CollisionImport, d)} import records"
         for d in chosen
     ]
@@ -171,6 +177,8 @@ def edit_dataset(
         raise ValidationError(sorted(unknown)[0], "", "is not an editable dataset field")
     if dataset.state != DRAFT and not (set(values) == {"doi"} and dataset.doi is None):
         ensure_editable(dataset)
+    if dataset.state != DRAFT:
+        require_curator(session.connection(), f"setting the DOI of {label(dataset)}")
     diffs = []
     for field, new in values.items():
         old = getattr(dataset, field)
@@ -187,6 +195,7 @@ def release_dataset(session: Session, dataset: Dataset) -> list[Dataset]:
     ensure_editable(dataset)
     if not _counts(session, Collision, dataset):
         raise ConflictError(f"dataset: {label(dataset)} has no runs; nothing to release")
+    require_curator(session.connection(), f"releasing {label(dataset)}")
     superseded = [
         d for d in _versions(session, dataset.name) if d.state == RELEASED and d.id != dataset.id
     ]

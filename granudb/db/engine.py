@@ -23,7 +23,7 @@ from sqlalchemy.engine import Connection, make_url
 from sqlalchemy.exc import DBAPIError, IntegrityError, OperationalError
 
 from granudb.config import default_database_path, resolve_database_url
-from granudb.db import migration
+from granudb.db import migration, roles
 from granudb.errors import DatabaseAccessError, GranudbError, SchemaError
 from granudb.lazy import sqlalchemy_orm
 
@@ -31,6 +31,8 @@ if TYPE_CHECKING:  # the ORM is loaded by the commands that use it (see ``readin
     from sqlalchemy.orm import Session
 
 BUSY_TIMEOUT_S = 30.0
+#: PostgreSQL's SQLSTATE for "permission denied" (an account without the role's right).
+INSUFFICIENT_PRIVILEGE = "42501"
 # Set in a connection's info by a bulk load that enlarged SQLite's page cache
 # (granudb.db.collision_store.insert_collisions): the setting to restore on check-in.
 BULK_CACHE_KEY = "granudb_bulk_cache_size"
@@ -136,6 +138,8 @@ def translate_db_error(exc: DBAPIError) -> GranudbError:
     text = str(exc.orig) if exc.orig is not None else str(exc)
     text = text.splitlines()[0]
     lowered = text.lower()
+    if getattr(exc.orig, "sqlstate", None) == INSUFFICIENT_PRIVILEGE:
+        return roles.refusal(text)
     if isinstance(exc, IntegrityError):
         if "check constraint" in lowered:
             return GranudbError(f"database refused a value: {text}")
@@ -192,6 +196,17 @@ class Database:
         """
         try:
             with self._read_bind().connect() as connection, connection.begin():
+                yield connection
+        except DBAPIError as exc:
+            raise translate_db_error(exc) from None
+
+    @contextmanager
+    def changing(self) -> Iterator[Connection]:
+        """A Core connection in one write transaction (committed on success, rolled back
+        on any error; a driver error becomes one line)."""
+        try:
+            bind = self.engine.execution_options(sqlite_begin="IMMEDIATE")
+            with bind.connect() as connection, connection.begin():
                 yield connection
         except DBAPIError as exc:
             raise translate_db_error(exc) from None

@@ -47,6 +47,8 @@ __all__ = ["PackageError", "Validated", "import_package", "validate_package"]
 
 MAX_ROWS = 20_000_000
 MAX_CELL_CHARS = 10_000
+#: Rows checked at a time: a block of text cells is the memory validation needs.
+BLOCK_ROWS = 50_000
 REQUIRED_RESOURCES = {"collisions", "materials", "fluids", "sources"}
 SHOWN_PER_PROBLEM = 5
 #: Columns holding names (single-line, no padding) and their longest allowed length; other
@@ -80,129 +82,225 @@ class Validated:
     descriptor: dict[str, Any]
     tables: dict[str, Any]
     problems: list[str] = field(default_factory=list)
+    #: Rows read per resource (also of a table not kept).
+    counts: dict[str, int] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
         return not self.problems
 
 
-def _rows(mask: Any) -> str:
-    index = np.flatnonzero(np.asarray(mask)) + 2  # spreadsheet rows: header is row 1
-    shown = ", ".join(str(i) for i in index[:SHOWN_PER_PROBLEM])
-    more = f" and {len(index) - SHOWN_PER_PROBLEM} more" if len(index) > SHOWN_PER_PROBLEM else ""
-    return f"row{'s' if len(index) > 1 else ''} {shown}{more}"
+def _row_list(rows: Any, count: int) -> str:
+    shown = ", ".join(str(i) for i in rows[:SHOWN_PER_PROBLEM])
+    more = f" and {count - SHOWN_PER_PROBLEM} more" if count > SHOWN_PER_PROBLEM else ""
+    return f"row{'s' if count > 1 else ''} {shown}{more}"
 
 
-def _read_table(name: str, path: Path, problems: list[str]) -> Any:
-    try:
-        frame = pd.read_csv(
-            path,
-            dtype=str,
-            keep_default_na=False,
-            encoding="utf-8",
-            na_filter=False,
-            on_bad_lines="error",
-            nrows=MAX_ROWS + 1,
-        )
-    except UnicodeDecodeError:
-        problems.append(f"{name}: {path.name} is not UTF-8 text")
-        return None
-    except OSError as exc:
-        problems.append(f"{name}: {path.name} cannot be read ({exc.strerror or exc})")
-        return None
-    except (pd.errors.ParserError, pd.errors.EmptyDataError, ValueError) as exc:
-        problems.append(f"{name}: {path.name} cannot be read as CSV ({str(exc).splitlines()[0]})")
-        return None
-    if len(frame) > MAX_ROWS:
-        problems.append(f"{name}: more than {MAX_ROWS} rows")
-        return None
+class _Findings:
+    """Problems of one table read in blocks: each problem's first rows and its count,
+    gathered over every block (memory: a few numbers per distinct problem)."""
+
+    def __init__(self) -> None:
+        self.rows: dict[str, tuple[list[int], int]] = {}
+
+    def add(self, text: str, mask: Any, first_row: int) -> None:
+        index = np.flatnonzero(np.asarray(mask))
+        if not len(index):
+            return
+        shown, count = self.rows.get(text, ([], 0))
+        if len(shown) < SHOWN_PER_PROBLEM:
+            shown = shown + [int(i) + first_row for i in index[:SHOWN_PER_PROBLEM]]
+        self.rows[text] = (shown[:SHOWN_PER_PROBLEM], count + len(index))
+
+    def problems(self) -> list[str]:
+        found = []
+        for text, (shown, count) in self.rows.items():
+            head, _, tail = text.rpartition("{rows}")
+            found.append(f"{head}{_row_list(shown, count)}{tail}")
+        return found
+
+
+def _header_problem(name: str, header: list[str]) -> str | None:
     expected = columns(name)
-    if list(frame.columns) != expected:
-        missing = [c for c in expected if c not in frame.columns]
-        extra = [c for c in frame.columns if c not in expected]
-        detail = "; ".join(
-            filter(
-                None,
-                [
-                    f"missing {', '.join(missing)}" if missing else "",
-                    f"unknown {', '.join(map(str, extra))}" if extra else "",
-                    "columns out of order" if not missing and not extra else "",
-                ],
-            )
-        )
-        problems.append(f"{name}: header does not match the schema ({detail})")
+    if header == expected:
         return None
+    missing = [c for c in expected if c not in header]
+    extra = [c for c in header if c not in expected]
+    detail = "; ".join(
+        filter(
+            None,
+            [
+                f"missing {', '.join(missing)}" if missing else "",
+                f"unknown {', '.join(map(str, extra[:20]))}"
+                + (f" and {len(extra) - 20} more" if len(extra) > 20 else "")
+                if extra
+                else "",
+                "columns out of order" if not missing and not extra else "",
+            ],
+        )
+    )
+    return f"{name}: header does not match the schema ({detail})"
+
+
+def _check_block(
+    name: str, frame: Any, first_row: int, found: _Findings, bad: dict[str, tuple[str, str]]
+) -> Any:
+    """One block of a table's text cells: every column's rule, as SI values."""
     out = pd.DataFrame(index=frame.index)
     for column, kind, required in RESOURCES[name]:
         raw = frame[column]
         # Text is kept byte for byte (a note of one space stays one space); only a
         # number column treats surrounding spaces as nothing.
         empty = raw == "" if kind == "string" else raw.str.strip() == ""
-        if required and empty.any():
-            problems.append(f"{name}.{column}: empty in {_rows(empty)} (required)")
+        if required:
+            found.add(f"{name}.{column}: empty in {{rows}} (required)", empty, first_row)
         if kind == "string":
-            _check_strings(name, column, raw, problems)
+            _check_strings(name, column, raw, found, first_row, bad)
             out[column] = raw.where(~empty, None)
             continue
         values = pd.to_numeric(raw.where(~empty, None), errors="coerce")
-        not_number = ~empty & values.isna()
-        if not_number.any():
-            problems.append(f"{name}.{column}: not a number in {_rows(not_number)}")
+        found.add(f"{name}.{column}: not a number in {{rows}}", ~empty & values.isna(), first_row)
         if kind == "integer":
             fractional = values.notna() & (values != np.floor(values))
-            if fractional.any():
-                problems.append(f"{name}.{column}: not an integer in {_rows(fractional)}")
+            found.add(f"{name}.{column}: not an integer in {{rows}}", fractional, first_row)
         rule = RULES.get(column)
         if rule is not None:
             broken = values.notna() & ~rule.holds_array(values.to_numpy(dtype=float))
-            if broken.any():
-                problems.append(f"{name}.{column}: {rule.text} — broken in {_rows(broken)}")
-        infinite = values.notna() & ~np.isfinite(values.to_numpy(dtype=float))
-        if infinite.any() and rule is None:
-            problems.append(f"{name}.{column}: not finite in {_rows(infinite)}")
+            found.add(f"{name}.{column}: {rule.text} — broken in {{rows}}", broken, first_row)
+        else:
+            infinite = values.notna() & ~np.isfinite(values.to_numpy(dtype=float))
+            found.add(f"{name}.{column}: not finite in {{rows}}", infinite, first_row)
         out[column] = values
-    key = PRIMARY_KEYS[name]
-    duplicated = frame.duplicated(subset=key, keep="first")
-    if duplicated.any():
-        problems.append(f"{name}: duplicate {'+'.join(key)} in {_rows(duplicated)}")
+    if name == "collisions":
+        e = out["v_n_out_m_s"] / out["v_n_in_m_s"]
+        found.add(
+            f"collisions: v_n_out_m_s / v_n_in_m_s above {MAX_RESTITUTION} "
+            "(energy from nowhere) in {rows}",
+            e > MAX_RESTITUTION,
+            first_row,
+        )
     return out
 
 
-def _check_references(tables: dict[str, Any], problems: list[str]) -> None:
-    for name, keys in FOREIGN_KEYS.items():
-        frame = tables.get(name)
-        if frame is None:
-            continue
-        for column, other, there in keys:
-            target = tables.get(other)
-            if target is None:
-                continue
-            known = set(target[there].dropna())
-            values = frame[column]
-            dangling = values.notna() & ~values.isin(known)
-            if dangling.any():
-                first = values[dangling].iloc[0]
-                problems.append(
-                    f"{name}.{column}: {first!r} (in {_rows(dangling)}) is not a {there} in {other}"
-                )
+def _duplicate_rows(key_hashes: list[Any]) -> Any:
+    """Mask of rows whose key (as a 64-bit hash) came earlier: 8 bytes a row while
+    reading, twice that while sorting once at the end."""
+    hashes = np.concatenate(key_hashes) if key_hashes else np.zeros(0, dtype=np.uint64)
+    order = np.argsort(hashes, kind="stable")
+    ordered = hashes[order]
+    repeated = np.zeros(len(hashes), dtype=bool)
+    repeated[order[1:][ordered[1:] == ordered[:-1]]] = True
+    return repeated
 
 
-def _check_restitution(tables: dict[str, Any], problems: list[str]) -> None:
-    frame = tables.get("collisions")
-    if frame is None:
-        return
-    e = frame["v_n_out_m_s"] / frame["v_n_in_m_s"]
-    too_high = e > MAX_RESTITUTION
-    if too_high.any():
-        problems.append(
-            f"collisions: v_n_out_m_s / v_n_in_m_s above {MAX_RESTITUTION} "
-            f"(energy from nowhere) in {_rows(too_high)}"
+def _read_table(
+    name: str, path: Path, problems: list[str], known: dict[str, Any], *, keep: bool = True
+) -> tuple[Any, int]:
+    """Check a resource's CSV in blocks of ``BLOCK_ROWS`` (memory bounded by the block,
+    plus 8 bytes a row for the duplicate-key check); returns (SI table or None, rows).
+    ``keep=False`` (validation only) keeps no rows."""
+    found = _Findings()
+    bad: dict[str, tuple[str, str]] = {}
+    kept, key_hashes = [], []
+    rows = 0
+    try:
+        reader = pd.read_csv(
+            path,
+            dtype=str,
+            keep_default_na=False,
+            encoding="utf-8",
+            na_filter=False,
+            on_bad_lines="error",
+            chunksize=BLOCK_ROWS,
         )
+        with reader:
+            for frame in reader:
+                if rows == 0:
+                    header = _header_problem(name, list(frame.columns))
+                    if header is not None:
+                        problems.append(header)
+                        return None, 0
+                if rows + len(frame) > MAX_ROWS:
+                    problems.append(f"{name}: more than {MAX_ROWS} rows")
+                    return None, rows + len(frame)
+                block = _check_block(name, frame, rows + 2, found, bad)
+                _check_references(name, block, known, found, rows + 2, bad)
+                key_hashes.append(
+                    pd.util.hash_pandas_object(frame[PRIMARY_KEYS[name]], index=False).to_numpy()
+                )
+                if keep:
+                    kept.append(block)
+                rows += len(frame)
+    except UnicodeDecodeError:
+        problems.append(f"{name}: {path.name} is not UTF-8 text")
+        return None, rows
+    except OSError as exc:
+        problems.append(f"{name}: {path.name} cannot be read ({exc.strerror or exc})")
+        return None, rows
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, ValueError) as exc:
+        problems.append(f"{name}: {path.name} cannot be read as CSV ({str(exc).splitlines()[0]})")
+        return None, rows
+    if rows == 0:
+        header = _header_problem(name, _header_only(path))
+        if header is not None:
+            problems.append(header)
+            return None, 0
+    key = PRIMARY_KEYS[name]
+    found.add(f"{name}: duplicate {'+'.join(key)} in {{rows}}", _duplicate_rows(key_hashes), 2)
+    problems.extend(found.problems())
+    if not keep:
+        return None, rows
+    if not kept:
+        return pd.DataFrame({c: [] for c in columns(name)}), 0
+    return pd.concat(kept, ignore_index=True), rows
 
 
-def _check_strings(name: str, column: str, raw: Any, problems: list[str]) -> None:
-    """Apply the shared name or text rule to each distinct non-empty value of a column."""
+def _header_only(path: Path) -> list[str]:
+    return list(pd.read_csv(path, dtype=str, nrows=0, encoding="utf-8").columns)
+
+
+def _check_references(
+    name: str,
+    block: Any,
+    tables: dict[str, Any],
+    found: _Findings,
+    first_row: int,
+    bad: dict[str, tuple[str, str]],
+) -> None:
+    """Each foreign key of one block against the (already read) table it names; the first
+    dangling value of a column names the problem, its rows counted in every block."""
+    for column, other, there in FOREIGN_KEYS.get(name, []):
+        target = tables.get(other)
+        if target is None:
+            continue
+        values = block[column]
+        dangling = values.notna() & ~values.isin(set(target[there].dropna()))
+        if not dangling.any():
+            continue
+        marker = f"\x00{column}"
+        if marker not in bad:
+            first = values[dangling].iloc[0]
+            text = f"{name}.{column}: {first!r} (in {{rows}}) is not a {there} in {other}"
+            bad[marker] = (text, "")
+        found.add(bad[marker][0], dangling, first_row)
+
+
+def _check_strings(
+    name: str,
+    column: str,
+    raw: Any,
+    found: _Findings,
+    first_row: int,
+    bad: dict[str, tuple[str, str]],
+) -> None:
+    """Apply the shared name or text rule to each distinct non-empty value of a column;
+    the first value that breaks it is the column's problem (its rows counted in every
+    block)."""
     limit = NAME_COLUMNS.get(column)
+    if column in bad:
+        text, value = bad[column]
+        found.add(text, raw == value, first_row)
+        return
     for value in raw[raw != ""].unique():
         try:
             if limit is not None:
@@ -211,7 +309,9 @@ def _check_strings(name: str, column: str, raw: Any, problems: list[str]) -> Non
                 check_text(column, value, max_length=TEXT_LENGTHS.get(column, MAX_CELL_CHARS))
         except ValidationError as exc:
             shown = exc.value if len(str(exc.value)) <= 60 else str(exc.value)[:60] + "…"
-            problems.append(f"{name}.{column}: {shown} {exc.rule} in {_rows(raw == value)}")
+            text = f"{name}.{column}: {shown} {exc.rule} in {{rows}}"
+            bad[column] = (text, value)
+            found.add(text, raw == value, first_row)
             return
 
 
@@ -299,29 +399,39 @@ def _check_metadata(descriptor: dict[str, Any], problems: list[str]) -> None:
         problems.append("datapackage.json: needs a dataset name ('name')")
 
 
-def validate_root(root: Path) -> Validated:
-    """Validate an unpacked package folder; never raises for data problems."""
+#: The order resources are read in: a table before the tables whose keys point at it.
+READ_ORDER = ["sources", "materials", "fluids", "fluid_points", "collisions"]
+
+
+def validate_root(root: Path, *, keep_collisions: bool = True) -> Validated:
+    """Validate an unpacked package folder; never raises for data problems.
+
+    Each table is read in blocks (``_read_table``); ``keep_collisions=False`` (validation
+    without import) keeps none of the collisions' rows, so memory does not grow with
+    their number but for the 8 bytes a row of the duplicate-run check."""
     descriptor = read_descriptor(root)
     problems: list[str] = []
     tables: dict[str, Any] = {}
-    for name, resource in _resources(descriptor, problems).items():
-        file = _resource_file(root, name, resource, problems)
+    counts: dict[str, int] = {}
+    found = _resources(descriptor, problems)
+    for name in sorted(found, key=READ_ORDER.index):
+        file = _resource_file(root, name, found[name], problems)
         if file is None:
             continue
-        check_schema(name, resource, problems)
-        tables[name] = _read_table(name, file, problems)
+        check_schema(name, found[name], problems)
+        keep = keep_collisions or name != "collisions"
+        tables[name], counts[name] = _read_table(name, file, problems, tables, keep=keep)
     if "fluid_points" not in tables:
         tables["fluid_points"] = pd.DataFrame({c: [] for c in columns("fluid_points")})
-    _check_references(tables, problems)
-    _check_restitution(tables, problems)
+        counts["fluid_points"] = 0
     _check_metadata(descriptor, problems)
-    return Validated(descriptor, tables, problems)
+    return Validated(descriptor, tables, problems, counts)
 
 
-def validate_package(path: Path) -> Validated:
+def validate_package(path: Path, *, keep_collisions: bool = True) -> Validated:
     """Validate a package folder, ``datapackage.json`` or zip; problems are collected."""
     with package_root(path) as root:
-        return validate_root(root)
+        return validate_root(root, keep_collisions=keep_collisions)
 
 
 def _license(descriptor: dict[str, Any]) -> str | None:

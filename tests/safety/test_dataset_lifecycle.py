@@ -44,7 +44,8 @@ def test_dataset_remove_asks_then_removes_everything_of_it(cli, ex: str) -> None
     assert dump_hash(ex) == before
     done = cli("dataset", "remove", "ex@1.0.0", "--yes", db=ex)
     assert done.exit_code == 0, done.stderr
-    assert "removed dataset ex@1.0.0 (draft) with 12 runs" in done.stdout
+    assert "removed dataset ex@1.0.0 (id " in done.stdout
+    assert "name 'ex', version '1.0.0', draft) with 12 runs" in done.stdout
     listed = json.loads(cli("dataset", "list", "--format", "json", db=ex).stdout)
     assert listed == []
     # the same file can be imported again: its import record went with the dataset
