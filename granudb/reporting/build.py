@@ -242,6 +242,7 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     labels = labels_of(frame)
     palette = colours(labels)
     walton = fits.walton(frame)
+    branches = fits.walton_branches(frame, walton)  # the one classification of each run
     report["tables"].append(
         tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )
@@ -257,5 +258,7 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
         frame, labels, palette, walton, restitution, query.critical_stokes
     )
     if not pair:
-        report["figures"] += figures.pair_maps(connection, frame, walton, query.critical_stokes)
+        report["figures"] += figures.pair_maps(
+            connection, frame, branches, labels, palette, query.critical_stokes
+        )
     return citations

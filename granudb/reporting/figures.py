@@ -22,7 +22,6 @@ from granudb.physics.derive import DRY_RESTITUTION, derive
 from granudb.reporting import plots
 from granudb.reporting.format import display, is_number
 from granudb.reporting.groups import (
-    fluid_colours,
     fluid_names,
     group_keys,
     group_label,
@@ -80,7 +79,7 @@ def regime_map_figure(
     figure_id: str = "fig-regime-map",
 ) -> dict[str, Any]:
     """Impact velocity × viscosity plane for the pair, shaded by regime, with runs."""
-    has_dry = any(r["fluid"] == "dry" for r in runs)
+    has_dry = any(r["dry"] for r in runs)
     grid = _regime_grid(
         particle,
         wall,
@@ -111,29 +110,30 @@ def regime_map_figure(
     if runs:
         count = sum(len(r["v"]) for r in runs)
         caption += (
-            f" Markers: the {count} measured runs of this pair, coloured by fluid, shaped by "
-            "measured regime"
+            f" Markers: the {count} measured runs of this pair, coloured by group (as in every "
+            "figure and table of this report), shaped by the branch its group's Walton fit "
+            "counts (sticking, sliding, no rebound, not determined)"
             + (" (dry runs drawn at the viscosity of air, 0.018 mPa·s)." if has_dry else ".")
             + thinned(count)
         )
     return {"id": figure_id, "svg": svg, "file": f"{figure_id}.svg", "caption": caption}
 
 
-def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> np.ndarray:
-    """Each run's measured branch, as the Walton fit of its group counted it (the one
-    classification: ``granudb.analysis.fits.walton_branches``)."""
-    return fits.walton_branches(frame, list(walton))
-
-
 def pair_maps(
-    reader: Any, frame: Any, walton: Sequence[Mapping[str, Any]], critical_stokes: float
+    reader: Any,
+    frame: Any,
+    branches: np.ndarray,
+    labels: Sequence[str],
+    colours: Mapping[str, str],
+    critical_stokes: float,
 ) -> list[dict[str, Any]]:
-    """One regime map per particle/wall pair, with every run of that pair on it.
+    """One regime map per particle/wall pair, with every run of that pair on it, in its
+    group's colour (the one of every figure and table) and shaped by ``branches`` (the one
+    classification, ``granudb.analysis.fits.walton_branches``).
     ``reader``: a Core connection or a session (the catalogue is read through Core)."""
     connection = reader if isinstance(reader, Connection) else reader.connection()
-    regimes = measured_regimes(frame, walton)
     fluids = fluid_names(frame["fluid"])
-    colours = fluid_colours(fluids.tolist())
+    names = np.asarray(labels, dtype=object)
     pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
     densities = {
         name: catalog_rows.get_fluid_row(connection, name, pinned).reference_density_kg_m3
@@ -143,7 +143,7 @@ def pair_maps(
     pairs = sorted(set(group_keys(frame["particle"], frame["wall"]).tolist()))
     for index, (particle, wall) in enumerate(pairs):
         mask = ((frame["particle"] == particle) & (frame["wall"] == wall)).to_numpy()
-        runs = _run_series(frame[mask], fluids[mask], regimes[mask])
+        runs = _run_series(frame[mask], names[mask], fluids[mask], branches[mask])
         wet = [densities[f] for f in set(fluids[mask].tolist()) if f in densities]
         figure = regime_map_figure(
             catalog_rows.material_record(
@@ -161,21 +161,26 @@ def pair_maps(
     return figures
 
 
-def _run_series(frame: Any, fluids: np.ndarray, regimes: np.ndarray) -> list[dict[str, Any]]:
+def _run_series(
+    frame: Any, groups: np.ndarray, fluids: np.ndarray, branches: np.ndarray
+) -> list[dict[str, Any]]:
+    """The runs of one pair as series of one group and one branch each, dry groups first."""
     v = frame["v_n_in_m_s"].to_numpy(float)
     mu = frame["viscosity_pa_s"].to_numpy(float)
     mu = np.where(np.isfinite(mu), mu, AIR_VISCOSITY_PA_S)
-    fluid_codes, fluid_list = sorted_codes(fluids)
-    regime_codes, regime_list = sorted_codes(regimes)
+    group_codes, group_list = sorted_codes(groups)
+    branch_codes, branch_list = sorted_codes(branches)
+    dry = {g for g, f in zip(groups.tolist(), fluids.tolist(), strict=True) if f == "dry"}
     series = []
-    for fluid in sorted(fluid_list, key=lambda n: (n != "dry", n)):
-        is_fluid = fluid_codes == fluid_list.index(fluid)
-        for regime in plots.RUN_MARKERS:
-            if regime not in regime_list:
+    for group in sorted(group_list, key=lambda g: (g not in dry, g)):
+        in_group = group_codes == group_list.index(group)
+        for branch in plots.RUN_MARKERS:
+            if branch not in branch_list:
                 continue
-            keep = is_fluid & (regime_codes == regime_list.index(regime))
+            keep = in_group & (branch_codes == branch_list.index(branch))
             if keep.any():
-                series.append({"v": v[keep], "mu": mu[keep], "fluid": fluid, "regime": regime})
+                series.append({"v": v[keep], "mu": mu[keep], "group": group, "regime": branch,
+                               "dry": group in dry})  # fmt: skip
     return series
 
 

@@ -171,18 +171,18 @@ RUN_MARKERS = {"sticking": "o", "sliding": "^", "no rebound": "x", "not determin
 
 
 def draw_runs(plot: Plot, runs: Sequence[dict[str, Any]], colours: Mapping[str, str]) -> None:
-    """Measured runs on the regime map (viscosity in mPa·s): colour by fluid, hollow
-    marker by measured regime; one legend entry each."""
+    """Measured runs on the regime map (viscosity in mPa·s): colour by group (the report's
+    one colour per group), hollow marker by measured branch; one legend entry each."""
     total = sum(len(series["v"]) for series in runs)
     for series in runs:
         count = len(series["v"])
         v, mu = thin(np.asarray(series["v"], float), np.asarray(series["mu"], float),
                      limit=share(count, total))  # fmt: skip
         marker = RUN_MARKERS.get(series["regime"], "o")
-        style = Style(colours.get(series["fluid"], "#000000"), marker=marker, size=6,
+        style = Style(colours.get(series["group"], "#000000"), marker=marker, size=6,
                       hollow=True, width=1.3)  # fmt: skip
         plot.points(v, mu * 1e3, style,
-                    f"{series['fluid']}: {series['regime']} ({shown(count, len(v))})")  # fmt: skip
+                    f"{series['group']}: {series['regime']} ({shown(count, len(v))})")  # fmt: skip
 
 
 def level_lines(
