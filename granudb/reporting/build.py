@@ -254,9 +254,9 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     gap = fits.gap_viscosity(frame, models)
     if gap:
         report["tables"].append(tables.gap_table(gap, palette))
-    report["figures"] += figures.dataset_figures(
-        frame, labels, palette, walton, restitution, query.critical_stokes
-    )
+    fitted = {"walton": walton, "branches": branches, "restitution": restitution,
+              "critical_stokes": query.critical_stokes}  # fmt: skip
+    report["figures"] += figures.dataset_figures(frame, labels, palette, fitted)
     if not pair:
         report["figures"] += figures.pair_maps(
             connection, frame, branches, labels, palette, query.critical_stokes

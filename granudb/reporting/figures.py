@@ -19,6 +19,7 @@ from granudb.analysis import fits
 from granudb.db import catalog_rows, lookup_rows
 from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
+from granudb.physics.impact import gyration_factor
 from granudb.reporting import plots
 from granudb.reporting.format import display, is_number
 from granudb.reporting.groups import (
@@ -33,14 +34,11 @@ AIR_VISCOSITY_PA_S = 1.8e-5
 _MATERIAL_KEYS = ("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m")
 
 
-def _regime_grid(
-    particle: dict[str, Any],
-    wall: dict[str, Any],
-    diameter_m: float,
-    fluid_density: float,
-    critical_stokes: float,
-    lowest_viscosity: float,
-) -> dict[str, Any]:
+def _regime_grid(materials: tuple[dict, dict], *scenario: float) -> dict[str, Any]:
+    """``derive`` on the map's grid for the pair ``materials``; ``scenario``: diameter (m),
+    fluid density (kg/m³), critical Stokes number and the lowest viscosity drawn (Pa·s)."""
+    particle, wall = materials
+    diameter_m, fluid_density, critical_stokes, lowest_viscosity = scenario
     velocity = np.geomspace(1e-3, 3.0, 120)
     viscosity = np.geomspace(lowest_viscosity, 1.0, 100)
     v_grid, mu_grid = np.meshgrid(velocity, viscosity)
@@ -81,8 +79,7 @@ def regime_map_figure(
     """Impact velocity × viscosity plane for the pair, shaded by regime, with runs."""
     has_dry = any(r["dry"] for r in runs)
     grid = _regime_grid(
-        particle,
-        wall,
+        (particle, wall),
         diameter_m,
         fluid_density,
         critical_stokes,
@@ -184,19 +181,72 @@ def _run_series(
     return series
 
 
-def dataset_figures(
-    frame: Any,
+def walton_lines(
+    psi_in: np.ndarray,
     labels: Sequence[str],
-    colours: Mapping[str, str],
+    branches: np.ndarray,
     walton: Sequence[Mapping[str, Any]],
-    restitution: Sequence[Mapping[str, Any]],
-    critical_stokes: float,
 ) -> list[dict[str, Any]]:
-    """The Walton, β, μ_f, restitution and shear-strain figures of a set of runs."""
+    """The Walton lines of each group, each over the folded Ψ_in range where its branch
+    holds for that group (``branches``, the one classification): the sticking line from 0
+    up to the split (a sticking-only group: to its largest Ψ_in), the sliding line from
+    the split (a sliding-only group: its smallest sliding Ψ_in) to the largest. A line is
+    drawn only where the fit determined its parameter (β; μ_f and ē). Dicts with ``label``
+    (the group), ``branch``, ``x``, ``y`` and the legend ``text``."""
+    folded = np.abs(np.asarray(psi_in, float))
+    names = np.asarray(labels, dtype=object)
+    factor = float(gyration_factor())
+    lines = []
+    for fit in walton:
+        label = group_label(fit["particle"], fit["wall"], fit.get("fluid"))
+        mine = (names == label) & np.isfinite(folded)
+        stick = folded[mine & (branches == "sticking")]
+        slide = folded[mine & (branches == "sliding")]
+        split = fit.get("split_effective_incidence")
+        split = float(split) if is_number(split) and fit.get("model") == "split" else None
+        beta = fit.get("rotational_restitution")
+        mu, e = fit.get("sliding_friction"), fit.get("normal_restitution_mean")
+        if is_number(beta) and stick.size:
+            x = np.linspace(0.0, split if split is not None else float(stick.max()), 50)
+            lines.append({"label": label, "branch": "sticking", "x": x, "y": -beta * x,
+                          "text": f"{label}: sticking, β = {beta:.2g}"})  # fmt: skip
+        if is_number(mu) and is_number(e) and slide.size:
+            start = split if split is not None else float(slide.min())
+            x = np.linspace(start, float(slide.max()), 50)
+            lines.append({"label": label, "branch": "sliding", "x": x,
+                          "y": x - mu * (1 + e) * factor,
+                          "text": f"{label}: sliding, μ_f = {mu:.2g}"})  # fmt: skip
+    return lines
+
+
+def walton_caption(lines: Sequence[Mapping[str, Any]]) -> str:
+    """The Walton figure's caption, saying which lines are drawn (none, if none are)."""
+    caption = "Ψ_out against Ψ_in (figures 4, 6, 9)"
+    kinds = sorted({line["branch"] for line in lines}, reverse=True)
+    if not kinds:
+        return caption + "; no Walton line is drawn: no group's fit determined β or μ_f."
+    words = {
+        "sticking": "sticking lines Ψ_out = −βΨ_in (dashed) from 0 up to the split",
+        "sliding": "sliding lines Ψ_out = Ψ_in − μ_f(1+ē)(1+1/K²) (solid) from the split on",
+    }
+    groups = len({line["label"] for line in lines})
+    return (
+        f"{caption}, with the fitted {' and '.join(words[k] for k in kinds)}, each over the "
+        f"Ψ_in range of the runs its group's fit counts on that branch ({groups} "
+        f"group{'s' if groups != 1 else ''} with a line; a group without one had no β or μ_f "
+        "determined)."
+    )
+
+
+def dataset_figures(
+    frame: Any, labels: Sequence[str], colours: Mapping[str, str], fitted: Mapping[str, Any]
+) -> list[dict[str, Any]]:
+    """The Walton, β, μ_f, restitution and shear-strain figures of a set of runs.
+    ``fitted``: ``walton``, ``branches``, ``restitution`` and ``critical_stokes``."""
     psi_in = frame["effective_incidence"].to_numpy(dtype=float)
-    lines = [{**r, "label": group_label(r["particle"], r["wall"], r.get("fluid"))} for r in walton]
+    lines = walton_lines(psi_in, labels, fitted["branches"], fitted["walton"])
     figures = [
-        _figure("fig-walton", "Ψ_out against Ψ_in with the fitted Walton lines (figures 4, 6, 9).",
+        _figure("fig-walton", walton_caption(lines),
                 plots.walton_plot(psi_in, frame["effective_rebound"].to_numpy(float), labels,
                                   lines, colours), len(psi_in)),  # fmt: skip
         _figure("fig-beta", "Rotational restitution β against Ψ_in (figures 7, 10).",
@@ -218,7 +268,7 @@ def dataset_figures(
     # Only the columns the figure reads: a copy of every column of a million immersed runs
     # was the report's peak memory (about 200 MB more).
     wet = frame.loc[immersed, [c for c in WET_COLUMNS if c in frame]]
-    figures.append(restitution_figure(wet, wet_labels, colours, restitution, critical_stokes))
+    figures.append(restitution_figure(wet, wet_labels, colours, fitted))
     strain = frame["shear_strain"].to_numpy(float)[immersed]
     figures.append(
         _figure(
@@ -261,14 +311,12 @@ def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) 
 
 
 def restitution_figure(
-    wet: Any,
-    labels: Sequence[str],
-    colours: Mapping[str, str],
-    restitution: Sequence[Mapping[str, Any]],
-    critical_stokes: float,
+    wet: Any, labels: Sequence[str], colours: Mapping[str, str], fitted: Mapping[str, Any]
 ) -> dict[str, Any]:
     """Measured e(St_n) of the immersed runs against the predicted curves (§10), with the
-    threshold fit when there is one (its St_c labelled as fitted)."""
+    threshold fit when there is one (its St_c labelled as fitted); ``fitted`` as in
+    ``dataset_figures``."""
+    restitution, critical_stokes = fitted["restitution"], fitted["critical_stokes"]
     st_n = wet["normal_stokes_number"].to_numpy(float)
     curves = predicted_curves(wet, labels, critical_stokes)
     svg = plots.restitution_with_prediction(
