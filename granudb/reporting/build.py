@@ -30,7 +30,7 @@ from granudb.version import __version__
 #: The columns of the runs a report reads (tables, fits, figures and the flag): the runs are
 #: read with only these, so a report on a million runs holds 30 columns, not 75.
 REPORT_COLUMNS = [
-    *("dataset", "version", "particle", "wall", "fluid"),
+    *("dataset", "version", "run", "particle", "wall", "fluid"),
     *("diameter_m", "v_n_in_m_s", "viscosity_pa_s", "particle_density_kg_m3"),
     *("effective_incidence", "effective_rebound", "normal_restitution", "tangential_speed_m_s"),
     *("walton_factor", "rotational_restitution", "sliding_friction", "normal_stokes_number"),
@@ -60,6 +60,7 @@ def _header(title: str, query: str, database: str) -> dict[str, Any]:
         "derived": [],
         "tables": [],
         "figures": [],
+        "runs": None,
         "methods": references.methods(),
         "references": [],
     }
@@ -243,6 +244,8 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     palette = colours(labels)
     walton = fits.walton(frame)
     branches = fits.walton_branches(frame, walton)  # the one classification of each run
+    if not pair:
+        report["runs"] = tables.run_table(tables.run_frame(frame, branches))
     report["tables"].append(
         tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )

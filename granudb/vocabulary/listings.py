@@ -62,6 +62,21 @@ COLLISION_WIDE = [
     "notes",
     "derivation_note",
 ]
+#: A dataset report's table of its runs (and the CSV beside it): what a reader needs to
+#: check the figures and fits run by run, with each run's Walton branch and assumptions.
+REPORT_RUN_COLUMNS = [
+    "run",
+    "particle",
+    "wall",
+    "fluid",
+    "v_n_in_m_s",
+    "effective_incidence",
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_rebound",
+    "walton_branch",
+    "derivation_note",
+]
 #: A dataset in ``granudb dataset list`` (and ``granudb.datasets()``).
 DATASET_COLUMNS = ["name", "version", "state", "title", "runs", "content_hash", "license", "source"]
 #: A dataset's runs counted by pair and fluid (``dataset show``).
