@@ -114,8 +114,7 @@ FIT_NARROW = {
         "ambient_viscosity_pa_s",
         "gap_temperature_c",
         "n_runs",
-        "reason",
-        "note",
+        "reason",  # its older name "note" (the same text) only in --wide
     ],
 }
 
