@@ -187,7 +187,7 @@ def _group_row(
         "e_dry": math.nan,
         "e_dry_stderr": math.nan,
         "e_dry_source": (
-            f"mean e of the group's {dry_e.size} dry runs (fixed)"
+            f"mean e of the group's {dry_e.size} dry run{'s' if dry_e.size != 1 else ''} (fixed)"
             if fixed is not None
             else "fitted, bounded 0 ≤ e_dry ≤ 1"
         ),
@@ -199,10 +199,12 @@ def _group_row(
     }
     needed = 2 if fixed is not None else 3
     if len(np.unique(st)) < needed or float(np.max(st)) < 2.0 * float(np.min(st)):
+        distinct = len(np.unique(st))
         row["reason"] = (
             f"St_n must take ≥ {needed} distinct values spanning a factor of 2 "
-            f"({len(np.unique(st))} values from {np.min(st):.3g} to {np.max(st):.3g})"
-        )
+            + (f"(1 value, {st[0]:.3g})" if distinct == 1 else
+               f"({distinct} values from {np.min(st):.3g} to {np.max(st):.3g})")
+        )  # fmt: skip
     else:
         try:
             e_dry, e_dry_se, parameter, parameter_se = _fit(model, st, e, fixed)

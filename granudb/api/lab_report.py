@@ -18,7 +18,7 @@ from granudb.api import inputs
 from granudb.api.collision_listing import collision_query
 from granudb.api.database import opened
 from granudb.errors import ValidationError
-from granudb.reporting.build import dataset_report, pair_report
+from granudb.reporting.build import database_name, dataset_report, pair_report
 from granudb.reporting.render import render
 from granudb.reporting.write import check_output, write_report
 
@@ -82,27 +82,20 @@ def report(
     }
     asked = _asked(pair, fmt, title, {**filters, **scenario})
     with opened(db) as database, database.reading() as connection:
-        if pair is not None:
+        header = {"title": title, "query": asked, "database": database_name(database.url)}
+        if pair is None:
+            content = dataset_report(connection, header, query=query)
+        else:
             particle, wall = _pair(pair)
             content = pair_report(
                 connection,
-                title=title,
-                query=asked,
-                database=database.display_url,
+                header,
                 particle=particle,
                 wall=wall,
                 critical_stokes=query.critical_stokes,
                 **_scenario(query.fluid, diameter, velocity, angle, temperature, viscosity),
                 wall_diameter_m=inputs.quantity(wall_diameter, "wall_diameter_m", "wall_diameter"),
                 target=None if target is None else inputs.choice(target, TARGETS, "target"),
-            )
-        else:
-            content = dataset_report(
-                connection,
-                title=title,
-                query_text=asked,
-                database=database.display_url,
-                query=query,
             )
     if destination is not None:
         return write_report(content, fmt, destination, force=force)

@@ -10,10 +10,12 @@ pieces live beside this module: ``blocks`` (text and property tables), ``tables`
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from datetime import UTC, datetime
+from pathlib import PurePath
 from typing import Any
 
-from sqlalchemy.engine import Connection
+from sqlalchemy.engine import Connection, make_url
 
 from granudb.analysis import fits
 from granudb.analysis.collision_query import CollisionQuery
@@ -30,7 +32,7 @@ from granudb.version import __version__
 #: The columns of the runs a report reads (tables, fits, figures and the flag): the runs are
 #: read with only these, so a report on a million runs holds 30 columns, not 75.
 REPORT_COLUMNS = [
-    *("dataset", "version", "particle", "wall", "fluid"),
+    *("dataset", "version", "run", "particle", "wall", "fluid"),
     *("diameter_m", "v_n_in_m_s", "viscosity_pa_s", "particle_density_kg_m3"),
     *("effective_incidence", "effective_rebound", "normal_restitution", "tangential_speed_m_s"),
     *("walton_factor", "rotational_restitution", "sliding_friction", "normal_stokes_number"),
@@ -44,11 +46,28 @@ DEFAULT_DIAMETER_M = 12.7e-3
 DEFAULT_SPEED_M_S = 0.3
 
 
-def _header(title: str, query: str, database: str) -> dict[str, Any]:
+def database_name(url: Any) -> str:
+    """The database as a report's header names it: an SQLite file by its name only (never
+    the folder it sits in on the author's machine), a server database by its name.
+
+    >>> database_name("sqlite:////home/ada/lab/granudb.sqlite")
+    'granudb.sqlite'
+    >>> database_name("postgresql+psycopg://ada:secret@db.example/lab")
+    'lab (postgresql)'
+    """
+    url = make_url(str(url))
+    if url.get_backend_name() == "sqlite":
+        return PurePath(url.database).name if url.database else "in-memory SQLite"
+    return f"{url.database} ({url.get_backend_name()})"
+
+
+def _header(header: Mapping[str, Any], title: str) -> dict[str, Any]:
+    """The report's skeleton; ``header``: the ``title`` asked for (or None: ``title``),
+    the ``query`` as the command that makes it and the ``database`` as ``database_name``."""
     return {
-        "title": title,
-        "query": query,
-        "database": database,
+        "title": header.get("title") or title,
+        "query": header["query"],
+        "database": header["database"],
         "version": __version__,
         "generated_at": datetime.now(UTC).replace(microsecond=0).isoformat(),
         "dataset": None,
@@ -60,6 +79,7 @@ def _header(title: str, query: str, database: str) -> dict[str, Any]:
         "derived": [],
         "tables": [],
         "figures": [],
+        "runs": None,
         "methods": references.methods(),
         "references": [],
     }
@@ -67,10 +87,8 @@ def _header(title: str, query: str, database: str) -> dict[str, Any]:
 
 def pair_report(
     reader: Any,
+    header: Mapping[str, Any],
     *,
-    title: str | None,
-    query: str,
-    database: str,
     particle: str,
     wall: str,
     fluid: str | None,
@@ -114,7 +132,7 @@ def pair_report(
     name = f"{result.particle['name']} on {result.wall['name']}" + (
         f" in {result.fluid['name']}" if result.fluid else " (dry)"
     )
-    report = _header(title or f"granudb report: {name}", query, database)
+    report = _header(header, f"granudb report: {name}")
     _pair_sections(report, result, assumed, diameter_m, critical_stokes)
 
     add_collisions(
@@ -172,12 +190,11 @@ def _pair_sections(
     )
 
 
-def dataset_report(
-    reader: Any, *, title: str | None, query_text: str, database: str, query: Any
-) -> dict[str, Any]:
+def dataset_report(reader: Any, header: Mapping[str, Any], *, query: Any) -> dict[str, Any]:
     """A report on stored collisions (a dataset or any query). ``reader``: a Core
-    connection (``Database.reading()``: no ORM on the report's path) or a session."""
-    report = _header(title or f"granudb report: {query.describe()}", query_text, database)
+    connection (``Database.reading()``: no ORM on the report's path) or a session;
+    ``header`` as in ``_header``."""
+    report = _header(header, f"granudb report: {query.describe()}")
     if query.dataset is not None:
         dataset = lookup_rows.dataset_row(_connection(reader), query.dataset, query.version)
         report["dataset"] = {
@@ -242,6 +259,9 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     labels = labels_of(frame)
     palette = colours(labels)
     walton = fits.walton(frame)
+    branches = fits.walton_branches(frame, walton)  # the one classification of each run
+    if not pair:
+        report["runs"] = tables.run_table(tables.run_frame(frame, branches))
     report["tables"].append(
         tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )
@@ -253,9 +273,11 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     gap = fits.gap_viscosity(frame, models)
     if gap:
         report["tables"].append(tables.gap_table(gap, palette))
-    report["figures"] += figures.dataset_figures(
-        frame, labels, palette, walton, restitution, query.critical_stokes
-    )
+    fitted = {"walton": walton, "branches": branches, "restitution": restitution,
+              "critical_stokes": query.critical_stokes}  # fmt: skip
+    report["figures"] += figures.dataset_figures(frame, labels, palette, fitted)
     if not pair:
-        report["figures"] += figures.pair_maps(connection, frame, walton, query.critical_stokes)
+        report["figures"] += figures.pair_maps(
+            connection, frame, branches, labels, palette, query.critical_stokes
+        )
     return citations

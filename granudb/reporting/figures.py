@@ -19,10 +19,10 @@ from granudb.analysis import fits
 from granudb.db import catalog_rows, lookup_rows
 from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
+from granudb.physics.impact import gyration_factor
 from granudb.reporting import plots
 from granudb.reporting.format import display, is_number
 from granudb.reporting.groups import (
-    fluid_colours,
     fluid_names,
     group_keys,
     group_label,
@@ -34,14 +34,11 @@ AIR_VISCOSITY_PA_S = 1.8e-5
 _MATERIAL_KEYS = ("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m")
 
 
-def _regime_grid(
-    particle: dict[str, Any],
-    wall: dict[str, Any],
-    diameter_m: float,
-    fluid_density: float,
-    critical_stokes: float,
-    lowest_viscosity: float,
-) -> dict[str, Any]:
+def _regime_grid(materials: tuple[dict, dict], *scenario: float) -> dict[str, Any]:
+    """``derive`` on the map's grid for the pair ``materials``; ``scenario``: diameter (m),
+    fluid density (kg/m³), critical Stokes number and the lowest viscosity drawn (Pa·s)."""
+    particle, wall = materials
+    diameter_m, fluid_density, critical_stokes, lowest_viscosity = scenario
     velocity = np.geomspace(1e-3, 3.0, 120)
     viscosity = np.geomspace(lowest_viscosity, 1.0, 100)
     v_grid, mu_grid = np.meshgrid(velocity, viscosity)
@@ -80,10 +77,9 @@ def regime_map_figure(
     figure_id: str = "fig-regime-map",
 ) -> dict[str, Any]:
     """Impact velocity × viscosity plane for the pair, shaded by regime, with runs."""
-    has_dry = any(r["fluid"] == "dry" for r in runs)
+    has_dry = any(r["dry"] for r in runs)
     grid = _regime_grid(
-        particle,
-        wall,
+        (particle, wall),
         diameter_m,
         fluid_density,
         critical_stokes,
@@ -111,29 +107,30 @@ def regime_map_figure(
     if runs:
         count = sum(len(r["v"]) for r in runs)
         caption += (
-            f" Markers: the {count} measured runs of this pair, coloured by fluid, shaped by "
-            "measured regime"
+            f" Markers: the {count} measured runs of this pair, coloured by group (as in every "
+            "figure and table of this report), shaped by the branch its group's Walton fit "
+            "counts (sticking, sliding, no rebound, not determined)"
             + (" (dry runs drawn at the viscosity of air, 0.018 mPa·s)." if has_dry else ".")
             + thinned(count)
         )
     return {"id": figure_id, "svg": svg, "file": f"{figure_id}.svg", "caption": caption}
 
 
-def measured_regimes(frame: Any, walton: Sequence[Mapping[str, Any]]) -> np.ndarray:
-    """Each run's measured branch, as the Walton fit of its group counted it (the one
-    classification: ``granudb.analysis.fits.walton_branches``)."""
-    return fits.walton_branches(frame, list(walton))
-
-
 def pair_maps(
-    reader: Any, frame: Any, walton: Sequence[Mapping[str, Any]], critical_stokes: float
+    reader: Any,
+    frame: Any,
+    branches: np.ndarray,
+    labels: Sequence[str],
+    colours: Mapping[str, str],
+    critical_stokes: float,
 ) -> list[dict[str, Any]]:
-    """One regime map per particle/wall pair, with every run of that pair on it.
+    """One regime map per particle/wall pair, with every run of that pair on it, in its
+    group's colour (the one of every figure and table) and shaped by ``branches`` (the one
+    classification, ``granudb.analysis.fits.walton_branches``).
     ``reader``: a Core connection or a session (the catalogue is read through Core)."""
     connection = reader if isinstance(reader, Connection) else reader.connection()
-    regimes = measured_regimes(frame, walton)
     fluids = fluid_names(frame["fluid"])
-    colours = fluid_colours(fluids.tolist())
+    names = np.asarray(labels, dtype=object)
     pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
     densities = {
         name: catalog_rows.get_fluid_row(connection, name, pinned).reference_density_kg_m3
@@ -143,7 +140,7 @@ def pair_maps(
     pairs = sorted(set(group_keys(frame["particle"], frame["wall"]).tolist()))
     for index, (particle, wall) in enumerate(pairs):
         mask = ((frame["particle"] == particle) & (frame["wall"] == wall)).to_numpy()
-        runs = _run_series(frame[mask], fluids[mask], regimes[mask])
+        runs = _run_series(frame[mask], names[mask], fluids[mask], branches[mask])
         wet = [densities[f] for f in set(fluids[mask].tolist()) if f in densities]
         figure = regime_map_figure(
             catalog_rows.material_record(
@@ -161,37 +158,95 @@ def pair_maps(
     return figures
 
 
-def _run_series(frame: Any, fluids: np.ndarray, regimes: np.ndarray) -> list[dict[str, Any]]:
+def _run_series(
+    frame: Any, groups: np.ndarray, fluids: np.ndarray, branches: np.ndarray
+) -> list[dict[str, Any]]:
+    """The runs of one pair as series of one group and one branch each, dry groups first."""
     v = frame["v_n_in_m_s"].to_numpy(float)
     mu = frame["viscosity_pa_s"].to_numpy(float)
     mu = np.where(np.isfinite(mu), mu, AIR_VISCOSITY_PA_S)
-    fluid_codes, fluid_list = sorted_codes(fluids)
-    regime_codes, regime_list = sorted_codes(regimes)
+    group_codes, group_list = sorted_codes(groups)
+    branch_codes, branch_list = sorted_codes(branches)
+    dry = {g for g, f in zip(groups.tolist(), fluids.tolist(), strict=True) if f == "dry"}
     series = []
-    for fluid in sorted(fluid_list, key=lambda n: (n != "dry", n)):
-        is_fluid = fluid_codes == fluid_list.index(fluid)
-        for regime in plots.RUN_MARKERS:
-            if regime not in regime_list:
+    for group in sorted(group_list, key=lambda g: (g not in dry, g)):
+        in_group = group_codes == group_list.index(group)
+        for branch in plots.RUN_MARKERS:
+            if branch not in branch_list:
                 continue
-            keep = is_fluid & (regime_codes == regime_list.index(regime))
+            keep = in_group & (branch_codes == branch_list.index(branch))
             if keep.any():
-                series.append({"v": v[keep], "mu": mu[keep], "fluid": fluid, "regime": regime})
+                series.append({"v": v[keep], "mu": mu[keep], "group": group, "regime": branch,
+                               "dry": group in dry})  # fmt: skip
     return series
 
 
-def dataset_figures(
-    frame: Any,
+def walton_lines(
+    psi_in: np.ndarray,
     labels: Sequence[str],
-    colours: Mapping[str, str],
+    branches: np.ndarray,
     walton: Sequence[Mapping[str, Any]],
-    restitution: Sequence[Mapping[str, Any]],
-    critical_stokes: float,
 ) -> list[dict[str, Any]]:
-    """The Walton, β, μ_f, restitution and shear-strain figures of a set of runs."""
+    """The Walton lines of each group, each over the folded Ψ_in range where its branch
+    holds for that group (``branches``, the one classification): the sticking line from 0
+    up to the split (a sticking-only group: to its largest Ψ_in), the sliding line from
+    the split (a sliding-only group: its smallest sliding Ψ_in) to the largest. A line is
+    drawn only where the fit determined its parameter (β; μ_f and ē). Dicts with ``label``
+    (the group), ``branch``, ``x``, ``y`` and the legend ``text``."""
+    folded = np.abs(np.asarray(psi_in, float))
+    names = np.asarray(labels, dtype=object)
+    factor = float(gyration_factor())
+    lines = []
+    for fit in walton:
+        label = group_label(fit["particle"], fit["wall"], fit.get("fluid"))
+        mine = (names == label) & np.isfinite(folded)
+        stick = folded[mine & (branches == "sticking")]
+        slide = folded[mine & (branches == "sliding")]
+        split = fit.get("split_effective_incidence")
+        split = float(split) if is_number(split) and fit.get("model") == "split" else None
+        beta = fit.get("rotational_restitution")
+        mu, e = fit.get("sliding_friction"), fit.get("normal_restitution_mean")
+        if is_number(beta) and stick.size:
+            x = np.linspace(0.0, split if split is not None else float(stick.max()), 50)
+            lines.append({"label": label, "branch": "sticking", "x": x, "y": -beta * x,
+                          "text": f"{label}: sticking, β = {beta:.2g}"})  # fmt: skip
+        if is_number(mu) and is_number(e) and slide.size:
+            start = split if split is not None else float(slide.min())
+            x = np.linspace(start, float(slide.max()), 50)
+            lines.append({"label": label, "branch": "sliding", "x": x,
+                          "y": x - mu * (1 + e) * factor,
+                          "text": f"{label}: sliding, μ_f = {mu:.2g}"})  # fmt: skip
+    return lines
+
+
+def walton_caption(lines: Sequence[Mapping[str, Any]]) -> str:
+    """The Walton figure's caption, saying which lines are drawn (none, if none are)."""
+    caption = "Ψ_out against Ψ_in (figures 4, 6, 9)"
+    kinds = sorted({line["branch"] for line in lines}, reverse=True)
+    if not kinds:
+        return caption + "; no Walton line is drawn: no group's fit determined β or μ_f."
+    words = {
+        "sticking": "sticking lines Ψ_out = −βΨ_in (dashed) from 0 up to the split",
+        "sliding": "sliding lines Ψ_out = Ψ_in − μ_f(1+ē)(1+1/K²) (solid) from the split on",
+    }
+    groups = len({line["label"] for line in lines})
+    return (
+        f"{caption}, with the fitted {' and '.join(words[k] for k in kinds)}, each over the "
+        f"Ψ_in range of the runs its group's fit counts on that branch ({groups} "
+        f"group{'s' if groups != 1 else ''} with a line; a group without one had no β or μ_f "
+        "determined)."
+    )
+
+
+def dataset_figures(
+    frame: Any, labels: Sequence[str], colours: Mapping[str, str], fitted: Mapping[str, Any]
+) -> list[dict[str, Any]]:
+    """The Walton, β, μ_f, restitution and shear-strain figures of a set of runs.
+    ``fitted``: ``walton``, ``branches``, ``restitution`` and ``critical_stokes``."""
     psi_in = frame["effective_incidence"].to_numpy(dtype=float)
-    lines = [{**r, "label": group_label(r["particle"], r["wall"], r.get("fluid"))} for r in walton]
+    lines = walton_lines(psi_in, labels, fitted["branches"], fitted["walton"])
     figures = [
-        _figure("fig-walton", "Ψ_out against Ψ_in with the fitted Walton lines (figures 4, 6, 9).",
+        _figure("fig-walton", walton_caption(lines),
                 plots.walton_plot(psi_in, frame["effective_rebound"].to_numpy(float), labels,
                                   lines, colours), len(psi_in)),  # fmt: skip
         _figure("fig-beta", "Rotational restitution β against Ψ_in (figures 7, 10).",
@@ -213,7 +268,7 @@ def dataset_figures(
     # Only the columns the figure reads: a copy of every column of a million immersed runs
     # was the report's peak memory (about 200 MB more).
     wet = frame.loc[immersed, [c for c in WET_COLUMNS if c in frame]]
-    figures.append(restitution_figure(wet, wet_labels, colours, restitution, critical_stokes))
+    figures.append(restitution_figure(wet, wet_labels, colours, fitted))
     strain = frame["shear_strain"].to_numpy(float)[immersed]
     figures.append(
         _figure(
@@ -256,14 +311,12 @@ def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) 
 
 
 def restitution_figure(
-    wet: Any,
-    labels: Sequence[str],
-    colours: Mapping[str, str],
-    restitution: Sequence[Mapping[str, Any]],
-    critical_stokes: float,
+    wet: Any, labels: Sequence[str], colours: Mapping[str, str], fitted: Mapping[str, Any]
 ) -> dict[str, Any]:
     """Measured e(St_n) of the immersed runs against the predicted curves (§10), with the
-    threshold fit when there is one (its St_c labelled as fitted)."""
+    threshold fit when there is one (its St_c labelled as fitted); ``fitted`` as in
+    ``dataset_figures``."""
+    restitution, critical_stokes = fitted["restitution"], fitted["critical_stokes"]
     st_n = wet["normal_stokes_number"].to_numpy(float)
     curves = predicted_curves(wet, labels, critical_stokes)
     svg = plots.restitution_with_prediction(

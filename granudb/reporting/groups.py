@@ -101,11 +101,3 @@ def sorted_codes(values: Any) -> tuple[Any, list[Any]]:
     rank = np.empty(len(order), dtype=np.intp)
     rank[order] = np.arange(len(order))
     return rank[codes], [uniques[i] for i in order]
-
-
-def fluid_colours(fluids: Iterable[Any]) -> dict[str, str]:
-    """A colour per fluid name for the regime maps (colour by fluid), dry first."""
-    values = fluids if isinstance(fluids, np.ndarray) else np.asarray(list(fluids), dtype=object)
-    distinct = set(per_value(values, fluid_name).tolist()) if len(values) else set()
-    names = sorted(distinct, key=lambda n: (n != DRY, n))
-    return {name: PALETTE[i % len(PALETTE)] for i, name in enumerate(names)}

@@ -33,8 +33,6 @@ from typing import Any
 import numpy as np
 
 from granudb.lazy import contourpy
-from granudb.physics.impact import gyration_factor
-from granudb.reporting.format import is_number
 from granudb.reporting.groups import sorted_codes
 from granudb.reporting.svg import PLOT_HEIGHT, Plot, Style
 from granudb.reporting.verdicts import ROUGHNESS_WORDS
@@ -98,37 +96,37 @@ def walton_plot(
     psi_in: np.ndarray,
     psi_out: np.ndarray,
     groups: Sequence[str],
-    fits: Sequence[dict[str, Any]],
+    lines: Sequence[dict[str, Any]],
     colours: Mapping[str, str],
     figure_id: str = "fig-walton",
 ) -> str:
     """Ψ_out against Ψ_in with the fitted Walton lines (Joseph & Hunt figures 4, 6, 9).
 
-    ``fits``: one dict per group with ``label`` (a key of ``colours``),
-    ``rotational_restitution`` (β), ``sliding_friction`` (μ_f) and
-    ``normal_restitution_mean`` (ē): sticking line Ψ_out = −βΨ_in, sliding line
-    Ψ_out = Ψ_in − μ_f(1+ē)(1 + 1/K²), K² = 2/5.
+    ``lines``: the lines to draw (``granudb.reporting.figures.walton_lines``), dicts with
+    ``label`` (a key of ``colours``), ``branch`` ("sticking" dashed, "sliding" solid),
+    ``x``, ``y`` and the legend ``text``.
     """
     plot = Plot(title="Tangential rebound (Walton model)", xlabel=PSI_IN,
                 ylabel="Ψ_out = v_T,out / v_N,in  (–)")  # fmt: skip
-    x, y = np.asarray(psi_in, float), np.asarray(psi_out, float)
-    scatter_groups(plot, x, y, groups, colours)
-    top = float(np.nanmax(x)) if np.isfinite(x).any() else 1.0
-    line = np.linspace(0.0, top, 50)
-    factor = float(gyration_factor())
-    for fit in fits:
-        colour = colours[fit["label"]]
-        beta = fit.get("rotational_restitution")
-        mu = fit.get("sliding_friction")
-        e = fit.get("normal_restitution_mean")
-        if is_number(beta):
-            plot.line(line, -beta * line, Style(colour, dash="4.4,1.9"),
-                      f"{fit['label']}: sticking, β = {beta:.2g}")  # fmt: skip
-        if is_number(mu) and is_number(e):
-            plot.line(line, line - mu * (1 + e) * factor, Style(colour),
-                      f"{fit['label']}: sliding, μ_f = {mu:.2g}")  # fmt: skip
+    scatter_groups(plot, np.asarray(psi_in, float), np.asarray(psi_out, float), groups, colours)
+    for line in lines:
+        dash = "4.4,1.9" if line["branch"] == "sticking" else None
+        plot.line(line["x"], line["y"], Style(colours[line["label"]], dash=dash), line["text"])
     plot.hline(0.0, Style("#000000", width=0.6))
     return plot.svg(figure_id)
+
+
+def scatter_figure(
+    x: np.ndarray, y: np.ndarray, groups: Sequence[str], colours: Mapping[str, str], **plot: Any
+) -> str:
+    """A per-collision value against ``x``, one series per group; ``plot``: the ``Plot``
+    options (title, labels, ``xlog``) and the ``figure_id``."""
+    figure_id = plot.pop("figure_id")
+    figure = Plot(**plot)
+    values = np.asarray(y, float)
+    scatter_groups(figure, np.asarray(x, float), values, groups, colours)
+    _honest_limits(figure, values)
+    return figure.svg(figure_id)
 
 
 def against_incidence(
@@ -142,28 +140,19 @@ def against_incidence(
     figure_id: str,
 ) -> str:
     """A per-collision parameter (β or μ_f) against Ψ_in (figures 7, 8, 10, 11)."""
-    plot = Plot(title=title, xlabel=PSI_IN, ylabel=ylabel)
-    y = np.asarray(values, float)
-    scatter_groups(plot, np.asarray(psi_in, float), y, groups, colours)
-    _honest_limits(plot, y)
-    return plot.svg(figure_id)
+    return scatter_figure(psi_in, values, groups, colours, title=title, xlabel=PSI_IN,
+                          ylabel=ylabel, figure_id=figure_id)  # fmt: skip
 
 
 def friction_vs_shear_strain(
-    strain: np.ndarray,
-    friction: np.ndarray,
-    groups: Sequence[str],
-    colours: Mapping[str, str],
-    figure_id: str = "fig-shear-strain",
+    strain: np.ndarray, friction: np.ndarray, groups: Sequence[str], colours: Mapping[str, str]
 ) -> str:
     """μ_f against the shear strain (μ₀U/(E*R))²⁄⁷ (figure 15)."""
-    plot = Plot(xlog=True, title="Friction against shear strain",
-                xlabel="shear strain (μ₀U / (E*R))²⁄⁷  (–)",
-                ylabel="friction coefficient μ_f  (–)")  # fmt: skip
-    y = np.asarray(friction, float)
-    scatter_groups(plot, np.asarray(strain, float), y, groups, colours)
-    _honest_limits(plot, y)
-    return plot.svg(figure_id)
+    return scatter_figure(strain, friction, groups, colours, xlog=True,
+                          title="Friction against shear strain",
+                          xlabel="shear strain (μ₀U / (E*R))²⁄⁷  (–)",
+                          ylabel="friction coefficient μ_f  (–)",
+                          figure_id="fig-shear-strain")  # fmt: skip
 
 
 #: Marker per measured regime of a run on the regime map.
@@ -171,18 +160,18 @@ RUN_MARKERS = {"sticking": "o", "sliding": "^", "no rebound": "x", "not determin
 
 
 def draw_runs(plot: Plot, runs: Sequence[dict[str, Any]], colours: Mapping[str, str]) -> None:
-    """Measured runs on the regime map (viscosity in mPa·s): colour by fluid, hollow
-    marker by measured regime; one legend entry each."""
+    """Measured runs on the regime map (viscosity in mPa·s): colour by group (the report's
+    one colour per group), hollow marker by measured branch; one legend entry each."""
     total = sum(len(series["v"]) for series in runs)
     for series in runs:
         count = len(series["v"])
         v, mu = thin(np.asarray(series["v"], float), np.asarray(series["mu"], float),
                      limit=share(count, total))  # fmt: skip
         marker = RUN_MARKERS.get(series["regime"], "o")
-        style = Style(colours.get(series["fluid"], "#000000"), marker=marker, size=6,
+        style = Style(colours.get(series["group"], "#000000"), marker=marker, size=6,
                       hollow=True, width=1.3)  # fmt: skip
         plot.points(v, mu * 1e3, style,
-                    f"{series['fluid']}: {series['regime']} ({shown(count, len(v))})")  # fmt: skip
+                    f"{series['group']}: {series['regime']} ({shown(count, len(v))})")  # fmt: skip
 
 
 def level_lines(

@@ -13,16 +13,36 @@ from typing import Any
 
 from granudb.lazy import jinja2
 
-# Any ASCII punctuation may be backslash-escaped in CommonMark (spec §2.4); these are the
-# ones that can start emphasis, code, links, images, HTML, entities or a table cell.
-_MD_SPECIAL = re.compile(r"([\\`*_{}\[\]<>()#!|~&])")
+# Any ASCII punctuation may be backslash-escaped in CommonMark (spec §2.4); only what could
+# start markup is escaped, so the source stays readable ("(σ > x₁/3)", not "\\(σ \\> x₁/3\\)"):
+# emphasis and code (* `, and _ unless inside a word, where it cannot open or close
+# emphasis), links and images ([), raw HTML and autolinks (< before a letter, / ! ?),
+# entities (& of "&name;" or "&#…;"), strikethrough (~~), table cells (|), a backslash
+# before punctuation, and a block marker at the start of the text (# > - + = or "1." "1)").
+_MD_INLINE = re.compile(
+    r"[*`\[|]|(?<![^\W_])_|_(?![^\W_])|<(?=[A-Za-z/!?])|&(?=#?\w+;)|~(?=~)|(?<=~)~"
+    r"|\\(?=[!-/:-@\[-`{-~]|$)"
+)
+_MD_BLOCK = re.compile(
+    r"^(?:#{1,6}(?=\s|$)|>|[-+*](?=\s|$)|\d{1,9}(?=[.)](?:\s|$))|[-=_*](?=[-=_*\s]*$))"
+)
 
 
 def markdown_escape(value: Any) -> str:
-    """``value`` as Markdown text that renders literally, on one line."""
+    """``value`` as Markdown text that renders literally, on one line, with a backslash
+    only where CommonMark would otherwise read markup.
+
+    >>> markdown_escape("σ > x₁/3 (Λ < 1), St_n = 2·v_N,in; *bold* [link] <b>")
+    'σ > x₁/3 (Λ < 1), St_n = 2·v_N,in; \\\\*bold\\\\* \\\\[link] \\\\<b>'
+    """
     text = "" if value is None else str(value)
     text = " ".join(text.split())  # newlines would break tables and lists
-    return _MD_SPECIAL.sub(r"\\\1", text)
+    text = _MD_INLINE.sub(lambda m: "\\" + m.group(0), text)
+    marker = _MD_BLOCK.match(text)  # "1." becomes "1\.", another marker gets a \ before it
+    if marker is None:
+        return text
+    cut = marker.end() if marker.group(0)[0].isdigit() else 0
+    return text[:cut] + "\\" + text[cut:]
 
 
 def markdown_code(value: Any) -> str:

@@ -10,12 +10,15 @@ table's note), and the paper's ± is shown as printed beside them.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
 from granudb.analysis.walton_bootstrap import DEFAULT_RESAMPLES
 from granudb.reporting.format import display, interval, is_number, plus_minus
-from granudb.reporting.groups import fluid_name, group_label
+from granudb.reporting.groups import fluid_name, fluid_names, group_label
+from granudb.vocabulary import DERIVED_TERMS, TERMS
+from granudb.vocabulary.listings import REPORT_RUN_COLUMNS
 
 WALTON_PUBLISHED = ("rotational_restitution", "sliding_friction", "normal_restitution_mean")
 
@@ -262,3 +265,61 @@ def gap_table(gap: list[dict[str, Any]], colours: Mapping[str, str]) -> dict[str
             for r in gap
         ],
     }
+
+
+#: A dataset report shows at most this many runs in its own run table (HTML and Markdown);
+#: the full table of a larger set is the CSV written beside the report.
+RUN_TABLE_LIMIT = 200
+
+
+def run_frame(frame: Any, branches: Any) -> Any:
+    """Every run as the run table lists it (``REPORT_RUN_COLUMNS``, SI, machine names):
+    the rows of the CSV beside a report, and the source of its run table."""
+    runs = frame.reindex(columns=[c for c in REPORT_RUN_COLUMNS if c != "walton_branch"])
+    runs["fluid"] = fluid_names(runs["fluid"])
+    runs.insert(REPORT_RUN_COLUMNS.index("walton_branch"), "walton_branch", branches)
+    return runs
+
+
+def run_table(runs: Any, limit: int = RUN_TABLE_LIMIT) -> dict[str, Any]:
+    """The report's table of runs: every run up to ``limit``, else the first ``limit``
+    (the CSV beside the report holds them all); numbers for people, "—" for none."""
+    shown = runs.head(limit)
+    titles = {"walton_branch": "Walton branch", "derivation_note": "assumed (derivation note)"}
+    columns = [titles.get(c) or _column_title(c) for c in REPORT_RUN_COLUMNS]
+    rows = [
+        [_run_cell(value, column) for value, column in zip(row, REPORT_RUN_COLUMNS, strict=True)]
+        for row in shown.itertuples(index=False, name=None)
+    ]
+    return {
+        "id": "runs",
+        "heading": "Runs",
+        "note": "Each run as derived, with the branch its group's Walton fit counts it on "
+        "(the classification of every figure and table) and what its derivation assumed.",
+        "columns": columns,
+        "names": list(REPORT_RUN_COLUMNS),
+        "rows": rows,
+        "count": len(runs),
+        "limit": limit,
+        "frame": runs,  # the CSV's rows; ``write_report`` writes them beside a capped table
+        "file": None,
+    }
+
+
+def _column_title(column: str) -> str:
+    term = TERMS.get(column) or DERIVED_TERMS.get(column)
+    if term is None:
+        return column.replace("_", " ")
+    return f"{term.symbol} ({term.title})" if term.symbol else term.title
+
+
+def _run_cell(value: Any, column: str) -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "—"
+    return display(value, column, 3)
+
+
+def runs_csv(runs: Any) -> str:
+    """The CSV of every run beside a report: machine names and SI values, six significant
+    digits (what the measurements carry), empty where there is no value."""
+    return runs.to_csv(index=False, float_format="%.6g", lineterminator="\n")

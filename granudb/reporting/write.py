@@ -1,5 +1,7 @@
 """Writing a report to disk: one self-contained HTML file, or Markdown with SVG files
-beside it (linked relatively, so the folder can be moved or committed as it is).
+beside it (linked relatively, so the folder can be moved or committed as it is); a dataset
+report whose run table shows only its first runs also gets ``<name>_runs.csv`` beside it,
+with every run.
 
 An existing file is never overwritten unless the caller says so (``force``): a report is
 often handed in, and regenerating it by accident must not destroy the copy.
@@ -14,6 +16,7 @@ from typing import Any
 from granudb.errors import ValidationError
 from granudb.output_files import write_text
 from granudb.reporting.render import render
+from granudb.reporting.tables import runs_csv
 
 
 def default_name(report: dict[str, Any], fmt: str) -> str:
@@ -48,14 +51,36 @@ def _figure_files(report: dict[str, Any], path: Path, force: bool) -> dict[Path,
         raise ValidationError("--output", str(folder), "is not a folder granudb may write into")
     files = {}
     for figure in report["figures"]:
-        target = folder / f"{figure['id']}.svg"
-        if target.is_symlink():
-            raise ValidationError("--output", str(target), "is a symbolic link")
-        if target.exists() and not force:
-            raise ValidationError("--output", str(target), "exists (use --force to overwrite it)")
+        target = _beside(folder / f"{figure['id']}.svg", force)
         files[target] = '<?xml version="1.0" encoding="utf-8"?>\n' + figure["svg"]
         figure["file"] = f"{folder.name}/{figure['id']}.svg"
     return files
+
+
+def _beside(target: Path, force: bool) -> Path:
+    """A file written beside the report, refused as the report is: a symbolic link, or an
+    existing file without ``force``."""
+    if target.is_symlink():
+        raise ValidationError("--output", str(target), "is a symbolic link")
+    if target.exists() and not force:
+        raise ValidationError("--output", str(target), "exists (use --force to overwrite it)")
+    return target
+
+
+def _runs_file(report: dict[str, Any], path: Path, force: bool) -> dict[Path, str]:
+    """The CSV of every run beside a report whose run table shows only the first runs. An
+    existing CSV with exactly these rows (the HTML and the Markdown report of the same
+    runs share it) is kept as it is."""
+    runs = report.get("runs")
+    if not runs or runs["count"] <= runs["limit"]:
+        return {}
+    target = path.with_name(path.stem + "_runs.csv")
+    text = runs_csv(runs["frame"])
+    runs["file"] = target.name
+    unchanged = target.is_file() and not target.is_symlink() and target.read_text("utf-8") == text
+    if unchanged and not force:
+        return {}
+    return {_beside(target, force): text}
 
 
 def write_report(
@@ -72,9 +97,10 @@ def write_report(
         path = path / default_name(report, fmt)
     check_output(path, force=force)
     figures = _figure_files(report, path, force) if fmt == "md" else {}
+    beside = _runs_file(report, path, force)
     text = render(report, fmt)
     if figures:
         next(iter(figures)).parent.mkdir(exist_ok=True)
-    for target, svg in figures.items():
-        write_text(target, svg, replace=force, field="--output")
+    for target, content in {**figures, **beside}.items():
+        write_text(target, content, replace=force, field="--output")
     return write_text(path, text, replace=force, field="--output")

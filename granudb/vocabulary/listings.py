@@ -65,6 +65,21 @@ COLLISION_WIDE = [
 #: What a read of stored collisions selects by: names (case-insensitive), ``fluid``
 #: "dry" for dry runs (``granudb.db.collision_queries``).
 STORED_FILTERS = ("dataset", "version", "particle", "wall", "fluid")
+#: A dataset report's table of its runs (and the CSV beside it): what a reader needs to
+#: check the figures and fits run by run, with each run's Walton branch and assumptions.
+REPORT_RUN_COLUMNS = [
+    "run",
+    "particle",
+    "wall",
+    "fluid",
+    "v_n_in_m_s",
+    "effective_incidence",
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_rebound",
+    "walton_branch",
+    "derivation_note",
+]
 #: A dataset in ``granudb dataset list`` (and ``granudb.datasets()``).
 DATASET_COLUMNS = ["name", "version", "state", "title", "runs", "content_hash", "license", "source"]
 #: The descriptive fields a dataset's record starts with, as stored (``dataset show`` and
@@ -105,8 +120,7 @@ FIT_NARROW = {
         "ambient_viscosity_pa_s",
         "gap_temperature_c",
         "n_runs",
-        "reason",
-        "note",
+        "reason",  # its older name "note" (the same text) only in --wide
     ],
 }
 

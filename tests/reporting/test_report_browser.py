@@ -31,8 +31,9 @@ window.addEventListener('load', () => {
   const frame = document.getElementById('report'), win = frame.contentWindow;
   const doc = frame.contentDocument, vw = win.innerWidth;
   const out = {vw, doc: doc.documentElement.scrollWidth, over: [], figures: [],
-               narrowest: Math.min(...[...doc.querySelectorAll('td')].map(
-                 td => td.getBoundingClientRect().width))};
+               narrowest: Math.min(...[...doc.querySelectorAll('td')]
+                 .filter(td => td.getClientRects().length)  // a closed <details> hides its rows
+                 .map(td => td.getBoundingClientRect().width))};
   for (const el of doc.body.querySelectorAll('*')) {
     const r = el.getBoundingClientRect();
     if (r.right > vw + 1 && !el.closest('.scroll'))
