@@ -232,6 +232,20 @@ def decide_blocks(runs: Sorted, w: np.ndarray) -> core.Decision:
     return core.decision(model, k, bic, line, (n_stick, distinct - n_stick), (mean, mean_se))
 
 
+def batches(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resamples: int, seed: int):
+    """Yield (counts, decision) per batch of resamples: the (m, padded runs) draw counts
+    (reused by the next batch: use them before asking for it) and their fits."""
+    runs = Sorted(x, y, c, e)
+    size = runs.blocks * BLOCK_RUNS
+    rng = np.random.default_rng(seed)
+    batch = max(1, BATCH_CELLS // size)
+    weights = np.zeros((min(batch, resamples), size))  # reused by every batch
+    for start in range(0, resamples, batch):
+        m = min(batch, resamples - start)
+        counts = draw_counts(rng, m, runs.n, size, weights)
+        yield counts, decide_blocks(runs, counts)
+
+
 def bootstrap(
     x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resamples: int, seed: int
 ) -> core.Decision:
@@ -239,14 +253,6 @@ def bootstrap(
 
     Deterministic for a given (data, resamples, seed).
     """
-    runs = Sorted(x, y, c, e)
-    size = runs.blocks * BLOCK_RUNS
-    rng = np.random.default_rng(seed)
-    batch = max(1, BATCH_CELLS // size)
-    parts = []
-    weights = np.zeros((min(batch, resamples), size))  # reused by every batch
-    for start in range(0, resamples, batch):
-        m = min(batch, resamples - start)
-        parts.append(decide_blocks(runs, draw_counts(rng, m, runs.n, size, weights)))
+    parts = [decision for _, decision in batches(x, y, c, e, resamples, seed)]
     fields = core.Decision.__dataclass_fields__
     return core.Decision(*(np.concatenate([getattr(p, f) for p in parts]) for f in fields))
