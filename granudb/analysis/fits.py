@@ -9,7 +9,8 @@ groups the runs and names the results.
 Walton fit: runs folded by the sign of v_T,in, three models (all sticking, all sliding,
 split) chosen by BIC (see ``granudb.analysis.walton``), β only from a sticking line and μ_f
 only from a sliding line of at least three runs, and bootstrap percentile intervals over
-runs (model and split re-decided in every resample).
+runs (model and split re-decided in every resample) made studentized
+(``granudb.analysis.intervals``).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from granudb.analysis import intervals
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
@@ -57,15 +59,16 @@ WALTON_KEYS = {
     "n_sticking, n_sliding": "runs on each line of the chosen model",
     "split_effective_incidence": "folded Ψ_in of the first sliding run of a split, else NaN",
     "rotational_restitution": "β from the sticking line (NaN unless it has ≥ 3 runs)",
-    "rotational_restitution_low, _high": "bootstrap percentile interval of β",
-    "rotational_restitution_stderr": "bootstrap standard deviation of β",
+    "rotational_restitution_low, _high": "studentized bootstrap interval of β (NaN, with the "
+    "reason, below MIN_RUNS_FOR_INTERVAL runs on the line or when the bootstrap is degenerate)",
+    "rotational_restitution_stderr": "least-squares standard error of β on its line",
     "rotational_restitution_determined": "share of resamples in which β was determined",
     "sliding_friction": "μ_f from the sliding line (NaN unless it has ≥ 3 runs)",
     "sliding_friction_low, _high, _stderr, _determined": "as for β",
     "sliding_friction_lower_bound": "all sticking: μ_f ≥ (1+β)Ψ_in/((1+e)B) at the largest "
     "Ψ_in (2.10): a bound, not a value",
     "normal_restitution_mean": "ē over all runs of the group",
-    "normal_restitution_low, _high": "bootstrap percentile interval of ē",
+    "normal_restitution_low, _high": "studentized bootstrap interval of ē",
     "normal_restitution_std": "standard deviation of e over the runs",
     "walton_factor": "mean B used (7/2 unless the frame has walton_factor)",
     "confidence_level, bootstrap_resamples, bootstrap_seed": "how the intervals were made",
@@ -122,16 +125,28 @@ def _groups(frame: Any) -> Any:
     return group_frames(frame, GROUP, runs, fill={"fluid": "dry"})
 
 
-def _interval(row: dict, name: str, values: np.ndarray, point: float) -> None:
-    low, high, share = core.percentile_interval(values, CONFIDENCE_LEVEL)
-    determined = not math.isnan(point)
-    row[f"{name}_low"] = low if determined else math.nan
-    row[f"{name}_high"] = high if determined else math.nan
-    finite = values[np.isfinite(values)]
-    row[f"{name}_stderr"] = (
-        float(np.std(finite, ddof=1)) if determined and finite.size > 1 else math.nan
-    )
-    row[f"{name}_determined"] = share
+#: Physical range of each Walton parameter (the interval is clipped to it).
+BOUNDS = {
+    "rotational_restitution": core.BETA_BOUNDS,
+    "sliding_friction": (0.0, math.inf),
+    "normal_restitution": (0.0, math.inf),
+}
+#: Runs on a line (β, μ_f) or in the group (ē) below which no interval is given: with three
+#: runs the line's standard error has one or two degrees of freedom and the bootstrap-t
+#: pivot is erratic (measured in benchmarks/fit_coverage.py).
+MIN_RUNS_FOR_INTERVAL = 4
+
+
+def _interval(row: dict, name: str, values: tuple, point: tuple, runs: int) -> str:
+    """Put the bootstrap-t interval of ``name`` into ``row``; the reason when there is none."""
+    found = intervals.studentized(*point, *values, bounds=BOUNDS[name], level=CONFIDENCE_LEVEL)
+    refused = intervals.too_few(runs, MIN_RUNS_FOR_INTERVAL) if math.isfinite(point[0]) else ""
+    reason = refused or found.reason
+    row[f"{name}_low"] = math.nan if reason else found.low
+    row[f"{name}_high"] = math.nan if reason else found.high
+    row[f"{name}_stderr"] = point[1] if math.isfinite(point[0]) else math.nan
+    row[f"{name}_determined"] = found.determined
+    return reason if math.isfinite(point[0]) else ""
 
 
 def _reason(model: str, n_stick: int, n_slide: int) -> str:
@@ -188,18 +203,28 @@ def _walton_group(key: tuple, group: Any, asked: int | None, seed: int) -> dict[
     row.update(n_sticking=k, n_sliding=n - k)
     row["split_effective_incidence"] = float(x[k]) if model == "split" else math.nan
     row["rotational_restitution"] = float(fit.beta[0])
-    _interval(row, "rotational_restitution", boot.beta, row["rotational_restitution"])
+    beta = (float(fit.beta[0]), float(fit.beta_se[0]))
+    why_beta = _interval(row, "rotational_restitution", (boot.beta, boot.beta_se), beta, k)
     row["sliding_friction"] = float(fit.friction[0])
-    _interval(row, "sliding_friction", boot.friction, row["sliding_friction"])
+    friction = (float(fit.friction[0]), float(fit.friction_se[0]))
+    why_mu = _interval(row, "sliding_friction", (boot.friction, boot.friction_se), friction, n - k)
     bound = math.nan
     if model == "sticking" and not math.isnan(row["rotational_restitution"]):
         bound = float((1 + row["rotational_restitution"]) * x[-1] / c[-1])
     row["sliding_friction_lower_bound"] = bound
     row["normal_restitution_mean"] = float(np.mean(e))
-    low, high, _ = core.percentile_interval(boot.restitution, CONFIDENCE_LEVEL)
-    row.update(normal_restitution_low=low, normal_restitution_high=high)
+    mean = (float(fit.restitution[0]), float(fit.restitution_se[0]))
+    ranges = {}
+    why_e = _interval(
+        ranges, "normal_restitution", (boot.restitution, boot.restitution_se), mean, n
+    )
+    row.update(normal_restitution_low=ranges["normal_restitution_low"])
+    row.update(normal_restitution_high=ranges["normal_restitution_high"])
     row["normal_restitution_std"] = float(np.std(e, ddof=1))
-    row["reason"] = _reason(model, k, n - k)
+    said = [
+        f"{symbol} {why}" for symbol, why in (("β", why_beta), ("μ_f", why_mu), ("ē", why_e)) if why
+    ]
+    row["reason"] = "; ".join([p for p in [_reason(model, k, n - k), *said] if p])
     return row
 
 

@@ -6,6 +6,12 @@ their mean e is the measured dry limit and is used (fixed) instead of being fitt
 the result says which. The threshold form's St_c is the *fitted* no-rebound threshold of
 these runs, named ``fitted_critical_stokes``: it is not the default St_c of the rebound
 verdict. Every empty fit says why in ``reason``.
+
+Intervals: a studentized bootstrap over runs (``granudb.analysis.intervals``): each
+resample is refitted by Gauss–Newton steps from the fit (vectorised over resamples, a step
+halved until the sum of squares falls; the threshold form's runs below St_c drop out of
+the Jacobian), and its standard error is √diag((JᵀWJ)⁻¹ S/(n−p)). The asymptotic
+± 1.96 se alone covered the threshold 75 % of the time at n = 5 and 82 % at n = 24.
 """
 
 from __future__ import annotations
@@ -15,6 +21,8 @@ from typing import Any
 
 import numpy as np
 
+from granudb.analysis import intervals
+from granudb.analysis import walton_bootstrap as resampling
 from granudb.errors import ValidationError
 from granudb.lazy import scipy_optimize
 
@@ -34,6 +42,13 @@ PARAMETER_NAMES = {"threshold": "fitted_critical_stokes", "exponential": "k"}
 #: The form fitted when none is named: Legendre et al.'s, the form of the prediction.
 DEFAULT_MODEL = "exponential"
 E_DRY_MAX = 1.0
+SEED = 0
+#: Fewer runs than this give no interval (measured in benchmarks/fit_coverage.py).
+MIN_RUNS_FOR_INTERVAL = 5
+#: Gauss–Newton iterations of each resample's refit (it starts at the fit).
+ITERATIONS = 30
+#: ... or until no resample's parameters move by more than this (relative).
+TOLERANCE = 1e-7
 _INPUTS = ["dataset", "particle", "wall", "fluid", "normal_stokes_number", "normal_restitution"]
 
 
@@ -171,8 +186,101 @@ def _fit(model: str, st: np.ndarray, e: np.ndarray, e_dry: float | None) -> tupl
     return e_dry, math.nan, float(values[0]), float(np.sqrt(covariance[0, 0]))
 
 
+def _curve(model: str, u: np.ndarray, a: np.ndarray, p: np.ndarray) -> tuple:
+    """(f, ∂f/∂e_dry, ∂f/∂parameter) at 1/St_n = ``u`` (n,) for columns ``a``, ``p`` (m, 1)."""
+    if model == "threshold":
+        active = u * p < 1.0
+        slope = np.where(active, 1.0 - p * u, 0.0)
+        return a * slope, slope, np.where(active, -a * u, 0.0)
+    decay = np.exp(-p * u)
+    return a * decay, decay, -a * u * decay
+
+
+def refit(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple, fixed: bool):
+    """Weighted least-squares fits, one per row of the weights ``w`` (m, n), by damped
+    Gauss–Newton from ``start`` = (e_dry, parameter) within 0 ≤ e_dry ≤ 1, parameter ≥ 0
+    (e_dry held when ``fixed``): ((e_dry, se), (parameter, se)), arrays of shape (m,)."""
+    u = 1.0 / np.asarray(st, dtype=float)
+    m = len(w)
+    a = np.full((m, 1), float(start[0]))
+    p = np.full((m, 1), float(start[1]))
+
+    def sse(a, p):
+        return np.einsum("ij,ij->i", w, (e - _curve(model, u, a, p)[0]) ** 2)
+
+    current = sse(a, p)
+    for _ in range(ITERATIONS):
+        f, ja, jp = _curve(model, u, a, p)
+        r = e - f
+        wjp = w * jp
+        gp, pp = np.einsum("ij,ij->i", wjp, r), np.einsum("ij,ij->i", wjp, jp)
+        if fixed:
+            with np.errstate(invalid="ignore", divide="ignore"):
+                da, dp = np.zeros(m), np.where(pp > 0, gp / pp, 0.0)
+        else:
+            ga = np.einsum("ij,ij->i", w * ja, r)
+            aa, ap = np.einsum("ij,ij->i", w * ja, ja), np.einsum("ij,ij->i", w * ja, jp)
+            det = aa * pp - ap * ap
+            with np.errstate(invalid="ignore", divide="ignore"):
+                da = np.where(det > 0, (pp * ga - ap * gp) / det, 0.0)
+                dp = np.where(det > 0, (aa * gp - ap * ga) / det, 0.0)
+        step = np.ones(m)
+        moved = np.zeros(m, dtype=bool)
+        for _ in range(8):  # halve until the sum of squares falls
+            ta = np.clip(a[:, 0] + step * da, 0.0, E_DRY_MAX)[:, None]
+            tp = np.maximum(p[:, 0] + step * dp, 0.0)[:, None]
+            trial = sse(ta, tp)
+            better = (trial < current) & ~moved
+            a[better], p[better], current[better] = ta[better], tp[better], trial[better]
+            moved |= better
+            step = np.where(moved, step, step / 2)
+            if moved.all():
+                break
+        change = np.abs(step * dp) / np.maximum(p[:, 0], 1e-300) + np.abs(step * da)
+        if not moved.any() or np.max(np.where(moved, change, 0.0)) < TOLERANCE:
+            break
+    f, ja, jp = _curve(model, u, a, p)
+    count = w.sum(axis=1)
+    dof = count - (1 if fixed else 2)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        scale = np.where(dof > 0, current / dof, np.nan)
+        pp = np.einsum("ij,ij->i", w * jp, jp)
+        if fixed:
+            a_se, p_se = np.full(m, np.nan), np.sqrt(scale / pp)
+        else:
+            aa, ap = np.einsum("ij,ij->i", w * ja, ja), np.einsum("ij,ij->i", w * ja, jp)
+            det = aa * pp - ap * ap
+            a_se, p_se = np.sqrt(scale * pp / det), np.sqrt(scale * aa / det)
+    return (a[:, 0], a_se), (p[:, 0], p_se)
+
+
+def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
+                        resamples: int, seed: int) -> dict[str, intervals.Interval]:  # fmt: skip
+    """Studentized bootstrap intervals of e_dry (unless ``fixed``) and the parameter, from
+    ``fit`` = (e_dry, e_dry_se, parameter, parameter_se)."""
+    n = len(st)
+    rng = np.random.default_rng(seed)
+    batch = max(1, resampling.BATCH_CELLS // (8 * n))
+    parts = []
+    for start in range(0, resamples, batch):
+        w = resampling.draw_counts(rng, min(batch, resamples - start), n, n)
+        parts.append(refit(model, st, e, w, (fit[0], fit[2]), fixed))
+    (a, a_se), (p, p_se) = (
+        tuple(np.concatenate([part[i][j] for part in parts]) for j in range(2)) for i in range(2)
+    )
+    found = {"parameter": intervals.studentized(fit[2], fit[3], p, p_se, bounds=(0.0, math.inf))}
+    if not fixed:
+        found["e_dry"] = intervals.studentized(fit[0], fit[1], a, a_se, bounds=(0.0, E_DRY_MAX))
+    return found
+
+
 def _group_row(
-    model: str, key: tuple, st: np.ndarray, e: np.ndarray, dry_e: np.ndarray
+    model: str,
+    key: tuple,
+    st: np.ndarray,
+    e: np.ndarray,
+    dry_e: np.ndarray,
+    resamples: int | None = None,
 ) -> dict[str, Any]:
     fixed = float(min(np.mean(dry_e), E_DRY_MAX)) if dry_e.size else None
     row: dict[str, Any] = {
@@ -194,6 +302,16 @@ def _group_row(
         "parameter_name": PARAMETER_NAMES[model],
         "parameter": math.nan,
         "parameter_stderr": math.nan,
+        "parameter_low": math.nan,
+        "parameter_high": math.nan,
+        "e_dry_low": math.nan,
+        "e_dry_high": math.nan,
+        "interval_method": intervals.METHOD,
+        "bootstrap_resamples": resampling.resample_count(len(st))
+        if resamples is None
+        else resamples,
+        "bootstrap_seed": SEED,
+        "interval_reason": "",
         "stokes_number": "St_n = ρ_p v_n,in 2R / (9μ) of the particle (as stored)",
         "reason": "",
     }
@@ -212,9 +330,29 @@ def _group_row(
             row["parameter_stderr"] = parameter_se
         except (RuntimeError, ValueError) as exc:
             row["reason"] = f"least squares did not converge ({type(exc).__name__})"
+        else:
+            _intervals(row, model, st, e, fixed is not None)
     if model == "threshold":
         row["fitted_critical_stokes"] = row["parameter"]
     return row
+
+
+def _intervals(row: dict, model: str, st: np.ndarray, e: np.ndarray, fixed: bool) -> None:
+    """The bootstrap-t intervals into ``row``, or why there are none (``interval_reason``)."""
+    refused = intervals.too_few(len(st), MIN_RUNS_FOR_INTERVAL)
+    if refused:
+        row["interval_reason"] = refused
+        return
+    fit = (row["e_dry"], row["e_dry_stderr"], row["parameter"], row["parameter_stderr"])
+    found = bootstrap_intervals(model, st, e, fit, fixed, row["bootstrap_resamples"], SEED)
+    reasons = []
+    for name, got in found.items():
+        row[f"{name}_low"], row[f"{name}_high"] = got.low, got.high
+        if got.reason:
+            reasons.append(
+                f"{PARAMETER_NAMES[model] if name == 'parameter' else name}: {got.reason}"
+            )
+    row["interval_reason"] = "; ".join(reasons)
 
 
 def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
@@ -225,6 +363,9 @@ def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
     ``n_dry_runs``; ``e_dry`` (≤ 1) with ``e_dry_stderr`` (asymptotic, NaN when fixed) and
     ``e_dry_source`` (fitted, or the dry runs' mean); ``parameter_name``
     ('fitted_critical_stokes' or 'k'), ``parameter``, ``parameter_stderr`` (asymptotic);
+    ``parameter_low``/``_high`` and ``e_dry_low``/``_high``: studentized bootstrap intervals
+    (``interval_method``, ``bootstrap_resamples``, ``bootstrap_seed``; NaN with
+    ``interval_reason`` below MIN_RUNS_FOR_INTERVAL runs or when degenerate);
     ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
     ``reason`` (why the fit is empty, else '').
     """

@@ -9,10 +9,19 @@ models compete:
 - ``sliding``: every run on Ψ_out = Ψ_in − μ_f c_i with c_i = (1+e_i) B_i (slope one);
 - ``split``: runs [0, k) stick and [k, n) slide, k chosen by least squares.
 
-The lines are fitted by least squares within the physical bounds 0 ≤ β ≤ 1 (a run that
-sticks has its contact point stopped or reversed: β < 0 means it slipped, Joseph & Hunt
-(2.8)) and μ_f ≥ 0; without them a "sticking" line of negative β fits sliding runs whose μ_f
-varies with speed (lubricated runs) and wins. Each model's residual sum of squares S
+The lines are fitted by least squares within Walton's bounds −1 ≤ β ≤ 1 (Maw, Barber &
+Fawcett 1976; Walton 1993: β = −1 is a smooth sphere, β = 1 a perfectly rough one) and
+μ_f ≥ 0. A sticking line of *negative* β (the contact point keeps part of its speed) is a
+line through the origin of slope −β > 0, and sliding runs whose μ_f varies with speed
+(lubricated runs) lie near such a line too: they are a line of slope < 1 that misses the
+origin, or a cloud whose best line through the origin has a positive slope. So a sticking
+line with β < 0 is refused (that model's BIC set to infinity) unless it is a line through
+the origin that describes its runs: refused when a free line y = a + bx fits them better
+by a likelihood ratio n ln(S₀/S₁) above ``ORIGIN_TEST`` (χ²₁ at 0.999), or when it leaves
+more than ``UNEXPLAINED_MAX`` of ΣΨ_out² unexplained (lubricated sliding runs leave 0.19 to
+0.37; sticking runs with β = −0.15 and scatter 0.01 leave 0.01 to 0.03, with scatter 0.03
+0.07 to 0.25: a stated prior that negative β needs clean data). A line of β ≥ 0 cannot
+mimic the sliding line (its Ψ_out ≤ 0) and is never tested. Each model's residual sum of squares S
 gives, with a common Gaussian scatter, the Bayesian information criterion
 BIC = n ln(S/n) + p ln n with p = 2 (sticking: β, σ), 2 (sliding: μ_f, σ) and 4
 (split: β, μ_f, the split point k, σ). BIC rather than AIC because its
@@ -45,6 +54,13 @@ PARAMETER_COUNT = {"sticking": 2, "sliding": 2, "split": 4}
 #: sits above the rounding of sums over n runs (~1e-16 √n of Σy²), so that residuals at the
 #: level of rounding compare as equal, whatever order the sums were added in.
 SSE_FLOOR = 1e-12
+#: Walton's range of the tangential restitution β.
+BETA_BOUNDS = (-1.0, 1.0)
+#: A sticking line of β < 0 is refused when n ln(S_origin/S_free) exceeds this: the 0.999
+#: point of χ² with one degree of freedom (the free line's intercept).
+ORIGIN_TEST = 10.83
+#: A sticking line of β < 0 is refused when S/ΣΨ_out² of its runs exceeds this.
+UNEXPLAINED_MAX = 0.1
 
 
 def fold(psi_in: np.ndarray, psi_out: np.ndarray, v_t_in: np.ndarray) -> tuple:
@@ -63,6 +79,42 @@ class Decision:
     friction: np.ndarray  # NaN where the chosen model has no sliding line of ≥ 3 runs
     restitution: np.ndarray  # weighted mean e
     bic: np.ndarray  # shape (m, 3): BIC of sticking, sliding, split
+    beta_se: np.ndarray  # least-squares standard error of β on its line (NaN as β)
+    friction_se: np.ndarray  # of μ_f on its line
+    restitution_se: np.ndarray  # of ē: s/√n
+
+
+def lines(sxx, sxy, syy, tcc, tdc, tdd) -> tuple:
+    """(S_stick, S_slide, β, μ_f) of each line's bounded least squares from its sums: the
+    sticking line Ψ_out = −βΨ_in (sums of x², xy, y²) and the sliding line
+    d = Ψ_in − Ψ_out = μ_f c (sums of c², dc, d²)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        beta = np.clip(np.where(sxx > 0, -sxy / sxx, 0.0), *BETA_BOUNDS)
+        friction = np.maximum(np.where(tcc > 0, tdc / tcc, 0.0), 0.0)
+    # S(β) = Σy² + 2βΣxy + β²Σx² at the bounded β; S(μ) = Σd² − 2μΣdc + μ²Σc²
+    stick = syy + 2 * beta * sxy + beta**2 * sxx
+    slide = tdd - 2 * friction * tdc + friction**2 * tcc
+    return stick, slide, beta, friction
+
+
+def misses_origin(sums: tuple, beta: np.ndarray, stick: np.ndarray, scale: np.ndarray):
+    """True where a sticking line of β < 0 is refused (see ``ORIGIN_TEST``): ``sums`` are
+    (count, Σx, Σy, Σx², Σxy, Σy²) of its runs, ``stick`` its residual sum of squares."""
+    count, sx, sy, sxx, sxy, syy = sums
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cxx, cxy = sxx - sx * sx / count, sxy - sx * sy / count
+        free = syy - sy * sy / count - np.where(cxx > 0, cxy * cxy / cxx, 0.0)
+        ratio = count * np.log(np.maximum(stick, scale) / np.maximum(free, scale))
+    unexplained = stick > UNEXPLAINED_MAX * syy
+    return (beta < 0) & (count >= MIN_RUNS_FOR_PARAMETER) & ((ratio > ORIGIN_TEST) | unexplained)
+
+
+def standard_error(sse: np.ndarray, count: np.ndarray, sum_squares: np.ndarray) -> np.ndarray:
+    """√(S/(n−1)/Σu²): the least-squares standard error of a one-parameter line through the
+    origin (NaN with fewer than two runs or no spread)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        value = np.sqrt(np.maximum(sse, 0.0) / (count - 1) / sum_squares)
+    return np.where((count > 1) & (sum_squares > 0), value, np.nan)
 
 
 def _prefix(weights: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -86,12 +138,7 @@ def decide(weights: np.ndarray, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: 
     count = _prefix(w, np.ones(n))
     distinct = _prefix((w > 0).astype(float), np.ones(n))
     tcc, tdc, tdd = scc[:, -1:] - scc, sdc[:, -1:] - sdc, sdd[:, -1:] - sdd
-    with np.errstate(invalid="ignore", divide="ignore"):
-        beta_all = np.clip(np.where(sxx > 0, -sxy / sxx, 0.0), 0.0, 1.0)
-        friction_all = np.maximum(np.where(tcc > 0, tdc / tcc, 0.0), 0.0)
-    # S(β) = Σy² + 2βΣxy + β²Σx² at the bounded β; S(μ) = Σd² − 2μΣdc + μ²Σc²
-    stick = syy + 2 * beta_all * sxy + beta_all**2 * sxx
-    slide = tdd - 2 * friction_all * tdc + friction_all**2 * tcc
+    stick, slide, beta_all, friction_all = lines(sxx, sxy, syy, tcc, tdc, tdd)
     total = np.maximum(stick + slide, 0.0)
     runs = count[:, -1]
     scale = np.maximum(syy[:, -1] + sdd[:, -1], 1e-300) * SSE_FLOOR
@@ -110,6 +157,11 @@ def decide(weights: np.ndarray, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: 
     with np.errstate(divide="ignore", invalid="ignore"):
         bic = runs[:, None] * np.log(np.maximum(sse, scale[:, None]) / runs[:, None]) + penalty
     bic[:, 2] = np.where(has_split, bic[:, 2], np.inf)
+    sx, sy = _prefix(w, x), _prefix(w, y)
+    for column, at in ((0, np.full(m, n)), (2, split)):
+        sums = tuple(s[rows, at] for s in (count, sx, sy, sxx, sxy, syy))
+        refused = misses_origin(sums, beta_all[rows, at], stick[rows, at], scale)
+        bic[refused, column] = np.inf
     model = np.argmin(bic, axis=1)  # argmin keeps the first (simpler) model on a tie
     k_chosen = np.select([model == 0, model == 1], [n, 0], split)
     n_stick = distinct[rows, k_chosen]
@@ -117,9 +169,33 @@ def decide(weights: np.ndarray, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: 
     beta = beta_all[rows, k_chosen]
     friction = friction_all[rows, k_chosen]
     restitution = (w @ e) / runs
-    beta = np.where(n_stick >= MIN_RUNS_FOR_PARAMETER, beta, np.nan)
-    friction = np.where(n_slide >= MIN_RUNS_FOR_PARAMETER, friction, np.nan)
-    return Decision(model, k_chosen, beta, friction, restitution, bic)
+    beta_se = standard_error(stick[rows, k_chosen], count[rows, k_chosen], sxx[rows, k_chosen])
+    slid = runs - count[rows, k_chosen]
+    friction_se = standard_error(slide[rows, k_chosen], slid, tcc[rows, k_chosen])
+    spread = np.maximum((w @ (e * e)) - runs * restitution**2, 0.0)
+    restitution_se = standard_error(spread, runs, runs)
+    lines_ = (beta, beta_se, friction, friction_se)
+    return decision(model, k_chosen, bic, lines_, (n_stick, n_slide), (restitution, restitution_se))
+
+
+def decision(model, split, bic, line: tuple, distinct: tuple, mean: tuple) -> Decision:
+    """The Decision, β (and its standard error) NaN where the sticking line has fewer than
+    MIN_RUNS_FOR_PARAMETER distinct runs, μ_f where the sliding line has: ``line`` is
+    (β, se, μ_f, se), ``distinct`` (sticking, sliding) distinct runs, ``mean`` (ē, se)."""
+    beta, beta_se, friction, friction_se = line
+    ok_beta = distinct[0] >= MIN_RUNS_FOR_PARAMETER
+    ok_friction = distinct[1] >= MIN_RUNS_FOR_PARAMETER
+    return Decision(
+        model,
+        split,
+        np.where(ok_beta, beta, np.nan),
+        np.where(ok_friction, friction, np.nan),
+        mean[0],
+        bic,
+        np.where(ok_beta, beta_se, np.nan),
+        np.where(ok_friction, friction_se, np.nan),
+        mean[1],
+    )
 
 
 def percentile_interval(values: np.ndarray, level: float) -> tuple[float, float, float]:

@@ -3,8 +3,9 @@ docs/physics.md §14).
 
 Why this shape. Each resample draws n runs with replacement (integer weights on the runs,
 which are sorted once by the folded Ψ_in) and re-decides the model and the split exactly as
-``walton.decide`` does: the same three models, bounds 0 ≤ β ≤ 1 and μ_f ≥ 0, minimum runs
-per line and BIC. ``decide`` evaluates the split's residual sum of squares at every k from
+``walton.decide`` does: the same three models, bounds −1 ≤ β ≤ 1 and μ_f ≥ 0, minimum runs
+per line, BIC and the tests of a sticking line with β < 0. ``decide`` evaluates the
+split's residual sum of squares at every k from
 prefix sums of eight series: about thirty passes over a (resamples × runs) array. Here the
 same minimum is found from a few passes:
 
@@ -48,8 +49,9 @@ BLOCK_RUNS = 128
 BATCH_CELLS = 1 << 21
 #: Candidate blocks × BLOCK_RUNS per refinement chunk.
 REFINE_CELLS = 1 << 17
-# series: x², xy, y², c², dc, d², e (d = x − y)
-XX, XY, YY, CC, DC, DD, EE = range(7)
+# series: x², xy, y², c², dc, d², e, e², x, y, 1 (d = x − y)
+SERIES = 11
+XX, XY, YY, CC, DC, DD, EE, E2, X, Y, ONE = range(SERIES)
 
 
 def resample_count(n: int) -> int:
@@ -60,16 +62,9 @@ def resample_count(n: int) -> int:
 
 
 def _parts(p: np.ndarray, full: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, ...]:
-    """(S_stick, S_slide, β, μ_f) at prefix sums ``p`` (..., 7) given the totals ``full``."""
-    sxx, sxy, syy = p[..., XX], p[..., XY], p[..., YY]
-    tcc, tdc = full[..., CC] - p[..., CC], full[..., DC] - p[..., DC]
-    tdd = full[..., DD] - p[..., DD]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        beta = np.clip(np.where(sxx > 0, -sxy / sxx, 0.0), 0.0, 1.0)
-        friction = np.maximum(np.where(tcc > 0, tdc / tcc, 0.0), 0.0)
-    stick = syy + 2 * beta * sxy + beta**2 * sxx
-    slide = tdd - 2 * friction * tdc + friction**2 * tcc
-    return stick, slide, beta, friction
+    """(S_stick, S_slide, β, μ_f) at prefix sums ``p`` (..., SERIES) given the totals."""
+    rest = full[..., CC] - p[..., CC], full[..., DC] - p[..., DC], full[..., DD] - p[..., DD]
+    return core.lines(p[..., XX], p[..., XY], p[..., YY], *rest)
 
 
 class Sorted:
@@ -80,12 +75,13 @@ class Sorted:
         self.blocks = max(1, -(-self.n // BLOCK_RUNS))
         size = self.blocks * BLOCK_RUNS
         d = x - y
-        # (blocks, BLOCK_RUNS, 7): each block's runs × series, for the batched product,
-        # filled in place (no second copy of a third of a million runs × 7)
-        series = np.zeros((size, 7))
-        for i, values in enumerate((x * x, x * y, y * y, c * c, d * c, d * d, e)):
+        # (blocks, BLOCK_RUNS, SERIES): each block's runs × series, for the batched
+        # product, filled in place (no second copy of a third of a million runs × SERIES)
+        series = np.zeros((size, SERIES))
+        columns = (x * x, x * y, y * y, c * c, d * c, d * d, e, e * e, x, y, 1.0)
+        for i, values in enumerate(columns):
             series[: self.n, i] = values
-        self.series = series.reshape(self.blocks, BLOCK_RUNS, 7)
+        self.series = series.reshape(self.blocks, BLOCK_RUNS, SERIES)
 
 
 def draw_counts(
@@ -140,7 +136,7 @@ def _refine(
     rows, blocks, lo, hi = pairs
     b = BLOCK_RUNS
     local = w.reshape(len(w), runs.blocks, b)[rows, blocks]  # (P, b)
-    sums = np.empty((len(rows), b + 1, 7))
+    sums = np.empty((len(rows), b + 1, SERIES))
     sums[:, 0] = prefix[rows, blocks]
     np.cumsum(local[:, :, None] * runs.series[blocks], axis=1, out=sums[:, 1:])
     sums[:, 1:] += sums[:, :1]
@@ -157,7 +153,7 @@ def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
     """Exact best split per row: (S at the split, k, prefix sums at k, boundary prefix)."""
     m, b = len(w), BLOCK_RUNS
     blocksums = np.matmul(w.reshape(m, runs.blocks, b).transpose(1, 0, 2), runs.series)
-    prefix = np.zeros((m, runs.blocks + 1, 7))
+    prefix = np.zeros((m, runs.blocks + 1, SERIES))
     np.cumsum(blocksums.transpose(1, 0, 2), axis=1, out=prefix[:, 1:])
     full = prefix[:, -1]
     stick, slide, _, _ = _parts(prefix, full[:, None, :])
@@ -171,7 +167,7 @@ def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
     rows, blocks = np.nonzero(keep)
     value = np.full(m, np.inf)
     split = np.zeros(m, dtype=int)
-    at = np.zeros((m, 7))
+    at = np.zeros((m, SERIES))
     step = max(1, REFINE_CELLS // b)
     for start in range(0, len(rows), step):
         r, j = rows[start : start + step], blocks[start : start + step]
@@ -206,15 +202,48 @@ def decide_blocks(runs: Sorted, w: np.ndarray) -> core.Decision:
             counted[:, None] * np.log(np.maximum(sse, scale[:, None]) / counted[:, None]) + penalty
         )
     bic[:, 2] = np.where(has_split, bic[:, 2], np.inf)
+    stick_split, slide_split, beta_split, friction_split = _parts(at, full)
+    for column, sums, beta, stick in (
+        (0, full, beta_all, stick_all),
+        (2, at, beta_split, stick_split),
+    ):
+        origin = tuple(sums[:, i] for i in (ONE, X, Y, XX, XY, YY))
+        bic[core.misses_origin(origin, beta, stick, scale), column] = np.inf
     model = np.argmin(bic, axis=1)
-    k = np.select([model == 0, model == 1], [n, 0], split)
-    _, _, beta_split, friction_split = _parts(at, full)
+    k = np.select([model == 0, model == 2], [n, split], 0)
     beta = np.select([model == 0, model == 2], [beta_all, beta_split], np.nan)
     friction = np.select([model == 1, model == 2], [friction_none, friction_split], np.nan)
     n_stick = np.array([np.count_nonzero(w[i, : k[i]]) for i in range(m)])
-    beta = np.where(n_stick >= core.MIN_RUNS_FOR_PARAMETER, beta, np.nan)
-    friction = np.where(distinct - n_stick >= core.MIN_RUNS_FOR_PARAMETER, friction, np.nan)
-    return core.Decision(model, k, beta, friction, full[:, EE] / counted, bic)
+    stuck = np.select([model == 0, model == 2], [full[:, ONE], at[:, ONE]], 0.0)
+    beta_se = core.standard_error(
+        np.select([model == 0], [stick_all], stick_split),
+        stuck,
+        np.select([model == 0], [full[:, XX]], at[:, XX]),
+    )
+    friction_se = core.standard_error(
+        np.select([model == 1], [slide_all], slide_split),
+        counted - stuck,
+        full[:, CC] - np.select([model == 2], [at[:, CC]], 0.0),
+    )
+    mean = full[:, EE] / counted
+    spread = np.maximum(full[:, E2] - counted * mean**2, 0.0)
+    line = (beta, beta_se, friction, friction_se)
+    mean_se = core.standard_error(spread, counted, counted)
+    return core.decision(model, k, bic, line, (n_stick, distinct - n_stick), (mean, mean_se))
+
+
+def batches(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resamples: int, seed: int):
+    """Yield (counts, decision) per batch of resamples: the (m, padded runs) draw counts
+    (reused by the next batch: use them before asking for it) and their fits."""
+    runs = Sorted(x, y, c, e)
+    size = runs.blocks * BLOCK_RUNS
+    rng = np.random.default_rng(seed)
+    batch = max(1, BATCH_CELLS // size)
+    weights = np.zeros((min(batch, resamples), size))  # reused by every batch
+    for start in range(0, resamples, batch):
+        m = min(batch, resamples - start)
+        counts = draw_counts(rng, m, runs.n, size, weights)
+        yield counts, decide_blocks(runs, counts)
 
 
 def bootstrap(
@@ -224,14 +253,6 @@ def bootstrap(
 
     Deterministic for a given (data, resamples, seed).
     """
-    runs = Sorted(x, y, c, e)
-    size = runs.blocks * BLOCK_RUNS
-    rng = np.random.default_rng(seed)
-    batch = max(1, BATCH_CELLS // size)
-    parts = []
-    weights = np.zeros((min(batch, resamples), size))  # reused by every batch
-    for start in range(0, resamples, batch):
-        m = min(batch, resamples - start)
-        parts.append(decide_blocks(runs, draw_counts(rng, m, runs.n, size, weights)))
+    parts = [decision for _, decision in batches(x, y, c, e, resamples, seed)]
     fields = core.Decision.__dataclass_fields__
     return core.Decision(*(np.concatenate([getattr(p, f) for p in parts]) for f in fields))

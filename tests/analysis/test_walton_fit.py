@@ -120,3 +120,18 @@ def test_old_keys_carry_the_honest_numbers() -> None:
     assert sum(not math.isnan(f["rotational_restitution"]) for f in sliding) <= 1
     sticking = [one(walton_frame(20, psi_range=STICKING_ONLY, seed=s)) for s in range(20)]
     assert sum(not math.isnan(f["sliding_friction"]) for f in sticking) <= 1
+
+
+def test_negative_beta_all_sticking_gives_beta_and_no_friction() -> None:
+    # issue 23: β was clamped to [0, 1]; with β₀ = −0.15 every run sticks (Ψ_in below the
+    # crossing μ_f(1+e)B/(1+β) ≈ 0.90) and the fit reported a split with μ_f 0.048
+    inside = 0
+    for seed in range(20):
+        frame = walton_frame(30, beta=-0.15, psi_range=(0.02, 0.8), seed=seed)
+        fit = one(frame, resamples=300)
+        assert fit["model"] == "sticking"
+        assert fit["rotational_restitution"] == pytest.approx(-0.15, abs=0.03)
+        assert math.isnan(fit["sliding_friction"]) and math.isnan(fit["sliding_friction_low"])
+        assert "μ_f is not determined" in fit["reason"]
+        inside += fit["rotational_restitution_low"] <= -0.15 <= fit["rotational_restitution_high"]
+    assert inside >= 17

@@ -1,0 +1,97 @@
+"""Bootstrap intervals that hold their coverage where runs are few (issue 23; docs/physics.md,
+"Fit intervals").
+
+Why studentized. The percentile interval of a bootstrap is too narrow for small samples
+(its width shrinks like √((n−1)/n) and it ignores that the spread itself is estimated):
+measured, Walton's μ_f at n = 5 covered the truth 84 % of the time, the asymptotic
+± 1.96 se of the restitution threshold 75 %. The studentized (bootstrap-t) interval
+(Efron & Tibshirani 1993, *An Introduction to the Bootstrap*, §12.5; Davison & Hinkley
+1997, *Bootstrap Methods and their Application*, §5.2.1, eq. 5.7) pivots on
+t* = (θ* − θ̂)/se*: every fit here has a closed-form standard error for each resample (a
+line through the origin: √(S/(n−1)/Σu²); a mean: s/√n; a nonlinear least-squares fit:
+√diag((JᵀJ)⁻¹ S/(n−p))), so the pivot costs a few sums more than the percentile interval.
+The interval is [θ̂ − t*₉₇.₅ se, θ̂ − t*₂.₅ se], clipped to the parameter's physical range.
+
+Never a zero-width interval: a standard error of zero (every run on the line, or one run
+drawn over and over) or bootstrap pivots without spread give "not determined" with the
+reason, as does a parameter determined in fewer than ``MIN_DETERMINED`` of the resamples.
+Below a fit's stated minimum number of runs the interval is refused with
+"not determined: N runs, at least M needed" (``too_few``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+LEVEL = 0.95
+#: A parameter determined in fewer resamples than this share gets no interval.
+MIN_DETERMINED = 0.5
+METHOD = "studentized bootstrap (bootstrap-t) over runs"
+
+
+@dataclass(frozen=True)
+class Interval:
+    """An interval and the share of resamples that determined the parameter; ``reason``
+    is "" when the interval is given, else why not (and low, high are NaN)."""
+
+    low: float
+    high: float
+    determined: float
+    reason: str = ""
+
+
+def too_few(n: int, minimum: int) -> str:
+    """The refusal of a fit below its minimum number of runs ('' when there are enough)."""
+    return f"not determined: {n} runs, at least {minimum} needed" if n < minimum else ""
+
+
+def studentized(
+    point: float,
+    se: float,
+    boot: np.ndarray,
+    boot_se: np.ndarray,
+    *,
+    bounds: tuple[float, float] = (-math.inf, math.inf),
+    level: float = LEVEL,
+) -> Interval:
+    """The bootstrap-t interval of ``point`` (standard error ``se``) from the resamples'
+    estimates ``boot`` and their standard errors ``boot_se`` (NaN where a resample did not
+    determine the parameter), clipped to ``bounds``.
+
+    >>> rng = np.random.default_rng(0)
+    >>> boot = 1.0 + 0.1 * rng.standard_normal(1000)
+    >>> got = studentized(1.0, 0.1, boot, np.full(1000, 0.1))
+    >>> round(got.low, 1), round(got.high, 1), got.reason
+    (0.8, 1.2, '')
+    """
+    boot, boot_se = np.asarray(boot, dtype=float), np.asarray(boot_se, dtype=float)
+    nan = math.nan
+    valid = np.isfinite(boot)
+    share = float(np.mean(valid)) if boot.size else 0.0
+    if not math.isfinite(point):
+        return Interval(nan, nan, share, "not determined by these runs")
+    if not (math.isfinite(se) and se > 0):
+        return Interval(nan, nan, share, "interval not determined: zero standard error")
+    if share < MIN_DETERMINED:
+        return Interval(
+            nan, nan, share, f"interval not determined: determined in {share:.0%} of resamples"
+        )
+    with np.errstate(divide="ignore", invalid="ignore"):
+        pivot = (boot[valid] - point) / boot_se[valid]
+    pivot = pivot[~np.isnan(pivot)]  # 0/0: a resample equal to the fit, without spread
+    if pivot.size == 0 or np.ptp(np.where(np.isfinite(pivot), pivot, 0.0)) == 0:
+        return Interval(nan, nan, share, "interval not determined: the bootstrap is degenerate")
+    tail = 50.0 * (1.0 - level)
+    # order statistics, no interpolation (a pivot may be ±inf: se* = 0 off the estimate)
+    lower_t = np.percentile(pivot, tail, method="lower")
+    upper_t = np.percentile(pivot, 100.0 - tail, method="higher")
+    low = max(point - upper_t * se, bounds[0])
+    high = min(point - lower_t * se, bounds[1])
+    if not (math.isfinite(low) and math.isfinite(high)):
+        return Interval(nan, nan, share, "interval not determined: the bootstrap is unbounded")
+    if not high > low:
+        return Interval(nan, nan, share, "interval not determined: the bootstrap is degenerate")
+    return Interval(float(low), float(high), share)
