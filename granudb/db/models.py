@@ -89,6 +89,14 @@ class Material(Timestamped, Base):
     #: Yield stress Y in tension (Johnson 1985 §11.4: yield starts at p_max = 1.6 Y);
     #: empty where not known or for brittle solids, which crack instead.
     yield_stress_pa: Mapped[float | None] = mapped_column(Float)
+    #: Standard uncertainty of each property (same unit; NULL: not given), ``u_<property>``.
+    u_density_kg_m3: Mapped[float | None] = mapped_column(Float)
+    u_youngs_modulus_pa: Mapped[float | None] = mapped_column(Float)
+    u_poisson_ratio: Mapped[float | None] = mapped_column(Float)
+    u_roughness_rms_m: Mapped[float | None] = mapped_column(Float)
+    u_correlation_length_m: Mapped[float | None] = mapped_column(Float)
+    u_shear_modulus_pa: Mapped[float | None] = mapped_column(Float)
+    u_yield_stress_pa: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     #: Set on a revision: the values this material had when a released dataset used it,
@@ -112,6 +120,32 @@ class Material(Timestamped, Base):
         ),
         CheckConstraint(
             "yield_stress_pa IS NULL OR yield_stress_pa > 0", name="yield_stress_positive"
+        ),
+        CheckConstraint(
+            "u_density_kg_m3 IS NULL OR u_density_kg_m3 >= 0", name="u_density_kg_m3_non_negative"
+        ),
+        CheckConstraint(
+            "u_youngs_modulus_pa IS NULL OR u_youngs_modulus_pa >= 0",
+            name="u_youngs_modulus_pa_non_negative",
+        ),
+        CheckConstraint(
+            "u_poisson_ratio IS NULL OR u_poisson_ratio >= 0", name="u_poisson_ratio_non_negative"
+        ),
+        CheckConstraint(
+            "u_roughness_rms_m IS NULL OR u_roughness_rms_m >= 0",
+            name="u_roughness_rms_m_non_negative",
+        ),
+        CheckConstraint(
+            "u_correlation_length_m IS NULL OR u_correlation_length_m >= 0",
+            name="u_correlation_length_m_non_negative",
+        ),
+        CheckConstraint(
+            "u_shear_modulus_pa IS NULL OR u_shear_modulus_pa >= 0",
+            name="u_shear_modulus_pa_non_negative",
+        ),
+        CheckConstraint(
+            "u_yield_stress_pa IS NULL OR u_yield_stress_pa >= 0",
+            name="u_yield_stress_pa_non_negative",
         ),
     )
 
@@ -137,6 +171,12 @@ class Fluid(Timestamped, Base):
     reference_viscosity_pa_s: Mapped[float] = mapped_column(Float)
     reference_temperature_c: Mapped[float] = mapped_column(Float, default=20.0)
     pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
+    #: Standard uncertainty of each property (same unit; NULL: not given), ``u_<property>``.
+    u_glycerol_mass_fraction: Mapped[float | None] = mapped_column(Float)
+    u_reference_density_kg_m3: Mapped[float | None] = mapped_column(Float)
+    u_reference_viscosity_pa_s: Mapped[float | None] = mapped_column(Float)
+    u_reference_temperature_c: Mapped[float | None] = mapped_column(Float)
+    u_pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     density_source_id: Mapped[int | None] = mapped_column(
@@ -179,6 +219,26 @@ class Fluid(Timestamped, Base):
         CheckConstraint(
             "pressure_viscosity_pa_inv IS NULL OR pressure_viscosity_pa_inv > 0",
             name="pressure_viscosity_positive",
+        ),
+        CheckConstraint(
+            "u_glycerol_mass_fraction IS NULL OR u_glycerol_mass_fraction >= 0",
+            name="u_glycerol_mass_fraction_non_negative",
+        ),
+        CheckConstraint(
+            "u_reference_density_kg_m3 IS NULL OR u_reference_density_kg_m3 >= 0",
+            name="u_reference_density_kg_m3_non_negative",
+        ),
+        CheckConstraint(
+            "u_reference_viscosity_pa_s IS NULL OR u_reference_viscosity_pa_s >= 0",
+            name="u_reference_viscosity_pa_s_non_negative",
+        ),
+        CheckConstraint(
+            "u_reference_temperature_c IS NULL OR u_reference_temperature_c >= 0",
+            name="u_reference_temperature_c_non_negative",
+        ),
+        CheckConstraint(
+            "u_pressure_viscosity_pa_inv IS NULL OR u_pressure_viscosity_pa_inv >= 0",
+            name="u_pressure_viscosity_pa_inv_non_negative",
         ),
     )
 
