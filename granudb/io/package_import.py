@@ -37,7 +37,14 @@ from granudb.io.package_files import (
     safe_relative,
     sha256,
 )
-from granudb.io.package_schema import FOREIGN_KEYS, PRIMARY_KEYS, RESOURCES, check_schema, columns
+from granudb.io.package_schema import (
+    FOREIGN_KEYS,
+    OPTIONAL_TRAILING,
+    PRIMARY_KEYS,
+    RESOURCES,
+    check_schema,
+    columns,
+)
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.rules import RULES
@@ -117,6 +124,10 @@ def _read_table(name: str, path: Path, problems: list[str]) -> Any:
         problems.append(f"{name}: more than {MAX_ROWS} rows")
         return None
     expected = columns(name)
+    trailing = OPTIONAL_TRAILING.get(name, [])
+    if trailing and list(frame.columns) == expected[: len(expected) - len(trailing)]:
+        for column in trailing:  # a package from before the uncertainty columns
+            frame[column] = ""
     if list(frame.columns) != expected:
         missing = [c for c in expected if c not in frame.columns]
         extra = [c for c in frame.columns if c not in expected]

@@ -212,6 +212,7 @@ def derive(
     threads: int | None = None,
     uncertainties: Mapping[str, Numeric] | None = None,
     correlated_materials: Numeric = False,
+    one_speed: Numeric = False,
 ) -> dict[str, np.ndarray]:
     """Derive every derived column (``granudb.vocabulary.DERIVED_TERMS``) for arrays of collisions.
 
@@ -240,20 +241,22 @@ def derive(
     (``granudb.vocabulary.UNCERTAINTY_TERMS``, in column order) and the verdict
     probabilities
     (``granudb.physics.uncertainty``: GUM first order); ``correlated_materials`` true
-    where the particle and the wall are one material (their sources are then one).
+    where the particle and the wall are one material (their sources are then one),
+    ``one_speed`` where v_n and v_t are one measured speed at a set angle (their
+    uncertainties fully correlated).
     """
     given = locals()
     names = list(_INPUTS)
     u_given = _uncertainty_inputs(uncertainties)
     values = [given[name] for name in names] + list(u_given.values())
     if uncertainties is not None:
-        values.append(correlated_materials)
+        values += [correlated_materials, one_speed]
     arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
     x = dict(zip(_INPUTS.values(), arrays, strict=False))
     for index, short in enumerate(u_given):
         x[_U + short] = arrays[len(names) + index]
     if uncertainties is not None:
-        x[_CORRELATED] = arrays[-1]
+        x[_CORRELATED], x[_ONE_SPEED] = arrays[-2], arrays[-1]
     compute = partial(
         _derive_block,
         uncertain=uncertainties is not None,
@@ -292,14 +295,20 @@ def _derive_block(
         u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
         columns.update(
             uncertainty.propagate(
-                x, u, (p, h, f, lub, tan), columns, critical_stokes, x[_CORRELATED] != 0
+                x,
+                u,
+                (p, h, f, lub, tan),
+                columns,
+                critical_stokes,
+                x[_CORRELATED] != 0,
+                x[_ONE_SPEED] != 0,
             )
         )
     return columns
 
 
 #: Prefix of an input's uncertainty among the block's arrays, and the correlation flag.
-_U, _CORRELATED = "u:", "correlated"
+_U, _CORRELATED, _ONE_SPEED = "u:", "correlated", "one speed"
 #: The inputs that may carry a standard uncertainty (``derive``'s ``uncertainties``).
 UNCERTAIN_INPUTS = tuple(name for name, short in _INPUTS.items() if short in uncertainty.SOURCES)
 

@@ -70,8 +70,9 @@ SOURCES: dict[str, bool] = {
     "mu": True,
     "c_barus": True,
 }
-#: The particle's source of each of the wall's: the same source when both are one material.
-_PARTNERS = {"rho2": "rho1", "e2": "e1", "nu2": "nu1", "s2": "s1", "y2": "y1"}
+#: The wall's source of each of the particle's: the same source when both are one material.
+_PARTNERS = {"rho1": "rho2", "e1": "e2", "nu1": "nu2", "s1": "s2", "y1": "y2"}
+_PAIRED = {*_PARTNERS, *_PARTNERS.values(), "vn", "vt"}
 #: Probabilities at or beyond which a verdict is "likely" (either way).
 LIKELY, UNLIKELY = 0.9, 0.1
 
@@ -110,10 +111,15 @@ def scaled_sources(x: Arrays, u: Arrays) -> Arrays:
 
 
 def relative_uncertainty(
-    sens: Sens, scaled: Arrays, correlated: np.ndarray | None = None
+    sens: Sens,
+    scaled: Arrays,
+    correlated: np.ndarray | None = None,
+    one_speed: np.ndarray | None = None,
 ) -> np.ndarray | float:
-    """u(Q)/|Q| = √(Σ (s_k u_k)²), the particle's and the wall's terms of one source added
-    before squaring where ``correlated`` (the same material on both sides).
+    """u(Q)/|Q| = √(Σ (s_k u_k)²), with the terms of two inputs that are one source added
+    before squaring (r = 1): the particle's and the wall's property where ``correlated``
+    (one material on both sides), v_n and v_t where ``one_speed`` (one measured speed
+    at a set angle, as ``granudb.pair`` takes it).
 
     >>> float(relative_uncertainty({"e1": 0.5, "e2": 0.5}, {"e1": 0.1, "e2": 0.1}))
     0.07071067811865477
@@ -122,24 +128,26 @@ def relative_uncertainty(
     """
     total: Any = 0.0
     for source in sens:
-        if source in _PARTNERS or source in _PARTNERS.values() or source not in scaled:
-            continue  # a material's source: with its partner below
+        if source in _PAIRED or source not in scaled:
+            continue  # one of a pair: below
         total = total + (sens[source] * scaled[source]) ** 2
-    for wall, particle in _PARTNERS.items():
+    for (first_name, second_name), flag in (
+        *((pair, correlated) for pair in _PARTNERS.items()),
+        (("vn", "vt"), one_speed),
+    ):
         terms = [
             sens[name] * scaled[name]
-            for name in (particle, wall)
+            for name in (first_name, second_name)
             if name in sens and name in scaled
         ]
-        if not terms:
-            continue
         if len(terms) == 1:
             total = total + terms[0] ** 2
-            continue
-        first, second = terms
-        apart = first**2 + second**2
-        together = (first + second) ** 2
-        total = total + (apart if correlated is None else np.where(correlated, together, apart))
+        elif terms:
+            first, second = terms
+            apart = first**2 + second**2
+            total = total + (
+                apart if flag is None else np.where(flag, (first + second) ** 2, apart)
+            )
     return np.sqrt(total)
 
 
@@ -266,6 +274,7 @@ def propagate(
     columns: Arrays,
     critical_stokes: float,
     correlated: np.ndarray | None = None,
+    one_speed: np.ndarray | None = None,
 ) -> Arrays:
     """``u_<column>`` of every propagated column of ``columns`` (``derive``'s, in its
     order) and the verdict probabilities, from the inputs' uncertainties ``u`` (step
@@ -274,7 +283,9 @@ def propagate(
     p, h, f, lub, tan = steps
     scaled = scaled_sources(x, u)
     sens = sensitivities(x, p, h, f, lub)
-    relative = {name: relative_uncertainty(sens[name], scaled, correlated) for name in sens}
+    relative = {
+        name: relative_uncertainty(sens[name], scaled, correlated, one_speed) for name in sens
+    }
     lubricated = (tan["mu_used"] == lub["mu_lub"]) & np.isfinite(lub["mu_lub"])
     relative["friction_coefficient_used"] = np.where(
         lubricated, relative["lubricated_friction"], 0.0
@@ -283,7 +294,7 @@ def propagate(
         _lin((1, sens["maw_chi"]), (1, sens["tangential_speed_m_s"]),
              (-1, sens["normal_speed_m_s"]),
              (-1, _scale(lubricated.astype(float), sens["lubricated_friction"]))),
-        scaled, correlated,
+        scaled, correlated, one_speed,
     )  # fmt: skip
     out: Arrays = {}
     for name in (name for name in columns if name in relative):
