@@ -178,3 +178,61 @@ def fluid_states_per_row(
 def _has_density(model: TabulatedViscosity | ReferencedViscosity) -> bool:
     table = model.model if isinstance(model, ReferencedViscosity) else model
     return getattr(table, "density_kg_m3", None) is not None
+
+
+#: Temperature step of the central difference dμ/dT through the fluid model [K].
+_DT = 0.05
+
+
+def state_uncertainty(
+    fluid: Fluid | FluidRow,
+    state: FluidState,
+    u_temperature_c: float | None = None,
+    u_viscosity_pa_s: float | None = None,
+    viscosity_given: bool = False,
+) -> tuple[float | None, float | None]:
+    """Standard uncertainties (u(μ), u(ρ_f)) of ``state``, None where nothing is known.
+
+    u(μ): a viscosity given by the caller carries its own ``u_viscosity_pa_s``. Else the
+    stored relative uncertainty of the reference viscosity, applied at the state's
+    temperature (the model passes through the printed value, so its relative
+    uncertainty is assumed to carry over), combined in quadrature (GUM (10)) with
+    |dμ/dT|·u(T) for the temperature's uncertainty and for the reference temperature's,
+    dμ/dT by central difference of the fluid's model (``fluid_model``). u(ρ_f): the
+    reference density's relative uncertainty at the state's density. A temperature
+    uncertainty without a model is refused: it could not reach μ.
+    """
+    if viscosity_given:
+        return u_viscosity_pa_s, _relative(fluid, "reference_density_kg_m3", state.density_kg_m3)
+    parts: list[float] = []
+    relative = _relative(fluid, "reference_viscosity_pa_s", state.viscosity_pa_s)
+    if relative is not None:
+        parts.append(relative)
+    temperatures = [
+        u
+        for u in (u_temperature_c, getattr(fluid, "u_reference_temperature_c", None))
+        if u is not None and u > 0
+    ]
+    if temperatures:
+        model = fluid_model(fluid)
+        if model is None:
+            raise ValidationError(
+                "temperature",
+                f"± {temperatures[0]:g} K",
+                f"cannot reach the viscosity: fluid {fluid.name} has no viscosity–temperature "
+                "points (give the viscosity with its ± instead)",
+                parameter=True,
+            )
+        low = max(state.temperature_c - _DT, model.low_c)
+        high = min(state.temperature_c + _DT, model.high_c)
+        with physics_refusal("--temperature"):
+            slope = float(model.viscosity(high) - model.viscosity(low)) / (high - low)
+        parts += [abs(slope) * u for u in temperatures]
+    density = _relative(fluid, "reference_density_kg_m3", state.density_kg_m3)
+    return (float(np.hypot.reduce(parts)) if parts else None), density
+
+
+def _relative(fluid: Fluid | FluidRow, column: str, value: float) -> float | None:
+    """The stored uncertainty of ``column`` as a fraction of its value, times ``value``."""
+    u = getattr(fluid, f"u_{column}", None)
+    return None if u is None else u / getattr(fluid, column) * value

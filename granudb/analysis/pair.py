@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from sqlalchemy.engine import Connection
 
-from granudb.analysis.fluid_state import FluidState, fluid_state
+from granudb.analysis.fluid_state import FluidState, fluid_state, state_uncertainty
 from granudb.analysis.refusals import physics_refusal
 from granudb.db import catalog_rows
 from granudb.errors import ValidationError
@@ -49,6 +49,18 @@ def material_inputs(prefix: str, material: Material | MaterialRow) -> dict[str, 
             np.nan if material.yield_stress_pa is None else material.yield_stress_pa
         ),
     }
+
+
+def material_uncertainties(prefix: str, material: Material | MaterialRow) -> dict[str, float]:
+    """A material's stored standard uncertainties as ``derive()``'s ``uncertainties``
+    (``u_particle_youngs_modulus_pa``, …); properties without one are left out."""
+    out = {}
+    for column in ("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m",
+                   "yield_stress_pa"):  # fmt: skip
+        u = getattr(material, f"u_{column}", None)
+        if u is not None:
+            out[f"u_{prefix}_{column}"] = u
+    return out
 
 
 @dataclass
@@ -127,6 +139,7 @@ def derive_pair(
     target: str | None = None,
     critical_stokes: float = 10.0,
     dataset_id: int | None = None,
+    uncertainties: dict[str, float | None] | None = None,
 ) -> PairResult:
     """Derive one scenario: ``particle`` hits ``wall`` (in ``fluid``) at ``speed_m_s``,
     ``angle_rad`` from the normal, without spin. The target is a flat wall, or with
@@ -135,7 +148,16 @@ def derive_pair(
     and the predicted e are those of that target. ``reader`` is a Core connection
     (``Database.reading()``, no ORM needed: issue 17's start-up bound) or a session.
     With ``dataset_id`` the materials and fluid are read as that dataset's runs use them
-    (a release keeps the values it was released with)."""
+    (a release keeps the values it was released with).
+
+    ``uncertainties``: standard uncertainties of the scenario's inputs (``u_diameter_m``,
+    ``u_impact_speed_m_s``, ``u_temperature_c``, ``u_viscosity_pa_s``; None: not
+    given); with the materials' and the fluid's stored ones they are propagated into
+    ``u_<column>`` of every derived quantity and the verdict probabilities
+    (``granudb.physics.uncertainty``). The speed's u is one source for v_n and v_t;
+    one material on both sides is one source.
+    """
+    given_u = {k: v for k, v in (uncertainties or {}).items() if v is not None}
     _check_scenario(diameter_m, speed_m_s, angle_rad, critical_stokes)
     target = target_kind(target, wall_diameter_m)
     if is_dry(fluid):
@@ -149,6 +171,33 @@ def derive_pair(
     second = catalog_rows.get_material_row(connection, wall, dataset_id)
     fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(connection, fluid, dataset_id)
     state = fluid_state(fluid_row, temperature_c, viscosity_pa_s) if fluid_row else None
+    u_viscosity, u_density = (
+        state_uncertainty(
+            fluid_row,
+            state,
+            given_u.get("u_temperature_c"),
+            given_u.get("u_viscosity_pa_s"),
+            viscosity_given=viscosity_pa_s is not None,
+        )
+        if fluid_row is not None and state is not None
+        else (None, None)
+    )
+    speed_u = given_u.get("u_impact_speed_m_s")
+    propagated = {
+        **material_uncertainties("particle", first),
+        **material_uncertainties("wall", second),
+        "u_diameter_m": given_u.get("u_diameter_m"),
+        "u_v_n_in_m_s": None if speed_u is None else speed_u * math.cos(angle_rad),
+        "u_v_t_in_m_s": None if speed_u is None else speed_u * math.sin(angle_rad),
+        "u_viscosity_pa_s": u_viscosity,
+        "u_fluid_density_kg_m3": u_density,
+    }
+    if state is not None and fluid_row is not None and fluid_row.u_pressure_viscosity_pa_inv:
+        propagated["u_pressure_viscosity_pa_inv"] = fluid_row.u_pressure_viscosity_pa_inv
+    if u_viscosity is not None:  # the fluid's state, with the temperature's share
+        given_u["u_viscosity_pa_s"] = u_viscosity
+    if u_density is not None:
+        given_u["u_fluid_density_kg_m3"] = u_density
     inputs = {
         "diameter_m": diameter_m,
         "wall_diameter_m": wall_diameter_m,
@@ -159,6 +208,7 @@ def derive_pair(
         "v_t_in_m_s": speed_m_s * math.sin(angle_rad),
         "temperature_c": state.temperature_c if state else None,
         "critical_stokes": critical_stokes,
+        **given_u,
     }
     with physics_refusal():
         result = derive(
@@ -177,6 +227,9 @@ def derive_pair(
                 else np.nan
             ),
             critical_stokes=critical_stokes,
+            uncertainties={k: np.nan if v is None else v for k, v in propagated.items()},
+            correlated_materials=first.name.casefold() == second.name.casefold(),
+            one_speed=True,
         )
     derived = {k: v for k, v in scalar_view(result).items() if k not in MEASURED_ONLY}
     citations = {

@@ -87,6 +87,7 @@ NAMES: dict[str, str] = {
 #: ``granudb.__all__``.
 FACE: dict[str, str] = {
     "display": "presentation",
+    "display_uncertain": "presentation",
     "term": "presentation",
     "derived_terms": "presentation",
     "qualified_value": "scenario",

@@ -7,7 +7,8 @@ materials and fluids, and add a fluid's viscosity points.
 through one implementation (``granudb.db.catalog_changes``) with their specification
 (``granudb.vocabulary.MATERIALS`` / ``FLUIDS``): a property's parameter here is its option
 there (``youngs_modulus`` ↔ ``--youngs-modulus``), and a value is an SI number or a
-string with its unit (``"190 GPa"``).
+string with its unit (``"190 GPa"``), with its standard uncertainty if known
+(``"190 GPa ± 5 %"``, ``"23.6 ± 2 nm"``; stored as ``u_<column>``, absolute SI).
 """
 
 from __future__ import annotations
@@ -67,7 +68,11 @@ def _values(catalogue: Catalogue, given: dict[str, Any]) -> dict[str, Any]:
             continue
         column = catalogue.parameters[parameter]
         if column in catalogue.properties:
-            values[column] = inputs.quantity(value, column, parameter)
+            # "190 GPa ± 5 %": the value and its standard uncertainty, set together (a
+            # value given without ± has none: the old u belonged to the old value)
+            values[column], values[catalogue.uncertainties[column]] = inputs.uncertain_quantity(
+                value, column, parameter
+            )
         else:
             values[column] = check_text(parameter, inputs.text(value, parameter))
     return values

@@ -13,7 +13,7 @@ from decimal import Decimal
 from typing import Any
 
 from granudb.errors import MissingInput, ValidationError
-from granudb.io.units import parse_quantity
+from granudb.io.units import parse_quantity, parse_uncertain_quantity
 from granudb.vocabulary import check_value, unit_of_column
 from granudb.vocabulary.text import MAX_NAME, check_name
 
@@ -67,6 +67,34 @@ def quantity(value: Any, column: str, parameter: str, *, check: bool = True) -> 
     except ValidationError as exc:
         raise _as_parameter(exc, parameter) from None
     return result
+
+
+def uncertain_quantity(
+    value: Any, column: str, parameter: str, *, check: bool = True
+) -> tuple[float | None, float | None]:
+    """``(value, standard uncertainty)`` in ``column``'s SI unit: ``"23.6 ± 2 nm"``,
+    ``"190 GPa ± 5 %"`` (relative), a number, or a ``(value, u)`` pair of SI numbers;
+    without a ± the uncertainty is None (not given). The value's rule is checked as
+    ``quantity`` checks it.
+
+    >>> uncertain_quantity("0.3 m/s ± 3 %", "v_n_in_m_s", "velocity")
+    (0.3, 0.009)
+    """
+    if isinstance(value, tuple | list) and len(value) == 2:
+        central = quantity(value[0], column, parameter, check=check)
+        u = number(value[1], f"{parameter} uncertainty")
+        if u is not None and u < 0:
+            raise ValidationError(parameter, value, "needs an uncertainty ≥ 0", parameter=True)
+        return central, u
+    if not isinstance(value, str):
+        return quantity(value, column, parameter, check=check), None
+    try:
+        result, u = parse_uncertain_quantity(value, unit_of_column(column), parameter)
+        if check:
+            check_value(column, result, field=parameter, shown=value)
+    except ValidationError as exc:
+        raise _as_parameter(exc, parameter) from None
+    return result, u
 
 
 def angle(value: Any, parameter: str = "angle") -> float:

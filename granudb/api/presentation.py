@@ -1,14 +1,15 @@
 """What the command line's face needs to print results for people, from one place.
 
 Values in engineering notation with units (``display``: ``60 GPa``, ``130.5 nm``,
-``4.5 mPa·s``), the vocabulary's titles and symbols (``term``), and the column lists of
-each listing. Light on purpose: loading this module imports neither numpy nor pandas.
+``4.5 mPa·s``; ``display_uncertain``: ``49.0 ± 2.1 nm``), the vocabulary's titles and
+symbols (``term``), and the column lists of each listing. Light on purpose: loading
+this module imports neither numpy nor pandas.
 """
 
 from __future__ import annotations
 
 from granudb.analysis import collision_query
-from granudb.reporting.format import display
+from granudb.reporting.format import display, display_uncertain
 from granudb.vocabulary import DERIVED_TERMS, FLUIDS, MATERIALS, Term, term
 from granudb.vocabulary.catalogue import (
     POINT_COLUMNS,
@@ -48,6 +49,7 @@ __all__ = [
     "SOURCE_NARROW",
     "derived_terms",
     "display",
+    "display_uncertain",
     "parameter_of",
     "term",
 ]

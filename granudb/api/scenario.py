@@ -33,7 +33,12 @@ def pair(
     """Properties, every derived quantity and the verdicts for one collision (SI).
 
     Quantities are SI numbers or strings with units (``"12.7 mm"``, ``"0.3 m/s"``,
-    ``"30 deg"``, ``"20 degC"``, ``"0.8 cP"``); ``diameter`` and ``velocity`` are
+    ``"30 deg"``, ``"20 degC"``, ``"0.8 cP"``); diameter, velocity, temperature and
+    viscosity may carry a standard uncertainty (``"0.3 m/s ± 3 %"``, ``"20 degC ± 0.5
+    K"``, or a ``(value, u)`` pair), which is propagated with the materials' and the
+    fluid's stored ones into ``u_<quantity>`` of each derived value and the verdicts'
+    probabilities (``probability_asperity_contact``, ``probability_rebound``,
+    ``probability_yield``); ``diameter`` and ``velocity`` are
     required, ``angle`` is 0 unless given; ``fluid=None`` or ``"dry"`` is a dry collision;
     ``viscosity`` overrides the fluid's (what-if); ``wall_diameter`` makes the target a
     sphere, free and at rest unless ``target="fixed"`` (``"wall"``, ``"fixed"``,
@@ -65,19 +70,37 @@ def pair(
         if given is None:
             raise inputs.missing(name)
     st_c = 10.0 if critical_stokes is None else inputs.critical_stokes(critical_stokes)
+    # each may carry its standard uncertainty: "12.7 ± 0.01 mm", "0.3 m/s ± 3 %"
+    d, u_d = inputs.uncertain_quantity(diameter, "diameter_m", "diameter")
+    speed, u_speed = inputs.uncertain_quantity(velocity, "impact_speed_m_s", "velocity")
+    t, u_t = inputs.uncertain_quantity(temperature, "temperature_c", "temperature")
+    mu, u_mu = inputs.uncertain_quantity(viscosity, "viscosity_pa_s", "viscosity")
     values = {
-        "diameter_m": inputs.quantity(diameter, "diameter_m", "diameter"),
-        "speed_m_s": inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
+        "diameter_m": d,
+        "speed_m_s": speed,
         "angle_rad": inputs.angle(0.0 if angle is None else angle),
-        "temperature_c": inputs.quantity(temperature, "temperature_c", "temperature"),
-        "viscosity_pa_s": inputs.quantity(viscosity, "viscosity_pa_s", "viscosity"),
+        "temperature_c": t,
+        "viscosity_pa_s": mu,
         "wall_diameter_m": inputs.quantity(wall_diameter, "wall_diameter_m", "wall_diameter"),
+    }
+    uncertain = {
+        "u_diameter_m": u_d,
+        "u_impact_speed_m_s": u_speed,
+        "u_temperature_c": u_t,
+        "u_viscosity_pa_s": u_mu,
     }
     if target is not None:
         target = inputs.choice(target, TARGETS, "target")
     with opened(db) as database, database.reading() as connection:
         result = derive_pair(
-            connection, particle, wall, fluid=fluid, critical_stokes=st_c, target=target, **values
+            connection,
+            particle,
+            wall,
+            fluid=fluid,
+            critical_stokes=st_c,
+            target=target,
+            uncertainties=uncertain,
+            **values,
         )
     document = pair_json(result)
     said = verdicts(

@@ -120,8 +120,8 @@ def print_pair(document: dict[str, Any]) -> None:
     for column in ("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m"):
         props.add_row(
             api.term(column).title,
-            api.display(particle[column], column),
-            api.display(wall[column], column),
+            api.display_uncertain(particle[column], particle.get(f"u_{column}"), column),
+            api.display_uncertain(wall[column], wall.get(f"u_{column}"), column),
         )
     props.add_row("source", Text(_cite(particle)), Text(_cite(wall)))
     out.print(props)
@@ -155,7 +155,10 @@ def _collision_table(document: dict[str, Any]) -> Any:
     table = rich_table.Table(title="Collision", title_justify="left", show_header=False)
     table.add_column("quantity", style="bold")
     table.add_column("value")
-    show = api.display
+
+    def show(value: Any, column: str, uncertainty: str | None = None) -> str:
+        return api.display_uncertain(value, inputs.get(uncertainty or f"u_{column}"), column)
+
     rows = [
         ("particle", document["particle"]["name"]),
         ("wall", document["wall"]["name"]),
@@ -176,7 +179,10 @@ def _collision_table(document: dict[str, Any]) -> Any:
                 "viscosity μ",
                 f"{show(fluid['viscosity_pa_s'], 'viscosity_pa_s')} — {fluid['viscosity_basis']}",
             ),
-            ("fluid density", show(fluid["density_kg_m3"], "density_kg_m3")),
+            (
+                "fluid density",
+                show(fluid["density_kg_m3"], "density_kg_m3", "u_fluid_density_kg_m3"),
+            ),
             ("temperature", show(fluid["temperature_c"], "temperature_c")),
         ]
     for name, value in rows:

@@ -52,6 +52,13 @@ class MaterialRow:
     correlation_length_m: float | None
     shear_modulus_pa: float | None
     yield_stress_pa: float | None
+    u_density_kg_m3: float | None
+    u_youngs_modulus_pa: float | None
+    u_poisson_ratio: float | None
+    u_roughness_rms_m: float | None
+    u_correlation_length_m: float | None
+    u_shear_modulus_pa: float | None
+    u_yield_stress_pa: float | None
     source_locator: str | None
     source: SourceRow | None
     created_at: Any
@@ -76,6 +83,11 @@ class FluidRow:
     reference_viscosity_pa_s: float
     reference_temperature_c: float
     pressure_viscosity_pa_inv: float | None
+    u_glycerol_mass_fraction: float | None
+    u_reference_density_kg_m3: float | None
+    u_reference_viscosity_pa_s: float | None
+    u_reference_temperature_c: float | None
+    u_pressure_viscosity_pa_inv: float | None
     source_locator: str | None
     density_locator: str | None
     pressure_viscosity_locator: str | None

@@ -12,6 +12,7 @@ tables; ``tests/db/test_migrations.py`` proves the two agree.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from datetime import datetime
 
 from sqlalchemy import (
@@ -29,11 +30,17 @@ from sqlalchemy import (
 from sqlalchemy.orm import Mapped, mapped_column, relationship
 
 from granudb.db.base import Base, Timestamped, add_finite_checks, name_key, utcnow
+from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
 
 
 def _positive_if_given(column: str, name: str) -> CheckConstraint:
     """The rule of an optional positive value: ``column`` NULL (not given) or > 0."""
     return CheckConstraint(f"{column} IS NULL OR {column} > 0", name=name)
+
+
+def _non_negative_if_given(columns: Iterable[str]) -> list[CheckConstraint]:
+    """The rule of optional standard uncertainties: each column NULL (not stated) or ≥ 0."""
+    return [CheckConstraint(f"{c} IS NULL OR {c} >= 0", name=f"{c}_non_negative") for c in columns]
 
 
 __all__ = [
@@ -95,6 +102,14 @@ class Material(Timestamped, Base):
     #: Yield stress Y in tension (Johnson 1985 §11.4: yield starts at p_max = 1.6 Y);
     #: empty where not known or for brittle solids, which crack instead.
     yield_stress_pa: Mapped[float | None] = mapped_column(Float)
+    #: Standard uncertainty of each property (same unit; NULL: not given), ``u_<property>``.
+    u_density_kg_m3: Mapped[float | None] = mapped_column(Float)
+    u_youngs_modulus_pa: Mapped[float | None] = mapped_column(Float)
+    u_poisson_ratio: Mapped[float | None] = mapped_column(Float)
+    u_roughness_rms_m: Mapped[float | None] = mapped_column(Float)
+    u_correlation_length_m: Mapped[float | None] = mapped_column(Float)
+    u_shear_modulus_pa: Mapped[float | None] = mapped_column(Float)
+    u_yield_stress_pa: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     #: Set on a revision: the values this material had when a released dataset used it,
@@ -112,6 +127,7 @@ class Material(Timestamped, Base):
         _positive_if_given("correlation_length_m", "correlation_length_positive"),
         _positive_if_given("shear_modulus_pa", "shear_modulus_positive"),
         _positive_if_given("yield_stress_pa", "yield_stress_positive"),
+        *_non_negative_if_given(MATERIALS.uncertainties.values()),
     )
 
 
@@ -136,6 +152,12 @@ class Fluid(Timestamped, Base):
     reference_viscosity_pa_s: Mapped[float] = mapped_column(Float)
     reference_temperature_c: Mapped[float] = mapped_column(Float, default=20.0)
     pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
+    #: Standard uncertainty of each property (same unit; NULL: not given), ``u_<property>``.
+    u_glycerol_mass_fraction: Mapped[float | None] = mapped_column(Float)
+    u_reference_density_kg_m3: Mapped[float | None] = mapped_column(Float)
+    u_reference_viscosity_pa_s: Mapped[float | None] = mapped_column(Float)
+    u_reference_temperature_c: Mapped[float | None] = mapped_column(Float)
+    u_pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     density_source_id: Mapped[int | None] = mapped_column(
@@ -176,6 +198,7 @@ class Fluid(Timestamped, Base):
             "reference_temperature_c > -273.15", name="reference_temperature_above_zero_k"
         ),
         _positive_if_given("pressure_viscosity_pa_inv", "pressure_viscosity_positive"),
+        *_non_negative_if_given(FLUIDS.uncertainties.values()),
     )
 
 

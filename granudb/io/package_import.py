@@ -37,7 +37,14 @@ from granudb.io.package_files import (
     safe_relative,
     sha256,
 )
-from granudb.io.package_schema import FOREIGN_KEYS, PRIMARY_KEYS, RESOURCES, check_schema, columns
+from granudb.io.package_schema import (
+    FOREIGN_KEYS,
+    OPTIONAL_TRAILING,
+    PRIMARY_KEYS,
+    RESOURCES,
+    check_schema,
+    columns,
+)
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.rules import RULES
@@ -120,9 +127,15 @@ class _Findings:
         return found
 
 
+def _older_header(name: str, header: list[str]) -> bool:
+    """A header from before the uncertainty columns (``OPTIONAL_TRAILING``): read as empty."""
+    trailing = OPTIONAL_TRAILING.get(name, [])
+    return bool(trailing) and header == columns(name)[: -len(trailing)]
+
+
 def _header_problem(name: str, header: list[str]) -> str | None:
     expected = columns(name)
-    if header == expected:
+    if header == expected or _older_header(name, header):
         return None
     missing = [c for c in expected if c not in header]
     extra = [c for c in header if c not in expected]
@@ -220,6 +233,9 @@ def _read_table(
                     if header is not None:
                         problems.append(header)
                         return None, 0
+                if _older_header(name, list(frame.columns)):
+                    for column in OPTIONAL_TRAILING[name]:
+                        frame[column] = ""
                 if rows + len(frame) > MAX_ROWS:
                     problems.append(f"{name}: more than {MAX_ROWS} rows")
                     return None, rows + len(frame)

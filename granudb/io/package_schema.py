@@ -49,7 +49,10 @@ def _catalogue(spec: Catalogue) -> list[tuple[str, str, bool]]:
         if extra.endswith("_source"):
             sources += [extra, extra.removesuffix("_source") + "_locator"]
     required = ["name", *spec.required, *spec.defaults]
-    return _fields(["name", "description", *spec.properties, *sources], required)
+    # the standard uncertainties last: a package written before them lacks only those
+    # (``OPTIONAL_TRAILING``) and still reads
+    shown = ["name", "description", *spec.properties, *sources, *spec.uncertainties.values()]
+    return _fields(shown, required)
 
 
 def _point_columns() -> list[str]:
@@ -66,6 +69,13 @@ RESOURCES: dict[str, list[tuple[str, str, bool]]] = {
     "collisions": _fields(
         ["run", "particle", "wall", "fluid", *COLLISION_MEASURED, "notes"], COLLISION_REQUIRED
     ),
+}
+
+#: Columns a resource's file may end without (packages from before issue 27's
+#: uncertainties): read as empty.
+OPTIONAL_TRAILING: dict[str, list[str]] = {
+    "materials": list(MATERIALS.uncertainties.values()),
+    "fluids": list(FLUIDS.uncertainties.values()),
 }
 
 PRIMARY_KEYS = {

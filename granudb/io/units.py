@@ -395,3 +395,85 @@ def round_significant(values: Any, digits: int = 15) -> Any:
     if rest.any():
         out[rest] = [float(f"{v:.{digits}g}") for v in x[rest]]
     return out if out.ndim else float(out)
+
+
+# --- A value with its standard uncertainty ------------------------------------------------
+#
+# "23.6 ± 2 nm", "190 GPa ± 5 %", "0.3 m/s +/- 0.01 m/s", "(23.6 ± 2) nm": the number
+# before the sign is the value, the one after it its standard uncertainty u (GUM's
+# "value ± u", JCGM 100:2008 §7.2.2; granudb stores u, never an expanded U = k·u).
+
+#: The signs that separate a value from its uncertainty.
+PLUS_MINUS = re.compile(r"\s*(?:±|\+/-|\+-)\s*")
+_PARENTHESISED = re.compile(r"^\((?P<inner>[^()]*)\)\s*(?P<unit>.*)$")
+
+
+def split_uncertain(text: str) -> tuple[str, str] | None:
+    """``(value text, uncertainty text)`` of ``"23.6 ± 2 nm"``, with the unit written
+    once after the uncertainty, or in parentheses (``"(23.6 ± 2) nm"``), given to both;
+    None when there is no ± (or ``+/-``).
+
+    >>> split_uncertain("23.6 ± 2 nm"), split_uncertain("190 GPa +/- 5 %")
+    (('23.6 nm', '2 nm'), ('190 GPa', '5 %'))
+    """
+    raw = text.strip()
+    bracket = _PARENTHESISED.match(raw)
+    if bracket is not None and PLUS_MINUS.search(bracket["inner"]):
+        value, u = PLUS_MINUS.split(bracket["inner"], maxsplit=1)
+        return f"{value} {bracket['unit']}".strip(), f"{u} {bracket['unit']}".strip()
+    parts = PLUS_MINUS.split(raw, maxsplit=1)
+    if len(parts) != 2:
+        return None
+    value, u = (part.strip() for part in parts)
+    number = _LEADING_NUMBER.match(value)
+    u_number = _LEADING_NUMBER.match(u)
+    if number is not None and number.end() == len(value) and u_number is not None:
+        u_unit = u[u_number.end() :].strip()
+        if u_unit not in {"%", "percent"}:  # "23.6 ± 2 nm": the unit belongs to both
+            value = f"{value} {u_unit}".strip()
+    return value, u
+
+
+def parse_uncertain_quantity(
+    text: str | float, unit: Unit | str, field: str
+) -> tuple[float, float | None]:
+    """``(value, standard uncertainty)`` in ``unit`` (SI) from ``"23.6 ± 2 nm"``,
+    ``"190 GPa ± 5 %"`` (a relative uncertainty: 5 % of the value), ``"20 degC ± 0.5 K"``
+    or ``"(0.30 ± 0.01) m/s"``; ``"±"`` may be written ``"+/-"``. Without a ± the
+    uncertainty is None (not given — not zero). The uncertainty is converted as a
+    difference (no temperature offset), must be finite and ≥ 0, and is refused in a unit of
+    another dimension, by field name, as ``parse_quantity`` refuses a value.
+
+    >>> parse_uncertain_quantity("190 GPa ± 5 %", "pa", "youngs_modulus")
+    (190000000000.0, 9500000000.0)
+    >>> parse_uncertain_quantity("20 degC ± 0.5 K", "c", "temperature")
+    (20.0, 0.5)
+    """
+    unit = UNITS[unit] if isinstance(unit, str) else unit
+    split = split_uncertain(text) if isinstance(text, str) else None
+    if split is None:
+        return parse_quantity(text, unit, field), None
+    value_text, u_text = split
+    value = parse_quantity(value_text, unit, field)
+    number = _LEADING_NUMBER.match(u_text)
+    if number is None or u_text.startswith(("-", "+")):
+        raise ValidationError(
+            field, text, "needs a non-negative number after ±, e.g. '23.6 ± 2 nm' or '± 5 %'"
+        )
+    u_unit = u_text[number.end() :].strip()
+    magnitude = float(number.group())
+    if u_unit in {"%", "percent"}:
+        u = abs(value) * magnitude / 100.0
+    elif not u_unit:
+        if unit.pint != "dimensionless":
+            raise ValidationError(field, text, f"needs a unit after ±, e.g. '{unit.example} ± 1 %'")
+        u = magnitude
+    else:
+        try:
+            scale, _ = _conversion(_spelled(u_unit), unit.suffix)
+        except UnitSyntaxError as exc:
+            raise ValidationError(field, text, f"has an uncertainty that {exc}") from None
+        u = magnitude * abs(scale)
+    if not math.isfinite(u):
+        raise ValidationError(field, text, "needs a finite uncertainty")
+    return value, _finite(field, text, u)

@@ -57,12 +57,13 @@ immersed row without fluid density.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from functools import partial
 from typing import Any
 
 import numpy as np
 
-from granudb.physics import flow, limits, lubrication, pair
+from granudb.physics import flow, limits, lubrication, pair, uncertainty
 from granudb.physics import quantities as steps
 from granudb.physics.blocks import run_blocked
 from granudb.physics.numeric import Numeric, PhysicsInputError
@@ -209,6 +210,9 @@ def derive(
     dry_restitution: float = DRY_RESTITUTION,
     limiting_shear_slope: float = limits.LIMITING_SHEAR_SLOPE,
     threads: int | None = None,
+    uncertainties: Mapping[str, Numeric] | None = None,
+    correlated_materials: Numeric = False,
+    one_speed: Numeric = False,
 ) -> dict[str, np.ndarray]:
     """Derive every derived column (``granudb.vocabulary.DERIVED_TERMS``) for arrays of collisions.
 
@@ -229,12 +233,33 @@ def derive(
     ``threads`` threads (None: the calling thread only, which measured faster than two on
     two cores; n: a pool of n, at most the cores available); every row's result is the
     same whatever the blocks or threads.
+
+    ``uncertainties``: standard uncertainties of inputs, keyed ``u_<input>``
+    (``u_particle_youngs_modulus_pa``, ``u_viscosity_pa_s``, ``u_v_n_in_m_s``, … — the
+    inputs in ``UNCERTAIN_INPUTS``), same unit, NaN where not given. With it (even
+    empty) the result also has ``u_<column>`` of every continuous quantity
+    (``granudb.vocabulary.UNCERTAINTY_TERMS``, in column order) and the verdict
+    probabilities
+    (``granudb.physics.uncertainty``: GUM first order); ``correlated_materials`` true
+    where the particle and the wall are one material (their sources are then one),
+    ``one_speed`` where v_n and v_t are one measured speed at a set angle (their
+    uncertainties fully correlated).
     """
     given = locals()
-    arrays = np.broadcast_arrays(*(np.asarray(given[name], dtype=float) for name in _INPUTS))
-    x = dict(zip(_INPUTS.values(), arrays, strict=True))
+    names = list(_INPUTS)
+    u_given = _uncertainty_inputs(uncertainties)
+    values = [given[name] for name in names] + list(u_given.values())
+    if uncertainties is not None:
+        values += [correlated_materials, one_speed]
+    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
+    x = dict(zip(_INPUTS.values(), arrays, strict=False))
+    for index, short in enumerate(u_given):
+        x[_U + short] = arrays[len(names) + index]
+    if uncertainties is not None:
+        x[_CORRELATED], x[_ONE_SPEED] = arrays[-2], arrays[-1]
     compute = partial(
         _derive_block,
+        uncertain=uncertainties is not None,
         caps=(dry_friction, limiting_shear_slope),
         gap_fraction=gap_fraction,
         critical_stokes=critical_stokes,
@@ -250,6 +275,7 @@ def derive(
 def _derive_block(
     x: dict[str, np.ndarray],
     *,
+    uncertain: bool,
     caps: tuple[float, float],
     gap_fraction: float,
     critical_stokes: float,
@@ -264,7 +290,43 @@ def _derive_block(
     lub = steps.lubricated(x, p, h, f, caps)
     tan = steps.tangential(p, f, lub, caps)
     col = steps.collision(p)
-    return _columns(p, h, f, lub, tan, col, critical_stokes, dry_restitution)
+    columns = _columns(p, h, f, lub, tan, col, critical_stokes, dry_restitution)
+    if uncertain:
+        u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
+        columns.update(
+            uncertainty.propagate(
+                x,
+                u,
+                (p, h, f, lub, tan),
+                columns,
+                critical_stokes,
+                x[_CORRELATED] != 0,
+                x[_ONE_SPEED] != 0,
+            )
+        )
+    return columns
+
+
+#: Prefix of an input's uncertainty among the block's arrays, and the correlation flag.
+_U, _CORRELATED, _ONE_SPEED = "u:", "correlated", "one speed"
+#: The inputs that may carry a standard uncertainty (``derive``'s ``uncertainties``).
+UNCERTAIN_INPUTS = tuple(name for name, short in _INPUTS.items() if short in uncertainty.SOURCES)
+
+
+def _uncertainty_inputs(uncertainties: Mapping[str, Numeric] | None) -> dict[str, Any]:
+    """``u_<input>`` → the input's step name with its uncertainty; refuses an unknown
+    name or a negative uncertainty."""
+    out: dict[str, Any] = {}
+    for key, value in (uncertainties or {}).items():
+        name = key.removeprefix("u_")
+        if not key.startswith("u_") or name not in UNCERTAIN_INPUTS:
+            raise PhysicsInputError(
+                key, "", f"is not an input uncertainty (u_ + one of {', '.join(UNCERTAIN_INPUTS)})"
+            )
+        array = np.asarray(value, dtype=float)
+        _check(key, array, np.isnan(array) | (array >= 0), "must be ≥ 0 (NaN: not given)")
+        out[_INPUTS[name]] = array
+    return out
 
 
 def _columns(

@@ -192,6 +192,32 @@ def friction_integral(c: Numeric) -> Numeric:
     return result
 
 
+def friction_integral_log_slope(c: Numeric) -> Numeric:
+    r"""Logarithmic slope of (5.9), d ln A / d ln c = c A'(c) / A(c) [-], exactly.
+
+    From the same polynomial: c A'(c) = Σ k C(16,k) c^k/(k+2). Used to propagate the
+    uncertainty of c = η̂ p_max into A and (5.8) (``granudb.physics.uncertainty``).
+
+    Parameters
+    ----------
+    c : c = η̂ p_max [-]
+
+    Examples
+    --------
+    A(c) → 1/2 + (16/3) c for small c, so the slope is ≈ (32/3) c there:
+
+    >>> round(float(friction_integral_log_slope(1e-6)) / 1e-6, 3)
+    10.667
+    >>> float(friction_integral_log_slope(0.0))
+    0.0
+    """
+    c = as_float(c)
+    slope = np.zeros_like(c)
+    for k, coefficient in reversed(list(enumerate(_A_COEFFICIENTS))):
+        slope = slope * c + k * coefficient
+    return slope / friction_integral(c)
+
+
 def traction_film_thickness(
     radius: Numeric,
     viscosity: Numeric,

@@ -119,6 +119,41 @@ def plus_minus(value: Any, error: Any, *, exact_below: float = 1e-9) -> str:
     return f"{_fixed(value, decimals)} ± {_fixed(error, decimals)}"
 
 
+def _display_scale(value: float, column: str) -> tuple[float, str]:
+    """The factor and unit ``display`` shows ``column``'s ``value`` in (``1e9, "nm"``)."""
+    unit = unit_of_column(column)
+    shown = unit.display
+    fixed = {"pa_s": (1e3, "mPa·s"), "rad": (180.0 / math.pi, "°"), "fraction": (100.0, "%")}
+    if shown is None:
+        return 1.0, ""
+    if unit.suffix in fixed:
+        return fixed[unit.suffix]
+    if unit.suffix == "kg":
+        value, shown = value * 1e3, "g"
+    if shown not in _PREFIXABLE and unit.suffix != "kg":
+        return 1.0, shown
+    if value == 0 or not math.isfinite(value):
+        return (1e3 if unit.suffix == "kg" else 1.0), shown
+    exponent = max(min(int(math.floor(math.log10(abs(value)) / 3) * 3), 12), -15)
+    return (1e3 if unit.suffix == "kg" else 1.0) / 10**exponent, f"{_PREFIXES[exponent]}{shown}"
+
+
+def display_uncertain(value: Any, u: Any, column: str) -> str:
+    """``column``'s SI ``value`` with its standard uncertainty ``u``, as ``plus_minus``
+    rounds them (one or two significant digits of u), in the unit ``display`` uses.
+    Without a positive ``u`` it is ``display(value, column)``.
+
+    >>> display_uncertain(4.896e-8, 2.15e-9, "min_gap_m")
+    '49.0 ± 2.1 nm'
+    >>> display_uncertain(951.2, 38.4, "normal_stokes_number")
+    '950 ± 40'
+    """
+    if not (is_number(value) and is_number(u) and float(u) > 0):
+        return display(value, column)
+    factor, unit = _display_scale(float(value), column)
+    return f"{plus_minus(float(value) * factor, float(u) * factor)} {unit}".strip()
+
+
 def interval(value: Any, low: Any, high: Any) -> str:
     """A value with an asymmetric interval, ``0.34 [0.30, 0.39]``, rounded like
     ``plus_minus`` on the larger half-width. An interval of no width (below 10⁻⁹ of the

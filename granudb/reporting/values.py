@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from granudb.reporting.format import display, is_number
+from granudb.reporting.format import display, display_uncertain, is_number
 from granudb.reporting.verdicts import ROUGHNESS_WORDS, in_words
 
 #: Quantities of (5.6)–(5.9) that need the fluid's pressure–viscosity coefficient.
@@ -29,6 +29,8 @@ def qualified_value(derived: Mapping[str, Any], name: str) -> str:
         return f"outside the model's range, not used ((5.8) gives {in_words(value)})"
     if name == "roughness_regime" and value in ROUGHNESS_WORDS:
         return ROUGHNESS_WORDS[str(value)]
+    if is_number(value) and is_number(derived.get(f"u_{name}")):
+        return display_uncertain(value, derived[f"u_{name}"], name)  # "951 ± 38"
     if is_number(value) or isinstance(value, bool | str):
         return display(value, name)
     if name == "yield_speed_m_s":

@@ -16,6 +16,7 @@ from typing import Any
 
 from granudb.physics import flow, limits
 from granudb.physics.derive import DRY_FRICTION, DRY_RESTITUTION
+from granudb.physics.uncertainty import LIKELY, UNLIKELY, certainty
 from granudb.reporting.format import display, engineering, is_number
 
 GAP_DEFINITION = "h_m = x₁/3, the EHD minimum gap of the normal approach (Joseph & Hunt §1, §4)"
@@ -66,8 +67,10 @@ def verdicts(
 ) -> list[Verdict]:
     """Rebound and predicted restitution, roughness against gap, the lubricated friction,
     Maw's tangential regime, Hertz validity and yield. ``materials`` (particle, wall
-    records) name the bodies whose yield stress is not known; ``fluid_name`` the fluid."""
-    return [
+    records) name the bodies whose yield stress is not known; ``fluid_name`` the fluid.
+    Where the inputs carry uncertainties, the rebound, roughness and yield verdicts say
+    their probability (``with_probability``)."""
+    said = [
         rebound_verdict(derived, critical_stokes, immersed),
         restitution_verdict(derived, critical_stokes, immersed),
         roughness_verdict(derived, immersed),
@@ -76,6 +79,38 @@ def verdicts(
         quasi_static_verdict(derived),
         yield_verdict(derived, materials),
     ]
+    return [with_probability(verdict, derived) for verdict in said]
+
+
+# --- Verdicts with their probability (issue 27) ------------------------------------------
+
+#: Each verdict's probability column, the event in symbols and the uncertainty that
+#: makes it more than 0 or 1 (``granudb.physics.uncertainty.verdict_probabilities``).
+PROBABILITIES = {
+    "rebound_expected": ("probability_rebound", "St_n > St_c", "u_normal_stokes_number"),
+    "roughness_regime": ("probability_asperity_contact", "σ > h_m", "u_film_parameter"),
+    "elastic_state": ("probability_yield", "p_max > 1.6 Y", "u_max_pressure_pa"),
+}
+LIKELY_RULE = (
+    f"likely where P ≥ {LIKELY:g} or P ≤ {UNLIKELY:g}, else uncertain; P from the propagated "
+    "standard uncertainties, lognormal (docs/physics.md, Uncertainty)"
+)
+
+
+def with_probability(verdict: Verdict, derived: Mapping[str, Any]) -> Verdict:
+    """``verdict`` with "P(σ > h_m) = 0.46: uncertain." appended where its number carries
+    an uncertainty (``u_…`` > 0, or a probability strictly between 0 and 1), by the rule
+    ``LIKELY_RULE``; an uncertain verdict is raised. Else unchanged."""
+    if verdict.key not in PROBABILITIES:
+        return verdict
+    column, event, spread = PROBABILITIES[verdict.key]
+    probability, u = derived.get(column), derived.get(spread)
+    spread_given = is_number(u) and u > 0
+    if not is_number(probability) or (not spread_given and probability in (0.0, 1.0)):
+        return verdict
+    word = certainty(float(probability))
+    text = f"{verdict.text} P({event}) = {float(probability):.2f}: {word}."
+    return Verdict(verdict.key, verdict.name, text, verdict.raised or word == "uncertain")
 
 
 def rebound_verdict(derived: Mapping[str, Any], critical_stokes: float, immersed: bool) -> Verdict:

@@ -29,6 +29,12 @@ from granudb.vocabulary.terms import (
     TERMS,
     Term,
 )
+from granudb.vocabulary.uncertainty import (
+    PROBABILITY_TERMS,
+    UNCERTAIN_DERIVED,
+    UNCERTAINTY_TERMS,
+    uncertainty_column,
+)
 from granudb.vocabulary.units import UNITS, Unit, unit_of_column
 
 __all__ = [
@@ -46,6 +52,10 @@ __all__ = [
     "SOURCE_COLUMNS",
     "SOURCE_REQUIRED",
     "DERIVED_TERMS",
+    "PROBABILITY_TERMS",
+    "UNCERTAIN_DERIVED",
+    "UNCERTAINTY_TERMS",
+    "uncertainty_column",
     "RULES",
     "TABLES",
     "TERMS",

@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from granudb.errors import ValidationError
-from granudb.vocabulary.terms import TERMS
+from granudb.vocabulary.terms import TERMS, uncertainty_column
 
 #: Text fields every catalogue entry has besides its properties.
 TEXT_FIELDS = ("description", "source_locator")
@@ -29,7 +29,8 @@ class Catalogue:
     """One kind of catalogue entry (``material`` or ``fluid``).
 
     ``properties`` are the stored SI properties, in display order; ``required`` the ones
-    an entry cannot be added without; ``defaults`` what an omitted property is set to on
+    an entry cannot be added without (each property may carry a standard uncertainty,
+    ``uncertainties``); ``defaults`` what an omitted property is set to on
     adding; ``companions`` columns a listing shows right after a property (a flag saying
     the value was derived); ``trailing`` listing columns after the source (more sources,
     counts); ``narrow`` what a table for people shows; ``reserved`` names an entry
@@ -54,12 +55,19 @@ class Catalogue:
             shown.append(name)
             if name in self.companions:
                 shown.append(self.companions[name])
+            shown.append(uncertainty_column(name))  # u of the value; empty: not given
         return [*shown, "source", "source_locator", *self.trailing]
 
     @property
     def fields(self) -> frozenset[str]:
         """The stored fields a user may set: the properties and the text fields."""
-        return frozenset((*self.properties, *TEXT_FIELDS))
+        return frozenset((*self.properties, *self.uncertainties.values(), *TEXT_FIELDS))
+
+    @property
+    def uncertainties(self) -> dict[str, str]:
+        """Property → the stored column of its standard uncertainty (``u_<property>``),
+        set with the property (``"190 GPa ± 5 %"``)."""
+        return {name: uncertainty_column(name) for name in self.properties}
 
     @property
     def parameters(self) -> dict[str, str]:

@@ -32,6 +32,16 @@ class Term:
     example: str | None = None
 
 
+#: What a standard uncertainty's column name starts with (GUM's u(x); the unit suffix
+#: stays, so ``u_youngs_modulus_pa`` is in pascals). ``granudb.vocabulary.uncertainty``.
+UNCERTAINTY_PREFIX = "u_"
+
+
+def uncertainty_column(column: str) -> str:
+    """The column of ``column``'s standard uncertainty: ``u_youngs_modulus_pa``."""
+    return UNCERTAINTY_PREFIX + column
+
+
 TERMS: dict[str, Term] = {
     # identity and provenance
     "name": Term("Name", None, "Unique name, matched case-insensitively."),

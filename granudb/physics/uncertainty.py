@@ -1,0 +1,399 @@
+"""Standard uncertainties of every derived quantity, and the probability of each verdict.
+
+**Propagation** (GUM, JCGM 100:2008 §5.1, first order). Each input x_k with a standard
+uncertainty u(x_k) is a *source*. Every derived quantity Q of ``granudb.physics.derive``
+is a product of powers of the pair's properties, the fluid's and the speeds (Hertz, the
+Stokes and Reynolds numbers, x₁, h_m, x₃, (5.6), (5.8), Maw's ψ), so its logarithmic
+sensitivity to each source, s_k = ∂ln Q/∂x_k, follows exactly from the exponents and
+from the chain rule through E*, G*, R*, m*, V, σ and A(c) (``friction_integral_log_slope``
+gives A's slope). Then
+
+    u(Q)/|Q| = √(Σ_k (s_k u(x_k))²)
+
+with sources that are the same quantity merged before squaring: where the particle and
+the wall are the same material (``correlated``), their E, ν, ρ, σ and Y come from one
+source and are fully correlated (r = 1, GUM (16)), so u(E*) is then u(E)/E and not
+u(E)/(E√2). Inputs without an uncertainty (None, NaN) contribute nothing. No per-row
+Python: each sensitivity is a scalar or an array over the rows. Quantities of one
+element sum (the incidence angle) are propagated absolutely in the same way.
+
+Temperature enters through the viscosity: the caller gives u(μ) including
+|∂μ/∂T| u(T) from the fluid model (``granudb.analysis.fluid_state``). The per-collision
+parameters (e, β, Ψ, μ_f of (2.9)) are not propagated here.
+
+The first-order result is checked against Monte Carlo propagation (JCGM 101:2008) in
+tests/physics/test_uncertainty.py: within 10 % for input uncertainties up to 5 %; at
+30 % the power laws' curvature makes them part (u(h_m) and u(St) of a 30 % viscosity
+by more than that).
+
+**Verdict probabilities** (``verdict_probabilities``): a verdict compares a positive
+quantity with a threshold, q = Q/Q_c > 1. q is taken as lognormal with ln q's standard
+deviation s = u_rel(q), the first-order relative uncertainty of the ratio (its
+sensitivities to shared sources subtracted, so a source common to both cancels), and
+
+    P(q > 1) = Φ(ln q / s)
+
+(s = 0: 1 if q > 1 else 0). A probability is "likely" (either way) when P ≥ 0.9 or
+P ≤ 0.1, else "uncertain" (``LIKELY``, ``certainty``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from granudb.physics import flow, lubrication
+
+Arrays = dict[str, np.ndarray]
+#: Sensitivities of one quantity: source → ∂ln Q/∂(the source's scaled variable).
+Sens = dict[str, Any]
+
+#: The inputs of ``derive`` that may carry an uncertainty, by their step names, and
+#: whether the source is scaled relatively (u/|x|; power-law factors) or absolutely
+#: (u; Poisson ratios, roughness and velocities, which may be 0).
+SOURCES: dict[str, bool] = {
+    "rho1": True,
+    "e1": True,
+    "nu1": False,
+    "s1": False,
+    "y1": True,
+    "rho2": True,
+    "e2": True,
+    "nu2": False,
+    "s2": False,
+    "y2": True,
+    "d": True,
+    "vn": False,
+    "vt": False,
+    "rho_f": True,
+    "mu": True,
+    "c_barus": True,
+}
+#: The wall's source of each of the particle's: the same source when both are one material.
+_PARTNERS = {"rho1": "rho2", "e1": "e2", "nu1": "nu2", "s1": "s2", "y1": "y2"}
+_PAIRED = {*_PARTNERS, *_PARTNERS.values(), "vn", "vt"}
+#: Probabilities at or beyond which a verdict is "likely" (either way).
+LIKELY, UNLIKELY = 0.9, 0.1
+
+
+def _lin(*terms: tuple[Any, Sens]) -> Sens:
+    """Σ coefficient × sensitivities (the log of a product of powers)."""
+    out: Sens = {}
+    for coefficient, sens in terms:
+        for source, value in sens.items():
+            out[source] = out.get(source, 0.0) + coefficient * value
+    return out
+
+
+def _scale(factor: Any, sens: Sens) -> Sens:
+    return {source: factor * value for source, value in sens.items()}
+
+
+def scaled_sources(x: Arrays, u: Arrays) -> Arrays:
+    """Each given source's scaled uncertainty: u/|x| (relative) or u (absolute); NaN or
+    missing u is "not given" and left out.
+
+    >>> scaled_sources({"e1": np.array([200e9])}, {"e1": np.array([10e9])})["e1"]
+    array([0.05])
+    """
+    out: Arrays = {}
+    for source, relative in SOURCES.items():
+        given = u.get(source)
+        if given is None:
+            continue
+        value = np.nan_to_num(np.asarray(given, dtype=float), nan=0.0)
+        if not value.any():
+            continue
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out[source] = value / np.abs(x[source]) if relative else value
+    return out
+
+
+def relative_uncertainty(
+    sens: Sens,
+    scaled: Arrays,
+    correlated: np.ndarray | None = None,
+    one_speed: np.ndarray | None = None,
+) -> np.ndarray | float:
+    """u(Q)/|Q| = √(Σ (s_k u_k)²), with the terms of two inputs that are one source added
+    before squaring (r = 1): the particle's and the wall's property where ``correlated``
+    (one material on both sides), v_n and v_t where ``one_speed`` (one measured speed
+    at a set angle, as ``granudb.pair`` takes it).
+
+    >>> float(relative_uncertainty({"e1": 0.5, "e2": 0.5}, {"e1": 0.1, "e2": 0.1}))
+    0.07071067811865477
+    >>> float(relative_uncertainty({"e1": 0.5, "e2": 0.5}, {"e1": 0.1, "e2": 0.1}, True))
+    0.1
+    """
+    total: Any = 0.0
+    for source in sens:
+        if source in _PAIRED or source not in scaled:
+            continue  # one of a pair: below
+        total = total + (sens[source] * scaled[source]) ** 2
+    for (first_name, second_name), flag in (
+        *((pair, correlated) for pair in _PARTNERS.items()),
+        (("vn", "vt"), one_speed),
+    ):
+        terms = [
+            sens[name] * scaled[name]
+            for name in (first_name, second_name)
+            if name in sens and name in scaled
+        ]
+        if len(terms) == 1:
+            total = total + terms[0] ** 2
+        elif terms:
+            first, second = terms
+            apart = first**2 + second**2
+            total = total + (
+                apart if flag is None else np.where(flag, (first + second) ** 2, apart)
+            )
+    return np.sqrt(total)
+
+
+def _indicator(condition: np.ndarray) -> np.ndarray:
+    return condition.astype(float)
+
+
+def sensitivities(x: Arrays, p: Arrays, h: Arrays, f: Arrays, lub: Arrays) -> dict[str, Sens]:
+    """∂ln Q/∂(scaled source) of every propagated quantity, by ``derive``'s column name
+    (``incidence_angle_rad``'s are of the angle itself, absolute), from the inputs ``x``
+    and the steps' results (``granudb.physics.quantities``)."""
+    e_star, g_star = p["e_star"], p["g_star"]
+    nu1, nu2 = x["nu1"], x["nu2"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e_w1, e_w2 = e_star * (1 - nu1**2) / x["e1"], e_star * (1 - nu2**2) / x["e2"]
+        s_e = {"e1": e_w1, "e2": e_w2, "nu1": 2 * nu1 * e_star / x["e1"],
+               "nu2": 2 * nu2 * e_star / x["e2"]}  # fmt: skip
+        # G = E/(2(1+ν)) where not given: its E and ν enter G*
+        g_sens: Sens = {}
+        for side, g_name, nu in (("1", "g1", nu1), ("2", "g2", nu2)):
+            derived = _indicator(np.isnan(x[g_name]))
+            weight = g_star * (2 - nu) / p[g_name]
+            g_sens = _lin(
+                (1.0, g_sens),
+                (1.0, {f"e{side}": weight * derived,
+                       f"nu{side}": g_star / p[g_name] - weight * derived / (1 + nu)}),
+            )  # fmt: skip
+        s_r = {"d": p["r_eff"] / p["radius"]}
+        s_m1 = {"rho1": 1.0, "d": 3.0}
+        # 1/m* = 1/m₁ + 1/m₂: d ln m* = (m*/m₁) d ln m₁ + (1 − m*/m₁) d ln m₂ (wall: m* = m₁)
+        k1 = p["m_eff"] / p["m1"]
+        s_m = {"rho1": k1, "d": 3.0 * k1, "rho2": 1.0 - k1}
+        v_n, speed = p["v_n"], p["speed"]
+        vt_centre = x["vt"] - np.where(np.isnan(x["w_vt"]), 0.0, x["w_vt"])
+        s_vn = {"vn": 1.0 / v_n}
+        s_v = {"vn": v_n / speed**2, "vt": vt_centre / speed**2}
+        tangential = p["u"]
+        s_u = {"vt": np.where(tangential == 0.0, 0.0, 1.0 / tangential)}
+        sigma = f["sigma"]
+        s_sigma = {"s1": x["s1"] / sigma**2, "s2": x["s2"] / sigma**2}
+        k_am = flow.ADDED_MASS_COEFFICIENT * x["rho_f"] / x["rho1"]
+        k_am = k_am / (1.0 + k_am)
+    mu, rho_f, c = {"mu": 1.0}, {"rho_f": 1.0}, {"c_barus": 1.0}
+
+    s: dict[str, Sens] = {
+        "reduced_modulus_pa": s_e,
+        "reduced_shear_modulus_pa": g_sens,
+        "effective_radius_m": s_r,
+        "particle_mass_kg": s_m1,
+        "effective_mass_kg": s_m,
+        "impact_speed_m_s": s_v,
+        "normal_speed_m_s": s_vn,
+    }
+    s["reynolds_number"] = _lin((1, rho_f), (1, s_r), (1, s_v), (-1, mu))
+    s["stokes_number"] = _lin((1, s_m), (1, s_v), (-1, mu), (-2, s_r))
+    s["normal_stokes_number"] = _lin((1, s_m), (1, s_vn), (-1, mu), (-2, s_r))
+    s["added_mass_stokes_number"] = _lin(
+        (1, s["normal_stokes_number"]), (k_am, rho_f), (-k_am, {"rho1": 1.0})
+    )
+    delta = _lin((0.4, s_m), (0.8, s_vn), (-0.4, s_e), (-0.2, s_r))
+    load = _lin((1, s_e), (0.5, s_r), (1.5, delta))
+    radius = _lin((1 / 3, s_r), (1 / 3, load), (-1 / 3, s_e))
+    pressure = _lin((1, load), (-2, radius))
+    time = _lin((1, delta), (-1, s_vn))
+    slower = _indicator(np.sqrt(x["e1"] / x["rho1"]) <= np.sqrt(x["e2"] / x["rho2"]))
+    wave = {"e1": 0.5 * slower, "rho1": -0.5 * slower,
+            "e2": 0.5 * (1 - slower), "rho2": -0.5 * (1 - slower)}  # fmt: skip
+    soft = _indicator(~(x["y2"] < x["y1"]))  # fmin: the particle's unless the wall's is lower
+    s_y = {"y1": soft, "y2": 1 - soft}
+    s.update(
+        {
+            "impact_load_n": load,
+            "contact_radius_m": radius,
+            "max_pressure_pa": pressure,
+            "max_approach_m": delta,
+            "contact_time_s": time,
+            "wave_speed_m_s": wave,
+            "quasi_static_ratio": _lin((1, radius), (-1, wave), (-1, time)),
+            "yield_speed_m_s": _lin((1, s_vn), (2.5, s_y), (-2.5, pressure)),
+        }
+    )
+    x1 = _lin((0.4, mu), (0.4, s_vn), (0.6, s_r), (-0.4, s_e))
+    s.update(
+        {
+            "elastic_length_m": x1,
+            "min_gap_m": x1,
+            "eta_hat_pa_inv": c,
+            "piezoviscous_length_m": _lin((0.5, c), (0.5, mu), (0.5, s_vn), (0.5, s_r)),
+            "composite_roughness_m": s_sigma,
+            "film_parameter": _lin((1, x1), (-1, s_sigma)),
+        }
+    )
+    with np.errstate(divide="ignore", invalid="ignore"):
+        recovery = 35.0 / f["st_am"]  # d ln e_pred / d ln St_am of e_dry exp(−35/St_am)
+    s["predicted_restitution"] = _scale(recovery, s["added_mass_stokes_number"])
+    film = _lin(
+        (2 / 7, s_r), (5 / 7, mu), (5 / 7, s_u), (5 / 7, c), (-1 / 21, load),
+        (1 / 21, s_e), (2 / 21, s_r)
+    )  # fmt: skip
+    slope = lubrication.friction_integral_log_slope(f["eta_hat"] * h["p_max"])
+    integral = _scale(slope, _lin((1, c), (1, pressure)))
+    friction = _lin((1, mu), (1, s_u), (2, radius), (1, integral), (-1, load), (-1, film))
+    stiffness = _lin((1, g_sens), (-1, s_e))
+    s.update(
+        {
+            "tangential_speed_m_s": s_u,
+            "traction_film_m": film,
+            "friction_integral": integral,
+            "lubricated_friction": friction,
+            "shear_strain": _lin((2 / 7, mu), (2 / 7, s_u), (-2 / 7, s_e), (-2 / 7, s_r)),
+            "maw_chi": stiffness,
+        }
+    )
+    angle_factor = v_n * tangential / (v_n**2 + tangential**2)  # dζ = that × (dln U − dln v_N)
+    s["incidence_angle_rad"] = _scale(angle_factor, _lin((1, s_u), (-1, s_vn)))
+    s["_yield_ratio"] = _lin((1, pressure), (-1, s_y))  # not a column: P(yield)'s ratio
+    return s
+
+
+def propagate(
+    x: Arrays,
+    u: Arrays,
+    steps: tuple[Arrays, Arrays, Arrays, Arrays, Arrays],
+    columns: Arrays,
+    critical_stokes: float,
+    correlated: np.ndarray | None = None,
+    one_speed: np.ndarray | None = None,
+) -> Arrays:
+    """``u_<column>`` of every propagated column of ``columns`` (``derive``'s, in its
+    order) and the verdict probabilities, from the inputs' uncertainties ``u`` (step
+    names, see ``SOURCES``); ``steps`` are the results of ``granudb.physics.quantities``'
+    pair_properties, hertz, fluid_numbers, lubricated and tangential."""
+    p, h, f, lub, tan = steps
+    scaled = scaled_sources(x, u)
+    sens = sensitivities(x, p, h, f, lub)
+    relative = {
+        name: relative_uncertainty(sens[name], scaled, correlated, one_speed) for name in sens
+    }
+    lubricated = (tan["mu_used"] == lub["mu_lub"]) & np.isfinite(lub["mu_lub"])
+    relative["friction_coefficient_used"] = np.where(
+        lubricated, relative["lubricated_friction"], 0.0
+    )
+    relative["maw_psi_in"] = relative_uncertainty(
+        _lin((1, sens["maw_chi"]), (1, sens["tangential_speed_m_s"]),
+             (-1, sens["normal_speed_m_s"]),
+             (-1, _scale(lubricated.astype(float), sens["lubricated_friction"]))),
+        scaled, correlated, one_speed,
+    )  # fmt: skip
+    out: Arrays = {}
+    for name in (name for name in columns if name in relative):
+        value = np.abs(columns[name])
+        if name == "incidence_angle_rad":
+            out[f"u_{name}"] = relative[name] + 0.0 * value  # absolute already
+        else:
+            out[f"u_{name}"] = value * relative[name]
+    rebound = np.isfinite(f["st_am"]) & (columns["predicted_restitution"] > 0) & f["immersed"]
+    out["u_predicted_restitution"] = np.where(
+        rebound,
+        out["u_predicted_restitution"],
+        np.where(np.isnan(columns["predicted_restitution"]), np.nan, 0.0),
+    )
+    out.update(
+        verdict_probabilities(
+            film=columns["film_parameter"],
+            u_film=relative["film_parameter"],
+            normal_stokes=columns["normal_stokes_number"],
+            u_normal_stokes=relative["normal_stokes_number"],
+            critical_stokes=critical_stokes,
+            yield_ratio=h["p_max"] / (1.6 * np.fmin(x["y1"], x["y2"])),
+            u_yield_ratio=relative["_yield_ratio"],
+            immersed=f["immersed"],
+        )
+    )
+    return out
+
+
+def normal_cdf(z: np.ndarray | float) -> np.ndarray:
+    """Φ(z), the standard normal distribution function, vectorized; ±inf give 1 and 0.
+
+    Abramowitz & Stegun 7.1.26 for erf (|error| ≤ 1.5e-7), in pure numpy.
+
+    >>> [round(float(normal_cdf(z)), 4) for z in (-1.0, 0.0, 1.96)]
+    [0.1587, 0.5, 0.975]
+    """
+    z = np.asarray(z, dtype=float)
+    t_arg = np.abs(z) / np.sqrt(2.0)
+    t = 1.0 / (1.0 + 0.3275911 * t_arg)
+    poly = t * (
+        0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429)))
+    )
+    with np.errstate(over="ignore", under="ignore"):
+        erf = 1.0 - poly * np.exp(-t_arg * t_arg)
+    return np.where(np.isnan(z), np.nan, 0.5 * (1.0 + np.sign(z) * erf))
+
+
+def exceedance(ratio: Any, u_relative: Any) -> np.ndarray:
+    """P(q > 1) for a lognormal q with median ``ratio`` and ln-sd ``u_relative`` (the
+    module docstring's rule); NaN where ``ratio`` is NaN.
+
+    >>> round(float(exceedance(1.0, 0.1)), 3), float(exceedance(2.0, 0.0))
+    (0.5, 1.0)
+    """
+    ratio = np.asarray(ratio, dtype=float)
+    s = np.asarray(u_relative, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = np.log(ratio) / s
+    step = np.where(ratio > 1.0, 1.0, 0.0)
+    out = np.where(s > 0, normal_cdf(np.where(s > 0, z, 0.0)), step)
+    return np.where(np.isnan(ratio), np.nan, out)
+
+
+def verdict_probabilities(
+    *,
+    film: np.ndarray,
+    u_film: Any,
+    normal_stokes: np.ndarray,
+    u_normal_stokes: Any,
+    critical_stokes: float,
+    yield_ratio: np.ndarray,
+    u_yield_ratio: Any,
+    immersed: np.ndarray,
+) -> Arrays:
+    """P(σ > h_m) = P(Λ < 1), P(St_n > St_c) and P(p_max > 1.6 Y) by the module's rule
+    (relative uncertainties ``u_*``): NaN where the verdict has no number (dry, no Y);
+    a dry collision rebounds (1).
+
+    >>> out = verdict_probabilities(film=np.array([1.0]), u_film=0.2,
+    ...     normal_stokes=np.array([100.0]), u_normal_stokes=0.0, critical_stokes=10.0,
+    ...     yield_ratio=np.array([np.nan]), u_yield_ratio=0.0, immersed=np.array([True]))
+    >>> [round(float(v[0]), 2) if v[0] == v[0] else None for v in out.values()]
+    [0.5, 1.0, None]
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        contact = 1.0 - exceedance(film, u_film)
+    rebound = exceedance(normal_stokes / critical_stokes, u_normal_stokes)
+    return {
+        "probability_asperity_contact": np.where(immersed, contact, np.nan),
+        "probability_rebound": np.where(immersed, rebound, 1.0),
+        "probability_yield": exceedance(yield_ratio, u_yield_ratio),
+    }
+
+
+def certainty(probability: float) -> str:
+    """ "likely" where P ≥ ``LIKELY`` or P ≤ 1 − ``LIKELY`` (either way), else "uncertain".
+
+    >>> certainty(0.95), certainty(0.05), certainty(0.46)
+    ('likely', 'likely', 'uncertain')
+    """
+    return "likely" if probability >= LIKELY or probability <= UNLIKELY else "uncertain"

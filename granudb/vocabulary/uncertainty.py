@@ -1,0 +1,127 @@
+"""The names of uncertainties and of verdict probabilities.
+
+A value's standard uncertainty u (GUM, JCGM 100:2008 §2.3.1: one standard deviation, in
+the value's own unit) is stored and returned under the value's name with a ``u_``
+prefix: ``u_youngs_modulus_pa`` is u(E) in pascals, ``u_normal_stokes_number`` u(St_n).
+The prefix keeps the unit suffix, so one unit table reads and formats both. Empty (None,
+NaN) means "not given", never zero.
+
+Every catalogue property may carry one (``--youngs-modulus "190 GPa ± 5 %"``); every
+continuous derived quantity of ``granudb.physics.derive`` gets one when uncertainties are
+given (``UNCERTAIN_DERIVED``), with the probability of each verdict
+(``PROBABILITY_TERMS``). This module adds their terms to ``TERMS`` and their rule (≥ 0)
+to ``RULES``, so schemas, listings and labels are generated from here.
+"""
+
+from __future__ import annotations
+
+from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
+from granudb.vocabulary.derived import DERIVED_TERMS
+from granudb.vocabulary.rules import NON_NEGATIVE, RULES
+from granudb.vocabulary.terms import TERMS, Term, uncertainty_column
+
+
+def _uncertainty_term(column: str, term: Term, role: str) -> Term:
+    symbol = term.symbol or column
+    return Term(
+        f"u({term.title})",
+        term.unit,
+        f"Standard uncertainty u({symbol}) of {column}, same unit (one standard deviation; "
+        "empty: not given).",
+        role=role,
+        symbol=f"u({symbol})",
+    )
+
+
+#: The stored uncertainty columns of the catalogue, by the property they belong to.
+STORED_UNCERTAINTIES: dict[str, str] = {
+    column: uncertainty_column(column) for column in (*MATERIALS.properties, *FLUIDS.properties)
+}
+
+#: Derived quantities that get a standard uncertainty (the continuous ones a scenario
+#: has; the per-collision parameters e, β, Ψ, μ_f need measured velocities' u and come
+#: later), in presentation order.
+UNCERTAIN_DERIVED = (
+    "reduced_modulus_pa",
+    "reduced_shear_modulus_pa",
+    "effective_radius_m",
+    "particle_mass_kg",
+    "effective_mass_kg",
+    "impact_speed_m_s",
+    "normal_speed_m_s",
+    "incidence_angle_rad",
+    "reynolds_number",
+    "stokes_number",
+    "normal_stokes_number",
+    "added_mass_stokes_number",
+    "impact_load_n",
+    "contact_radius_m",
+    "max_pressure_pa",
+    "max_approach_m",
+    "contact_time_s",
+    "wave_speed_m_s",
+    "quasi_static_ratio",
+    "yield_speed_m_s",
+    "elastic_length_m",
+    "min_gap_m",
+    "eta_hat_pa_inv",
+    "piezoviscous_length_m",
+    "composite_roughness_m",
+    "film_parameter",
+    "predicted_restitution",
+    "tangential_speed_m_s",
+    "traction_film_m",
+    "friction_integral",
+    "lubricated_friction",
+    "shear_strain",
+    "friction_coefficient_used",
+    "maw_chi",
+    "maw_psi_in",
+)
+
+#: The probability of each verdict, from the propagated uncertainties
+#: (``granudb.physics.uncertainty.verdict_probabilities`` states the model).
+PROBABILITY_TERMS: dict[str, Term] = {
+    "probability_asperity_contact": Term(
+        "P(asperity contact)",
+        None,
+        "P(σ > h_m): probability that the asperities touch through the film, from u(Λ) "
+        "(lognormal Λ); empty for a dry collision.",
+        role="derived",
+        symbol="P(σ > h_m)",
+    ),
+    "probability_rebound": Term(
+        "P(rebound)",
+        None,
+        "P(St_n > St_c): probability of a rebound, from u(St_n) (lognormal St_n); 1 when dry.",
+        role="derived",
+        symbol="P(St_n > St_c)",
+    ),
+    "probability_yield": Term(
+        "P(yield)",
+        None,
+        "P(p_max > 1.6 Y): probability that the softer body yields, from u(p_max) and u(Y) "
+        "(lognormal ratio); empty where no Y is known.",
+        role="derived",
+        symbol="P(p_max > 1.6 Y)",
+    ),
+}
+
+#: Every column ``derive`` adds when given uncertainties: u of each quantity in
+#: ``UNCERTAIN_DERIVED``, then the probabilities.
+UNCERTAINTY_TERMS: dict[str, Term] = {
+    **{
+        uncertainty_column(name): _uncertainty_term(name, DERIVED_TERMS[name], "derived")
+        for name in UNCERTAIN_DERIVED
+    },
+    **PROBABILITY_TERMS,
+}
+
+TERMS.update(
+    {
+        u: _uncertainty_term(column, TERMS[column], "stored")
+        for column, u in STORED_UNCERTAINTIES.items()
+    }
+)
+TERMS.update(UNCERTAINTY_TERMS)  # ``term()`` finds them; derive's own list stays DERIVED_TERMS
+RULES.update({u: NON_NEGATIVE for u in STORED_UNCERTAINTIES.values()})
