@@ -13,13 +13,20 @@ Technol. 71). What differs between codes is how they turn the e a user types int
 
 - LIGGGHTS ``model hertz``: γ_n = 2√(5/6) β √(S_n m*), S_n = 2E*√(R*δ), β the linear
   spring–dashpot ratio ln e/√(π²+ln²e) (docs/physics.md §13), i.e. C = √5 |ln e|/√(π²+ln²e).
-  Integrating (1) gives back e to 1e-6 (tests/dem/test_damping.py): its input is the target.
+  Integrating (1) gives back e to 1e-6 (tests/dem/test_damping.py) without a clamp.
 - LAMMPS ``damping tsuji``: C = α(e), Tsuji's polynomial fit (LAMMPS pair_granular doc).
   It is not the inverse of (1): typed 0.97 gives 0.979, typed 0.5 gives 0.616 (LAMMPS
   issues #2812, #3025). granudb writes the e_in whose α(e_in) is the C that (1) needs.
 - Yade ``MindlinPhys``: c_n = 2 β_n √(m* k_n) with the tangent stiffness k_n = S_n, i.e.
   C = √6 β_n; its force is clamped at zero (no attraction at the end of the contact), so
   (1) is integrated with the clamp and β_n = C/√6 is written.
+
+Every export clamps the normal force at zero (LIGGGHTS ``limitForce on``, LAMMPS
+``limit_damping``, Yade always): the Coulomb cap of all three codes is μ_f times the
+normal force, and with the large damping of a wet pair the unclamped force turns
+attractive at the end of the contact, where LIGGGHTS and LAMMPS cap the tangential force
+at μ_f |F_n| — friction the measured μ_f never had. So the C written for every code is
+the clamped law's (``clamped_hertz_damping``), turned into each code's input.
 """
 
 from __future__ import annotations
@@ -99,6 +106,12 @@ def clamped_hertz_damping(restitution: float) -> float:
     return 0.5 * (lo + hi)
 
 
+def liggghts_floor(input_floor: float) -> float:
+    """The smallest e LIGGGHTS's ``model hertz limitForce on`` gives from an input of
+    ``input_floor`` (its sanity check refuses inputs at or below 0.05)."""
+    return hertz_restitution(hertz_damping(input_floor), clamp_attraction=True)
+
+
 def tsuji_alpha(restitution: float) -> float:
     """LAMMPS's α(e) = 1.2728 − 4.2783e + … + 4.8218e⁶ (pair_style granular doc, tsuji)."""
     return sum(c * restitution**k for k, c in enumerate(TSUJI_POLYNOMIAL))
@@ -110,10 +123,20 @@ TSUJI_ALPHA_MIN = tsuji_alpha(1.0)
 
 
 def lammps_tsuji_range() -> tuple[float, float]:
-    """Targets e that LAMMPS tsuji damping can reproduce on a Hertz contact."""
-    return restitution_for_hertz_damping(TSUJI_ALPHA_MAX), restitution_for_hertz_damping(
-        TSUJI_ALPHA_MIN
+    """Targets e that LAMMPS tsuji damping can reproduce on a Hertz contact whose force is
+    clamped at zero (``limit_damping``)."""
+    return (
+        hertz_restitution(TSUJI_ALPHA_MAX, clamp_attraction=True),
+        hertz_restitution(TSUJI_ALPHA_MIN, clamp_attraction=True),
     )
+
+
+def liggghts_hertz_input(restitution: float) -> float:
+    """The coefficientRestitution to write for ``model hertz limitForce on`` so that
+    LIGGGHTS gives ``restitution``: LIGGGHTS turns its input into C by
+    :func:`hertz_damping` (an unclamped law), and the clamped law needs
+    ``clamped_hertz_damping(restitution)``."""
+    return restitution_for_hertz_damping(clamped_hertz_damping(round(restitution, 12)))
 
 
 def restitution_for_hertz_damping(damping: float) -> float:
@@ -125,9 +148,11 @@ def restitution_for_hertz_damping(damping: float) -> float:
 
 
 def lammps_tsuji_input(restitution: float, label: str) -> float:
-    """The e to type after ``hertz k_n ... damping tsuji`` so LAMMPS gives ``restitution``.
+    """The e to type after ``hertz k_n ... damping tsuji ... limit_damping`` so LAMMPS
+    gives ``restitution``.
 
-    Solves α(e_in) = C(e) by bisection (α decreases monotonically on [0, 1]).
+    Solves α(e_in) = C(e) of the clamped law by bisection (α decreases monotonically on
+    [0, 1]).
     """
     low, high = lammps_tsuji_range()
     if not low <= restitution <= high:
@@ -138,7 +163,7 @@ def lammps_tsuji_input(restitution: float, label: str) -> float:
             f"contact (alpha(e) is between {TSUJI_ALPHA_MIN:.4g} and {TSUJI_ALPHA_MAX:.4g}); "
             "use --clamp to write the nearest",
         )
-    target = hertz_damping(restitution)
+    target = clamped_hertz_damping(round(restitution, 12))
     lo, hi = 0.0, 1.0
     for _ in range(60):
         mid = 0.5 * (lo + hi)

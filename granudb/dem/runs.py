@@ -83,14 +83,14 @@ def liggghts_input(model: DemModel, fragment: str, case: Case) -> str:
         f"neighbor {radius / 5} bin",
         "neigh_modify delay 0",
         fragment,
-        f"pair_style gran {liggghts.pair_style(model)}",
+        f"pair_style gran {liggghts.pair_style(model)} {liggghts.SETTINGS}",
         "pair_coeff * *",
         f"timestep {dt!r}",
     ]
     if target.is_wall:
         lines.append(
             f"fix wall all wall/gran {liggghts.pair_style(model)} primitive type "
-            f"{model.index(target.name)} zplane 0.0"
+            f"{model.index(target.name)} zplane 0.0 {liggghts.SETTINGS}"
         )
     types = [model.index(case.particle), model.index(case.target)]
     for k, (which, z) in enumerate(_atoms(model, case, radius, gap), start=1):

@@ -5,7 +5,10 @@ Checked in the installed yade (``Ip2_FrictMat_FrictMat_MindlinPhys.__doc__`` and
 - ``en=`` converts e with Thornton et al. (2013) (B6), which in 2023.02a gives 0.9648 for
   0.97 on a sphere–wall impact; granudb writes ``betan=`` instead, computed by integrating
   Yade's own law (c_n = 2β_n√(m* k_n), force clamped at zero; granudb.dem.damping).
-  ``betas`` defaults to ``betan``.
+  ``betas`` (tangential damping) defaults to ``betan``; granudb writes ``betas`` 0:
+  Yade adds the tangential dashpot outside the Coulomb cap while a contact sticks, and
+  with a wet pair's β_n that force exceeded μ_f F_n (μ_f +155 % on glass in 78 %
+  glycerol at 60°).
 - Friction is a per-pair ``frictAngle`` MatchMaker (tan φ = μ_f); without it Yade takes
   the smaller of the two materials' angles (a mixing rule).
 - ``Ig2_Wall_Sphere_ScGeom`` gives the wall the sphere's radius (refR1 = refR2 = R), so
@@ -65,7 +68,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             f"young={deck.num(t.youngs_modulus_pa)}, poisson={deck.num(t.poisson_ratio)}, "
             f"density={deck.num(t.density_kg_m3)}, frictionAngle=0.0))"
         )
-    beta_rows, friction_rows = [], []
+    beta_rows, friction_rows, shear_rows = [], [], []
     for a, b, pair in deck.ordered_pairs(model):
         beta = betan(pair, clamp)
         ids = f"granudb_material[{a.name!r}], granudb_material[{b.name!r}]"
@@ -83,10 +86,17 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         beta_rows.append(f"    ({ids}, {deck.num(beta.value)}),")
         friction_rows += deck.comment(notes[1], "    # ")
         friction_rows.append(f"    ({ids}, math.atan({deck.num(pair.friction.value)})),")
+        shear_rows += deck.comment(
+            f"{deck.pair_label(pair)}: no tangential damping (its dashpot acts outside the "
+            "Coulomb cap while the contact sticks)",
+            "    # ",
+        )
+        shear_rows.append(f"    ({ids}, 0.0),")
     out.append("granudb_ip2 = Ip2_FrictMat_FrictMat_MindlinPhys(")
     out.append("  betan=MatchMaker(matches=(")
     out += beta_rows + ["  )),", "  frictAngle=MatchMaker(matches=("]
-    out += friction_rows + ["  )),", ")"]
+    out += friction_rows + ["  )),", "  betas=MatchMaker(matches=("]
+    out += shear_rows + ["  )),", ")"]
     return "\n".join(out) + "\n"
 
 

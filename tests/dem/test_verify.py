@@ -104,3 +104,18 @@ def test_verdicts_follow_the_tolerances() -> None:
     just_out = dem_verify._record(model, "x", case, (0.0, 0.3 * e * 1.0101, 0.0, 0.0), "checked")
     assert (just_in.verdict, just_out.verdict) == ("pass", "fail")
     assert "e +1.01%" in just_out.reason
+
+
+@pytest.mark.parametrize("code", CODES)
+def test_wet_friction_is_reproduced_on_the_sliding_branch(code: str, tmp_path: Path) -> None:
+    """78 % glycerol at 60°: the large normal damping no longer leaks into friction (it gave
+    mu_f +67 % in LIGGGHTS, -29 % in LAMMPS, +155 % in Yade on glass)."""
+    from granudb.dem.runs import Case
+
+    require(code)
+    model = wet_model("glycerol78")
+    todo = [Case(p, "zerodur", 0.3, 60.0) for p in ("glass", "steel")]
+    records = dem_verify.verify(model, todo, codes=[code], workdir=tmp_path)
+    for r in records:
+        assert r.regime == "gross_slip" and r.verdict == "pass", r
+        assert abs(r.friction_rel_error) <= dem_verify.TOLERANCES["friction"], r
