@@ -33,6 +33,9 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
+from typing import Any
+
+import numpy as np
 
 from granudb.errors import ValidationError
 
@@ -177,3 +180,66 @@ def lammps_tsuji_input(restitution: float, label: str) -> float:
 def yade_betan(restitution: float) -> float:
     """β_n for Yade's MindlinPhys so that its clamped Hertz law gives ``restitution``."""
     return clamped_hertz_damping(round(restitution, 12)) / math.sqrt(6.0)
+
+
+#: 1 + 1/K² for a solid sphere (K² = 2/5): how much a tangential force at the contact point
+#: accelerates the contact point, relative to the centre (Walton; docs/physics.md §5).
+CONTACT_POINT_FACTOR = 3.5
+
+
+def stick_rebound(stiffness_ratio: Any, damping: float, *, step: float = 4e-3) -> Any:
+    """β = −v_t,out/v_t,in of a contact that never slides, on the clamped law (1) with an
+    incremental Mindlin tangential spring dF_t = −k_t a du (LAMMPS ``mindlin``):
+
+        u̇' = 3.5 F_t,   Ḟ_t = −ρ √δ u̇ ,   ρ = k_t / k_n,
+
+    in the units of (1) (m* = 1, K = 1); ``stiffness_ratio`` may be an array (the normal
+    motion does not depend on it). Fourth-order Runge–Kutta to the end of contact.
+    """
+    rho = np.asarray(stiffness_ratio, dtype=float)
+
+    def rates(x: float, v: float, force: Any, w: Any) -> tuple[float, float, Any, Any]:
+        xp = max(x, 0.0)
+        a = min(-(xp**1.5) - damping * xp**0.25 * v, 0.0)
+        return v, a, -rho * math.sqrt(xp) * w, CONTACT_POINT_FACTOR * force
+
+    x, v, force, w, t = 0.0, 1.0, np.zeros_like(rho), np.ones_like(rho), 0.0
+    h = step
+    while t < 200.0:
+        k1 = rates(x, v, force, w)
+        k2 = rates(*(a + 0.5 * h * b for a, b in zip((x, v, force, w), k1, strict=True)))
+        k3 = rates(*(a + 0.5 * h * b for a, b in zip((x, v, force, w), k2, strict=True)))
+        k4 = rates(*(a + h * b for a, b in zip((x, v, force, w), k3, strict=True)))
+        x_new, v, force, w_new = (
+            a + h / 6.0 * (b + 2 * c + 2 * d + e)
+            for a, b, c, d, e in zip((x, v, force, w), k1, k2, k3, k4, strict=True)
+        )
+        t += h
+        if x_new <= 0.0:  # the end of contact, between the two steps
+            return -(w + x / (x - x_new) * (w_new - w))
+        x, w = x_new, w_new
+    return -w
+
+
+@lru_cache(maxsize=256)
+def stiffness_ratio_for_rebound(rebound: float, damping: float, mindlin_ratio: float) -> float:
+    """ρ = k_t/k_n whose never-sliding contact rebounds with ``rebound`` (Walton's β):
+    the root of :func:`stick_rebound` nearest below ``mindlin_ratio`` (Mindlin's own
+    8G*/(4/3 E*)), from a grid of ρ refined twice around the crossing."""
+    if not -1.0 < rebound < 1.0:
+        raise ValidationError("rotational_restitution", rebound, "must be in (-1, 1)")
+    low, high = 0.02, mindlin_ratio
+    for _ in range(3):
+        grid = np.linspace(low, high, 41)
+        sign = np.sign(stick_rebound(grid, damping) - rebound)
+        crossings = np.nonzero(sign[:-1] != sign[1:])[0]
+        if crossings.size == 0:
+            raise ValidationError(
+                "rotational_restitution",
+                rebound,
+                "no tangential stiffness up to Mindlin's gives it on a contact that sticks",
+            )
+        k = crossings[-1]
+        low, high = grid[k], grid[k + 1]
+    values = stick_rebound(np.array([low, high]), damping) - rebound
+    return float(low - values[0] * (high - low) / (values[1] - values[0]))

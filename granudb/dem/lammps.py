@@ -67,13 +67,39 @@ def tsuji_input(pair: PairParameters, clamp: bool) -> deck.Limited:
     )
 
 
+def tangential_stiffness(model: DemModel, pair: PairParameters) -> tuple[float, str]:
+    """k_t for ``tangential mindlin`` and the sentence saying why: Mindlin's 8 G*, or where
+    the pair has a measured β the k_t whose never-sliding contact rebounds with it
+    (``damping.stiffness_ratio_for_rebound`` on this pair's clamped damping), so that
+    Ψ_out follows Walton's relation with β and μ_f."""
+    scales = model.contact(pair)
+    mindlin = scales.mindlin_stiffness
+    beta = pair.rotational_restitution
+    if beta is None:
+        return mindlin, (
+            f"k_t = 8 G* = {deck.num(mindlin)} Pa (Mindlin; no measured beta for this pair, "
+            "granudb docs/physics.md section 13)"
+        )
+    c = damping.clamped_hertz_damping(round(pair.restitution.value, 12))
+    ratio = damping.stiffness_ratio_for_rebound(
+        round(beta.value, 12), round(c, 12), mindlin / scales.hertz_stiffness
+    )
+    k_t = ratio * scales.hertz_stiffness
+    return k_t, (
+        f"k_t = {ratio:.4f} k_n = {deck.num(k_t)} Pa ({k_t / mindlin:.3f} of Mindlin's 8 G*): a "
+        f"contact that never slides rebounds with beta = {deck.describe(beta)}, so Psi_out "
+        "follows Walton's relation with beta and mu_f (granudb.dem.damping)"
+    )
+
+
 def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
     """The granular model arguments of one pair and the comment lines explaining them."""
     scales = model.contact(pair)
     e_in = tsuji_input(pair, clamp)
+    k_t, k_t_note = tangential_stiffness(model, pair)
     args = (
         f"hertz {deck.num(scales.hertz_stiffness)} {deck.num(e_in.value)} "
-        f"tangential mindlin {deck.num(scales.mindlin_stiffness)} 0.0 "
+        f"tangential mindlin {deck.num(k_t)} 0.0 "
         f"{deck.num(pair.friction.value)} "
         "damping tsuji limit_damping"
     )
@@ -81,16 +107,15 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
         f"{deck.pair_label(pair)}: e = {deck.describe(pair.restitution)}",
         f"  mu_f = {deck.describe(pair.friction)}",
         f"  k_n = 4/3 E* = {deck.num(scales.hertz_stiffness)} Pa (E* = "
-        f"{deck.num(scales.reduced_modulus_pa)} Pa), "
-        f"k_t = 8 G* = {deck.num(scales.mindlin_stiffness)} Pa "
-        "(granudb docs/physics.md section 13)",
+        f"{deck.num(scales.reduced_modulus_pa)} Pa, granudb docs/physics.md section 13)",
+        f"  {k_t_note}",
         f"  tsuji input {deck.num(e_in.value)} so that LAMMPS's alpha(e) gives e = "
         f"{deck.num(pair.restitution.value)} on this Hertz contact with limit_damping "
         "(granudb.dem.damping); no tangential damping (x_gamma,t = 0)",
     ]
     if e_in.note:
         notes.append("  " + e_in.note)
-    if (note := deck.wet_note(pair)) is not None:
+    if (note := deck.wet_note(pair, model.characteristic_velocity_m_s)) is not None:
         notes.append("  " + note)
     if pair.rolling_friction is not None:
         a, b = model.type(pair.type_i), model.type(pair.type_j)

@@ -31,6 +31,9 @@ from granudb.dem.spec import DemModel, PairParameters
 
 CODE = "LIGGGHTS"
 VERSION = "3.8.0, Debian package liggghts"
+
+#: Why Ψ_out at 30° may miss Walton's relation with a measured β (``dem verify``).
+REBOUND_LIMIT = deck.rebound_limit(CODE, "8 G* a from the materials' E and nu")
 RESTITUTION_FLOOR = 0.05
 SOFT_LIMIT_PA = 5e6
 HARD_LIMIT_PA = 1e9
@@ -80,6 +83,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         f"as fix ID all wall/gran {pair_style(model)} primitive type N zplane 0.0 {SETTINGS} "
         "(N = the wall's type; the settings come last)."
     )
+    out += deck.rebound_lines(model, REBOUND_LIMIT)
     moduli = [t.youngs_modulus_pa for t in model.types]
     if max(moduli) > HARD_LIMIT_PA:
         out += deck.comment(f"some E > {HARD_LIMIT_PA:g} Pa: LIGGGHTS's SI sanity check needs this")
@@ -139,7 +143,9 @@ def _matrix(
                 f"damping of this input gives e = {deck.num(pair.restitution.value)} "
                 "(granudb.dem.damping)"
             )
-        if attribute == "restitution" and (note := deck.wet_note(pair)):
+        if attribute == "restitution" and (
+            note := deck.wet_note(pair, model.characteristic_velocity_m_s)
+        ):
             lines += deck.comment(
                 note + "; LIGGGHTS 3.8.0's 'viscous on' is not used (see the granudb.dem.liggghts "
                 "docstring: it does not reproduce e(St))"

@@ -27,6 +27,9 @@ from granudb.dem.spec import DemModel, PairParameters
 CODE = "Yade"
 VERSION = "2023.02a, Debian package yade"
 
+#: Why Ψ_out at 30° may miss Walton's relation with a measured β (``dem verify``).
+REBOUND_LIMIT = deck.rebound_limit(CODE, "MindlinPhys's from the materials' E and nu")
+
 
 def betan(pair: PairParameters, clamp: bool) -> deck.Limited:
     """β_n for the pair, so that Yade's clamped Hertz law gives the target e."""
@@ -53,6 +56,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         "InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(), "
         "Ig2_Facet_Sphere_ScGeom()], [granudb_ip2], [Law2_ScGeom_MindlinPhys_Mindlin()])."
     )
+    out += deck.rebound_lines(model, REBOUND_LIMIT)
     if model.walls:
         out += deck.comment(
             "Yade's wall geometry gives a wall contact the sphere's radius (R* = R/2): the "
@@ -80,7 +84,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         ]
         if beta.note:
             notes.append(beta.note)
-        if (note := deck.wet_note(pair)) is not None:
+        if (note := deck.wet_note(pair, model.characteristic_velocity_m_s)) is not None:
             notes.append(note)
         beta_rows += [line for n in notes[:1] + notes[2:] for line in deck.comment(n, "    # ")]
         beta_rows.append(f"    ({ids}, {deck.num(beta.value)}),")
