@@ -13,19 +13,29 @@ Technol. 71). What differs between codes is how they turn the e a user types int
 
 - LIGGGHTS ``model hertz``: γ_n = 2√(5/6) β √(S_n m*), S_n = 2E*√(R*δ), β the linear
   spring–dashpot ratio ln e/√(π²+ln²e) (docs/physics.md §13), i.e. C = √5 |ln e|/√(π²+ln²e).
-  Integrating (1) gives back e to 1e-6 (tests/dem/test_damping.py): its input is the target.
+  Integrating (1) gives back e to 1e-6 (tests/dem/test_damping.py) without a clamp.
 - LAMMPS ``damping tsuji``: C = α(e), Tsuji's polynomial fit (LAMMPS pair_granular doc).
   It is not the inverse of (1): typed 0.97 gives 0.979, typed 0.5 gives 0.616 (LAMMPS
   issues #2812, #3025). granudb writes the e_in whose α(e_in) is the C that (1) needs.
 - Yade ``MindlinPhys``: c_n = 2 β_n √(m* k_n) with the tangent stiffness k_n = S_n, i.e.
   C = √6 β_n; its force is clamped at zero (no attraction at the end of the contact), so
   (1) is integrated with the clamp and β_n = C/√6 is written.
+
+Every export clamps the normal force at zero (LIGGGHTS ``limitForce on``, LAMMPS
+``limit_damping``, Yade always): the Coulomb cap of all three codes is μ_f times the
+normal force, and with the large damping of a wet pair the unclamped force turns
+attractive at the end of the contact, where LIGGGHTS and LAMMPS cap the tangential force
+at μ_f |F_n| — friction the measured μ_f never had. So the C written for every code is
+the clamped law's (``clamped_hertz_damping``), turned into each code's input.
 """
 
 from __future__ import annotations
 
 import math
 from functools import lru_cache
+from typing import Any
+
+import numpy as np
 
 from granudb.errors import ValidationError
 
@@ -99,6 +109,12 @@ def clamped_hertz_damping(restitution: float) -> float:
     return 0.5 * (lo + hi)
 
 
+def liggghts_floor(input_floor: float) -> float:
+    """The smallest e LIGGGHTS's ``model hertz limitForce on`` gives from an input of
+    ``input_floor`` (its sanity check refuses inputs at or below 0.05)."""
+    return hertz_restitution(hertz_damping(input_floor), clamp_attraction=True)
+
+
 def tsuji_alpha(restitution: float) -> float:
     """LAMMPS's α(e) = 1.2728 − 4.2783e + … + 4.8218e⁶ (pair_style granular doc, tsuji)."""
     return sum(c * restitution**k for k, c in enumerate(TSUJI_POLYNOMIAL))
@@ -110,10 +126,20 @@ TSUJI_ALPHA_MIN = tsuji_alpha(1.0)
 
 
 def lammps_tsuji_range() -> tuple[float, float]:
-    """Targets e that LAMMPS tsuji damping can reproduce on a Hertz contact."""
-    return restitution_for_hertz_damping(TSUJI_ALPHA_MAX), restitution_for_hertz_damping(
-        TSUJI_ALPHA_MIN
+    """Targets e that LAMMPS tsuji damping can reproduce on a Hertz contact whose force is
+    clamped at zero (``limit_damping``)."""
+    return (
+        hertz_restitution(TSUJI_ALPHA_MAX, clamp_attraction=True),
+        hertz_restitution(TSUJI_ALPHA_MIN, clamp_attraction=True),
     )
+
+
+def liggghts_hertz_input(restitution: float) -> float:
+    """The coefficientRestitution to write for ``model hertz limitForce on`` so that
+    LIGGGHTS gives ``restitution``: LIGGGHTS turns its input into C by
+    :func:`hertz_damping` (an unclamped law), and the clamped law needs
+    ``clamped_hertz_damping(restitution)``."""
+    return restitution_for_hertz_damping(clamped_hertz_damping(round(restitution, 12)))
 
 
 def restitution_for_hertz_damping(damping: float) -> float:
@@ -125,9 +151,11 @@ def restitution_for_hertz_damping(damping: float) -> float:
 
 
 def lammps_tsuji_input(restitution: float, label: str) -> float:
-    """The e to type after ``hertz k_n ... damping tsuji`` so LAMMPS gives ``restitution``.
+    """The e to type after ``hertz k_n ... damping tsuji ... limit_damping`` so LAMMPS
+    gives ``restitution``.
 
-    Solves α(e_in) = C(e) by bisection (α decreases monotonically on [0, 1]).
+    Solves α(e_in) = C(e) of the clamped law by bisection (α decreases monotonically on
+    [0, 1]).
     """
     low, high = lammps_tsuji_range()
     if not low <= restitution <= high:
@@ -138,7 +166,7 @@ def lammps_tsuji_input(restitution: float, label: str) -> float:
             f"contact (alpha(e) is between {TSUJI_ALPHA_MIN:.4g} and {TSUJI_ALPHA_MAX:.4g}); "
             "use --clamp to write the nearest",
         )
-    target = hertz_damping(restitution)
+    target = clamped_hertz_damping(round(restitution, 12))
     lo, hi = 0.0, 1.0
     for _ in range(60):
         mid = 0.5 * (lo + hi)
@@ -152,3 +180,66 @@ def lammps_tsuji_input(restitution: float, label: str) -> float:
 def yade_betan(restitution: float) -> float:
     """β_n for Yade's MindlinPhys so that its clamped Hertz law gives ``restitution``."""
     return clamped_hertz_damping(round(restitution, 12)) / math.sqrt(6.0)
+
+
+#: 1 + 1/K² for a solid sphere (K² = 2/5): how much a tangential force at the contact point
+#: accelerates the contact point, relative to the centre (Walton; docs/physics.md §5).
+CONTACT_POINT_FACTOR = 3.5
+
+
+def stick_rebound(stiffness_ratio: Any, damping: float, *, step: float = 4e-3) -> Any:
+    """β = −v_t,out/v_t,in of a contact that never slides, on the clamped law (1) with an
+    incremental Mindlin tangential spring dF_t = −k_t a du (LAMMPS ``mindlin``):
+
+        u̇' = 3.5 F_t,   Ḟ_t = −ρ √δ u̇ ,   ρ = k_t / k_n,
+
+    in the units of (1) (m* = 1, K = 1); ``stiffness_ratio`` may be an array (the normal
+    motion does not depend on it). Fourth-order Runge–Kutta to the end of contact.
+    """
+    rho = np.asarray(stiffness_ratio, dtype=float)
+
+    def rates(x: float, v: float, force: Any, w: Any) -> tuple[float, float, Any, Any]:
+        xp = max(x, 0.0)
+        a = min(-(xp**1.5) - damping * xp**0.25 * v, 0.0)
+        return v, a, -rho * math.sqrt(xp) * w, CONTACT_POINT_FACTOR * force
+
+    x, v, force, w, t = 0.0, 1.0, np.zeros_like(rho), np.ones_like(rho), 0.0
+    h = step
+    while t < 200.0:
+        k1 = rates(x, v, force, w)
+        k2 = rates(*(a + 0.5 * h * b for a, b in zip((x, v, force, w), k1, strict=True)))
+        k3 = rates(*(a + 0.5 * h * b for a, b in zip((x, v, force, w), k2, strict=True)))
+        k4 = rates(*(a + h * b for a, b in zip((x, v, force, w), k3, strict=True)))
+        x_new, v, force, w_new = (
+            a + h / 6.0 * (b + 2 * c + 2 * d + e)
+            for a, b, c, d, e in zip((x, v, force, w), k1, k2, k3, k4, strict=True)
+        )
+        t += h
+        if x_new <= 0.0:  # the end of contact, between the two steps
+            return -(w + x / (x - x_new) * (w_new - w))
+        x, w = x_new, w_new
+    return -w
+
+
+@lru_cache(maxsize=256)
+def stiffness_ratio_for_rebound(rebound: float, damping: float, mindlin_ratio: float) -> float:
+    """ρ = k_t/k_n whose never-sliding contact rebounds with ``rebound`` (Walton's β):
+    the root of :func:`stick_rebound` nearest below ``mindlin_ratio`` (Mindlin's own
+    8G*/(4/3 E*)), from a grid of ρ refined twice around the crossing."""
+    if not -1.0 < rebound < 1.0:
+        raise ValidationError("rotational_restitution", rebound, "must be in (-1, 1)")
+    low, high = 0.02, mindlin_ratio
+    for _ in range(3):
+        grid = np.linspace(low, high, 41)
+        sign = np.sign(stick_rebound(grid, damping) - rebound)
+        crossings = np.nonzero(sign[:-1] != sign[1:])[0]
+        if crossings.size == 0:
+            raise ValidationError(
+                "rotational_restitution",
+                rebound,
+                "no tangential stiffness up to Mindlin's gives it on a contact that sticks",
+            )
+        k = crossings[-1]
+        low, high = grid[k], grid[k + 1]
+    values = stick_rebound(np.array([low, high]), damping) - rebound
+    return float(low - values[0] * (high - low) / (values[1] - values[0]))

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import math
 import textwrap
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from granudb.dem.spec import DemModel, PairParameters, ParticleType, Value
+from granudb.dem.spec import TOLERANCES, DemModel, PairParameters, ParticleType, Value
 from granudb.errors import ValidationError
 
 
@@ -113,14 +114,25 @@ def ordered_pairs(model: DemModel) -> Iterator[tuple[ParticleType, ParticleType,
                 yield a, b, pair
 
 
-def wet_note(pair: PairParameters) -> str | None:
+def wet_note(pair: PairParameters, speed: float) -> str | None:
+    """The e(St) law of an immersed pair and the speeds over which the constant e written
+    (the law's value at ``speed``, the characteristic speed) stays within e's tolerance."""
     if pair.wet is None:
         return None
     w = pair.wet
+    e = pair.restitution.value
+    tolerance = TOLERANCES["restitution"]
+    st = w.stokes_at(e)
+    low, high = w.constant_range(e, tolerance)
+    top = "any higher speed" if math.isinf(high) else f"{num(round(speed * high / st, 4))} m/s"
+    st_top = "infinity" if math.isinf(high) else f"{high:.4g}"
     return (
         f"immersed: e(St_am) = {num(w.max_restitution)} exp(-{num(w.coefficient)}/St_am), "
         f"mu_fluid = {num(w.fluid_viscosity_pa_s)} Pa s ({w.provenance}); the e written is the "
-        f"value at the stated Stokes number"
+        f"value at St_am = {st:.4g} (V = {num(speed)} m/s). It stays within "
+        f"{tolerance:.0%} of e(St) for St_am {low:.4g} to {st_top}, i.e. normal impact speeds "
+        f"{num(round(speed * low / st, 4))} m/s to {top}; outside that range this code gives "
+        "the constant, not e(St)"
     )
 
 
@@ -132,3 +144,22 @@ def header(code: str, version: str, model: DemModel) -> list[str]:
     ]
     out = [line for text in lines for line in comment(text)]
     return out + type_lines(model)
+
+
+def rebound_limit(code: str, stiffness: str) -> str:
+    """Why ``code`` cannot reproduce a measured β: its tangential stiffness (``stiffness``)
+    is not a per-pair input. Written in its deck, and ``dem verify``'s "stated limit"."""
+    return (
+        f"{code}'s tangential stiffness is {stiffness}, not a per-pair input, so a measured "
+        "beta cannot be set: Psi_out on the sticking side of Walton's relation is the Mindlin "
+        "contact's"
+    )
+
+
+def rebound_lines(model: DemModel, limit: str) -> list[str]:
+    """The deck's statement of ``limit`` for the pairs that have a measured β."""
+    pairs = [p for p in model.pairs if p.rotational_restitution is not None]
+    if not pairs:
+        return []
+    said = ", ".join(f"{pair_label(p)} {describe(p.rotational_restitution)}" for p in pairs)
+    return comment(f"beta NOT reproduced ({said}): {limit}")

@@ -11,6 +11,11 @@ src/GRANULAR/pair_granular.cpp and fix_wall_gran.cpp of that release):
 - ``damping tsuji`` reads the η slot as e but maps it with a fitted polynomial that does
   not reproduce e on a Hertz contact; the e written is corrected (granudb.dem.damping), so
   it differs from the target and the comment gives both.
+- ``limit_damping`` clamps the normal force at zero: LAMMPS caps the tangential force at
+  μ_f |F_n|, and the attractive F_n at the end of a strongly damped (wet) contact otherwise
+  adds friction the measured μ_f never had. The tangential damping ratio x_γ,t is 0: with
+  a wet pair's normal damping, the tangential dashpot (x_γ,t times it) decided Ψ_out
+  instead of μ_f (−29 % on glass in 78 % glycerol at 60°).
 - Unset pairs are mixed (geometric means, E* formula): every particle pair is written.
 - Walls are not atom types: each (particle type, wall) pair is a ``fix wall/gran granular``
   on a group of that type, with the wall's geometry from a string variable the user sets.
@@ -62,29 +67,55 @@ def tsuji_input(pair: PairParameters, clamp: bool) -> deck.Limited:
     )
 
 
+def tangential_stiffness(model: DemModel, pair: PairParameters) -> tuple[float, str]:
+    """k_t for ``tangential mindlin`` and the sentence saying why: Mindlin's 8 G*, or where
+    the pair has a measured β the k_t whose never-sliding contact rebounds with it
+    (``damping.stiffness_ratio_for_rebound`` on this pair's clamped damping), so that
+    Ψ_out follows Walton's relation with β and μ_f."""
+    scales = model.contact(pair)
+    mindlin = scales.mindlin_stiffness
+    beta = pair.rotational_restitution
+    if beta is None:
+        return mindlin, (
+            f"k_t = 8 G* = {deck.num(mindlin)} Pa (Mindlin; no measured beta for this pair, "
+            "granudb docs/physics.md section 13)"
+        )
+    c = damping.clamped_hertz_damping(round(pair.restitution.value, 12))
+    ratio = damping.stiffness_ratio_for_rebound(
+        round(beta.value, 12), round(c, 12), mindlin / scales.hertz_stiffness
+    )
+    k_t = ratio * scales.hertz_stiffness
+    return k_t, (
+        f"k_t = {ratio:.4f} k_n = {deck.num(k_t)} Pa ({k_t / mindlin:.3f} of Mindlin's 8 G*): a "
+        f"contact that never slides rebounds with beta = {deck.describe(beta)}, so Psi_out "
+        "follows Walton's relation with beta and mu_f (granudb.dem.damping)"
+    )
+
+
 def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
     """The granular model arguments of one pair and the comment lines explaining them."""
     scales = model.contact(pair)
     e_in = tsuji_input(pair, clamp)
+    k_t, k_t_note = tangential_stiffness(model, pair)
     args = (
         f"hertz {deck.num(scales.hertz_stiffness)} {deck.num(e_in.value)} "
-        f"tangential mindlin {deck.num(scales.mindlin_stiffness)} 1.0 "
+        f"tangential mindlin {deck.num(k_t)} 0.0 "
         f"{deck.num(pair.friction.value)} "
-        "damping tsuji"
+        "damping tsuji limit_damping"
     )
     notes = [
         f"{deck.pair_label(pair)}: e = {deck.describe(pair.restitution)}",
         f"  mu_f = {deck.describe(pair.friction)}",
         f"  k_n = 4/3 E* = {deck.num(scales.hertz_stiffness)} Pa (E* = "
-        f"{deck.num(scales.reduced_modulus_pa)} Pa), "
-        f"k_t = 8 G* = {deck.num(scales.mindlin_stiffness)} Pa "
-        "(granudb docs/physics.md section 13)",
+        f"{deck.num(scales.reduced_modulus_pa)} Pa, granudb docs/physics.md section 13)",
+        f"  {k_t_note}",
         f"  tsuji input {deck.num(e_in.value)} so that LAMMPS's alpha(e) gives e = "
-        f"{deck.num(pair.restitution.value)} on this Hertz contact (granudb.dem.damping)",
+        f"{deck.num(pair.restitution.value)} on this Hertz contact with limit_damping "
+        "(granudb.dem.damping); no tangential damping (x_gamma,t = 0)",
     ]
     if e_in.note:
         notes.append("  " + e_in.note)
-    if (note := deck.wet_note(pair)) is not None:
+    if (note := deck.wet_note(pair, model.characteristic_velocity_m_s)) is not None:
         notes.append("  " + note)
     if pair.rolling_friction is not None:
         a, b = model.type(pair.type_i), model.type(pair.type_j)

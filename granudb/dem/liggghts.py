@@ -7,7 +7,13 @@ youngsModulus ≥ 5e6 Pa in SI unless ``soft_particles yes`` and ≤ 1e9 Pa unle
 ``hard_particles yes`` (both commands are written when needed, with the reason).
 
 Damping: ``model hertz`` turns e into γ_n = 2√(5/6)β√(S_n m*), which gives back e exactly
-on a Hertz contact (granudb.dem.damping), so the coefficient written is the target e.
+on an unclamped Hertz contact (granudb.dem.damping). The export sets ``limitForce on``
+(no attractive normal force: LIGGGHTS caps the tangential force at μ_f |F_n|, and an
+attractive F_n at the end of a strongly damped wet contact added friction, +67 % on glass
+in 78 % glycerol) and ``tangential_damping off`` (LIGGGHTS adds the tangential dashpot
+outside the Coulomb cap while the contact sticks, which with a wet pair's damping pushed
+the tangential force past μ_f F_n). With the clamp the coefficient written is the e whose
+unclamped damping is the clamped law's (``damping.liggghts_hertz_input``), not the target.
 
 Wet pairs: LIGGGHTS has ``model hooke ... viscous on`` (FluidViscosity, CriticalStokes,
 MaximumRestitution). In 3.8.0 (src/normal_model_hooke.h) it computes St from the
@@ -20,11 +26,14 @@ comment, never the viscous model.
 
 from __future__ import annotations
 
-from granudb.dem import deck
+from granudb.dem import damping, deck
 from granudb.dem.spec import DemModel, PairParameters
 
 CODE = "LIGGGHTS"
 VERSION = "3.8.0, Debian package liggghts"
+
+#: Why Ψ_out at 30° may miss Walton's relation with a measured β (``dem verify``).
+REBOUND_LIMIT = deck.rebound_limit(CODE, "8 G* a from the materials' E and nu")
 RESTITUTION_FLOOR = 0.05
 SOFT_LIMIT_PA = 5e6
 HARD_LIMIT_PA = 1e9
@@ -37,19 +46,28 @@ def pair_style(model: DemModel) -> str:
     return "model hertz tangential history" + (" rolling_friction cdt" if rolling else "")
 
 
+#: The contact settings every export needs (see the module docstring): after the models in
+#: ``pair_style gran``, after the wall's geometry in ``fix wall/gran``.
+SETTINGS = "tangential_damping off limitForce on"
+
+
 def restitution_input(pair: PairParameters, clamp: bool) -> deck.Limited:
-    """The coefficientRestitution to write: the target, within LIGGGHTS's sanity check."""
+    """The coefficientRestitution to write (``damping.liggghts_hertz_input`` of the target),
+    within LIGGGHTS's sanity check (an input above 0.05, which with ``limitForce on`` is a
+    target above ``damping.liggghts_floor()``)."""
     e = pair.restitution.value
-    return deck.check(
+    floor = damping.liggghts_floor(RESTITUTION_FLOOR)
+    limited = deck.check(
         CODE,
         f"restitution {deck.pair_label(pair)}",
         e,
-        e > RESTITUTION_FLOOR,
-        f"refuses e <= {RESTITUTION_FLOOR:g} "
-        "(its sanity deck.check: 0.05 < coefficientRestitution <= 1)",
-        0.0501,
+        e > floor,
+        f"refuses e <= {RESTITUTION_FLOOR:g} (its sanity check: 0.05 < coefficientRestitution "
+        f"<= 1), which with limitForce on is e <= {floor:.4f}",
+        damping.liggghts_floor(RESTITUTION_FLOOR + 1e-4),
         clamp,
     )
+    return deck.Limited(damping.liggghts_hertz_input(limited.value), limited.note)
 
 
 def write(model: DemModel, *, clamp: bool = False) -> str:
@@ -61,9 +79,11 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
     }
     out = deck.header(CODE, VERSION, model)
     out += deck.comment(
-        f"Use with: pair_style gran {pair_style(model)} ; pair_coeff * * ; walls as "
-        f"fix ID all wall/gran {pair_style(model)} ... type N (N = the wall's type)."
+        f"Use with: pair_style gran {pair_style(model)} {SETTINGS} ; pair_coeff * * ; walls "
+        f"as fix ID all wall/gran {pair_style(model)} primitive type N zplane 0.0 {SETTINGS} "
+        "(N = the wall's type; the settings come last)."
     )
+    out += deck.rebound_lines(model, REBOUND_LIMIT)
     moduli = [t.youngs_modulus_pa for t in model.types]
     if max(moduli) > HARD_LIMIT_PA:
         out += deck.comment(f"some E > {HARD_LIMIT_PA:g} Pa: LIGGGHTS's SI sanity check needs this")
@@ -117,7 +137,15 @@ def _matrix(
         )
         if limited.note:
             lines += deck.comment(limited.note)
-        if attribute == "restitution" and (note := deck.wet_note(pair)):
+        if attribute == "restitution":
+            lines += deck.comment(
+                f"written {deck.num(limited.value)}: with limitForce on, LIGGGHTS's hertz "
+                f"damping of this input gives e = {deck.num(pair.restitution.value)} "
+                "(granudb.dem.damping)"
+            )
+        if attribute == "restitution" and (
+            note := deck.wet_note(pair, model.characteristic_velocity_m_s)
+        ):
             lines += deck.comment(
                 note + "; LIGGGHTS 3.8.0's 'viscous on' is not used (see the granudb.dem.liggghts "
                 "docstring: it does not reproduce e(St))"

@@ -79,7 +79,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         ]
         if e.note:
             notes.append(e.note)
-        if (note := deck.wet_note(pair)) is not None:
+        if (note := deck.wet_note(pair, model.characteristic_velocity_m_s)) is not None:
             notes.append(note)
         out += [line for n in notes for line in deck.comment(n, "// ")]
         out.append(f"auto* {var} = {target};")

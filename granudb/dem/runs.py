@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from granudb.dem import lammps, liggghts
-from granudb.dem.spec import DemModel
+from granudb.dem.spec import DemModel, ParticleType
 from granudb.errors import GranudbError
 
 STEPS_PER_CONTACT = 200
@@ -67,30 +67,53 @@ def _atoms(model: DemModel, case: Case, radius: float, gap: float) -> list[tuple
     return [(0, radius + gap + r2), (1, 0.0)]
 
 
-def liggghts_input(model: DemModel, fragment: str, case: Case) -> str:
+#: The first lines of each code's input: SI units, spheres, a fixed box, velocities shared.
+LIGGGHTS_SETUP = ["atom_style granular", "atom_modify map array", "boundary f f f",
+                  "newton off", "communicate single vel yes", "units si"]  # fmt: skip
+LAMMPS_SETUP = ["units si", "atom_style sphere", "atom_modify map array", "boundary f f f",
+                "comm_modify vel yes"]  # fmt: skip
+
+
+def _start(
+    model: DemModel, case: Case, setup: list[str], types: int
+) -> tuple[float, int, float, float, ParticleType, float, list[str]]:
+    """Time step, steps, radius, gap, target, box half-size and the first lines (a box of
+    20 radii either side, with ``types`` atom types)."""
     dt, steps, radius, gap = timing(model, case)
-    target = model.type(case.target)
     size = 20 * radius
-    lines = [
-        "atom_style granular",
-        "atom_modify map array",
-        "boundary f f f",
-        "newton off",
-        "communicate single vel yes",
-        "units si",
-        f"region domain block {-size} {size} {-size} {size} {-size} {size} units box",
-        f"create_box {len(model.types)} domain",
+    box = f"region box block {-size} {size} {-size} {size} {-size} {size} units box"
+    return (
+        dt,
+        steps,
+        radius,
+        gap,
+        model.type(case.target),
+        size,
+        [*setup, box, f"create_box {types} box"],
+    )
+
+
+def _result(steps: int) -> list[str]:
+    """The run and the one line every input prints: ``GRANUDB vx1 vz1 wy1 vz2``."""
+    return [f"run {steps}", 'print "GRANUDB ${vx1} ${vz1} ${wy1} ${vz2}"']
+
+
+def liggghts_input(model: DemModel, fragment: str, case: Case) -> str:
+    dt, steps, radius, gap, target, size, lines = _start(
+        model, case, LIGGGHTS_SETUP, len(model.types)
+    )
+    lines += [
         f"neighbor {radius / 5} bin",
         "neigh_modify delay 0",
         fragment,
-        f"pair_style gran {liggghts.pair_style(model)}",
+        f"pair_style gran {liggghts.pair_style(model)} {liggghts.SETTINGS}",
         "pair_coeff * *",
         f"timestep {dt!r}",
     ]
     if target.is_wall:
         lines.append(
             f"fix wall all wall/gran {liggghts.pair_style(model)} primitive type "
-            f"{model.index(target.name)} zplane 0.0"
+            f"{model.index(target.name)} zplane 0.0 {liggghts.SETTINGS}"
         )
     types = [model.index(case.particle), model.index(case.target)]
     for k, (which, z) in enumerate(_atoms(model, case, radius, gap), start=1):
@@ -115,25 +138,14 @@ def liggghts_input(model: DemModel, fragment: str, case: Case) -> str:
         "variable wy1 equal omegay[1]",
         f"variable vz2 equal {'vz[2]' if two else '0'}",
         "thermo 100000",
-        f"run {steps}",
-        'print "GRANUDB ${vx1} ${vz1} ${wy1} ${vz2}"',
-    ]
+    ] + _result(steps)
     return "\n".join(lines) + "\n"
 
 
 def lammps_input(model: DemModel, fragment: str, case: Case) -> str:
-    dt, steps, radius, gap = timing(model, case)
-    target = model.type(case.target)
-    size = 20 * radius
-    lines = [
-        "units si",
-        "atom_style sphere",
-        "atom_modify map array",
-        "boundary f f f",
-        "comm_modify vel yes",
-        f"region box block {-size} {size} {-size} {size} {-size} {size} units box",
-        f"create_box {len(model.particles)} box",
-    ]
+    dt, steps, radius, gap, target, size, lines = _start(
+        model, case, LAMMPS_SETUP, len(model.particles)
+    )
     for wall in model.walls:
         lines.append(f'variable {lammps.wall_variable(wall)} string "zplane 0.0 NULL"')
     types = [lammps.type_number(model, case.particle)]
@@ -170,9 +182,7 @@ def lammps_input(model: DemModel, fragment: str, case: Case) -> str:
         f"variable vz2 equal {'0' if target.is_wall else 'vz[2]'}",
         "thermo_style custom step v_vx1 v_vz1 v_wy1 v_vz2",  # keeps c_om current at the end
         "thermo 100000",
-        f"run {steps}",
-        'print "GRANUDB ${vx1} ${vz1} ${wy1} ${vz2}"',
-    ]
+    ] + _result(steps)
     return "\n".join(ln for ln in lines if ln) + "\n"
 
 

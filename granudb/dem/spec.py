@@ -213,6 +213,11 @@ class ParticleType:
         return float(sphere_mass(self.density_kg_m3, self.diameter_m))
 
 
+#: The largest error ``dem verify`` accepts, by quantity: relative for e, μ_f and Ψ_out
+#: (against Walton's relation with a measured β), absolute for e against the e(St) law.
+TOLERANCES = {"restitution": 0.01, "friction": 0.03, "rebound": 0.10, "restitution_law": 0.03}
+
+
 @dataclass(frozen=True)
 class WetParameters:
     """An e(St) law e = e_max exp(−β_L/St_am) (Legendre et al. 2006, docs/physics.md §10), St_am
@@ -233,6 +238,24 @@ class WetParameters:
         """e at the added-mass Stokes number ``stokes``: e_max exp(−β_L/St_am)."""
         return self.max_restitution * math.exp(-self.coefficient / stokes)
 
+    def stokes_at(self, restitution: float) -> float:
+        """The St_am at which the law gives ``restitution``: β_L / ln(e_max/e)."""
+        return self.coefficient / math.log(self.max_restitution / restitution)
+
+    def constant_range(self, restitution: float, tolerance: float) -> tuple[float, float]:
+        """The St_am range over which the law stays within ``tolerance`` (relative) of the
+        constant ``restitution``: β_L(1/St_e − 1/St) = ln(1 ± tolerance), St_e the law's
+        St at that e; the upper end is infinite where e_max is itself within it.
+
+        >>> law = WetParameters(0.048, 35.0, 0.97, "example")
+        >>> [round(x) for x in law.constant_range(law.restitution(150.0), 0.01)]
+        [144, 157]
+        """
+        inverse = 1.0 / self.stokes_at(restitution)
+        low = 1.0 / (inverse - math.log(1.0 - tolerance) / self.coefficient)
+        top = inverse - math.log(1.0 + tolerance) / self.coefficient
+        return low, (1.0 / top if top > 0.0 else math.inf)
+
 
 @dataclass(frozen=True)
 class PairParameters:
@@ -248,9 +271,16 @@ class PairParameters:
     friction: Value
     rolling_friction: Value | None = None
     wet: WetParameters | None = None
+    #: Walton's β (tangential restitution of a sticking impact), where one is known.
+    rotational_restitution: Value | None = None
 
     def __post_init__(self) -> None:
         label = f"{self.type_i}/{self.type_j}"
+        beta = self.rotational_restitution
+        if beta is not None and not -1.0 < beta.value < 1.0:
+            raise ValidationError(
+                f"rotational_restitution {label}", beta.value, "must be in (-1, 1)"
+            )
         if not 0.0 < self.restitution.value <= 1.0:
             raise ValidationError(
                 f"restitution {label}", self.restitution.value, "must be in (0, 1]"

@@ -5,7 +5,10 @@ Checked in the installed yade (``Ip2_FrictMat_FrictMat_MindlinPhys.__doc__`` and
 - ``en=`` converts e with Thornton et al. (2013) (B6), which in 2023.02a gives 0.9648 for
   0.97 on a sphere–wall impact; granudb writes ``betan=`` instead, computed by integrating
   Yade's own law (c_n = 2β_n√(m* k_n), force clamped at zero; granudb.dem.damping).
-  ``betas`` defaults to ``betan``.
+  ``betas`` (tangential damping) defaults to ``betan``; granudb writes ``betas`` 0:
+  Yade adds the tangential dashpot outside the Coulomb cap while a contact sticks, and
+  with a wet pair's β_n that force exceeded μ_f F_n (μ_f +155 % on glass in 78 %
+  glycerol at 60°).
 - Friction is a per-pair ``frictAngle`` MatchMaker (tan φ = μ_f); without it Yade takes
   the smaller of the two materials' angles (a mixing rule).
 - ``Ig2_Wall_Sphere_ScGeom`` gives the wall the sphere's radius (refR1 = refR2 = R), so
@@ -23,6 +26,9 @@ from granudb.dem.spec import DemModel, PairParameters
 
 CODE = "Yade"
 VERSION = "2023.02a, Debian package yade"
+
+#: Why Ψ_out at 30° may miss Walton's relation with a measured β (``dem verify``).
+REBOUND_LIMIT = deck.rebound_limit(CODE, "MindlinPhys's from the materials' E and nu")
 
 
 def betan(pair: PairParameters, clamp: bool) -> deck.Limited:
@@ -50,6 +56,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         "InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(), "
         "Ig2_Facet_Sphere_ScGeom()], [granudb_ip2], [Law2_ScGeom_MindlinPhys_Mindlin()])."
     )
+    out += deck.rebound_lines(model, REBOUND_LIMIT)
     if model.walls:
         out += deck.comment(
             "Yade's wall geometry gives a wall contact the sphere's radius (R* = R/2): the "
@@ -65,7 +72,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             f"young={deck.num(t.youngs_modulus_pa)}, poisson={deck.num(t.poisson_ratio)}, "
             f"density={deck.num(t.density_kg_m3)}, frictionAngle=0.0))"
         )
-    beta_rows, friction_rows = [], []
+    beta_rows, friction_rows, shear_rows = [], [], []
     for a, b, pair in deck.ordered_pairs(model):
         beta = betan(pair, clamp)
         ids = f"granudb_material[{a.name!r}], granudb_material[{b.name!r}]"
@@ -77,16 +84,23 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         ]
         if beta.note:
             notes.append(beta.note)
-        if (note := deck.wet_note(pair)) is not None:
+        if (note := deck.wet_note(pair, model.characteristic_velocity_m_s)) is not None:
             notes.append(note)
         beta_rows += [line for n in notes[:1] + notes[2:] for line in deck.comment(n, "    # ")]
         beta_rows.append(f"    ({ids}, {deck.num(beta.value)}),")
         friction_rows += deck.comment(notes[1], "    # ")
         friction_rows.append(f"    ({ids}, math.atan({deck.num(pair.friction.value)})),")
+        shear_rows += deck.comment(
+            f"{deck.pair_label(pair)}: no tangential damping (its dashpot acts outside the "
+            "Coulomb cap while the contact sticks)",
+            "    # ",
+        )
+        shear_rows.append(f"    ({ids}, 0.0),")
     out.append("granudb_ip2 = Ip2_FrictMat_FrictMat_MindlinPhys(")
     out.append("  betan=MatchMaker(matches=(")
     out += beta_rows + ["  )),", "  frictAngle=MatchMaker(matches=("]
-    out += friction_rows + ["  )),", ")"]
+    out += friction_rows + ["  )),", "  betas=MatchMaker(matches=("]
+    out += shear_rows + ["  )),", ")"]
     return "\n".join(out) + "\n"
 
 

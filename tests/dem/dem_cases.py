@@ -23,13 +23,20 @@ FLUID_DENSITIES = {"glycerol37": 1090.0, "glycerol78": 1200.0}
 BINARIES = {"liggghts": "liggghts", "lammps": "lmp", "yade": "yade"}
 
 
+BETA_STEEL = Value(0.34, "Joseph & Hunt 2004 §3, steel on Zerodur beta = 0.34 +- 0.07")
+BETA_GLASS = Value(0.39, "Joseph & Hunt 2004 §3, glass on Zerodur beta = 0.39 +- 0.06")
+
+#: The one immersed beta the paper gives (steel in water and 37 % glycerol, figure 10).
+WET_BETA = {("steel", "glycerol37"): Value(0.6, "Joseph & Hunt 2004 §4 figure 10, beta ~ 0.6")}
+
+
 def dry_model() -> DemModel:
     pairs = [
         PairParameters("glass", "glass", E_DRY, MU_GLASS),
         PairParameters("glass", "steel", E_DRY, MU_STEEL),
         PairParameters("steel", "steel", E_DRY, MU_STEEL),
-        PairParameters("glass", "zerodur", E_DRY, MU_GLASS),
-        PairParameters("steel", "zerodur", E_DRY, MU_STEEL),
+        PairParameters("glass", "zerodur", E_DRY, MU_GLASS, rotational_restitution=BETA_GLASS),
+        PairParameters("steel", "zerodur", E_DRY, MU_STEEL, rotational_restitution=BETA_STEEL),
     ]
     return DemModel([GLASS, STEEL, ZERODUR], pairs, 0.3)
 
@@ -40,7 +47,12 @@ def wet_model(fluid: str, speed: float = 0.3) -> DemModel:
     pairs = []
     for particle, friction in ((GLASS, MU_GLASS), (STEEL, MU_STEEL)):
         e, law = predicted_wet_restitution(E_DRY, particle, mu, speed, rho_f)
-        pairs.append(PairParameters(particle.name, "zerodur", e, friction, wet=law))
+        beta = WET_BETA.get((particle.name, fluid))
+        pairs.append(
+            PairParameters(
+                particle.name, "zerodur", e, friction, wet=law, rotational_restitution=beta
+            )
+        )
     e_gs, law_gs = predicted_wet_restitution(E_DRY, GLASS, mu, speed, rho_f)
     pairs += [
         PairParameters("glass", "glass", e_gs, MU_GLASS, wet=law_gs),
@@ -58,3 +70,11 @@ def require(code: str) -> None:
     from support import require_binary
 
     require_binary(BINARIES[code])
+
+
+def with_restitution(model: DemModel, restitution: float) -> DemModel:
+    """``model`` with every pair's e replaced: a deliberately wrong deck."""
+    from dataclasses import replace
+
+    pairs = [replace(p, restitution=Value(restitution, "deliberately wrong")) for p in model.pairs]
+    return DemModel(list(model.types), pairs, model.characteristic_velocity_m_s)

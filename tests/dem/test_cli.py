@@ -4,9 +4,11 @@ input, every value with its provenance, checked by the real code where installed
 from __future__ import annotations
 
 import pytest
+from dem.dem_cases import with_restitution
 from support import require_binary
 
 SCENARIO = ["--diameter", "12.7 mm", "--velocity", "0.3 m/s"]
+CODES = ("liggghts", "lammps", "yade")
 
 
 def test_export_from_published_values_names_every_source(cli, db: str) -> None:
@@ -107,40 +109,63 @@ def test_unknown_code_names_the_option(cli, db: str) -> None:
     assert out.exit_code == 1 and out.stderr.startswith("Error: --code: espresso must be one of")
 
 
+@pytest.mark.dem_run
 def test_verify_runs_the_real_code(cli, db: str) -> None:
     require_binary("liggghts")
-    out = cli("dem", "verify", "--particle", "steel", "--wall", "Zerodur", *SCENARIO, db=db)
+    out = cli(
+        "dem", "verify", "--particle", "steel", "--wall", "Zerodur", *SCENARIO, "--code",
+        "liggghts", db=db,
+    )  # fmt: skip
     assert out.exit_code == 0, out.stderr
-    lines = [line for line in out.stdout.splitlines() if line.startswith("liggghts")]
-    assert lines and all("not checked" not in line for line in lines)
+    lines = [line for line in out.stdout.splitlines() if line.startswith(CODES)]
+    assert lines and all(line.startswith("liggghts") for line in lines)
+    assert all("not checked" not in line for line in lines)
+    # the issue's matrix: normal at 0.1, 0.3, 0.5 m/s, oblique at 30 and 60 degrees
+    kinds = {(line.split()[2], line.split()[3], line.split()[4]) for line in lines}
+    assert {("normal", v, "0") for v in ("0.10", "0.30", "0.50")} <= kinds
+    assert {("oblique", "0.30", "30"), ("oblique", "0.30", "60")} <= kinds
 
 
+@pytest.mark.dem_run
 def test_verify_for_scripts_is_json_with_the_verdict(cli, db: str) -> None:
     import json
 
     require_binary("liggghts")
     out = cli(
         "dem", "verify", "--particle", "steel", "--wall", "Zerodur", *SCENARIO, "--format",
-        "json", db=db,
+        "json", "--code", "liggghts", db=db,
     )  # fmt: skip
     assert out.exit_code == 0, out.stderr
     document = json.loads(out.stdout)
     assert document["passed"] is True and document["summary"].startswith("PASS")
-    assert document["tolerances"] == {"restitution": 0.01, "friction": 0.03}
+    assert document["tolerances"] == {
+        "restitution": 0.01, "friction": 0.03, "rebound": 0.10, "restitution_law": 0.03
+    }  # fmt: skip
     checked = [r for r in document["records"] if r["status"] == "checked"]
-    assert checked and {r["verdict"] for r in checked} == {"pass"}
+    # steel on Zerodur has a measured beta that LIGGGHTS cannot set: a limit its deck states
+    assert checked and {r["verdict"] for r in checked} == {"pass", "stated limit"}
+    limited = [r for r in checked if r["verdict"] == "stated limit"]
+    assert [(r["kind"], r["angle_deg"]) for r in limited] == [("oblique", 30.0)]
 
 
-def test_a_failing_verification_exits_non_zero(cli, db: str) -> None:
-    """78 % glycerol: the codes' tangential damping gives μ_f off by more than 3 % on the
-    sliding branch (issue 26); the verdict says so and the command fails."""
+@pytest.mark.dem_run
+def test_glycerol_78_verifies_and_a_wrong_deck_exits_non_zero(cli, db: str, monkeypatch) -> None:
+    """Issue 26: 78 % glycerol gave μ_f +67 % in LIGGGHTS and exited 0; it now passes, and
+    the same command on a deck that gives the wrong e fails with the verdict said."""
+    from granudb.dem import verify as dem_verify
+
     require_binary("liggghts")
-    out = cli(
-        "dem", "verify", "--particle", "glass", "--wall", "Zerodur", *SCENARIO, "--fluid",
-        "glycerol-78", db=db,
-    )  # fmt: skip
+    args = ["dem", "verify", "--particle", "glass", "--wall", "Zerodur", *SCENARIO, "--fluid",
+            "glycerol-78", "--code", "liggghts"]  # fmt: skip
+    out = cli(*args, db=db)
+    assert out.exit_code == 0, out.stdout
+    assert out.stdout.splitlines()[-1].startswith("PASS:")
+    writer = dem_verify.WRITERS["liggghts"]
+    wrong = staticmethod(lambda m, clamp=False: writer.write(with_restitution(m, 0.8), clamp=clamp))
+    monkeypatch.setitem(dem_verify.WRITERS, "liggghts", type("Wrong", (), {"write": wrong}))
+    out = cli(*args, db=db)
     assert out.exit_code == 1
-    assert "FAIL (mu_f" in out.stdout and out.stdout.splitlines()[-1].startswith("FAIL:")
+    assert "FAIL (e " in out.stdout and out.stdout.splitlines()[-1].startswith("FAIL:")
 
 
 def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:

@@ -22,9 +22,22 @@ def test_lammps_tsuji_polynomial_is_corrected() -> None:
     # typed as is, 0.97 gives 0.979 (LAMMPS #2812); the corrected input gives 0.97
     assert damping.hertz_restitution(damping.tsuji_alpha(0.97)) == pytest.approx(0.9794, abs=1e-3)
     e_in = damping.lammps_tsuji_input(0.97, "x")
-    assert damping.hertz_restitution(damping.tsuji_alpha(e_in)) == pytest.approx(0.97, abs=2e-5)
+    assert damping.hertz_restitution(
+        damping.tsuji_alpha(e_in), clamp_attraction=True
+    ) == pytest.approx(0.97, abs=2e-5)
 
 
 def test_lammps_tsuji_floor() -> None:
+    # with limit_damping the force is clamped: alpha(0) = 1.2728 gives e = 0.263, not 0.114
     low, high = damping.lammps_tsuji_range()
-    assert 0.11 < low < 0.12 and 0.999 < high < 1.0
+    assert 0.26 < low < 0.27 and 0.999 < high < 1.0
+
+
+@pytest.mark.parametrize("e", [0.97, 0.6, 0.3])
+def test_clamped_inputs_give_the_target(e: float) -> None:
+    """LIGGGHTS (limitForce) and LAMMPS (limit_damping) clamp the force: their inputs,
+    turned into damping as each code does, give e back on the clamped law."""
+    ligg = damping.hertz_damping(damping.liggghts_hertz_input(e))
+    tsuji = damping.tsuji_alpha(damping.lammps_tsuji_input(e, "x"))
+    for c in (ligg, tsuji):
+        assert damping.hertz_restitution(c, clamp_attraction=True) == pytest.approx(e, abs=1e-4)

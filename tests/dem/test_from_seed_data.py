@@ -13,6 +13,7 @@ from support import require_binary
 BINARIES = {"liggghts": "liggghts", "lammps": "lmp", "yade": "yade"}
 
 
+@pytest.mark.dem_run
 @pytest.mark.parametrize("fluid", [None, "glycerol-37", "glycerol-78"])
 def test_the_codes_give_the_seed_data_back(db: str, fluid: str | None) -> None:
     import granudb

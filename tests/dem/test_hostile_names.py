@@ -48,6 +48,7 @@ def test_every_identifier_is_one_the_code_accepts(opened, code: str) -> None:
         assert ids and all(re.fullmatch(r"[A-Za-z0-9_]+", i) for i in ids), ids
 
 
+@pytest.mark.dem_run
 @pytest.mark.parametrize(("code", "binary"), [("liggghts", "liggghts"), ("lammps", "lmp"),
                                               ("yade", "yade")])  # fmt: skip
 def test_hostile_names_run_to_the_plain_result(opened, code: str, binary: str) -> None:

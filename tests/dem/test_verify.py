@@ -7,11 +7,12 @@ import shutil
 from pathlib import Path
 
 import pytest
-from dem.dem_cases import BINARIES, dry_model, require, wet_model
+from dem.dem_cases import BINARIES, dry_model, require, wet_model, with_restitution
 
 from granudb.dem import verify as dem_verify
 
 CODES = ("liggghts", "lammps", "yade")
+pytestmark = pytest.mark.dem_run
 
 
 def test_required_codes_are_installed() -> None:
@@ -24,15 +25,24 @@ def test_required_codes_are_installed() -> None:
 
 @pytest.mark.parametrize("code", CODES)
 def test_dry_normal_and_oblique(code: str, tmp_path: Path) -> None:
+    """The issue's matrix, dry: e within 1 %; at 60° (sliding) mu_f within 3 %; at 30°
+    Psi_out within 5 % of Walton's relation with the measured beta in LAMMPS, whose k_t is
+    chosen for it, and a stated limit (said in the deck) where a code cannot set k_t."""
     require(code)
     records = dem_verify.verify(dry_model(), codes=[code], workdir=tmp_path)
     assert records and all(r.status == "checked" for r in records)
+    assert dem_verify.passed(records)
     for r in records:
-        assert abs(r.e_rel_error) < 0.02, r
-        if r.kind == "oblique":
-            assert r.regime == "gross_slip", r
-            assert abs(r.friction_rel_error) < 0.05, r
-            assert r.psi_out == pytest.approx(r.psi_out_walton, abs=0.01)
+        assert abs(r.e_rel_error) < 0.01, r
+        if r.kind == "oblique" and r.angle_deg == 60.0:
+            assert r.regime == "gross_slip" and abs(r.friction_rel_error) < 0.03, r
+        if r.kind == "oblique" and r.angle_deg == 30.0:
+            if code == "lammps":
+                assert abs(r.rebound_rel_error) < 0.05 and r.verdict == "pass", r
+            else:
+                assert r.verdict in ("pass", "stated limit"), r
+    if code != "lammps":
+        assert "beta NOT reproduced" in dem_verify.WRITERS[code].write(dry_model())
 
 
 @pytest.mark.parametrize("fluid", ["glycerol37", "glycerol78"])
@@ -55,16 +65,6 @@ def test_absent_code_is_not_checked(monkeypatch: pytest.MonkeyPatch, tmp_path: P
     assert "not checked" in dem_verify.table(records)
 
 
-def _deck_with_e(model, restitution: float):
-    """``model`` with every pair's e replaced: a deliberately wrong deck."""
-    from dataclasses import replace
-
-    from granudb.dem.spec import DemModel, Value
-
-    pairs = [replace(p, restitution=Value(restitution, "deliberately wrong")) for p in model.pairs]
-    return DemModel(list(model.types), pairs, model.characteristic_velocity_m_s)
-
-
 @pytest.mark.parametrize("code", CODES)
 def test_a_deliberately_wrong_deck_fails(code: str, monkeypatch, tmp_path: Path) -> None:
     """The deck the code runs gives e = 0.8 where 0.97 was asked: every normal run fails
@@ -76,7 +76,7 @@ def test_a_deliberately_wrong_deck_fails(code: str, monkeypatch, tmp_path: Path)
         dem_verify.WRITERS,
         code,
         type("Wrong", (), {"write": staticmethod(lambda m, clamp=False: writer.write(
-            _deck_with_e(m, 0.8), clamp=clamp))}),
+            with_restitution(m, 0.8), clamp=clamp))}),
     )  # fmt: skip
     todo = dem_verify.cases(model, speeds=(0.3,), angles_deg=())
     records = dem_verify.verify(model, todo, codes=[code], workdir=tmp_path)
@@ -104,3 +104,18 @@ def test_verdicts_follow_the_tolerances() -> None:
     just_out = dem_verify._record(model, "x", case, (0.0, 0.3 * e * 1.0101, 0.0, 0.0), "checked")
     assert (just_in.verdict, just_out.verdict) == ("pass", "fail")
     assert "e +1.01%" in just_out.reason
+
+
+@pytest.mark.parametrize("code", CODES)
+def test_wet_friction_is_reproduced_on_the_sliding_branch(code: str, tmp_path: Path) -> None:
+    """78 % glycerol at 60°: the large normal damping no longer leaks into friction (it gave
+    mu_f +67 % in LIGGGHTS, -29 % in LAMMPS, +155 % in Yade on glass)."""
+    from granudb.dem.runs import Case
+
+    require(code)
+    model = wet_model("glycerol78")
+    todo = [Case(p, "zerodur", 0.3, 60.0) for p in ("glass", "steel")]
+    records = dem_verify.verify(model, todo, codes=[code], workdir=tmp_path)
+    for r in records:
+        assert r.regime == "gross_slip" and r.verdict == "pass", r
+        assert abs(r.friction_rel_error) <= dem_verify.TOLERANCES["friction"], r
