@@ -103,8 +103,9 @@ def test_each_option_is_a_parameter_of_the_function() -> None:
 
 
 def test_catalogue_options_are_the_functions_keywords() -> None:
-    """``materials add`` and friends are generated from the specification; the Python
-    functions are written out: both must take the same values."""
+    """``materials add`` and friends are generated from the specification, and so are the
+    Python functions' keywords (their ``**values``, shown in their signature): both must
+    take the same values."""
     for kind, plural in (("material", "materials"), ("fluid", "fluids")):
         for verb in ("add", "update"):
             command = ALL[f"{plural} {verb}"]

@@ -80,8 +80,7 @@ def consistent_time_scale_ratio(
 
     (A 2) as printed, (1/R)√(κ/K_s) (``time_scale_ratio``), has units of m⁻²; this is the
     consistent form: the collision's tangential time scale is √(m/κ) and the string's
-    √(I₀/K_s). Parameters: ``radius`` R [m], ``contact_stiffness`` κ [N/m],
-    ``string_stiffness`` K_s [N·m].
+    √(I₀/K_s).
 
     Parameters
     ----------

@@ -417,13 +417,10 @@ def viscosity_for_friction(
     >>> round(float(mu) * 1e3, 3)
     1.0
     """
-    e_star = as_float(reduced_modulus_pa)
-    rest = (
-        factor
-        * (1.0 / (as_float(eta_hat) * e_star)) ** (5.0 / 7.0)
-        * (as_float(particle_density) * as_float(normal_speed) ** 2 / e_star) ** (-6.0 / 35.0)
-        * as_float(integral)
-    )
-    return (
-        (as_float(friction) / rest) ** 3.5 * e_star * as_float(radius) / as_float(tangential_speed)
-    )
+    # At μ₀ = E*R/U the shear strain is 1, so (5.10) there is the rest of the product
+    reference = as_float(reduced_modulus_pa) * as_float(radius) / as_float(tangential_speed)
+    rest = lubricated_friction_dimensionless(
+        reference, tangential_speed, reduced_modulus_pa, radius, eta_hat, particle_density,
+        normal_speed, integral, factor,
+    )  # fmt: skip
+    return reference * (as_float(friction) / rest) ** 3.5
