@@ -33,16 +33,12 @@ def report(
     output: str | Path | None = None,
     force: bool = False,
     title: str | None = None,
-    diameter: Any = None,
-    velocity: Any = None,
-    angle: Any = None,
-    temperature: Any = None,
-    viscosity: Any = None,
-    wall_diameter: Any = None,
-    target: str | None = None,
+    # the scenario of a pair report, as ``granudb.pair`` takes it
+    diameter: Any = None, velocity: Any = None, angle: Any = None, temperature: Any = None,
+    viscosity: Any = None, wall_diameter: Any = None, target: str | None = None,
     db: Any = None,
     **filters: Any,
-) -> Any:
+) -> Any:  # fmt: skip
     """Write a lab report: properties with sources, derived quantities, verdicts with the
     roughness flag, fits next to published values, figures and methods.
 

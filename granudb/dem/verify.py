@@ -284,22 +284,25 @@ def summary(records: Sequence[Record]) -> str:
 
 
 def table(records: Sequence[Record]) -> str:
-    """Records as a plain-text table (target against achieved), one line per run."""
+    """Records as a plain-text table (target against achieved), one line per run; the
+    text columns as wide as their longest entry, so every column lines up."""
+    code, pair, kind = (
+        max([len(title), *(len(getattr(r, name)) for r in records)])
+        for title, name in (("code", "code"), ("pair", "pair"), ("kind", "kind"))
+    )
     head = (
-        f"{'code':9} {'pair':16} {'kind':13} {'V m/s':>6} {'angle':>5} {'e target':>9} "
-        f"{'e achieved':>10} {'err':>7} {'Psi_in':>7} {'Psi_out':>8} {'Walton':>8} "
-        f"{'mu':>6} {'mu ach.':>8} {'err':>7} {'beta':>5} {'b ach.':>6}  verdict"
+        f"{'code':{code}} {'pair':{pair}} {'kind':{kind}} {'V m/s':>6} {'angle':>5} "
+        f"{'e target':>9} {'e achieved':>10} {'err':>7} {'Psi_in':>7} {'Psi_out':>8} "
+        f"{'Walton':>8} {'mu':>6} {'mu ach.':>8} {'err':>7} {'beta':>5} {'b ach.':>6}  verdict"
     )
     rows = [head]
     for r in records:
+        start = f"{r.code:{code}} {r.pair:{pair}} {r.kind:{kind}} {r.speed_m_s:6.2f} "
         if r.status != "checked":
-            rows.append(
-                f"{r.code:9} {r.pair:16} {r.kind:13} {r.speed_m_s:6.2f} "
-                f"{r.angle_deg:5.0f} {r.target_e:9.4f} not checked ({r.note})"
-            )
+            rows.append(f"{start}{r.angle_deg:5.0f} {r.target_e:9.4f} not checked ({r.note})")
             continue
         line = (
-            f"{r.code:9} {r.pair:16} {r.kind:13} {r.speed_m_s:6.2f} {r.angle_deg:5.0f} "
+            f"{start}{r.angle_deg:5.0f} "
             f"{r.target_e:9.4f} {r.achieved_e:10.5f} {r.e_rel_error:+7.2%}"
         )
         if r.psi_in is not None:

@@ -34,8 +34,10 @@ import numpy as np
 from granudb.reporting.format import superscript
 
 FONT = "DejaVu Sans, Verdana, Arial, Helvetica, sans-serif"
-WIDTH = 504.0  # 7 in
-PLOT_HEIGHT = 230.0
+#: 5 in: a figure 360 pt wide shown on a 390 px phone (374 px of column) keeps its 10.5 pt
+#: text above 10 CSS px; the report caps it at 32rem on a wide screen (text about 15 px).
+WIDTH = 360.0
+PLOT_HEIGHT = 200.0
 TICK = 3.5
 #: Average advance of a character, as a fraction of the font size (DejaVu Sans); used
 #: only to lay out margins and legend columns, so an estimate is enough.
@@ -311,9 +313,36 @@ class Plot:
 
 # --- writing a Plot as SVG text ----------------------------------------------------------
 
-TICK_FONT, LABEL_FONT, TITLE_FONT, LEGEND_FONT = 10.0, 10.0, 12.0, 8.0
-LEGEND_ROW = 13.0
-SAMPLE = 20.0  # legend sample width, points
+TICK_FONT, LABEL_FONT, TITLE_FONT, LEGEND_FONT = 10.5, 10.5, 12.0, 10.5
+LEGEND_ROW = 13.5
+SAMPLE = 18.0  # legend sample width, points
+
+
+def wrap(text: str, size: float, width: float) -> list[str]:
+    """``text`` in lines no wider than ``width`` at font ``size``, broken at spaces outside
+    parentheses and not beside "=" (so "(12 runs)" and "β = 0.4" stay whole); a word wider
+    than a line gets its own line.
+
+    >>> wrap("steel/Zerodur dry: sticking (12 runs)", 10.0, 120.0)
+    ['steel/Zerodur dry:', 'sticking (12 runs)']
+    """
+    words, depth, current = [], 0, ""
+    for index, char in enumerate(text):
+        depth += (char == "(") - (char == ")")
+        beside = text[index - 1 : index] == "=" or text[index + 1 : index + 2] == "="
+        if char == " " and depth <= 0 and not beside:
+            words.append(current)
+            current = ""
+        else:
+            current += char
+    words.append(current)
+    lines: list[str] = []
+    for word in words:
+        if lines and text_width(f"{lines[-1]} {word}", size) <= width:
+            lines[-1] = f"{lines[-1]} {word}"
+        else:
+            lines.append(word)
+    return lines
 
 
 def render(plot: Plot, figure_id: str) -> str:
@@ -321,10 +350,13 @@ def render(plot: Plot, figure_id: str) -> str:
     yticks, yminor = plot.y.ticks()
     tick_label = max((text_width(t, TICK_FONT) for _, t in yticks), default=0.0)
     left = 8 + LABEL_FONT + 6 + tick_label + TICK + 3
-    top = 8 + (TITLE_FONT + 8 if plot.title else 0)
-    width = WIDTH - left - 14
+    width = WIDTH - left - 10
+    titles = wrap(plot.title, TITLE_FONT, WIDTH - 16) if plot.title else []
+    top = 8 + len(titles) * (TITLE_FONT + 4) + (4 if titles else 0)
+    xlabels = wrap(plot.xlabel, LABEL_FONT, WIDTH - 16)
     columns, rows = _legend_grid(plot, width)
-    bottom = TICK + 3 + TICK_FONT + 6 + LABEL_FONT + 8 + rows * LEGEND_ROW + 4
+    labels_height = TICK + 3 + TICK_FONT + 6 + len(xlabels) * (LABEL_FONT + 3)
+    bottom = labels_height + (LEGEND_FONT + 6 + (rows - 1) * LEGEND_ROW + 6 if rows else 6)
     total = top + plot.height + bottom
     box = (left, top, width, plot.height)
 
@@ -355,17 +387,19 @@ def render(plot: Plot, figure_id: str) -> str:
         f'height="{plot.height:.2f}" fill="none" stroke="#000000" stroke-width="0.8"/>'
     )
     label_y = top + plot.height + TICK + 3 + TICK_FONT + 6 + LABEL_FONT
-    out.append(_text(left + width / 2, label_y, plot.xlabel, LABEL_FONT, "middle", "xlabel"))
+    for index, line in enumerate(xlabels):
+        y = label_y + index * (LABEL_FONT + 3)
+        out.append(_text(WIDTH / 2, y, line, LABEL_FONT, "middle", "xlabel"))
+    label_y += (len(xlabels) - 1) * (LABEL_FONT + 3)
     middle = top + plot.height / 2
     out.append(
         f'<text class="ylabel" transform="translate({8 + LABEL_FONT:.2f},{middle:.2f}) '
         f'rotate(-90)" font-size="{LABEL_FONT:g}" text-anchor="middle">{escape(plot.ylabel)}</text>'
     )
-    if plot.title:
-        out.append(
-            _text(left + width / 2, 8 + TITLE_FONT, plot.title, TITLE_FONT, "middle", "title")
-        )
-    out.append(_legend(plot, left, label_y + 10, width, columns))
+    for index, line in enumerate(titles):
+        y = 8 + TITLE_FONT + index * (TITLE_FONT + 4)
+        out.append(_text(WIDTH / 2, y, line, TITLE_FONT, "middle", "title"))
+    out.append(_legend(plot, left, label_y + LEGEND_FONT + 8, width, columns))
     out.append("</svg>")
     return "\n".join(part for part in out if part)
 
@@ -470,13 +504,23 @@ def _cells(x_edges: np.ndarray, y_edges: np.ndarray, codes: np.ndarray, colours:
     return "".join(out)
 
 
+def _legend_lines(plot: Plot, width: float, columns: int) -> list[list[str]]:
+    """Each legend entry's label in lines that fit its column."""
+    room = width / columns - SAMPLE - 6
+    return [wrap(label, LEGEND_FONT, room) for _, _, label in plot.legend]
+
+
 def _legend_grid(plot: Plot, width: float) -> tuple[int, int]:
-    """Two columns when every label fits in half the width, else one; (columns, rows)."""
+    """Two columns when every label fits in half the width, else one (long labels wrap);
+    (columns, rows of text)."""
     if not plot.legend:
         return 1, 0
     widest = max(text_width(label, LEGEND_FONT) for _, _, label in plot.legend)
     columns = 2 if widest + SAMPLE + 10 <= width / 2 else 1
-    return columns, math.ceil(len(plot.legend) / columns)
+    heights = [len(lines) for lines in _legend_lines(plot, width, columns)]
+    if columns == 1:
+        return 1, sum(heights)
+    return 2, sum(max(heights[i : i + 2]) for i in range(0, len(heights), 2))
 
 
 def _legend(plot: Plot, left: float, top: float, width: float, columns: int) -> str:
@@ -484,10 +528,11 @@ def _legend(plot: Plot, left: float, top: float, width: float, columns: int) -> 
         return ""
     out = ['<g class="legend">']
     column_width = width / columns
-    for index, (kind, style, label) in enumerate(plot.legend):
-        row, column = divmod(index, columns)
+    lines = _legend_lines(plot, width, columns)
+    y = top
+    for index, (kind, style, _) in enumerate(plot.legend):
+        column = index % columns
         x = left + column * column_width
-        y = top + row * LEGEND_ROW
         mid = y - LEGEND_FONT * 0.35
         if kind == "patch":
             sample = (f'<rect x="{x:.2f}" y="{y - 7:.2f}" width="{SAMPLE:g}" height="7" '
@@ -499,9 +544,12 @@ def _legend(plot: Plot, left: float, top: float, width: float, columns: int) -> 
                 style.marker or "o", np.array([x + SAMPLE / 2]), np.array([mid]), style.size
             )
             sample = f'<path d="{d}" {style.attributes()}/>'
-        out.append(
-            f'<g class="legend-entry" data-colour="{style.colour}">{sample}'
-            f"{_text(x + SAMPLE + 6, y, label, LEGEND_FONT, 'start')}</g>"
+        texts = "".join(
+            _text(x + SAMPLE + 6, y + row * LEGEND_ROW, line, LEGEND_FONT, "start")
+            for row, line in enumerate(lines[index])
         )
+        out.append(f'<g class="legend-entry" data-colour="{style.colour}">{sample}{texts}</g>')
+        if column == columns - 1 or index == len(plot.legend) - 1:
+            y += LEGEND_ROW * max(len(x) for x in lines[index - column : index + 1])
     out.append("</g>")
     return "".join(out)

@@ -4,7 +4,10 @@ the paper's pairs: at 1400 px and 390 px, and printed to PDF on A4 and Letter.
 Checked: no legend says "nan"; every legend entry has its group's colour (the same as
 its points and lines, and as the group's swatch in the tables); no ± value has more than
 two significant digits of uncertainty; at 390 px nothing is wider than the viewport
-except inside scroll boxes; figures fill the column; no PDF page ends with a heading
+except inside scroll boxes, no table's value cell is off-screen, and every text of every
+figure (axis labels, ticks, legends, titles) is at least 10 CSS px as drawn (its computed
+font size times the figure's scale); figures fill the column (up to 32rem on a wide
+screen, where their text stays below 24 px); no PDF page ends with a heading
 (per page, with poppler's ``pdftotext``). With ``GRANUDB_UPDATE_SCREENSHOT=1`` the paper report's
 screenshot replaces ``docs/report.png``; otherwise it stays in the test's own folder.
 
@@ -40,8 +43,15 @@ window.addEventListener('load', () => {
       out.over.push(el.tagName + '#' + el.id + '.' + (el.getAttribute('class') || ''));
   }
   for (const svg of doc.querySelectorAll('figure svg'))
-    out.figures.push(svg.getBoundingClientRect().width
-                     / svg.closest('figure').parentElement.clientWidth);
+    out.figures.push([svg.getBoundingClientRect().width,
+                      svg.closest('figure').parentElement.clientWidth]);
+  // The size a reader sees: the computed font size (user units) times the figure's scale.
+  out.text = [...doc.querySelectorAll('figure svg text')].map(t => [
+    parseFloat(win.getComputedStyle(t).fontSize) * t.ownerSVGElement.getScreenCTM().a,
+    t.getAttribute('class') || t.parentElement.getAttribute('class') || '', t.textContent]);
+  // Every value cell of a table outside a scroll box of runs is inside the viewport.
+  out.values = [...doc.querySelectorAll('td.num')].filter(td => !td.closest('table.runs'))
+    .map(td => td.getBoundingClientRect().right).filter(right => right > vw + 1);
   document.getElementById('probe').textContent = JSON.stringify(out);
 });
 </script>"""
@@ -163,9 +173,16 @@ def _check_report(tmp_path: Path, html: Path, screenshot: Path | None = None) ->
     errors = re.findall(r"± ([0-9][0-9.]*(?:e[-+]?\d+)?)", text)
     assert not [e for e in errors if "e" in e or _significant(e) > 2], errors
     wide = _probe(tmp_path, html, 1400)
-    assert wide["vw"] == 1400 and wide["figures"] and min(wide["figures"]) > 0.95, wide["figures"]
+    assert wide["vw"] == 1400 and wide["figures"], wide
+    # a figure fills its column up to 32rem (512 px), where its text is about 15 px
+    assert all(abs(w - min(column, 512)) <= 1 for w, column in wide["figures"]), wide["figures"]
+    assert min(t[0] for t in wide["text"]) >= 10 and max(t[0] for t in wide["text"]) <= 24
     phone = _probe(tmp_path, html, 390)
     assert phone["vw"] == 390 and phone["doc"] <= 390 and phone["over"] == [], phone
+    assert all(abs(w - column) <= 1 for w, column in phone["figures"]), phone["figures"]
+    small = [t for t in phone["text"] if t[0] < 10]
+    assert phone["text"] and small == [], small[:5]  # axis labels, ticks, legends ≥ 10 px
+    assert phone["values"] == [], phone["values"]  # no value column off-screen
     assert phone["narrowest"] >= 70, phone  # tables scroll in their box, columns not squeezed
     assert _check_print(tmp_path, html, "A4") >= 2
     assert _check_print(tmp_path, html, "letter") >= 2

@@ -29,7 +29,7 @@ def _rows(html: str, table_id: str) -> dict[str, str]:
     for row in re.findall(r"<tr>(.*?)</tr>", section, re.S):
         cells = [
             htmllib.unescape(re.sub(r"<[^>]+>", "", c))
-            for c in re.findall(r"<td>(.*?)</td>", row, re.S)
+            for c in re.findall(r"<td[^>]*>(.*?)</td>", row, re.S)
         ]  # noqa: E501
         if cells:
             rows[cells[0]] = " | ".join(cells[1:])

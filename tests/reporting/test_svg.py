@@ -48,7 +48,9 @@ def test_text_is_escaped_and_the_svg_is_well_formed_xml() -> None:
     assert root.tag == f"{SVG}svg" and root.get("id") == "fig-x" and root.get("role") == "img"
     assert root.find(f"{SVG}title").text == "t & u"
     texts = [t.text for t in root.iter(f"{SVG}text")]
-    assert f"{name} (2 runs)" in texts and "y <" in texts
+    entries = [g for g in root.iter(f"{SVG}g") if g.get("class") == "legend-entry"]
+    legend = [" ".join(t.text for t in g.iter(f"{SVG}text")) for g in entries]  # labels wrap
+    assert legend == [f"{name} (2 runs)"] and "y <" in texts
     assert "<script>" not in svg
 
 
