@@ -222,7 +222,9 @@ def _walton_group(key: tuple, group: Any, asked: int | None, seed: int) -> dict[
     row.update(normal_restitution_high=ranges["normal_restitution_high"])
     row["normal_restitution_std"] = float(np.std(e, ddof=1))
     said = [
-        f"{symbol} {why}" for symbol, why in (("β", why_beta), ("μ_f", why_mu), ("ē", why_e)) if why
+        f"interval of {symbol} {why}"
+        for symbol, why in (("β", why_beta), ("μ_f", why_mu), ("ē", why_e))
+        if why
     ]
     row["reason"] = "; ".join([p for p in [_reason(model, k, n - k), *said] if p])
     return row

@@ -9,9 +9,11 @@ split's residual sum of squares at every k from
 prefix sums of eight series: about thirty passes over a (resamples × runs) array. Here the
 same minimum is found from a few passes:
 
-- Runs are cut into blocks of ``BLOCK_RUNS`` consecutive runs. The weighted sums of the
-  series over each block come from one batched matrix product (BLAS), their cumulative sums
-  over blocks give the exact prefix sums at every block boundary.
+- Runs are cut into blocks of ``BLOCK_RUNS`` consecutive runs (fewer for a small group:
+  the power of two ≥ n, at least 8, so that five runs are not padded to 128). The
+  weighted sums of the series over each block come from one batched matrix product
+  (BLAS), their cumulative sums over blocks give the exact prefix sums at every block
+  boundary.
 - The sticking line's minimum residual S_stick(k) (over β ∈ [0, 1]) can only grow when a
   run is added, and the sliding line's S_slide(k) (over μ_f ≥ 0) can only shrink when k
   grows. So within a block [K_J, K_J+1], S(k) ≥ S_stick(K_J) + S_slide(K_J+1): a lower bound
@@ -72,16 +74,17 @@ class Sorted:
 
     def __init__(self, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray) -> None:
         self.n = len(x)
-        self.blocks = max(1, -(-self.n // BLOCK_RUNS))
-        size = self.blocks * BLOCK_RUNS
+        self.block = min(BLOCK_RUNS, max(8, 1 << max(0, self.n - 1).bit_length()))
+        self.blocks = max(1, -(-self.n // self.block))
+        self.size = size = self.blocks * self.block
         d = x - y
-        # (blocks, BLOCK_RUNS, SERIES): each block's runs × series, for the batched
+        # (blocks, block, SERIES): each block's runs × series, for the batched
         # product, filled in place (no second copy of a third of a million runs × SERIES)
         series = np.zeros((size, SERIES))
         columns = (x * x, x * y, y * y, c * c, d * c, d * d, e, e * e, x, y, 1.0)
         for i, values in enumerate(columns):
             series[: self.n, i] = values
-        self.series = series.reshape(self.blocks, BLOCK_RUNS, SERIES)
+        self.series = series.reshape(self.blocks, self.block, SERIES)
 
 
 def draw_counts(
@@ -134,7 +137,7 @@ def _refine(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """S(k), k and the prefix sums at the best k of each candidate (row, block) pair."""
     rows, blocks, lo, hi = pairs
-    b = BLOCK_RUNS
+    b = runs.block
     local = w.reshape(len(w), runs.blocks, b)[rows, blocks]  # (P, b)
     sums = np.empty((len(rows), b + 1, SERIES))
     sums[:, 0] = prefix[rows, blocks]
@@ -151,7 +154,7 @@ def _refine(
 
 def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple:
     """Exact best split per row: (S at the split, k, prefix sums at k, boundary prefix)."""
-    m, b = len(w), BLOCK_RUNS
+    m, b = len(w), runs.block
     blocksums = np.matmul(w.reshape(m, runs.blocks, b).transpose(1, 0, 2), runs.series)
     prefix = np.zeros((m, runs.blocks + 1, SERIES))
     np.cumsum(blocksums.transpose(1, 0, 2), axis=1, out=prefix[:, 1:])
@@ -236,7 +239,7 @@ def batches(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resample
     """Yield (counts, decision) per batch of resamples: the (m, padded runs) draw counts
     (reused by the next batch: use them before asking for it) and their fits."""
     runs = Sorted(x, y, c, e)
-    size = runs.blocks * BLOCK_RUNS
+    size = runs.size
     rng = np.random.default_rng(seed)
     batch = max(1, BATCH_CELLS // size)
     weights = np.zeros((min(batch, resamples), size))  # reused by every batch

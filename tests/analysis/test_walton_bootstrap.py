@@ -33,7 +33,7 @@ def test_block_search_decides_as_the_dense_prefix_sums(n: int, options: dict) ->
     for seed in range(3):
         x, y, c, e, *_ = groups.walton_arrays(walton_frame(n, seed=seed, **options))
         runs = fast.Sorted(x, y, c, e)
-        size = runs.blocks * fast.BLOCK_RUNS
+        size = runs.size
         weights = fast.draw_counts(np.random.default_rng(seed), 30, n, size)
         got = fast.decide_blocks(runs, weights)
         want = core.decide(weights[:, :n], x, y, c, e)
@@ -99,7 +99,7 @@ def test_a_large_group_states_the_rule_and_recovers_the_truth() -> None:
 def test_too_few_distinct_runs_in_a_resample_give_no_split() -> None:
     x, y, c, e, *_ = groups.walton_arrays(walton_frame(5, seed=1))
     runs = fast.Sorted(x, y, c, e)
-    weights = np.zeros((1, runs.blocks * fast.BLOCK_RUNS))
+    weights = np.zeros((1, runs.size))
     weights[0, [0, 4]] = [3, 2]  # two distinct runs: no line of two on each side
     got = fast.decide_blocks(runs, weights)
     assert got.bic[0, 2] == math.inf and got.model[0] != 2

@@ -1,0 +1,61 @@
+"""Do the fits' nominal 95 % intervals hold the truth at least 90 % of the time (issue 23)?
+
+For every fit parameter (Walton β, μ_f and ē; the restitution fits' e_dry and St_c or k;
+the gap viscosity μ₀) and every n in 5, 10, 30, 100: ``--sets`` synthetic sets of known
+truth (the generators of ``tests/analysis``, noise included) are fitted with the fit's own
+defaults (resample rule, seed), and the share of sets whose interval holds the truth is
+printed with the bound 0.90, the share of sets given a value and an interval, and the
+reason when the interval was refused. An n at which the fit refuses every interval (below
+its stated minimum) is "refused", not a failure. Exit status 1 when any coverage is below
+the bound, or an interval has zero width.
+
+    nice -n 10 python benchmarks/fit_coverage.py [--sets 200] [--sizes 5 10 30 100]
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+
+from analysis.coverage import BOUND, CASES, SIZES, tally  # noqa: E402
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sets", type=int, default=200)
+    parser.add_argument("--sizes", type=int, nargs="+", default=list(SIZES))
+    parser.add_argument("--only", default="", help="cases whose name contains this")
+    args = parser.parse_args()
+    failed = False
+    print(f"coverage of nominal 95 % intervals over {args.sets} synthetic sets; bound ≥ {BOUND}")
+    print(f"{'fit':42} {'n':>4} {'coverage':>9} {'value':>6} {'interval':>9}  verdict")
+    for case in CASES:
+        if args.only not in case.name:
+            continue
+        for n in args.sizes:
+            start = time.perf_counter()
+            t = tally(case, n, args.sets)
+            took = time.perf_counter() - start
+            if t.given == 0:
+                verdict = f"refused ({t.reason or 'no value'})"
+            elif t.zero_width:
+                verdict, failed = f"FAIL: {t.zero_width} zero-width intervals", True
+            elif t.coverage >= BOUND:
+                verdict = "PASS"
+            else:
+                verdict, failed = "FAIL", True
+            print(
+                f"{case.name:42} {n:>4} {t.coverage:>9.3f} {t.fitted / t.sets:>6.0%} "
+                f"{t.given / t.sets:>9.0%}  {verdict} [{took:.0f} s]",
+                flush=True,
+            )
+    print("FAIL" if failed else "PASS")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,189 @@
+"""How often each fit's nominal 95 % interval holds the truth, on synthetic sets generated
+here (shared by ``benchmarks/fit_coverage.py`` and the quick test in
+``test_interval_coverage.py``)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+
+from analysis.synthetic import walton_frame
+from analysis.test_gap_viscosity import sliding_runs
+from analysis.test_restitution_fit import runs as restitution_runs
+
+from granudb.analysis import fits
+
+BOUND = 0.90  # issue 23: a nominal 95 % interval covers the truth at least 90 % of the time
+SIZES = (5, 10, 30, 100)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One parameter of one fit on one kind of synthetic set."""
+
+    name: str
+    truth: float
+    make: Callable[[int, int], object]  # (n, seed) → frame
+    fit: Callable[[object, int | None], dict]  # (frame, resamples) → the group's row
+    keys: tuple[str, str, str]  # value, low, high
+
+
+def _walton(frame, resamples):
+    [row] = fits.walton(frame, resamples=resamples)
+    return row
+
+
+def _restitution(model):
+    def fit(frame, resamples):
+        [row] = fits.restitution(frame, model)
+        return row
+
+    return fit
+
+
+def _gap(frame, resamples):
+    [row] = fits.gap_viscosity(frame, {}, resamples=resamples)
+    return row
+
+
+def _walton_keys(name):
+    return (name, f"{name}_low", f"{name}_high")
+
+
+def _split(n, seed):
+    return walton_frame(n, spin=30.0, seed=seed)
+
+
+def _threshold_runs(n, seed):
+    return restitution_runs(0.97, "threshold", 10.0, n=n, seed=seed)
+
+
+def _exponential_runs(n, seed):
+    return restitution_runs(0.97, "exponential", 35.0, n=n, seed=seed)
+
+
+_THRESHOLD, _EXPONENTIAL = _restitution("threshold"), _restitution("exponential")
+PARAMETER = ("parameter", "parameter_low", "parameter_high")
+E_DRY = ("e_dry", "e_dry_low", "e_dry_high")
+CASES = [
+    Case(
+        "Walton β, split data (β₀ = 0.34)",
+        0.34,
+        _split,
+        _walton,
+        _walton_keys("rotational_restitution"),
+    ),
+    Case(
+        "Walton μ_f, split data (μ_f = 0.11)",
+        0.11,
+        _split,
+        _walton,
+        _walton_keys("sliding_friction"),
+    ),
+    Case(
+        "Walton ē, split data (e = 0.97)",
+        0.97,
+        _split,
+        _walton,
+        _walton_keys("normal_restitution_mean")[:1]
+        + ("normal_restitution_low",)
+        + ("normal_restitution_high",),
+    ),
+    Case(
+        "Walton β, all sticking (β₀ = −0.15)",
+        -0.15,
+        lambda n, s: walton_frame(n, beta=-0.15, psi_range=(0.02, 0.8), seed=s),
+        _walton,
+        _walton_keys("rotational_restitution"),
+    ),
+    Case(
+        "Walton μ_f, all sliding",
+        0.11,
+        lambda n, s: walton_frame(n, psi_range=(0.75, 2.5), seed=s),
+        _walton,
+        _walton_keys("sliding_friction"),
+    ),
+    Case(
+        "restitution threshold St_c = 10",
+        10.0,
+        _threshold_runs,
+        _THRESHOLD,
+        PARAMETER,
+    ),
+    Case(
+        "restitution threshold e_dry = 0.97",
+        0.97,
+        _threshold_runs,
+        _THRESHOLD,
+        E_DRY,
+    ),
+    Case(
+        "restitution exponential k = 35",
+        35.0,
+        _exponential_runs,
+        _EXPONENTIAL,
+        PARAMETER,
+    ),
+    Case(
+        "restitution exponential e_dry = 0.97",
+        0.97,
+        _exponential_runs,
+        _EXPONENTIAL,
+        E_DRY,
+    ),
+    Case(
+        "gap viscosity μ₀ = 1.6 mPa·s",
+        1.6e-3,
+        lambda n, s: sliding_runs(1.6e-3, n=n, seed=s),
+        _gap,
+        ("gap_viscosity_pa_s", "gap_viscosity_low_pa_s", "gap_viscosity_high_pa_s"),
+    ),
+]
+
+
+@dataclass
+class Tally:
+    sets: int = 0
+    fitted: int = 0  # a value was given
+    given: int = 0  # an interval was given
+    hits: int = 0
+    zero_width: int = 0
+    reason: str = ""
+
+    @property
+    def coverage(self) -> float:
+        return self.hits / self.given if self.given else math.nan
+
+
+def tally(case: Case, n: int, sets: int, *, resamples: int | None = None, first_seed: int = 0):
+    """Coverage of ``case`` over ``sets`` synthetic sets of ``n`` runs."""
+    out = Tally()
+    for row in rows(case, n, sets, resamples, first_seed):
+        value, low, high = (row.get(k, math.nan) for k in case.keys)
+        out.sets += 1
+        out.fitted += _finite(value)
+        if _finite(low) and _finite(high):
+            out.given += 1
+            out.hits += low <= case.truth <= high
+            out.zero_width += not high > low
+        elif _finite(value):
+            out.reason = str(row.get("interval_reason") or row.get("reason") or "")
+    return out
+
+
+_FITTED: dict = {}  # (family, n, seed, resamples) → row: cases on the same sets share fits
+
+
+def rows(case: Case, n: int, sets: int, resamples: int | None, first_seed: int) -> Iterator:
+    for seed in range(first_seed, first_seed + sets):
+        key = (case.make, case.fit, n, seed, resamples)
+        if key not in _FITTED:
+            if len(_FITTED) > 5000:
+                _FITTED.clear()
+            _FITTED[key] = case.fit(case.make(n, seed), resamples)
+        yield _FITTED[key]
+
+
+def _finite(value) -> bool:
+    return isinstance(value, int | float) and math.isfinite(value)
