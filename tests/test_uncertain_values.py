@@ -9,11 +9,12 @@ import json
 from pathlib import Path
 
 import pytest
-from support import dump_hash
+from support import STEEL_ON_ZERODUR, dump_hash
 
 import granudb
 from granudb.errors import ValidationError
 from granudb.io.units import parse_uncertain_quantity
+from granudb.physics.derive import derive as derive_arrays
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "collisions_example.csv"
 
@@ -149,3 +150,27 @@ def test_uncertainties_round_trip_through_a_package_byte_for_byte(
         assert (first / "data" / f"{name}.csv").read_bytes() == (
             second / "data" / f"{name}.csv"
         ).read_bytes()
+
+
+def test_derive_frame_takes_u_columns_and_carries_the_probabilities() -> None:
+    """``granudb.derive`` of a table with ``u_<input>`` columns: the same u and
+    probabilities as the physics' arrays give, and a negative u refused by row."""
+    frame = {name: [value, value] for name, value in STEEL_ON_ZERODUR.items()}
+    frame |= {
+        "v_n_in_m_s": [0.3, 0.05],
+        "viscosity_pa_s": [3.2e-3, 3.2e-3],
+        "fluid_density_kg_m3": [1090.0, 1090.0],
+        "u_viscosity_pa_s": [1.6e-4, 1.6e-4],
+    }
+    out = granudb.derive(frame)
+    arrays = derive_arrays(
+        **{k: v for k, v in frame.items() if not k.startswith("u_")},
+        uncertainties={"u_viscosity_pa_s": frame["u_viscosity_pa_s"]},
+    )
+    for column in ("u_normal_stokes_number", "u_min_gap_m", "probability_asperity_contact"):
+        assert list(out[column]) == list(arrays[column])
+    assert out.attrs["units"]["u_min_gap_m"] == "m"
+    frame["u_viscosity_pa_s"] = [1.6e-4, -1.0]
+    with pytest.raises(ValidationError, match="u_viscosity_pa_s") as caught:
+        granudb.derive(frame)
+    assert caught.value.row == 2
