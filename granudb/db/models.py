@@ -253,6 +253,9 @@ class FluidPoint(Base):
     temperature_c: Mapped[float] = mapped_column(Float)
     viscosity_pa_s: Mapped[float] = mapped_column(Float)
     density_kg_m3: Mapped[float | None] = mapped_column(Float)
+    #: Standard uncertainties of the point's viscosity and density (NULL: not given).
+    u_viscosity_pa_s: Mapped[float | None] = mapped_column(Float)
+    u_density_kg_m3: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
 
@@ -264,6 +267,13 @@ class FluidPoint(Base):
         CheckConstraint("temperature_c > -273.15", name="temperature_above_zero_k"),
         CheckConstraint("viscosity_pa_s > 0", name="viscosity_positive"),
         CheckConstraint("density_kg_m3 IS NULL OR density_kg_m3 > 0", name="density_positive"),
+        CheckConstraint(
+            "u_viscosity_pa_s IS NULL OR u_viscosity_pa_s >= 0",
+            name="u_viscosity_pa_s_non_negative",
+        ),
+        CheckConstraint(
+            "u_density_kg_m3 IS NULL OR u_density_kg_m3 >= 0", name="u_density_kg_m3_non_negative"
+        ),
     )
 
 

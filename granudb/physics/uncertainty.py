@@ -195,7 +195,7 @@ def sensitivities(
     (``incidence_angle_rad``'s are of the angle itself, absolute), from the inputs ``x``
     and the steps' results (``granudb.physics.quantities``): only the given sources
     (``scaled``), with inputs that are one source merged (``_merged``)."""
-    p, h, f, _ = steps
+    p, h, f, lub = steps
     wall_only = not np.any(p["free"]) and bool(np.all(np.isnan(x["d2"])))
 
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -304,7 +304,7 @@ def sensitivities(
         (2 / 7, s_r), (5 / 7, mu), (5 / 7, s_u), (5 / 7, c), (-1 / 21, load),
         (1 / 21, s_e), (2 / 21, s_r)
     )  # fmt: skip
-    slope = lubrication.friction_integral_log_slope(f["eta_hat"] * h["p_max"])
+    slope = lubrication.friction_integral_log_slope(f["eta_hat"] * h["p_max"], lub["integral"])
     integral = _scale(slope, _lin((1, c), (1, pressure)))
     friction = _lin((1, mu), (1, s_u), (2, radius), (1, integral), (-1, load), (-1, film))
     stiffness = _lin((1, g_sens), (-1, e_sources))
