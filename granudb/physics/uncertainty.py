@@ -13,9 +13,14 @@ gives A's slope). Then
 with sources that are the same quantity merged before squaring: where the particle and
 the wall are the same material (``correlated``), their E, ν, ρ, σ and Y come from one
 source and are fully correlated (r = 1, GUM (16)), so u(E*) is then u(E)/E and not
-u(E)/(E√2). Inputs without an uncertainty (None, NaN) contribute nothing. No per-row
-Python: each sensitivity is a scalar or an array over the rows. Quantities of one
-element sum (the incidence angle) are propagated absolutely in the same way.
+u(E)/(E√2); and where v_n and v_t are one measured speed at a set angle (``one_speed``,
+as ``granudb.pair`` takes them). The merging is done once on the base quantities and
+holds for all built from them, as the propagation is linear. Inputs without an
+uncertainty (None, NaN) contribute nothing. No per-row Python: each sensitivity is a
+scalar or an array over the rows, and E* is one source (its u from E and ν of both
+bodies) for everything but G*, c and what is built on them, which take E and ν
+themselves (``expand_e_star``). The incidence angle, not a product of powers, is
+propagated absolutely in the same way.
 
 Temperature enters through the viscosity: the caller gives u(μ) including
 |∂μ/∂T| u(T) from the fluid model (``granudb.analysis.fluid_state``). The per-collision
@@ -23,8 +28,8 @@ parameters (e, β, Ψ, μ_f of (2.9)) are not propagated here.
 
 The first-order result is checked against Monte Carlo propagation (JCGM 101:2008) in
 tests/physics/test_uncertainty.py: within 10 % for input uncertainties up to 5 %; at
-30 % the power laws' curvature makes them part (u(h_m) and u(St) of a 30 % viscosity
-by more than that).
+30 % the curvature makes them part: u(St) of a 30 % viscosity (St ∝ 1/μ) is more than
+10 % below the Monte Carlo spread, while h_m ∝ μ^{2/5} still agrees.
 
 **Verdict probabilities** (``verdict_probabilities``): a verdict compares a positive
 quantity with a threshold, q = Q/Q_c > 1. q is taken as lognormal with ln q's standard
@@ -51,7 +56,8 @@ Sens = dict[str, Any]
 
 #: The inputs of ``derive`` that may carry an uncertainty, by their step names, and
 #: whether the source is scaled relatively (u/|x|; power-law factors) or absolutely
-#: (u; Poisson ratios, roughness and velocities, which may be 0).
+#: (u; Poisson ratios, roughness and velocities, which may be 0; v_n's is made relative
+#: to the approach speed v_N > 0 in ``propagate``).
 SOURCES: dict[str, bool] = {
     "rho1": True,
     "e1": True,
@@ -72,7 +78,6 @@ SOURCES: dict[str, bool] = {
 }
 #: The wall's source of each of the particle's: the same source when both are one material.
 _PARTNERS = {"rho1": "rho2", "e1": "e2", "nu1": "nu2", "s1": "s2", "y1": "y2"}
-_PAIRED = {*_PARTNERS, *_PARTNERS.values(), "vn", "vt"}
 #: Probabilities at or beyond which a verdict is "likely" (either way).
 LIKELY, UNLIKELY = 0.9, 0.1
 
