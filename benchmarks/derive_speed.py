@@ -8,6 +8,11 @@ relative disagreement between the two on the sample (should be ≤ 1e-9), and pa
 against issue 17's bounds: 1,000,000 scenarios ≤ 0.4 s (scaled linearly for other
 ``--rows``), peak memory ≤ 250 MB.
 
+Then the same scenarios with every input uncertain (5 % on each property, size, speed
+and fluid value, 0.01 on each Poisson ratio: all 16 sources, the worst case), timed in
+the same run: ``derive`` with its standard uncertainties and verdict probabilities
+against ``derive`` without, bound ≤ 3× (issue 27).
+
 The timed figure is ``derive()`` alone: drawing the random scenarios (numpy's generator,
 not granudb) is timed apart and printed on its own line. ``--threads`` is passed to
 ``derive`` (default: its own, the calling thread only).
@@ -81,17 +86,27 @@ def per_row(row: dict[str, float]) -> dict[str, float]:
     }
 
 
-def _one_pass(args: argparse.Namespace) -> tuple[float, float]:
-    """(seconds in derive(), seconds drawing the scenarios) for ``--rows`` scenarios."""
+def uncertainties(chunk: dict[str, np.ndarray]) -> dict[str, np.ndarray | float]:
+    """5 % of every input as its standard uncertainty, 0.01 on each Poisson ratio."""
+    given: dict[str, np.ndarray | float] = {
+        f"u_{name}": 0.05 * values for name, values in chunk.items() if "poisson" not in name
+    }
+    return given | {"u_particle_poisson_ratio": 0.01, "u_wall_poisson_ratio": 0.01}
+
+
+def _one_pass(args: argparse.Namespace, uncertain: bool = False) -> tuple[float, float]:
+    """(seconds in derive(), seconds drawing the scenarios) for ``--rows`` scenarios;
+    ``uncertain``: with every input's uncertainty (``uncertainties``)."""
     vectorized_s = drawing_s = 0.0
     done = 0
     while done < args.rows:
         n = min(args.chunk, args.rows - done)
         start = time.perf_counter()
         chunk = scenarios(n, seed=done)
+        extra = {"uncertainties": uncertainties(chunk)} if uncertain else {}
         drawing_s += time.perf_counter() - start
         start = time.perf_counter()
-        derive(**chunk, threads=args.threads)
+        derive(**chunk, threads=args.threads, **extra)
         vectorized_s += time.perf_counter() - start
         del chunk
         done += n
@@ -112,6 +127,11 @@ def main() -> None:
     passes = [_one_pass(args) for _ in range(args.repeats + 1)][1:]
     vectorized_s = statistics.median(p[0] for p in passes)
     drawing_s = statistics.median(p[1] for p in passes)
+    peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # before the next
+    # with uncertainties: alternating with passes without, so both see the same machine
+    pairs = [(_one_pass(args, True)[0], _one_pass(args)[0]) for _ in range(args.repeats)]
+    uncertain_s = statistics.median(p[0] for p in pairs)
+    plain_s = statistics.median(p[1] for p in pairs)
 
     sample = scenarios(args.sample, seed=12345)
     start = time.perf_counter()
@@ -125,7 +145,6 @@ def main() -> None:
 
     fast_rate = args.rows / vectorized_s
     slow_rate = args.sample / per_row_s
-    peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(
         f"vectorized derive(): {args.rows:,} rows in {vectorized_s:.2f} s = "
         f"{fast_rate:,.0f} rows/s (median of {args.repeats} after a warm-up; chunks of "
@@ -146,6 +165,14 @@ def main() -> None:
         f"({vectorized_s / limit_s:.2f}x the bound)"
     )
     print(f"{'PASS' if ok_memory else 'FAIL'}: peak memory {peak_mb:,.0f} MB; bound <= 250 MB")
+    ratio = uncertain_s / plain_s
+    print(
+        f"derive with uncertainties (16 sources, 35 u columns, 3 probabilities): "
+        f"{args.rows:,} rows in {uncertain_s:.2f} s; without, same run: {plain_s:.2f} s"
+    )
+    print(f"{'PASS' if ratio <= 3 else 'FAIL'}: with/without = {ratio:.2f}x; bound <= 3x")
+    after_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"peak memory with uncertainties too (max RSS): {after_mb:,.0f} MB")
     if worst > 1e-9:
         raise SystemExit("the two implementations disagree")
 

@@ -4,16 +4,18 @@
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import json
 from pathlib import Path
 
 import pytest
-from support import dump_hash
+from support import STEEL_ON_ZERODUR, dump_hash
 
 import granudb
 from granudb.errors import ValidationError
 from granudb.io.units import parse_uncertain_quantity
+from granudb.physics.derive import derive as derive_arrays
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "collisions_example.csv"
 
@@ -149,3 +151,82 @@ def test_uncertainties_round_trip_through_a_package_byte_for_byte(
         assert (first / "data" / f"{name}.csv").read_bytes() == (
             second / "data" / f"{name}.csv"
         ).read_bytes()
+
+
+def test_derive_frame_takes_u_columns_and_carries_the_probabilities() -> None:
+    """``granudb.derive`` of a table with ``u_<input>`` columns: the same u and
+    probabilities as the physics' arrays give, and a negative u refused by row."""
+    frame = {name: [value, value] for name, value in STEEL_ON_ZERODUR.items()}
+    frame |= {
+        "v_n_in_m_s": [0.3, 0.05],
+        "viscosity_pa_s": [3.2e-3, 3.2e-3],
+        "fluid_density_kg_m3": [1090.0, 1090.0],
+        "u_viscosity_pa_s": [1.6e-4, 1.6e-4],
+    }
+    out = granudb.derive(frame)
+    arrays = derive_arrays(
+        **{k: v for k, v in frame.items() if not k.startswith("u_")},
+        uncertainties={"u_viscosity_pa_s": frame["u_viscosity_pa_s"]},
+    )
+    for column in ("u_normal_stokes_number", "u_min_gap_m", "probability_asperity_contact"):
+        assert list(out[column]) == list(arrays[column])
+    assert out.attrs["units"]["u_min_gap_m"] == "m"
+    frame["u_viscosity_pa_s"] = [1.6e-4, -1.0]
+    with pytest.raises(ValidationError, match="u_viscosity_pa_s") as caught:
+        granudb.derive(frame)
+    assert caught.value.row == 2
+
+
+def test_fluid_points_carry_their_uncertainty_into_the_viscosity(opened) -> None:
+    """A point's "0.9325 ± 0.005 cP" is stored and, where the reference viscosity states
+    none, is the u(μ) of the fluid at that temperature (as a relative u)."""
+    granudb.add_fluid_point(
+        "water", temperature="23 degC", viscosity="0.9325 ± 0.005 cP",
+        density="997.5 ± 0.1 kg/m^3", db=opened,
+    )  # fmt: skip
+    point = next(p for p in granudb.fluid("water", db=opened)["points"] if p["temperature_c"] == 23)
+    assert (point["u_viscosity_pa_s"], point["u_density_kg_m3"]) == (5e-6, 0.1)
+    result = granudb.pair(
+        "steel", "Zerodur", fluid="water", diameter="12.7 mm", velocity="0.3 m/s",
+        temperature="23 degC", db=opened,
+    )  # fmt: skip
+    relative = result["inputs"]["u_viscosity_pa_s"] / result["fluid"]["viscosity_pa_s"]
+    assert relative == pytest.approx(0.005 / 0.9325, rel=1e-9)
+    st_n = result["u_normal_stokes_number"] / result["normal_stokes_number"]
+    assert st_n == pytest.approx(relative, rel=1e-9)
+
+
+def test_a_package_from_before_the_uncertainties_still_imports(
+    cli, db: str, new_db: str, tmp_path: Path
+) -> None:
+    """A package whose materials, fluids and points end without the u columns (written
+    before they existed) is read with them empty."""
+    assert cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db).exit_code == 0
+    out = tmp_path / "old"
+    assert cli("dataset", "export", "example", "--output", str(out), db=db).exit_code == 0
+    descriptor = json.loads((out / "datapackage.json").read_text("utf-8"))
+    for resource in descriptor["resources"]:
+        path = out / resource["path"]
+        rows = list(csv.reader(io.StringIO(path.read_text("utf-8"), newline="")))
+        keep = [i for i, name in enumerate(rows[0]) if not name.startswith("u_")]
+        buffer = io.StringIO(newline="")
+        csv.writer(buffer, lineterminator="\n").writerows([[r[i] for i in keep] for r in rows])
+        payload = buffer.getvalue().encode("utf-8")
+        path.write_bytes(payload)
+        resource["bytes"] = len(payload)
+        resource["hash"] = "sha256:" + hashlib.sha256(payload).hexdigest()
+        fields = resource["schema"]["fields"]
+        resource["schema"]["fields"] = [f for f in fields if not f["name"].startswith("u_")]
+    (out / "datapackage.json").write_text(json.dumps(descriptor), "utf-8")
+    result = cli("dataset", "import", str(out), db=new_db)
+    assert result.exit_code == 0, result.stderr
+
+
+def test_a_release_keeps_the_values_and_uncertainties_it_was_released_with(cli, db: str) -> None:
+    """Giving steel an uncertainty after a release is a change like any other: the
+    release's runs keep steel as it was (no u), the live steel carries the new u."""
+    assert cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db).exit_code == 0
+    assert cli("dataset", "release", "example", db=db).exit_code == 0
+    assert cli("materials", "update", "steel", "--roughness", "23.6 ± 2 nm", db=db).exit_code == 0
+    history = json.loads(cli("materials", "history", "steel", "--format", "json", db=db).stdout)
+    assert [r["u_roughness_rms_m"] for r in history] == [2e-9, None]

@@ -196,7 +196,8 @@ def state_uncertainty(
     u(μ): a viscosity given by the caller carries its own ``u_viscosity_pa_s``. Else the
     stored relative uncertainty of the reference viscosity, applied at the state's
     temperature (the model passes through the printed value, so its relative
-    uncertainty is assumed to carry over), combined in quadrature (GUM (10)) with
+    uncertainty is assumed to carry over; without one, the points' relative uncertainties
+    interpolated at the temperature), combined in quadrature (GUM (10)) with
     |dμ/dT|·u(T) for the temperature's uncertainty and for the reference temperature's,
     dμ/dT by central difference of the fluid's model (``fluid_model``). u(ρ_f): the
     reference density's relative uncertainty at the state's density. A temperature
@@ -206,6 +207,8 @@ def state_uncertainty(
         return u_viscosity_pa_s, _relative(fluid, "reference_density_kg_m3", state.density_kg_m3)
     parts: list[float] = []
     relative = _relative(fluid, "reference_viscosity_pa_s", state.viscosity_pa_s)
+    if relative is None:
+        relative = _from_points(fluid, state)
     if relative is not None:
         parts.append(relative)
     temperatures = [
@@ -236,3 +239,17 @@ def _relative(fluid: Fluid | FluidRow, column: str, value: float) -> float | Non
     """The stored uncertainty of ``column`` as a fraction of its value, times ``value``."""
     u = getattr(fluid, f"u_{column}", None)
     return None if u is None else u / getattr(fluid, column) * value
+
+
+def _from_points(fluid: Fluid | FluidRow, state: FluidState) -> float | None:
+    """u(μ) at the state's temperature from the points' stated uncertainties: their
+    relative u interpolated linearly in temperature (None when no point states one)."""
+    stated = sorted(
+        (p.temperature_c, p.u_viscosity_pa_s / p.viscosity_pa_s)
+        for p in fluid.points
+        if getattr(p, "u_viscosity_pa_s", None) is not None
+    )
+    if not stated:
+        return None
+    temperatures, relative = zip(*stated, strict=True)
+    return float(np.interp(state.temperature_c, temperatures, relative)) * state.viscosity_pa_s

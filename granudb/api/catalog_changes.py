@@ -275,6 +275,7 @@ def add_fluid_point(
 ) -> list[str]:
     """Add one measured point (temperature, viscosity[, density]) to a fluid; a point at a
     temperature the fluid has is refused unless ``replace``. Returns one line per point.
+    Viscosity and density may carry their standard uncertainty (``"1.31 ± 0.01 cP"``).
 
     Examples
     --------
@@ -286,12 +287,15 @@ def add_fluid_point(
         raise inputs.missing("temperature", "is required for a fluid point")
     if viscosity is None:
         raise inputs.missing("viscosity", "is required for a fluid point")
-    point = {
-        "temperature_c": inputs.quantity(temperature, "temperature_c", "temperature"),
-        "viscosity_pa_s": inputs.quantity(viscosity, "viscosity_pa_s", "viscosity"),
-    }
+    point = {"temperature_c": inputs.quantity(temperature, "temperature_c", "temperature")}
+    # viscosity and density may carry their standard uncertainty: "1.31 ± 0.01 cP"
+    point["viscosity_pa_s"], point["u_viscosity_pa_s"] = inputs.uncertain_quantity(
+        viscosity, "viscosity_pa_s", "viscosity"
+    )
     if density is not None:
-        point["density_kg_m3"] = inputs.quantity(density, "density_kg_m3", "density")
+        point["density_kg_m3"], point["u_density_kg_m3"] = inputs.uncertain_quantity(
+            density, "density_kg_m3", "density"
+        )
     return _add_points(name, [point], source, replace, db)
 
 

@@ -27,6 +27,7 @@ from granudb.api import inputs
 from granudb.errors import ValidationError
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
+from granudb.physics.derive import UNCERTAIN_INPUTS
 from granudb.physics.derive import derive as derive_arrays
 from granudb.vocabulary import RULES
 from granudb.vocabulary.listings import units_of
@@ -34,7 +35,15 @@ from granudb.vocabulary.listings import units_of
 _PARAMETERS = inspect.signature(derive_arrays).parameters
 #: The keyword options of ``derive`` (numbers for the whole table, not columns).
 OPTIONS = ("critical_stokes", "dry_friction", "gap_fraction", "dry_restitution")
-_NOT_OFFERED = ("limiting_shear_slope", "threads")
+_NOT_OFFERED = (
+    "limiting_shear_slope",
+    "threads",
+    "uncertainties",
+    "correlated_materials",
+    "one_speed",
+)
+#: Columns of standard uncertainties a table may have: ``u_<input>`` (same unit).
+UNCERTAINTY_COLUMNS = tuple(f"u_{name}" for name in UNCERTAIN_INPUTS)
 #: The input columns: every other parameter of the physics' ``derive``.
 INPUTS = tuple(n for n in _PARAMETERS if n not in OPTIONS + _NOT_OFFERED)
 #: The inputs without a default: a table must have them, with a value in every row.
@@ -71,7 +80,7 @@ def _misnamed(columns: list[str]) -> None:
             raise ValidationError(
                 column, "(a column)", "is an option of derive, not a column: pass it by keyword"
             )
-        if column in _PARAMETERS:
+        if column in _PARAMETERS or column in UNCERTAINTY_COLUMNS:
             continue
         absent = [n for n in INPUTS if n not in present]
         near = [n for n in absent if n.startswith(f"{column}_")]
@@ -152,6 +161,11 @@ def derive(frame: Any, **options: Any) -> Any:
     ``wall_youngs_modulus_pa``, ``diameter_m``, ``v_n_in_m_s``); the ten in ``REQUIRED``
     in every row, the others optional (NaN: not given). ``options`` are
     ``critical_stokes``, ``dry_friction``, ``gap_fraction`` and ``dry_restitution``.
+    Columns ``u_<input>`` (``UNCERTAINTY_COLUMNS``: ``u_viscosity_pa_s``, …; ≥ 0, NaN:
+    not given) are the inputs' standard uncertainties: then every continuous derived
+    quantity gets its ``u_<column>`` and each verdict its probability
+    (``probability_asperity_contact``, ``probability_rebound``, ``probability_yield``;
+    docs/physics.md, "Uncertainty").
     Returns a copy with the derived columns added (their units in ``attrs["units"]``).
     Refuses what it cannot compute correctly (see the module's docstring).
 
@@ -193,6 +207,17 @@ def derive(frame: Any, **options: Any) -> Any:
         if column in columns:
             arrays[column] = _cells(frame, column)
             _checked(column, arrays[column])
+    uncertain = {}
+    for column in UNCERTAINTY_COLUMNS:
+        if column in columns:
+            uncertain[column] = _cells(frame, column)
+            bad = uncertain[column] < 0
+            if bad.any():
+                row = int(np.flatnonzero(bad)[0])
+                value = f"{uncertain[column][row]:g}"
+                raise ValidationError(column, value, "must be ≥ 0 (NaN: not given)", row=row + 1)
+    if uncertain:
+        checked["uncertainties"] = uncertain
     with physics_refusal():
         derived = derive_arrays(**arrays, **checked)
     out = frame.copy()

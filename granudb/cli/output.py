@@ -128,18 +128,23 @@ def emit(
         for column in columns:
             table.add_column(header(column, symbols), overflow="ellipsis", no_wrap=symbols)
         digits = 3 if symbols else 4
-        for row in rows:
+        for record, row in zip(records, rows, strict=True):
             cells = (
                 SHORT_WORDS.get(v, v) if symbols and isinstance(v, str) else v
                 for v in (row[c] for c in columns)
             )
-            table.add_row(
-                *(
-                    rich_text.Text(api.display(v, c, digits))
-                    for v, c in zip(cells, columns, strict=True)
-                )
-            )
+            table.add_row(*(rich_text.Text(_cell(record, v, c, digits))
+                            for v, c in zip(cells, columns, strict=True)))  # fmt: skip
         console().print(table)
+
+
+def _cell(record: dict[str, Any], value: Any, column: str, digits: int) -> str:
+    """A table cell: the value, with its standard uncertainty where the record has one
+    (``u_<column>``: "46 ± 5 nm")."""
+    u = record.get(f"u_{column}")
+    if isinstance(u, int | float) and not isinstance(u, bool) and u > 0:
+        return api.display_uncertain(value, u, column)
+    return api.display(value, column, digits)
 
 
 def emit_one(

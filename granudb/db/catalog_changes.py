@@ -225,6 +225,8 @@ def add_fluid_points(
             lines.append(f"replaced {fluid.name} at {t:g} °C: {old:.4g} → {new:.4g} mPa·s")
         existing.viscosity_pa_s = point["viscosity_pa_s"]
         existing.density_kg_m3 = point.get("density_kg_m3")
+        existing.u_viscosity_pa_s = point.get("u_viscosity_pa_s")
+        existing.u_density_kg_m3 = point.get("u_density_kg_m3")
         existing.source_id = source_id
     session.flush()
     return lines

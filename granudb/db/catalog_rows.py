@@ -70,6 +70,8 @@ class FluidPointRow:
     temperature_c: float
     viscosity_pa_s: float
     density_kg_m3: float | None
+    u_viscosity_pa_s: float | None
+    u_density_kg_m3: float | None
     source_locator: str | None
     source: SourceRow | None
 
@@ -381,6 +383,8 @@ def point_records(fluid: Any) -> list[dict[str, Any]]:
             "temperature_c": p.temperature_c,
             "viscosity_pa_s": p.viscosity_pa_s,
             "density_kg_m3": p.density_kg_m3,
+            "u_viscosity_pa_s": p.u_viscosity_pa_s,
+            "u_density_kg_m3": p.u_density_kg_m3,
             "source": source_key(p.source),
         }
         for p in sorted(fluid.points, key=lambda p: p.temperature_c)

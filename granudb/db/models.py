@@ -212,6 +212,9 @@ class FluidPoint(Base):
     temperature_c: Mapped[float] = mapped_column(Float)
     viscosity_pa_s: Mapped[float] = mapped_column(Float)
     density_kg_m3: Mapped[float | None] = mapped_column(Float)
+    #: Standard uncertainties of the point's viscosity and density (NULL: not given).
+    u_viscosity_pa_s: Mapped[float | None] = mapped_column(Float)
+    u_density_kg_m3: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
 
@@ -223,6 +226,7 @@ class FluidPoint(Base):
         CheckConstraint("temperature_c > -273.15", name="temperature_above_zero_k"),
         CheckConstraint("viscosity_pa_s > 0", name="viscosity_positive"),
         _positive_if_given("density_kg_m3", "density_positive"),
+        *_non_negative_if_given(["u_viscosity_pa_s", "u_density_kg_m3"]),
     )
 
 

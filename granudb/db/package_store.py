@@ -87,8 +87,10 @@ def _differences(existing: dict[str, Any], incoming: dict[str, Any]) -> list[str
 
 
 def _point_differences(existing: Fluid, points: list[dict[str, Any]]) -> list[str]:
-    here = sorted((p.temperature_c, p.viscosity_pa_s, p.density_kg_m3) for p in existing.points)
-    there = sorted((p["temperature_c"], p["viscosity_pa_s"], p["density_kg_m3"]) for p in points)
+    names = ("temperature_c", "viscosity_pa_s", "density_kg_m3", "u_viscosity_pa_s",
+             "u_density_kg_m3")  # fmt: skip
+    here = sorted(tuple(getattr(p, n) for n in names) for p in existing.points)
+    there = sorted(tuple(p.get(n) for n in names) for p in points)
     if len(here) == len(there) and not any(
         _differences(dict(enumerate(a)), dict(enumerate(b)))
         for a, b in zip(here, there, strict=True)
@@ -191,6 +193,8 @@ class Merger:
                         temperature_c=point["temperature_c"],
                         viscosity_pa_s=point["viscosity_pa_s"],
                         density_kg_m3=point["density_kg_m3"],
+                        u_viscosity_pa_s=point.get("u_viscosity_pa_s"),
+                        u_density_kg_m3=point.get("u_density_kg_m3"),
                         source_id=self._source(point["source"]),
                         source_locator=point["source_locator"],
                     )

@@ -19,6 +19,7 @@ from granudb.vocabulary import (
     FLUIDS,
     MATERIALS,
     POINT_COLUMNS,
+    POINT_UNCERTAINTIES,
     SOURCE_COLUMNS,
     SOURCE_REQUIRED,
     Catalogue,
@@ -56,7 +57,8 @@ def _catalogue(spec: Catalogue) -> list[tuple[str, str, bool]]:
 
 
 def _point_columns() -> list[str]:
-    return ["fluid", *(c for c in POINT_COLUMNS if c != "source"), "source", "source_locator"]
+    shown = (c for c in POINT_COLUMNS if c != "source")
+    return ["fluid", *shown, "source", "source_locator", *POINT_UNCERTAINTIES]
 
 
 #: (name, type, required) per resource, in file column order: generated from the
@@ -76,6 +78,7 @@ RESOURCES: dict[str, list[tuple[str, str, bool]]] = {
 OPTIONAL_TRAILING: dict[str, list[str]] = {
     "materials": list(MATERIALS.uncertainties.values()),
     "fluids": list(FLUIDS.uncertainties.values()),
+    "fluid_points": list(POINT_UNCERTAINTIES),
 }
 
 PRIMARY_KEYS = {

@@ -192,7 +192,7 @@ def friction_integral(c: Numeric) -> Numeric:
     return result
 
 
-def friction_integral_log_slope(c: Numeric) -> Numeric:
+def friction_integral_log_slope(c: Numeric, integral: Numeric | None = None) -> Numeric:
     r"""Logarithmic slope of (5.9), d ln A / d ln c = c A'(c) / A(c) [-], exactly.
 
     From the same polynomial: c A'(c) = Σ k C(16,k) c^k/(k+2). Used to propagate the
@@ -201,6 +201,7 @@ def friction_integral_log_slope(c: Numeric) -> Numeric:
     Parameters
     ----------
     c : c = η̂ p_max [-]
+    integral : A(c) if already computed (``friction_integral``), else None [-]
 
     Examples
     --------
@@ -214,8 +215,12 @@ def friction_integral_log_slope(c: Numeric) -> Numeric:
     c = as_float(c)
     slope = np.zeros_like(c)
     for k, coefficient in reversed(list(enumerate(_A_COEFFICIENTS))):
-        slope = slope * c + k * coefficient
-    return slope / friction_integral(c)
+        if slope.ndim:  # in place, as friction_integral
+            slope *= c
+            slope += k * coefficient
+        else:
+            slope = slope * c + k * coefficient
+    return slope / (friction_integral(c) if integral is None else as_float(integral))
 
 
 def traction_film_thickness(

@@ -13,9 +13,14 @@ gives A's slope). Then
 with sources that are the same quantity merged before squaring: where the particle and
 the wall are the same material (``correlated``), their E, ν, ρ, σ and Y come from one
 source and are fully correlated (r = 1, GUM (16)), so u(E*) is then u(E)/E and not
-u(E)/(E√2). Inputs without an uncertainty (None, NaN) contribute nothing. No per-row
-Python: each sensitivity is a scalar or an array over the rows. Quantities of one
-element sum (the incidence angle) are propagated absolutely in the same way.
+u(E)/(E√2); and where v_n and v_t are one measured speed at a set angle (``one_speed``,
+as ``granudb.pair`` takes them). The merging is done once on the base quantities and
+holds for all built from them, as the propagation is linear. Inputs without an
+uncertainty (None, NaN) contribute nothing. No per-row Python: each sensitivity is a
+scalar or an array over the rows, and E* is one source (its u from E and ν of both
+bodies) for everything but G*, c and what is built on them, which take E and ν
+themselves (``expand_e_star``). The incidence angle, not a product of powers, is
+propagated absolutely in the same way.
 
 Temperature enters through the viscosity: the caller gives u(μ) including
 |∂μ/∂T| u(T) from the fluid model (``granudb.analysis.fluid_state``). The per-collision
@@ -23,8 +28,8 @@ parameters (e, β, Ψ, μ_f of (2.9)) are not propagated here.
 
 The first-order result is checked against Monte Carlo propagation (JCGM 101:2008) in
 tests/physics/test_uncertainty.py: within 10 % for input uncertainties up to 5 %; at
-30 % the power laws' curvature makes them part (u(h_m) and u(St) of a 30 % viscosity
-by more than that).
+30 % the curvature makes them part: u(St) of a 30 % viscosity (St ∝ 1/μ) is more than
+10 % below the Monte Carlo spread, while h_m ∝ μ^{2/5} still agrees.
 
 **Verdict probabilities** (``verdict_probabilities``): a verdict compares a positive
 quantity with a threshold, q = Q/Q_c > 1. q is taken as lognormal with ln q's standard
@@ -51,7 +56,8 @@ Sens = dict[str, Any]
 
 #: The inputs of ``derive`` that may carry an uncertainty, by their step names, and
 #: whether the source is scaled relatively (u/|x|; power-law factors) or absolutely
-#: (u; Poisson ratios, roughness and velocities, which may be 0).
+#: (u; Poisson ratios, roughness and velocities, which may be 0; v_n's is made relative
+#: to the approach speed v_N > 0 in ``propagate``).
 SOURCES: dict[str, bool] = {
     "rho1": True,
     "e1": True,
@@ -72,7 +78,6 @@ SOURCES: dict[str, bool] = {
 }
 #: The wall's source of each of the particle's: the same source when both are one material.
 _PARTNERS = {"rho1": "rho2", "e1": "e2", "nu1": "nu2", "s1": "s2", "y1": "y2"}
-_PAIRED = {*_PARTNERS, *_PARTNERS.values(), "vn", "vt"}
 #: Probabilities at or beyond which a verdict is "likely" (either way).
 LIKELY, UNLIKELY = 0.9, 0.1
 
@@ -82,7 +87,9 @@ def _lin(*terms: tuple[Any, Sens]) -> Sens:
     out: Sens = {}
     for coefficient, sens in terms:
         for source, value in sens.items():
-            out[source] = out.get(source, 0.0) + coefficient * value
+            scaled = value if type(coefficient) is int and coefficient == 1 else coefficient * value
+            held = out.get(source)
+            out[source] = scaled if held is None else held + scaled
     return out
 
 
@@ -113,52 +120,96 @@ def scaled_sources(x: Arrays, u: Arrays) -> Arrays:
 def relative_uncertainty(
     sens: Sens,
     scaled: Arrays,
-    correlated: np.ndarray | None = None,
-    one_speed: np.ndarray | None = None,
+    correlated: Any = None,
+    one_speed: Any = None,
+    speed_factor: Any = 1.0,
 ) -> np.ndarray | float:
     """u(Q)/|Q| = √(Σ (s_k u_k)²), with the terms of two inputs that are one source added
     before squaring (r = 1): the particle's and the wall's property where ``correlated``
     (one material on both sides), v_n and v_t where ``one_speed`` (one measured speed
-    at a set angle, as ``granudb.pair`` takes it).
+    at a set angle, as ``granudb.pair`` takes it; ``speed_factor`` is v_t's scaled u
+    over v_n's).
 
     >>> float(relative_uncertainty({"e1": 0.5, "e2": 0.5}, {"e1": 0.1, "e2": 0.1}))
     0.07071067811865477
     >>> float(relative_uncertainty({"e1": 0.5, "e2": 0.5}, {"e1": 0.1, "e2": 0.1}, True))
     0.1
     """
-    total: Any = 0.0
-    for source in sens:
-        if source in _PAIRED or source not in scaled:
-            continue  # one of a pair: below
-        total = total + (sens[source] * scaled[source]) ** 2
-    for (first_name, second_name), flag in (
-        *((pair, correlated) for pair in _PARTNERS.items()),
-        (("vn", "vt"), one_speed),
-    ):
-        terms = [
-            sens[name] * scaled[name]
-            for name in (first_name, second_name)
-            if name in sens and name in scaled
-        ]
-        if len(terms) == 1:
-            total = total + terms[0] ** 2
-        elif terms:
-            first, second = terms
-            apart = first**2 + second**2
-            total = total + (
-                apart if flag is None else np.where(flag, (first + second) ** 2, apart)
-            )
-    return np.sqrt(total)
+    return _norm(_merged(sens, scaled, correlated, one_speed, speed_factor), scaled)
+
+
+def _norm(sens: Sens, scaled: Arrays, squares: Arrays | None = None) -> np.ndarray | float:
+    """√(Σ (s_k u_k)²) over the given sources (after ``_merged``); ``squares``, the
+    u_k² if already computed, save a multiplication for each constant s_k."""
+    total: Any = None
+    for source, value in sens.items():
+        given = scaled.get(source)
+        if given is None:
+            continue
+        if squares is not None and not isinstance(value, np.ndarray):
+            term = (value * value) * squares[source]
+        else:
+            term = value * given
+            if isinstance(term, np.ndarray):
+                np.multiply(term, term, out=term)
+            else:
+                term = term * term
+        if total is None:
+            total = term
+        elif isinstance(total, np.ndarray) and total.shape == np.shape(term):
+            total += term
+        else:
+            total = total + term
+    return 0.0 if total is None else np.sqrt(total)
+
+
+def _merged(sens: Sens, scaled: Arrays, correlated: Any, one_speed: Any, speed_factor: Any) -> Sens:
+    """``sens`` with each pair of inputs that are one source (see ``relative_uncertainty``)
+    put on the first's scaled uncertainty: the wall's onto the particle's (one material:
+    the same u/x), v_t's onto v_n's times ``speed_factor`` (one speed: the same
+    relative u). Done once on the base quantities, it holds for all that are built from
+    them (the propagation is linear)."""
+    out = {name: value for name, value in sens.items() if name in scaled}
+    pairs = [(first, second, correlated, 1.0) for first, second in _PARTNERS.items()]
+    pairs.append(("vn", "vt", one_speed, speed_factor))
+    for first, second, flag, factor in pairs:
+        if second not in out or flag is None or not np.any(flag):
+            continue
+        moved = out[second] * factor
+        if np.all(flag):
+            out[first] = out.get(first, 0.0) + moved
+            del out[second]
+        else:
+            out[first] = out.get(first, 0.0) + np.where(flag, moved, 0.0)
+            out[second] = np.where(flag, 0.0, out[second])
+    return out
 
 
 def _indicator(condition: np.ndarray) -> np.ndarray:
     return condition.astype(float)
 
 
-def sensitivities(x: Arrays, p: Arrays, h: Arrays, f: Arrays, lub: Arrays) -> dict[str, Sens]:
+def sensitivities(
+    x: Arrays,
+    steps: tuple[Arrays, Arrays, Arrays, Arrays],
+    scaled: Arrays,
+    correlated: Any = None,
+    one_speed: Any = None,
+) -> dict[str, Sens]:
     """∂ln Q/∂(scaled source) of every propagated quantity, by ``derive``'s column name
     (``incidence_angle_rad``'s are of the angle itself, absolute), from the inputs ``x``
-    and the steps' results (``granudb.physics.quantities``)."""
+    and the steps' results (``granudb.physics.quantities``): only the given sources
+    (``scaled``), with inputs that are one source merged (``_merged``)."""
+    p, h, f, lub = steps
+    wall_only = not np.any(p["free"]) and bool(np.all(np.isnan(x["d2"])))
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # v_n's u is scaled by v_N (relative), v_t's is absolute: one speed's ratio
+        speed_factor = x["vt"] * p["v_n"] / x["vn"]
+
+    def base(sens: Sens) -> Sens:
+        return _merged(sens, scaled, correlated, one_speed, speed_factor)
+
     e_star, g_star = p["e_star"], p["g_star"]
     nu1, nu2 = x["nu1"], x["nu2"]
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -175,22 +226,31 @@ def sensitivities(x: Arrays, p: Arrays, h: Arrays, f: Arrays, lub: Arrays) -> di
                 (1.0, {f"e{side}": weight * derived,
                        f"nu{side}": g_star / p[g_name] - weight * derived / (1 + nu)}),
             )  # fmt: skip
-        s_r = {"d": p["r_eff"] / p["radius"]}
+        s_r = {"d": 1.0} if wall_only else {"d": p["r_eff"] / p["radius"]}
         s_m1 = {"rho1": 1.0, "d": 3.0}
         # 1/m* = 1/m₁ + 1/m₂: d ln m* = (m*/m₁) d ln m₁ + (1 − m*/m₁) d ln m₂ (wall: m* = m₁)
         k1 = p["m_eff"] / p["m1"]
-        s_m = {"rho1": k1, "d": 3.0 * k1, "rho2": 1.0 - k1}
+        s_m = s_m1 if wall_only else {"rho1": k1, "d": 3.0 * k1, "rho2": 1.0 - k1}
         v_n, speed = p["v_n"], p["speed"]
         vt_centre = x["vt"] - np.where(np.isnan(x["w_vt"]), 0.0, x["w_vt"])
-        s_vn = {"vn": 1.0 / v_n}
-        s_v = {"vn": v_n / speed**2, "vt": vt_centre / speed**2}
+        s_vn = {"vn": 1.0}  # v_n's u is relative to v_N (``propagate``)
+        s_v = {"vn": (v_n / speed) ** 2, "vt": vt_centre / speed**2}
         tangential = p["u"]
         s_u = {"vt": np.where(tangential == 0.0, 0.0, 1.0 / tangential)}
         sigma = f["sigma"]
         s_sigma = {"s1": x["s1"] / sigma**2, "s2": x["s2"] / sigma**2}
         k_am = flow.ADDED_MASS_COEFFICIENT * x["rho_f"] / x["rho1"]
         k_am = k_am / (1.0 + k_am)
-    mu, rho_f, c = {"mu": 1.0}, {"rho_f": 1.0}, {"c_barus": 1.0}
+    mu, rho_f, c, rho1 = (base({k: 1.0}) for k in ("mu", "rho_f", "c_barus", "rho1"))
+    s_e, g_sens, s_r, s_m1, s_m, s_vn, s_v, s_u, s_sigma = (
+        base(sens) for sens in (s_e, g_sens, s_r, s_m1, s_m, s_vn, s_v, s_u, s_sigma)
+    )
+    # E, ν of both bodies enter everything but G*, c and what is built on them through
+    # E* alone: E* is one source for those (its u from the four), expanded where needed.
+    e_sources = s_e
+    if s_e:
+        scaled[E_STAR] = _norm(s_e, scaled)
+        s_e = {E_STAR: 1.0}
 
     s: dict[str, Sens] = {
         "reduced_modulus_pa": s_e,
@@ -205,7 +265,7 @@ def sensitivities(x: Arrays, p: Arrays, h: Arrays, f: Arrays, lub: Arrays) -> di
     s["stokes_number"] = _lin((1, s_m), (1, s_v), (-1, mu), (-2, s_r))
     s["normal_stokes_number"] = _lin((1, s_m), (1, s_vn), (-1, mu), (-2, s_r))
     s["added_mass_stokes_number"] = _lin(
-        (1, s["normal_stokes_number"]), (k_am, rho_f), (-k_am, {"rho1": 1.0})
+        (1, s["normal_stokes_number"]), (k_am, rho_f), (-k_am, rho1)
     )
     delta = _lin((0.4, s_m), (0.8, s_vn), (-0.4, s_e), (-0.2, s_r))
     load = _lin((1, s_e), (0.5, s_r), (1.5, delta))
@@ -213,10 +273,10 @@ def sensitivities(x: Arrays, p: Arrays, h: Arrays, f: Arrays, lub: Arrays) -> di
     pressure = _lin((1, load), (-2, radius))
     time = _lin((1, delta), (-1, s_vn))
     slower = _indicator(np.sqrt(x["e1"] / x["rho1"]) <= np.sqrt(x["e2"] / x["rho2"]))
-    wave = {"e1": 0.5 * slower, "rho1": -0.5 * slower,
-            "e2": 0.5 * (1 - slower), "rho2": -0.5 * (1 - slower)}  # fmt: skip
+    wave = base({"e1": 0.5 * slower, "rho1": -0.5 * slower,
+                 "e2": 0.5 * (1 - slower), "rho2": -0.5 * (1 - slower)})  # fmt: skip
     soft = _indicator(~(x["y2"] < x["y1"]))  # fmin: the particle's unless the wall's is lower
-    s_y = {"y1": soft, "y2": 1 - soft}
+    s_y = base({"y1": soft, "y2": 1 - soft})
     s.update(
         {
             "impact_load_n": load,
@@ -225,7 +285,9 @@ def sensitivities(x: Arrays, p: Arrays, h: Arrays, f: Arrays, lub: Arrays) -> di
             "max_approach_m": delta,
             "contact_time_s": time,
             "wave_speed_m_s": wave,
-            "quasi_static_ratio": _lin((1, radius), (-1, wave), (-1, time)),
+            "quasi_static_ratio": _lin(
+                (1, expand_e_star(_lin((1, radius), (-1, time)), e_sources)), (-1, wave)
+            ),
             "yield_speed_m_s": _lin((1, s_vn), (2.5, s_y), (-2.5, pressure)),
         }
     )
@@ -247,10 +309,10 @@ def sensitivities(x: Arrays, p: Arrays, h: Arrays, f: Arrays, lub: Arrays) -> di
         (2 / 7, s_r), (5 / 7, mu), (5 / 7, s_u), (5 / 7, c), (-1 / 21, load),
         (1 / 21, s_e), (2 / 21, s_r)
     )  # fmt: skip
-    slope = lubrication.friction_integral_log_slope(f["eta_hat"] * h["p_max"])
+    slope = lubrication.friction_integral_log_slope(f["eta_hat"] * h["p_max"], lub["integral"])
     integral = _scale(slope, _lin((1, c), (1, pressure)))
     friction = _lin((1, mu), (1, s_u), (2, radius), (1, integral), (-1, load), (-1, film))
-    stiffness = _lin((1, g_sens), (-1, s_e))
+    stiffness = _lin((1, g_sens), (-1, e_sources))
     s.update(
         {
             "tangential_speed_m_s": s_u,
@@ -264,7 +326,22 @@ def sensitivities(x: Arrays, p: Arrays, h: Arrays, f: Arrays, lub: Arrays) -> di
     angle_factor = v_n * tangential / (v_n**2 + tangential**2)  # dζ = that × (dln U − dln v_N)
     s["incidence_angle_rad"] = _scale(angle_factor, _lin((1, s_u), (-1, s_vn)))
     s["_yield_ratio"] = _lin((1, pressure), (-1, s_y))  # not a column: P(yield)'s ratio
+    s["_e_star_sources"] = e_sources  # not a column: E*'s own sources, for ``propagate``
     return s
+
+
+#: The name of E* as one source (``sensitivities``).
+E_STAR = "E*"
+
+
+def expand_e_star(sens: Sens, e_sources: Sens) -> Sens:
+    """``sens`` with E* as a source replaced by E* 's own sources (E and ν of both
+    bodies), for a quantity that also depends on them otherwise (c, G*)."""
+    gamma = sens.get(E_STAR)
+    if gamma is None:
+        return sens
+    rest = {name: value for name, value in sens.items() if name != E_STAR}
+    return _lin((1, rest), (gamma, e_sources))
 
 
 def propagate(
@@ -282,19 +359,26 @@ def propagate(
     pair_properties, hertz, fluid_numbers, lubricated and tangential."""
     p, h, f, lub, tan = steps
     scaled = scaled_sources(x, u)
-    sens = sensitivities(x, p, h, f, lub)
-    relative = {
-        name: relative_uncertainty(sens[name], scaled, correlated, one_speed) for name in sens
-    }
+    if "vn" in scaled:
+        scaled["vn"] = scaled["vn"] / p["v_n"]  # relative to the approach speed v_N > 0
+    sens = sensitivities(x, (p, h, f, lub), scaled, correlated, one_speed)
+    squares = {source: value * value for source, value in scaled.items()}
+    norms: dict[int, Any] = {}  # quantities with the same sensitivities (x₁, h_m) once
+    for value in sens.values():
+        if id(value) not in norms:
+            norms[id(value)] = _norm(value, scaled, squares)
+    relative = {name: norms[id(value)] for name, value in sens.items()}
     lubricated = (tan["mu_used"] == lub["mu_lub"]) & np.isfinite(lub["mu_lub"])
     relative["friction_coefficient_used"] = np.where(
         lubricated, relative["lubricated_friction"], 0.0
     )
-    relative["maw_psi_in"] = relative_uncertainty(
+    friction = expand_e_star(
+        _scale(lubricated.astype(float), sens["lubricated_friction"]), sens["_e_star_sources"]
+    )
+    relative["maw_psi_in"] = _norm(
         _lin((1, sens["maw_chi"]), (1, sens["tangential_speed_m_s"]),
-             (-1, sens["normal_speed_m_s"]),
-             (-1, _scale(lubricated.astype(float), sens["lubricated_friction"]))),
-        scaled, correlated, one_speed,
+             (-1, sens["normal_speed_m_s"]), (-1, friction)),
+        scaled, squares,
     )  # fmt: skip
     out: Arrays = {}
     for name in (name for name in columns if name in relative):

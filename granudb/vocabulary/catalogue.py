@@ -136,6 +136,8 @@ FLUIDS = Catalogue(
 
 #: A fluid's measured point: viscosity (and density) at a temperature.
 POINT_COLUMNS = ["temperature_c", "viscosity_pa_s", "density_kg_m3", "source"]
+#: The standard uncertainties a point may carry (``"1.31 ± 0.01 cP"``), shown after it.
+POINT_UNCERTAINTIES = [uncertainty_column("viscosity_pa_s"), uncertainty_column("density_kg_m3")]
 #: The columns of a source, and those every source has.
 SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
 SOURCE_REQUIRED = ["key", "citation", "kind"]

@@ -35,7 +35,8 @@ def _uncertainty_term(column: str, term: Term, role: str) -> Term:
 
 #: The stored uncertainty columns of the catalogue, by the property they belong to.
 STORED_UNCERTAINTIES: dict[str, str] = {
-    column: uncertainty_column(column) for column in (*MATERIALS.properties, *FLUIDS.properties)
+    column: uncertainty_column(column)
+    for column in (*MATERIALS.properties, *FLUIDS.properties, "viscosity_pa_s")
 }
 
 #: Derived quantities that get a standard uncertainty (the continuous ones a scenario

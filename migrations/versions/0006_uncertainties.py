@@ -5,7 +5,8 @@
   ``u_yield_stress_pa``;
 - fluids: ``u_glycerol_mass_fraction``, ``u_reference_density_kg_m3``,
   ``u_reference_viscosity_pa_s``, ``u_reference_temperature_c``,
-  ``u_pressure_viscosity_pa_inv``.
+  ``u_pressure_viscosity_pa_inv``;
+- fluid_points: ``u_viscosity_pa_s``, ``u_density_kg_m3``.
 
 Each is the property's standard uncertainty in its unit (GUM, JCGM 100:2008), NULL where
 none is given, ≥ 0 and finite (``granudb.vocabulary.uncertainty``). Every existing row is
@@ -48,6 +49,7 @@ COLUMNS = {
         "u_reference_temperature_c",
         "u_pressure_viscosity_pa_inv",
     ),
+    "fluid_points": ("u_viscosity_pa_s", "u_density_kg_m3"),
 }
 
 
