@@ -45,19 +45,6 @@ def test_dry_normal_and_oblique(code: str, tmp_path: Path) -> None:
         assert "beta NOT reproduced" in dem_verify.WRITERS[code].write(dry_model())
 
 
-@pytest.mark.parametrize("fluid", ["glycerol37", "glycerol78"])
-@pytest.mark.parametrize("code", CODES)
-def test_immersed_normal(code: str, fluid: str, tmp_path: Path) -> None:
-    require(code)
-    model = wet_model(fluid)
-    todo = dem_verify.cases(model, speeds=(0.1, 0.3, 0.5), angles_deg=())
-    records = dem_verify.verify(model, todo, codes=[code], workdir=tmp_path)
-    assert len(records) == len(todo)
-    for r in records:
-        assert r.status == "checked"
-        assert abs(r.e_rel_error) < 0.02, r
-
-
 def test_absent_code_is_not_checked(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
     monkeypatch.setitem(dem_verify.BINARIES, "lammps", "granudb-no-such-binary")
     records = dem_verify.verify(dry_model(), codes=["lammps"], workdir=tmp_path)
