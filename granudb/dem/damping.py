@@ -38,6 +38,7 @@ from typing import Any
 import numpy as np
 
 from granudb.errors import ValidationError
+from granudb.lazy import scipy_optimize
 
 #: Tsuji et al. (1992) polynomial α(e) as implemented by LAMMPS ``damping tsuji``.
 TSUJI_POLYNOMIAL = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
@@ -98,15 +99,20 @@ def hertz_damping(restitution: float) -> float:
 
 @lru_cache(maxsize=256)
 def clamped_hertz_damping(restitution: float) -> float:
-    """C of law (1) with the force clamped at zero (Yade), by bisection on the integration."""
-    lo, hi = 0.0, 50.0
-    for _ in range(40):
-        mid = 0.5 * (lo + hi)
-        if hertz_restitution(mid, clamp_attraction=True, step=2e-3) > restitution:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
+    """C of law (1) with the force clamped at zero (every export clamps it), by Brent's
+    method on the integration: the clamp only removes attraction, so C lies between the
+    unclamped C and 3 times it plus 1."""
+    if restitution >= 1.0:
+        return 0.0
+    low = hertz_damping(restitution)
+    return float(
+        scipy_optimize.brentq(
+            lambda c: hertz_restitution(c, clamp_attraction=True, step=2e-3) - restitution,
+            low,
+            3.0 * low + 1.0,
+            xtol=1e-12,
+        )
+    )
 
 
 def liggghts_floor(input_floor: float) -> float:

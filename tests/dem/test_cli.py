@@ -179,3 +179,20 @@ def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
     comments = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
     assert "predicted: lubricated μ_f (5.8)" not in comments
     assert "assumed: the dry friction 0.11" in comments and "no sliding speed" in comments
+
+
+@pytest.mark.parametrize(
+    ("fluid", "said"),
+    [(None, "rebounds with beta = 0.34 (joseph-hunt-2004 §3, figure 4: β = 0.34 ± 0.07)"),
+     ("glycerol-37", "rebounds with beta = 0.6 (joseph-hunt-2004 §4, figure 10: β ≈ 0.6)"),
+     ("glycerol-78", "no measured beta for this pair")],
+)  # fmt: skip
+def test_the_published_beta_of_the_pair_and_fluid_is_exported(db: str, fluid, said) -> None:
+    """Walton's β comes from the published values of the same pair and fluid (dry 0.34,
+    steel's 0.6 in 37 % glycerol); where none is published the deck says so."""
+    import granudb
+
+    text = granudb.dem_export("lammps", ["steel"], ["Zerodur"], fluid=fluid,
+                              diameter="12.7 mm", velocity="0.3 m/s", db=db)  # fmt: skip
+    flat = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
+    assert said in flat

@@ -41,3 +41,22 @@ def test_clamped_inputs_give_the_target(e: float) -> None:
     tsuji = damping.tsuji_alpha(damping.lammps_tsuji_input(e, "x"))
     for c in (ligg, tsuji):
         assert damping.hertz_restitution(c, clamp_attraction=True) == pytest.approx(e, abs=1e-4)
+
+
+def test_stick_rebound_limits() -> None:
+    """No tangential spring: the contact point keeps its speed (beta = -1); a spring gives
+    a rebound the chosen stiffness reproduces."""
+    c = damping.clamped_hertz_damping(0.97)
+    assert float(damping.stick_rebound(1e-9, c)) == pytest.approx(-1.0, abs=1e-6)
+    # a finer step agrees: the end of contact is interpolated, not stepped over
+    coarse, fine = damping.stick_rebound(0.7, c), damping.stick_rebound(0.7, c, step=5e-4)
+    assert float(coarse) == pytest.approx(float(fine), abs=2e-4)
+
+
+@pytest.mark.parametrize(("beta", "e"), [(0.34, 0.97), (0.39, 0.97), (0.6, 0.94), (0.34, 0.3)])
+def test_stiffness_for_a_measured_beta(beta: float, e: float) -> None:
+    c = damping.clamped_hertz_damping(e)
+    mindlin = 1.29  # 8 G* / (4/3 E*) for steel on Zerodur
+    ratio = damping.stiffness_ratio_for_rebound(beta, c, mindlin)
+    assert 0.0 < ratio < mindlin
+    assert float(damping.stick_rebound(ratio, c, step=1e-3)) == pytest.approx(beta, abs=2e-3)

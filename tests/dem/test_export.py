@@ -120,3 +120,28 @@ def test_the_lammps_fragment_says_where_it_goes() -> None:
     text = lammps.write(dry_model())
     header = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
     assert "after the atoms exist" in header and "never straight after create_box" in header
+
+
+def test_a_wet_deck_states_the_speeds_its_constant_e_holds_for() -> None:
+    """glass in 37 % glycerol at 0.3 m/s: e(St) stays within 1 % of the constant between
+    the two speeds the deck writes (St proportional to V)."""
+    import re
+
+    model = wet_model("glycerol37")
+    pair = model.pair("glass", "zerodur")
+    text = lammps.write(model)
+    found = re.search(r"normal impact speeds ([0-9.]+) m/s to ([0-9.]+) m/s", " ".join(
+        line.lstrip("# ") for line in text.splitlines()))  # fmt: skip
+    assert found is not None
+    st_per_speed = pair.wet.stokes_at(pair.restitution.value) / 0.3
+    for speed, bound in zip(map(float, found.groups()), (0.99, 1.01), strict=True):
+        ratio = pair.wet.restitution(st_per_speed * speed) / pair.restitution.value
+        assert ratio == pytest.approx(bound, abs=2e-4)
+
+
+def test_lammps_takes_a_measured_beta_liggghts_and_yade_say_they_cannot() -> None:
+    text = lammps.write(dry_model())
+    assert "rebounds with beta = 0.34" in text and "tangential mindlin 5.511919526e+10" in text
+    for writer in (liggghts, yade):
+        assert "beta NOT reproduced (glass/zerodur 0.39" in writer.write(dry_model())
+    assert "beta NOT reproduced" not in liggghts.write(wet_model("glycerol78"))

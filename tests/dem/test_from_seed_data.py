@@ -14,7 +14,7 @@ BINARIES = {"liggghts": "liggghts", "lammps": "lmp", "yade": "yade"}
 
 
 @pytest.mark.dem_run
-@pytest.mark.parametrize("fluid", [None, "glycerol-37", "glycerol-78"])
+@pytest.mark.parametrize("fluid", [None, "glycerol-37", "glycerol-45", "glycerol-78"])
 def test_the_codes_give_the_seed_data_back(db: str, fluid: str | None) -> None:
     import granudb
 
@@ -37,7 +37,11 @@ def test_the_codes_give_the_seed_data_back(db: str, fluid: str | None) -> None:
     assert all(abs(r.e_rel_error) <= 0.02 for r in normal), [
         (r.code, r.pair, r.speed_m_s, r.e_rel_error) for r in normal
     ]
-    if fluid is None:
-        oblique = [r for r in checked if r.kind == "oblique" and r.achieved_friction]
-        assert oblique
-        assert all(abs(r.friction_rel_error) <= 0.05 for r in oblique)
+    # issue 26's "done when": every run passes its tolerance in all three codes (a stated
+    # limit, written in the deck, is LIGGGHTS's and Yade's beta at 30 degrees only)
+    assert granudb.api.verify_passed(records), granudb.api.verify_table(records)
+    sliding = [r for r in checked if r.regime == "gross_slip"]
+    assert {r.angle_deg for r in sliding} >= {60.0}
+    assert all(abs(r.friction_rel_error) <= 0.03 for r in sliding)
+    limited = [r for r in checked if r.verdict == "stated limit"]
+    assert all(r.code != "lammps" and r.angle_deg == 30.0 for r in limited)

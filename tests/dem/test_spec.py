@@ -82,3 +82,19 @@ def test_a_run_that_dies_in_mpi_startup_is_tried_again(tmp_path) -> None:
     failing = tmp_path / "fails.py"
     failing.write_text("import sys; print('some other error'); sys.exit(3)\n")
     assert "some other error" in runs.run([sys.executable, str(failing)], tmp_path)
+
+
+def test_the_constant_e_holds_over_the_stated_stokes_range() -> None:
+    """At both ends of the range the e(St) law is exactly the tolerance away from the
+    constant, and inside it nearer (known truth from the law itself)."""
+    from granudb.dem.spec import WetParameters
+
+    law = WetParameters(0.048, 35.0, 0.97, "test")
+    e = law.restitution(300.0)
+    low, high = law.constant_range(e, 0.01)
+    assert low < law.stokes_at(e) < high
+    assert law.restitution(low) / e == pytest.approx(0.99, abs=1e-12)
+    assert law.restitution(high) / e == pytest.approx(1.01, abs=1e-12)
+    assert abs(law.restitution(0.5 * (low + high)) / e - 1.0) < 0.01
+    # near e_max the law never leaves the band upwards
+    assert law.constant_range(law.restitution(5000.0), 0.01)[1] == float("inf")
