@@ -28,7 +28,7 @@ from typing import Any
 from granudb.db.content_hash import hash_frame
 from granudb.db.package_store import MergeConflict, PackageContent, store_package
 from granudb.errors import ValidationError
-from granudb.io.collision_file import MAX_RESTITUTION
+from granudb.io.collision_file import MAX_RESTITUTION, MAX_SPEED_M_S, SPEEDS
 from granudb.io.package_files import (
     MAX_RESOURCE_BYTES,
     PackageError,
@@ -38,6 +38,7 @@ from granudb.io.package_files import (
     sha256,
 )
 from granudb.io.package_schema import FOREIGN_KEYS, PRIMARY_KEYS, RESOURCES, check_schema, columns
+from granudb.io.tables import TINY_RULE, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.rules import RULES
@@ -160,6 +161,18 @@ def _read_table(name: str, path: Path, problems: list[str]) -> Any:
         infinite = values.notna() & ~np.isfinite(values.to_numpy(dtype=float))
         if infinite.any() and rule is None:
             problems.append(f"{name}.{column}: not finite in {_rows(infinite)}")
+        numbers = values.to_numpy(dtype=float)
+        tiny = underflows(numbers, numbers)
+        if tiny.any():
+            problems.append(f"{name}.{column}: {TINY_RULE} — in {_rows(tiny)}")
+        if name == "collisions" and column in SPEEDS:
+            with np.errstate(invalid="ignore"):
+                fast = np.abs(numbers) > MAX_SPEED_M_S
+            if fast.any():
+                problems.append(
+                    f"{name}.{column}: faster than {MAX_SPEED_M_S:g} m/s (beyond any impact "
+                    f"apparatus) in {_rows(fast)}"
+                )
         out[column] = values
     key = PRIMARY_KEYS[name]
     duplicated = frame.duplicated(subset=key, keep="first")
@@ -241,8 +254,14 @@ def _resource_file(
     if size > MAX_RESOURCE_BYTES:
         problems.append(f"{name}: {size} bytes, more than {MAX_RESOURCE_BYTES}")
         return None
-    if "bytes" in resource and resource["bytes"] != size:
-        problems.append(f"{name}: {size} bytes, the descriptor says {str(resource['bytes'])[:30]}")
+    declared_size = resource.get("bytes")
+    if "bytes" in resource and (type(declared_size) is not int):
+        problems.append(
+            f"{name}: bytes must be a whole number (Table Schema), not "
+            f"{type(declared_size).__name__} {str(declared_size)[:30]!r}"
+        )
+    elif "bytes" in resource and declared_size != size:
+        problems.append(f"{name}: {size} bytes, the descriptor says {declared_size}")
     declared = resource.get("hash")
     if declared is None:
         problems.append(f"{name}: no sha256 hash in the descriptor")
