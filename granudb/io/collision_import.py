@@ -4,8 +4,9 @@
 any transaction; the rows are then read once, hashed as they are read
 (``granudb.io.collision_blocks``), in chunks (memory is bounded whatever the file's size),
 converted and checked with vectorized rules, and bulk-inserted by
-``granudb.db.collision_store`` in one transaction: one bad row or ragged line anywhere
-rejects the whole file and nothing is written. A file (by sha256) is imported into a
+``granudb.db.collision_store`` in one transaction: bad rows or ragged lines anywhere
+reject the whole file, every one of them listed in one refusal that names the file, and
+nothing is written. A file (by sha256) is imported into a
 dataset at most once.
 """
 
