@@ -171,11 +171,11 @@ def test_bad_rows_refuse_the_whole_file(cli, db: str, tmp_path: Path, rows, expe
         (b"run,particle\n\xff\xfe,steel\n", "is not UTF-8 text"),
         (
             (",".join(HEADER) + "\n" + ",".join(GOOD) + ",extra,cells\n").encode(),
-            "row 2 has more cells than the header",
+            "row 2: cells: 16 where the header has 14",
         ),
         (
             (",".join(HEADER) + "\n" + ",".join(GOOD[:6]) + "\n").encode(),
-            "row 2 has fewer cells than the header",
+            "row 2: cells: 6 where the header has 14 (truncated?)",
         ),
         (b"", "is empty"),
         (

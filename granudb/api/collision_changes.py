@@ -18,6 +18,7 @@ from granudb.api.database import opened
 from granudb.db import datasets as dataset_store
 from granudb.io.collision_import import ImportResult
 from granudb.io.collision_import import import_collisions as import_file
+from granudb.io.tables import column_mapping
 
 
 def import_collisions(
@@ -28,16 +29,20 @@ def import_collisions(
     source: str | None = None,
     title: str | None = None,
     license: str | None = None,
-    delimiter: str = ",",
+    delimiter: str | None = None,
     decimal: str = ".",
+    columns: dict[str, str] | str | Path | None = None,
     progress: Callable[[int], None] | None = None,
     db: Any = None,
 ) -> ImportResult:
     """Import a CSV of collisions into ``dataset`` (created, with ``title``, ``license``
     and ``source``, if new) at ``version``: every row or none. ``delimiter`` is ``,``,
-    ``;`` or ``tab``, ``decimal`` ``.`` or ``,`` (with ``;``); ``progress(rows)`` is
-    called as rows are read. Returns the dataset, version, row count and the file's
-    sha256.
+    ``;`` or ``tab`` (None: ``;`` or tab where the header has them and no comma);
+    ``decimal`` is ``.`` or ``,`` (never guessed); ``columns`` maps a lab's own headers
+    to granudb's columns (``{"speed [mm/s]": "v_n_in", "shot": "run"}``, the same as text
+    ``"speed [mm/s]=v_n_in,shot=run"``, or a file of such lines); ``progress(rows)`` is
+    called as rows are read. Every problem of the file is refused at once, in row order.
+    Returns the dataset, version, row count and the file's sha256.
 
     Examples
     --------
@@ -51,6 +56,7 @@ def import_collisions(
     inputs.name(dataset, "dataset")
     inputs.name(version, "version")
     path = Path(inputs.path(file, "file"))
+    mapping = column_mapping(columns)
     with opened(db) as database:
         return import_file(
             database,
@@ -62,6 +68,7 @@ def import_collisions(
             license=license,
             delimiter=delimiter,
             decimal=decimal,
+            columns=mapping,
             progress=progress,
         )
 

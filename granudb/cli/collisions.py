@@ -9,8 +9,8 @@ from typing import Annotated, Any
 import typer
 
 from granudb import api
-from granudb.cli.confirm import asker
-from granudb.cli.options import DbOption, Format, FormatOption, YesOption, collision_filters, wraps
+from granudb.cli.dataset import remove_runs
+from granudb.cli.options import DbOption, Format, FormatOption, collision_filters, wraps
 from granudb.cli.output import emit, say
 from granudb.lazy import rich_progress
 
@@ -39,25 +39,30 @@ def import_(
         str | None, typer.Option("--license", help="License of a new dataset, e.g. CC-BY-4.0.")
     ] = None,
     delimiter: Annotated[
-        str, typer.Option("--delimiter", help="Cell separator: ',' (default), ';' or 'tab'.")
-    ] = ",",
+        str | None,
+        typer.Option(
+            "--delimiter",
+            help="Cell separator: ',', ';' or 'tab' (default: ';' or tab if the header has "
+            "them and no comma, else ',').",
+        ),
+    ] = None,
     decimal: Annotated[
         str,
         typer.Option("--decimal", help="Decimal separator: '.' (default) or ',' (with ';')."),
     ] = ".",
+    columns: Annotated[
+        str | None,
+        typer.Option(
+            "--columns",
+            help="Your headers as granudb's columns: 'shot=run,speed [mm/s]=v_n_in' "
+            "(a header's unit is kept), or a file of such lines.",
+        ),
+    ] = None,
     db: DbOption = None,
 ) -> None:
-    """Import a CSV of collisions: all rows or none; a file is never imported twice."""
-    options: dict[str, Any] = dict(
-        dataset=dataset,
-        version=version,
-        source=source,
-        title=title,
-        license=license,
-        delimiter=delimiter,
-        decimal=decimal,
-        db=db,
-    )
+    """Import a CSV of collisions: all rows or none; a file is never imported twice.
+    Every problem of the file is listed at once, in row order."""
+    options: dict[str, Any] = {k: v for k, v in locals().items() if k != "file"}
     size = file.stat().st_size if file.is_file() else 0
     if size > PROGRESS_ABOVE_BYTES and sys.stderr.isatty():
         with rich_progress.Progress(
@@ -81,13 +86,13 @@ def import_(
 @collision_filters
 @wraps("collisions")
 def list_(
+    wide: Annotated[bool, typer.Option("--wide", help="Every column.")] = False,
     columns: Annotated[
         str | None,
         typer.Option("--columns", help="Comma-separated column names to show (see --wide)."),
     ] = None,
-    wide: Annotated[bool, typer.Option("--wide", help="Every column.")] = False,
-    db: DbOption = None,
     fmt: FormatOption = Format.table,
+    db: DbOption = None,
     filters: dict[str, Any] | None = None,
 ) -> None:
     """Each run with e, β, Ψ_in, μ_f (2.9), St_n, Λ and Maw's regime (``--wide``: all)."""
@@ -104,14 +109,7 @@ def list_(
     emit(records, shown, fmt, title=f"Collisions ({len(records)} runs)", symbols=True)
 
 
-@app.command("remove")
-@wraps("remove_collisions")
-def remove(
-    dataset: Annotated[str, typer.Argument(help="Dataset as NAME@VERSION (or NAME: the newest).")],
-    runs: Annotated[list[str], typer.Argument(help="Run labels to delete.")],
-    yes: YesOption = False,
-    db: DbOption = None,
-) -> None:
-    """Delete some runs of a draft dataset version (by run label); asks first."""
-    count = api.remove_collisions(dataset, runs, confirm=asker(yes), db=db)
-    say(f"removed {count} runs from dataset {dataset}")
+#: The same command as ``dataset remove-runs`` (one function, two names).
+app.command(
+    "remove", help="Delete some runs of a draft dataset version (by run label); asks first."
+)(remove_runs)

@@ -33,7 +33,7 @@ from granudb.db.bulk_insert import CollisionBlock, NameColumn, block_from_frame
 from granudb.errors import ValidationError
 from granudb.io import collision_file
 from granudb.io.reading import HashingFile, Prefetched, arrow_memory
-from granudb.io.tables import check_shape, convert_frame
+from granudb.io.tables import Problems, check_shape, convert_frame, underflows
 from granudb.io.units import round_significant
 from granudb.lazy import pyarrow as pa
 from granudb.lazy import pyarrow_compute as pc
@@ -57,8 +57,12 @@ BLOCK_BYTES = 1 << 20
 def read_blocks(
     source: Any, stream: HashingFile, chunk_rows: int = collision_file.CHUNK_ROWS
 ) -> Iterator[CollisionBlock]:
-    """The file's rows as checked ``CollisionBlock``s of ``chunk_rows`` rows."""
+    """The file's rows as checked ``CollisionBlock``s of ``chunk_rows`` rows.
+
+    A broken row stops the blocks; the rest of the file is still read and checked, and
+    then every problem is refused at once, in row order (``FileProblems``, capped)."""
     headers = {column: cmap.header for column, cmap in source.mapping.items()}
+    problems = Problems(source.path.name)
     rows = 0
     try:
         for table in _chunks(_tables(source, stream), chunk_rows):
@@ -66,10 +70,13 @@ def read_blocks(
                 raise ValidationError(
                     "FILE", source.path.name, "has a header that is not one line of cells"
                 )
-            yield _block(table, source, headers, rows + 2)
+            block = _block(table, source, headers, rows + 2, problems)
+            if not problems:  # after a problem the rest is read for its problems only
+                yield block
             rows += table.num_rows
     except pa.ArrowInvalid as exc:
         _refuse_unparsable(source, exc)
+    problems.raise_any()
     if rows == 0:
         raise ValidationError("FILE", source.path.name, "holds no rows")
 
@@ -164,35 +171,46 @@ def _refuse_huge_cells(table: Any, source: Any) -> None:
             check_shape(source.path, source.delimiter)
 
 
-def _block(table: Any, source: Any, headers: dict[str, str], first_row: int) -> CollisionBlock:
+def _block(
+    table: Any, source: Any, headers: dict[str, str], first_row: int, problems: Problems
+) -> CollisionBlock | None:
+    """One chunk's checked block, or None when it has problems (added to ``problems``)."""
     _refuse_huge_cells(table, source)
     values = _numbers(table, source)
     texts = _texts(table, source.mapping) if values is not None else None
     if values is None or texts is None:
-        return _pandas_block(table, source, headers, first_row)
+        return _pandas_block(table, source, headers, first_row, problems)
     runs, particle, wall, fluid, notes = texts
     columns = {c: values.get(c, np.full(table.num_rows, np.nan)) for c in collision_file.NUMERIC}
-    collision_file.check_values(
-        columns,
-        lambda header, pos: str(table.column(header)[pos].as_py()).strip(),
-        source.mapping,
-        first_row,
-    )
+    cell = lambda header, pos: str(table.column(header)[pos].as_py()).strip()  # noqa: E731
+    found = problems.count
+    rows = collision_file.Rows(columns, cell, source.mapping, first_row, problems)
+    collision_file.check_values(rows)
+    if problems.count > found:
+        return None
     return CollisionBlock(first_row, headers, runs, particle, wall, fluid, values, notes)
 
 
 def _pandas_block(
-    table: Any, source: Any, headers: dict[str, str], first_row: int
-) -> CollisionBlock:
-    """The earlier pandas path for one chunk: its exact refusal, or its checked rows."""
+    table: Any, source: Any, headers: dict[str, str], first_row: int, problems: Problems
+) -> CollisionBlock | None:
+    """The earlier pandas path for one chunk: its problems, or its checked rows."""
     raw = table.to_pandas()
+    found = problems.count
     frame = convert_frame(
-        raw, source.mapping, table=collision_file.TABLE, first_row=first_row, decimal=source.decimal
+        raw,
+        source.mapping,
+        table=source.path.name,
+        first_row=first_row,
+        decimal=source.decimal,
+        problems=problems,
     )
     for column in collision_file.NUMERIC + collision_file.TEXT:
         if column not in frame:
             frame[column] = np.nan if column in collision_file.NUMERIC else None
-    collision_file.check_chunk(frame, raw, source.mapping, first_row)
+    collision_file.check_chunk(frame, raw, source.mapping, first_row, problems)
+    if problems.count > found:
+        return None
     frame.attrs["first_row"] = first_row
     frame.attrs["headers"] = headers
     return block_from_frame(frame)
@@ -218,8 +236,12 @@ def _numbers(table: Any, source: Any) -> dict[str, Any] | None:
         if (np.isinf(values) | (np.isnan(values) & ~_numpy(empty))).any():
             return None  # "inf", "nan": the pandas path says what is wrong
         if cmap.scale != 1.0 or cmap.offset != 0.0:
-            values = round_significant(values * cmap.scale + cmap.offset)
-        out[column] = values
+            si = round_significant(values * cmap.scale + cmap.offset)
+        else:
+            si = values
+        if underflows(values, si).any():
+            return None  # the pandas path says which cell
+        out[column] = si
     return out
 
 

@@ -9,11 +9,15 @@ The header is checked before any transaction opens (``open_collision_file``): re
 size limit, every column mapped and every unit parsed (all header problems in one
 refusal), so a hostile header costs milliseconds and never holds SQLite's write lock.
 The rows are checked with vectorized rules (``check_values``, ``check_chunk``) as
-``granudb.io.collision_blocks`` reads them.
+``granudb.io.collision_blocks`` reads them; every broken row is collected (``Problems``:
+the first ``SHOWN_ROW_PROBLEMS`` kept in row order, all counted) and the file is refused
+once, whole, naming it (``FileProblems``). A cell already refused is not refused again
+by a rule across columns (e, the angle).
 
-Semicolon-delimited files with decimal commas, as European spreadsheets write them, are
-read with ``delimiter=";"`` and ``decimal=","`` (``--delimiter ';' --decimal ','``); without
-those options such a file is refused with that hint, never misread.
+A header with semicolons (or tabs) and no comma is read as semicolon- (or tab-) delimited,
+as European spreadsheets write CSV. A decimal comma is never guessed (in "1,234" it may be
+a thousands separator): such cells are refused unless ``decimal=","`` (``--decimal ','``)
+says so.
 """
 
 from __future__ import annotations
@@ -21,14 +25,21 @@ from __future__ import annotations
 import hashlib
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from granudb.errors import ValidationError
-from granudb.io.tables import ColumnMap, check_shape, csv_options, map_headers, read_header
+from granudb.io.tables import (
+    ColumnMap,
+    Problems,
+    check_shape,
+    csv_options,
+    map_headers,
+    read_header,
+)
 from granudb.vocabulary import COLLISION_MEASURED, COLLISION_REQUIRED, COLLISION_TEXT
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import (
@@ -58,12 +69,16 @@ RELATIVE_RULES = ("v_n_in_m_s", "v_n_out_m_s")
 #: set to about ±1°. Their sum rounds up to 3°; a difference larger than that is a wrong
 #: column or a wrong unit (the physics review found one of tens of degrees), not noise.
 ANGLE_TOLERANCE_RAD = math.radians(3.0)
+#: No speed in a collision file may be larger than this, in m/s: above any impact
+#: apparatus (light-gas guns reach about 8 km/s); every derived quantity squares the
+#: speed, and a value like 1e300 m/s would turn them into overflows, not numbers.
+MAX_SPEED_M_S = 1e4
+SPEEDS = [c for c in NUMERIC if c.endswith("_m_s")]
 #: Rows checked and inserted at a time. About three chunks are in memory at once (one
 #: read ahead, one being read, one being written): 50,000 rather than 100,000 took the
 #: million-row import's peak from about 430 to 395 MB (benchmarks/import_speed.py), at the
 #: same speed.
 CHUNK_ROWS = 50_000
-TABLE = "collisions.csv"
 
 
 @dataclass(frozen=True)
@@ -96,42 +111,75 @@ def estimate_rows(path: Path, sample_bytes: int = 1 << 16) -> int:
     return int(size / (len(sample) / lines))
 
 
-def _first(mask: Any) -> int:
-    return int(np.flatnonzero(np.asarray(mask))[0])
-
-
 def _header_of(mapping: dict[str, Any], column: str) -> str:
     return mapping[column].header if column in mapping else column
 
 
-def check_chunk(frame: Any, raw: Any, mapping: dict[str, Any], first_row: int) -> None:
-    """Every rule on one converted chunk (a DataFrame); raises on the first broken row."""
+@dataclass
+class Rows:
+    """One chunk of rows being checked: SI arrays by column (every ``NUMERIC`` column,
+    NaN = empty; required text columns as pandas Series, if given), ``cell(header,
+    position)`` the file's text of a cell (for messages), where the chunk starts, and
+    where its problems go. ``unreadable`` masks cells already refused as not numbers, so
+    no later rule reports them again."""
+
+    columns: dict[str, Any]
+    cell: Callable[[str, int], str]
+    mapping: dict[str, Any]
+    first_row: int
+    problems: Problems
+    unreadable: dict[str, Any] = field(default_factory=dict)
+    #: Rows with a refused cell: rules across columns (e, the angle) skip them, since a
+    #: wrong cell would make them report a second, derived problem.
+    broken: Any = None
+
+    def refuse(
+        self, mask: Any, problem: Callable[[int], ValidationError], *, derived: bool = False
+    ) -> None:
+        """Every position where ``mask`` holds breaks one rule: ``problem(position)``;
+        a ``derived`` rule (from several cells) only where no cell was refused."""
+        mask = np.asarray(mask, dtype=bool)
+        if self.broken is None:
+            self.broken = np.zeros(len(mask), dtype=bool)
+            for unreadable in self.unreadable.values():
+                self.broken |= unreadable
+        if derived:
+            mask = mask & ~self.broken
+        if mask.any():
+            self.problems.add(np.flatnonzero(mask), problem)
+            self.broken |= mask
+
+    def at(self, field: str, value: Any, rule: str) -> Callable[[int], ValidationError]:
+        """A problem maker: ``value(position)`` shown, the row counted from the chunk."""
+        return lambda pos: ValidationError(field, value(pos), rule, row=self.first_row + pos)
+
+
+def check_chunk(
+    frame: Any, raw: Any, mapping: dict[str, Any], first_row: int, problems: Problems
+) -> None:
+    """Every rule on one converted chunk (a DataFrame); its problems go to ``problems``."""
     columns = {c: frame[c] for c in REQUIRED if c in TEXT}
     columns.update({c: frame[c].to_numpy(dtype=float) for c in NUMERIC})
-    check_values(columns, lambda h, p: str(raw[h].iloc[p]).strip(), mapping, first_row)
-    _check_text(frame, mapping, first_row)
+    cell = lambda h, p: str(raw[h].iloc[p]).strip()  # noqa: E731
+    rows = Rows(columns, cell, mapping, first_row, problems, frame.attrs.get("unreadable", {}))
+    check_values(rows)
+    _check_text(frame, rows)
 
 
-def check_values(
-    columns: dict[str, Any],
-    cell: Callable[[str, int], str],
-    mapping: dict[str, Any],
-    first_row: int,
-) -> None:
-    """The required, range, restitution and angle rules on SI arrays (every ``NUMERIC``
-    column, NaN = empty; required text columns as pandas Series, if given); ``cell(header,
-    position)`` is the file's text of a cell, for the message. Raises on the first broken row.
-    """
+def check_values(rows: Rows) -> None:
+    """The required, range, restitution and angle rules on one chunk's SI arrays; every
+    broken row goes to ``rows.problems``."""
+    columns, mapping = rows.columns, rows.mapping
     for column in REQUIRED:
         if column not in columns:
             continue
         values = columns[column]
         missing = np.isnan(values) if isinstance(values, np.ndarray) else values.isna()
-        if missing.any():
-            pos = _first(missing)
-            raise ValidationError(
-                _header_of(mapping, column), "(empty)", "is required", row=first_row + pos
-            )
+        missing = np.asarray(missing)
+        if column in rows.unreadable:
+            missing &= ~rows.unreadable[column]
+        header = _header_of(mapping, column)
+        rows.refuse(missing, rows.at(header, lambda _: "(empty)", "is required"))
     target_in = columns.get("wall_v_n_in_m_s")
     free = np.isfinite(target_in) if target_in is not None else None
     for column in NUMERIC:
@@ -141,84 +189,86 @@ def check_values(
         values = columns[column]
         if free is not None and column in RELATIVE_RULES:
             values = np.where(free, np.nan, values)  # judged on relative velocities below
-        broken = ~rule.holds_array(values)
-        if broken.any():
-            pos = _first(broken)
-            header = _header_of(mapping, column)
-            shown = cell(mapping[column].header, pos)
-            raise ValidationError(
-                header, shown, rule.text + _in_units(column, mapping), row=first_row + pos
-            )
+        header = _header_of(mapping, column)
+        shown = lambda pos, h=header: rows.cell(h, pos)  # noqa: E731
+        rule_text = rule.text + _in_units(column, mapping)
+        rows.refuse(~rule.holds_array(values), rows.at(header, shown, rule_text))
+    for column in SPEEDS:
+        header = _header_of(mapping, column)
+        with np.errstate(invalid="ignore"):
+            fast = np.abs(columns[column]) > MAX_SPEED_M_S
+        shown = lambda pos, h=header: rows.cell(h, pos)  # noqa: E731
+        rule = f"is faster than {MAX_SPEED_M_S:g} m/s (beyond any impact apparatus)"
+        rows.refuse(fast, rows.at(header, shown, rule))
     v_n_in, v_n_out = columns["v_n_in_m_s"], columns["v_n_out_m_s"]
     if free is not None and free.any():
-        v_n_in, v_n_out = _relative(columns, free, first_row)
-    with np.errstate(divide="ignore", invalid="ignore"):
+        v_n_in, v_n_out = _relative(rows, free)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         e = v_n_out / v_n_in
-    too_high = e > MAX_RESTITUTION
-    if too_high.any():
-        pos = _first(too_high)
-        raise ValidationError(
+    rows.refuse(
+        e > MAX_RESTITUTION,
+        derived=True,
+        problem=rows.at(
             "v_n_out / v_n_in",
-            f"{e[pos]:.4g}",
+            lambda pos: f"{e[pos]:.4g}",
             f"must be ≤ {MAX_RESTITUTION} (a rebound faster than the impact, beyond "
             "measurement error)",
-            row=first_row + pos,
-        )
-    _check_angle(columns, cell, mapping, first_row)
+        ),
+    )
+    _check_angle(rows)
 
 
-def _relative(columns: dict[str, Any], free: Any, first_row: int) -> tuple[Any, Any]:
+def _relative(rows: Rows, free: Any) -> tuple[Any, Any]:
     """The normal velocities of a row with a free target, relative (docs/physics.md §9):
     the particle's speed towards the target minus the target's, before impact (must be
     > 0: they approach), and the particle's speed away plus the target's along the normal,
     after (must be ≥ 0: they separate; unknown without the target's rebound)."""
+    columns = rows.columns
     target_out = columns.get("wall_v_n_out_m_s")
     if target_out is None:  # the target's rebound not measured: separation unknown
         target_out = np.full(len(free), np.nan)
     v_in = np.where(free, columns["v_n_in_m_s"] - columns["wall_v_n_in_m_s"], columns["v_n_in_m_s"])
     v_out = np.where(free, columns["v_n_out_m_s"] + target_out, columns["v_n_out_m_s"])
-    rules = (
-        ("v_n_in - wall_v_n_in", v_in, ~free | (v_in > 0),
+    checks = (
+        ("v_n_in - wall_v_n_in", v_in, free & ~(v_in > 0),
          "must be > 0 (the particle and the target must approach)"),
-        ("v_n_out + wall_v_n_out", v_out, ~free | np.isnan(v_out) | (v_out >= 0),
+        ("v_n_out + wall_v_n_out", v_out, free & (v_out < 0),
          "must be ≥ 0 (after impact the particle and the target separate)"),
     )  # fmt: skip
-    for field, values, holds, rule in rules:
-        if not holds.all():
-            pos = _first(~holds)
-            raise ValidationError(field, f"{values[pos]:.4g} m/s", rule, row=first_row + pos)
+    for name, values, broken, rule in checks:
+        shown = lambda pos, v=values: f"{v[pos]:.4g} m/s"  # noqa: E731
+        rows.refuse(broken, rows.at(name, shown, rule), derived=True)
     return v_in, v_out
 
 
-def _check_angle(
-    columns: dict[str, Any],
-    cell: Callable[[str, int], str],
-    mapping: dict[str, Any],
-    first_row: int,
-) -> None:
+def _check_angle(rows: Rows) -> None:
     """A stated angle must agree with the velocities it describes (``ANGLE_TOLERANCE_RAD``)."""
-    if "nominal_angle_rad" not in mapping:
+    if "nominal_angle_rad" not in rows.mapping:
         return
+    columns = rows.columns
     stated = columns["nominal_angle_rad"]
     derived = np.arctan2(columns["v_t_in_m_s"], columns["v_n_in_m_s"])
-    off = np.abs(stated - derived) > ANGLE_TOLERANCE_RAD  # NaN (empty) compares False
-    if off.any():
-        pos = _first(off)
-        header = mapping["nominal_angle_rad"].header
-        raise ValidationError(
+    with np.errstate(invalid="ignore"):
+        off = np.abs(stated - derived) > ANGLE_TOLERANCE_RAD  # NaN (empty) compares False
+    header = rows.mapping["nominal_angle_rad"].header
+
+    def problem(pos: int) -> ValidationError:
+        return ValidationError(
             header,
-            cell(header, pos),
+            rows.cell(header, pos),
             f"disagrees with atan(v_t_in / v_n_in) = {math.degrees(derived[pos]):.2f}° by more "
             f"than {math.degrees(ANGLE_TOLERANCE_RAD):g}° (check the column and its unit, or "
             "leave it empty: the angle is derived from the velocities)",
-            row=first_row + pos,
+            row=rows.first_row + pos,
         )
 
+    rows.refuse(off, problem, derived=True)
 
-def _check_text(frame: Any, mapping: dict[str, Any], first_row: int) -> None:
+
+def _check_text(frame: Any, rows: Rows) -> None:
     """Names and notes obey ``granudb.vocabulary.text``'s rules (the same as every door).
 
-    Found vectorized; the first offender is re-checked by ``check_name``/``check_text``,
+    Found vectorized; each offender is re-checked by ``check_name``/``check_text``,
     whose message is the one every other door gives.
     """
     for column in TEXT:
@@ -233,16 +283,23 @@ def _check_text(frame: Any, mapping: dict[str, Any], first_row: int) -> None:
         else:
             bad = text.str.contains(name_forbidden_pattern(), regex=True)
             bad |= (text.str.len() > MAX_NAME) | (text != text.str.strip())
-        bad &= present
-        if bad.any():
-            pos = _first(bad)
-            check = check_text if column == "notes" else check_name
-            try:
-                check(column, text.iloc[pos])
-            except ValidationError as exc:
-                raise ValidationError(
-                    _header_of(mapping, column), exc.value, exc.rule, row=first_row + pos
-                ) from None
+        rows.refuse((bad & present).to_numpy(dtype=bool), _text_problem(rows, column, text))
+
+
+def _text_problem(rows: Rows, column: str, text: Any) -> Callable[[int], ValidationError]:
+    """The problem of the name or note at a position, as ``check_name``/``check_text``
+    word it."""
+    check = check_text if column == "notes" else check_name
+    header = _header_of(rows.mapping, column)
+
+    def problem(pos: int) -> ValidationError:
+        try:
+            check(column, text.iloc[pos])
+        except ValidationError as exc:
+            return ValidationError(header, exc.value, exc.rule, row=rows.first_row + pos)
+        raise AssertionError(f"{column} {text.iloc[pos]!r} flagged but valid")
+
+    return problem
 
 
 def _in_units(column: str, mapping: dict[str, Any]) -> str:
@@ -255,9 +312,17 @@ def _in_units(column: str, mapping: dict[str, Any]) -> str:
     return f" {cmap.unit.pint} (in SI)"
 
 
-def open_collision_file(path: Path, *, delimiter: str = ",", decimal: str = ".") -> CollisionFile:
+def open_collision_file(
+    path: Path,
+    *,
+    delimiter: str | None = None,
+    decimal: str = ".",
+    columns: dict[str, str] | None = None,
+) -> CollisionFile:
     """Read and map the header; no database is touched.
 
+    ``columns`` maps the file's own headers to granudb's columns (``{"speed [mm/s]":
+    "v_n_in"}``, ``granudb.io.tables.check_column_mapping``).
     Everything here happens before ``store_collisions`` opens the write transaction, so a
     bad header is refused without ever holding the lock. Rows (their cell counts
     included) are checked as they are read, inside the transaction, which any refusal
@@ -267,10 +332,17 @@ def open_collision_file(path: Path, *, delimiter: str = ",", decimal: str = ".")
     path = Path(path)
     if not path.is_file():
         raise ValidationError("FILE", str(path), "is not a file")
-    headers = read_header(path, delimiter)
+    headers, delimiter = read_header(path, delimiter)
+    csv_options(delimiter, decimal)  # a detected comma cannot be the decimal separator too
     try:
         mapping = map_headers(
-            headers, NUMERIC, TEXT, table=TABLE, aliases=ALIASES, required=REQUIRED
+            headers,
+            NUMERIC,
+            TEXT,
+            table=path.name,
+            aliases=ALIASES,
+            required=REQUIRED,
+            columns=columns,
         )
     except ValidationError:
         # A file that is not text or not a table is refused as such, as it always was,

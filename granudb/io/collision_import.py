@@ -4,8 +4,9 @@
 any transaction; the rows are then read once, hashed as they are read
 (``granudb.io.collision_blocks``), in chunks (memory is bounded whatever the file's size),
 converted and checked with vectorized rules, and bulk-inserted by
-``granudb.db.collision_store`` in one transaction: one bad row or ragged line anywhere
-rejects the whole file and nothing is written. A file (by sha256) is imported into a
+``granudb.db.collision_store`` in one transaction: bad rows or ragged lines anywhere
+reject the whole file, every one of them listed in one refusal that names the file, and
+nothing is written. A file (by sha256) is imported into a
 dataset at most once.
 """
 
@@ -20,6 +21,7 @@ import numpy as np
 
 from granudb.db import datasets
 from granudb.db.collision_store import ImportTarget, store_collisions
+from granudb.errors import ValidationError
 from granudb.io.collision_blocks import HashingFile, Prefetched, arrow_memory, read_blocks
 from granudb.io.collision_file import (
     CHUNK_ROWS,
@@ -28,6 +30,7 @@ from granudb.io.collision_file import (
     estimate_rows,
     open_collision_file,
 )
+from granudb.io.tables import FileProblems
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.text import check_name
 
@@ -52,8 +55,9 @@ def import_collisions(
     license: str | None = None,
     progress: Callable[[int], None] | None = None,
     chunk_rows: int = CHUNK_ROWS,
-    delimiter: str = ",",
+    delimiter: str | None = None,
     decimal: str = ".",
+    columns: dict[str, str] | None = None,
 ) -> ImportResult:
     """Import ``path`` into ``dataset`` (created if new), all or nothing.
 
@@ -64,7 +68,7 @@ def import_collisions(
     """
     check_name("dataset", dataset)
     check_name("version", version)
-    opened = open_collision_file(Path(path), delimiter=delimiter, decimal=decimal)
+    opened = open_collision_file(Path(path), delimiter=delimiter, decimal=decimal, columns=columns)
     name = opened.path.name
     stream = HashingFile(opened.path)
     try:
@@ -88,6 +92,12 @@ def import_collisions(
             )
             try:
                 rows = store_collisions(database, target, blocks, progress=progress)
+            except FileProblems:
+                raise
+            except ValidationError as exc:
+                if exc.row is None:
+                    raise
+                raise FileProblems(name, [exc], 1) from None  # a row's name, run or fluid
             finally:
                 blocks.close()
             sha256 = stream.hexdigest()

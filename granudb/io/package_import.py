@@ -28,7 +28,7 @@ from typing import Any
 from granudb.db.content_hash import hash_frame
 from granudb.db.package_store import MergeConflict, PackageContent, store_package
 from granudb.errors import ValidationError
-from granudb.io.collision_file import MAX_RESTITUTION
+from granudb.io.collision_file import MAX_RESTITUTION, MAX_SPEED_M_S, SPEEDS
 from granudb.io.package_files import (
     MAX_RESOURCE_BYTES,
     PackageError,
@@ -45,6 +45,7 @@ from granudb.io.package_schema import (
     check_schema,
     columns,
 )
+from granudb.io.tables import TINY_RULE, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.rules import RULES
@@ -183,6 +184,19 @@ def _check_block(
         else:
             infinite = values.notna() & ~np.isfinite(values.to_numpy(dtype=float))
             found.add(f"{name}.{column}: not finite in {{rows}}", infinite, first_row)
+        numbers = values.to_numpy(dtype=float)
+        found.add(
+            f"{name}.{column}: {TINY_RULE} — in {{rows}}", underflows(numbers, numbers), first_row
+        )
+        if name == "collisions" and column in SPEEDS:
+            with np.errstate(invalid="ignore"):
+                fast = np.abs(numbers) > MAX_SPEED_M_S
+            found.add(
+                f"{name}.{column}: faster than {MAX_SPEED_M_S:g} m/s (beyond any impact "
+                "apparatus) in {rows}",
+                fast,
+                first_row,
+            )
         out[column] = values
     if name == "collisions":
         e = out["v_n_out_m_s"] / out["v_n_in_m_s"]
@@ -357,8 +371,14 @@ def _resource_file(
     if size > MAX_RESOURCE_BYTES:
         problems.append(f"{name}: {size} bytes, more than {MAX_RESOURCE_BYTES}")
         return None
-    if "bytes" in resource and resource["bytes"] != size:
-        problems.append(f"{name}: {size} bytes, the descriptor says {str(resource['bytes'])[:30]}")
+    declared_size = resource.get("bytes")
+    if "bytes" in resource and (type(declared_size) is not int):
+        problems.append(
+            f"{name}: bytes must be a whole number (Table Schema), not "
+            f"{type(declared_size).__name__} {str(declared_size)[:30]!r}"
+        )
+    elif "bytes" in resource and declared_size != size:
+        problems.append(f"{name}: {size} bytes, the descriptor says {declared_size}")
     declared = resource.get("hash")
     if declared is None:
         problems.append(f"{name}: no sha256 hash in the descriptor")

@@ -15,8 +15,10 @@ refused with the options that read it.
 from __future__ import annotations
 
 import csv
+import difflib
 import re
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -40,6 +42,63 @@ DELIMITERS = {",": ",", ";": ";", "tab": "\t", "\t": "\t", "\\t": "\t"}
 DECIMALS = {".", ","}
 #: Problems listed in one refusal before "and N more".
 SHOWN_PROBLEMS = 10
+#: Row problems of one file listed in one refusal before "… and N more problems": enough
+#: to fix a systematic mistake in one pass, few enough to read in a terminal.
+SHOWN_ROW_PROBLEMS = 20
+
+
+class FileProblems(ValidationError):
+    """Every problem of one file's rows in one refusal, in row order, named by the file.
+
+    ``problems`` are the first ``SHOWN_ROW_PROBLEMS`` (each a ``ValidationError`` with its
+    row), ``count`` all of them; ``field``, ``value``, ``rule`` and ``row`` are the first
+    problem's, for callers that look at one.
+    """
+
+    def __init__(self, file: str, problems: list[ValidationError], count: int) -> None:
+        self.file, self.problems, self.count = file, problems, count
+        first = problems[0]
+        super().__init__(first.field, first.value, first.rule, row=first.row)
+
+    def render(self, field: str) -> str:
+        listed = "; ".join(str(p) for p in self.problems)
+        if self.count == 1:
+            return f"{self.file}: {listed}"
+        more = self.count - len(self.problems)
+        tail = f"; … and {more:,} more problems" if more else ""
+        return f"{self.file}: {self.count:,} problems: {listed}{tail}"
+
+
+class Problems:
+    """Collects a file's row problems as they are found, chunk by chunk, keeping the first
+    ``shown`` in row order (memory bounded whatever the file) and counting all."""
+
+    def __init__(self, file: str, shown: int = SHOWN_ROW_PROBLEMS) -> None:
+        self.file, self.shown = file, shown
+        self.found: list[ValidationError] = []
+        self.count = 0
+
+    def __bool__(self) -> bool:
+        return self.count > 0
+
+    def add(self, positions: Any, problem: Any) -> None:
+        """``problem(position)`` for each position in ``positions`` (ascending) breaking
+        one rule; only the first ``shown`` are built, all are counted."""
+        positions = np.asarray(positions)
+        self.count += len(positions)
+        self.found.extend(problem(int(p)) for p in positions[: self.shown])
+        self.found.sort(key=lambda p: p.row or 0)  # stable: a row's rules in check order
+        del self.found[self.shown :]
+
+    def add_one(self, problem: ValidationError) -> None:
+        self.add([0], lambda _: problem)
+
+    def refusal(self) -> FileProblems:
+        return FileProblems(self.file, self.found, self.count)
+
+    def raise_any(self) -> None:
+        if self.count:
+            raise self.refusal()
 
 
 def base_name(column: str) -> str:
@@ -114,6 +173,7 @@ def map_headers(
     table: str,
     aliases: dict[str, str] | None = None,
     required: list[str] | None = None,
+    columns: dict[str, str] | None = None,
 ) -> dict[str, ColumnMap]:
     """Map each header to a known column; refuse unknown, ambiguous or unit-less ones.
 
@@ -121,9 +181,11 @@ def map_headers(
     by column name. A header for a dimensioned column without a unit is refused: a bare
     ``diameter`` could be metres or millimetres. Every problem of the header (and every
     ``required`` column missing) is reported in one refusal, so a lab file is fixed in one
-    pass rather than one error at a time.
+    pass rather than one error at a time. ``columns`` maps a file's own headers to
+    granudb's columns (``check_column_mapping``).
     """
     where = f"{table} header"
+    renamed = check_column_mapping(columns, headers, numeric, text, table, aliases or {})
     if len(headers) > MAX_HEADERS:
         raise ValidationError(where, f"{len(headers):,} columns", f"is more than {MAX_HEADERS}")
     mapped: dict[str, ColumnMap] = {}
@@ -132,13 +194,17 @@ def map_headers(
     attempted: set[str | None] = set()  # columns whose header was there but wrong
     for header in headers:
         try:
-            cmap = _map_one(header, numeric, text, aliases or {})
+            cmap = _map_one(renamed.get(header, header), numeric, text, aliases or {})
+            cmap = replace(cmap, header=header)
         except _Unknown:
             unknown.append(repr(header))
             continue
         except ValidationError as exc:
-            problems.append(f"{exc.value} {exc.rule}")
-            attempted.add(_column_named(header, numeric, aliases or {}))
+            if header in renamed:
+                problems.append(f"{header!r} (mapped to {renamed[header]!r}) {exc.rule}")
+            else:
+                problems.append(f"{exc.value} {exc.rule}")
+            attempted.add(_column_named(renamed.get(header, header), numeric, aliases or {}))
             continue
         if cmap.column in mapped:
             problems.append(f"{header!r} names column {cmap.column} a second time")
@@ -155,6 +221,116 @@ def map_headers(
     if problems:
         raise _header_error(where, problems)
     return mapped
+
+
+#: A header's unit at its end: ``speed [mm/s]`` or ``speed (mm/s)``.
+_UNIT_AT_END = re.compile(r"\s*(\[[^\]]*\]|\([^()]*(?:\([^()]*\)[^()]*)*\))\s*$")
+
+
+def parse_column_mapping(text: str) -> dict[str, str]:
+    """``"my name=run, speed [mm/s]=v_n_in"`` (the command line's ``--columns``; a
+    mapping file holds the same pairs one a line, ``#`` starting a comment) as a dict:
+    pairs separated by commas or line breaks, each split at its last ``=``."""
+    mapping: dict[str, str] = {}
+    for pair in re.split(r"[,\n]", text):
+        pair = pair.split("#", 1)[0] if pair.lstrip().startswith("#") else pair
+        if not pair.strip():
+            continue
+        header, equals, column = pair.rpartition("=")
+        if header.strip() in mapping:  # exactly twice (differing in case: refused below)
+            raise ValidationError(
+                "columns", repr(header.strip()), "is mapped twice", parameter=True
+            )
+        if not equals or not header.strip() or not column.strip():
+            raise ValidationError(
+                "columns", repr(pair.strip()), "must be 'your header=granudb column'",
+                parameter=True,
+            )  # fmt: skip
+        mapping[header.strip()] = column.strip()  # a header named twice: refused below
+    return mapping
+
+
+#: A mapping file is a few lines; anything larger is not one.
+MAX_MAPPING_BYTES = 65_536
+
+
+def column_mapping(value: Any) -> dict[str, str] | None:
+    """A column mapping as given: a dict, ``"header=column, …"`` pairs, or the path of
+    a mapping file (text without ``=`` is a path) holding such pairs one a line."""
+    if value is None or isinstance(value, dict):
+        return value
+    if isinstance(value, str) and "=" in value:
+        return parse_column_mapping(value)
+    if not isinstance(value, str) and not hasattr(value, "__fspath__"):
+        raise ValidationError(
+            "columns", repr(value)[:60], "must be a dict, 'header=column' pairs or a file",
+            parameter=True,
+        )  # fmt: skip
+    path = Path(value)
+    if not path.is_file():
+        raise ValidationError(
+            "columns", str(path), "is neither 'header=column' pairs nor a mapping file",
+            parameter=True,
+        )  # fmt: skip
+    with path.open("rb") as handle:
+        data = handle.read(MAX_MAPPING_BYTES + 1)
+    if len(data) > MAX_MAPPING_BYTES:
+        raise ValidationError(
+            "columns", path.name, f"is larger than {MAX_MAPPING_BYTES:,} bytes", parameter=True
+        )
+    try:
+        return parse_column_mapping(data.decode("utf-8-sig"))
+    except UnicodeDecodeError:
+        raise ValidationError("columns", path.name, "is not UTF-8 text", parameter=True) from None
+
+
+def check_column_mapping(
+    columns: dict[str, str] | None,
+    headers: list[str],
+    numeric: list[str],
+    text: list[str],
+    table: str,
+    aliases: dict[str, str],
+) -> dict[str, str]:
+    """Each of the file's headers that ``columns`` maps, with the header it is read as.
+
+    A key names one of the file's headers (spaces around it and case ignored); a value
+    names a granudb column (``v_n_in``, ``v_n_in_m_s``, ``run``), with or without a unit.
+    The unit is the value's, else the header's own (``speed [mm/s]=v_n_in`` reads mm/s).
+    An unknown column is refused with the nearest known one.
+    """
+    if not columns:
+        return {}
+    bases = {base_name(c): c for c in numeric}
+    known = sorted(set(bases) | set(numeric) | set(text))
+    by_key = {h.strip().casefold(): h for h in headers}
+    renamed: dict[str, str] = {}
+    for key, target in columns.items():
+        if not isinstance(key, str) or not isinstance(target, str):
+            raise ValidationError("columns", repr(key), "must map text to text", parameter=True)
+        header = by_key.get(key.strip().casefold())
+        if header is None:
+            shown = ", ".join(repr(h) for h in headers[:12]) + (", …" if len(headers) > 12 else "")
+            raise ValidationError(
+                "columns", repr(key), f"is not a header of {table} (its headers: {shown})",
+                parameter=True,
+            )  # fmt: skip
+        if header in renamed:
+            raise ValidationError("columns", repr(key), "is mapped twice", parameter=True)
+        unit = _UNIT_AT_END.search(target)
+        name = target[: unit.start()] if unit else target
+        column = re.sub(r"\s+", "_", name.strip()).lower()
+        if aliases.get(column, column) not in known:
+            near = difflib.get_close_matches(column, known, n=1, cutoff=0.6)
+            hint = f"; did you mean {near[0]}?" if near else f" (known: {', '.join(known)})"
+            raise ValidationError(
+                "columns", repr(target), f"is not a granudb column{hint}", parameter=True
+            )
+        if unit is None and column in bases and column not in numeric:
+            own = _UNIT_AT_END.search(header)
+            target = f"{column} {own.group(1)}" if own else column
+        renamed[header] = target
+    return renamed
 
 
 def _header_error(where: str, problems: list[str]) -> ValidationError:
@@ -197,6 +373,33 @@ def _not_a_number(cell: str, decimal: str) -> str:
     return "is not a number"
 
 
+#: The rule for a number too small to be a value: below the smallest normal double in
+#: SI (about 2.2e-308), where a float keeps fewer significant digits (a subnormal), or
+#: that a unit's conversion turns into 0 (5e-324 mm/s). No measurement is that small;
+#: storing it would store a different number (0, or fewer digits).
+TINY_RULE = "is too small to be a value: not 0 but below 2.2e-308 in SI (a subnormal number)"
+
+
+def underflows(raw: Any, si: Any) -> Any:
+    """Cells that are not 0 as written but are 0 or subnormal in SI (``TINY_RULE``)."""
+    with np.errstate(invalid="ignore"):
+        return (raw != 0) & np.isfinite(raw) & (np.abs(si) < np.finfo(float).tiny)
+
+
+def _unreadable(
+    cells: Any, header: str, why: str | None, decimal: str, first_row: int
+) -> Callable[[int], ValidationError]:
+    """The problem of the cell at a position of ``cells``: not a number (and why), or
+    ``why``."""
+
+    def problem(pos: int) -> ValidationError:
+        cell = str(cells.iloc[pos])
+        rule = why or _not_a_number(cell, decimal)
+        return ValidationError(header, repr(cell), rule, row=first_row + pos)
+
+    return problem
+
+
 def convert_frame(
     frame: Any,
     mapping: dict[str, ColumnMap],
@@ -204,14 +407,18 @@ def convert_frame(
     table: str,
     first_row: int = 1,
     decimal: str = ".",
+    problems: Problems | None = None,
 ) -> Any:
     """A pandas DataFrame with SI columns from a raw one read as strings.
 
-    Numeric cells are parsed vectorized; the first unparseable cell is refused with its
-    row number (1-based, counting data rows) and column. ``decimal`` is the file's decimal
-    separator ("." or ",").
+    Numeric cells are parsed vectorized; an unparseable or infinite cell is refused with
+    its row number (the header is row 1 when ``first_row`` is 2) and column: the first
+    one, or with ``problems`` every one (collected there, the cell left empty and listed
+    in ``out.attrs["unreadable"]`` by column, so no later rule reports it again).
+    ``decimal`` is the file's decimal separator ("." or ",").
     """
     out = pd.DataFrame(index=frame.index)
+    unreadable: dict[str, Any] = {}
     for column, cmap in mapping.items():
         raw = frame[cmap.header]
         if not cmap.numeric:
@@ -219,31 +426,36 @@ def convert_frame(
             continue
         stripped = raw.astype("string").str.strip()
         values, bad = _numbers(stripped, decimal)
-        if bad.any():
-            pos = int(np.flatnonzero(bad.to_numpy())[0])
-            cell = str(stripped.iloc[pos])
-            raise ValidationError(
-                cmap.header, repr(cell), _not_a_number(cell, decimal), row=first_row + pos
-            )
         arr = values.to_numpy(dtype=float, na_value=np.nan)
         inf = np.isinf(arr)
-        if inf.any():
-            pos = int(np.flatnonzero(inf)[0])
-            raise ValidationError(
-                cmap.header,
-                repr(str(stripped.iloc[pos])),
-                "must be a finite number",
-                row=first_row + pos,
-            )
+        bad = bad.to_numpy(dtype=bool)
         if cmap.scale != 1.0 or cmap.offset != 0.0:
-            arr = round_significant(arr * cmap.scale + cmap.offset)
-        out[column] = arr
+            si = round_significant(arr * cmap.scale + cmap.offset)
+        else:
+            si = arr
+        tiny = underflows(arr, si) & ~bad & ~inf
+        checks = ((bad, None), (inf & ~bad, "must be a finite number"), (tiny, TINY_RULE))
+        for mask, why in checks:
+            if not mask.any():
+                continue
+            problem = _unreadable(stripped, cmap.header, why, decimal, first_row)
+            if problems is None:
+                raise problem(int(np.flatnonzero(mask)[0]))
+            problems.add(np.flatnonzero(mask), problem)
+        refused = bad | inf | tiny
+        if refused.any():
+            unreadable[column] = refused
+            si = np.where(refused, np.nan, si)
+        out[column] = si
+    out.attrs["unreadable"] = unreadable
     return out
 
 
 def check_shape(path: Path, delimiter: str) -> None:
-    """Every row has as many cells as the header. pandas silently drops the extra cells of
-    a long row and pads a short (truncated) one, so rows are counted here first."""
+    """Every row has as many cells as the header; every row that does not is listed (in
+    one ``FileProblems``, capped). pandas silently drops the extra cells of a long row and
+    pads a short (truncated) one, so rows are counted here first."""
+    problems = Problems(path.name)
     with path.open(encoding="utf-8-sig", newline="") as handle:
         reader = csv.reader(handle, delimiter=delimiter)
         try:
@@ -253,24 +465,47 @@ def check_shape(path: Path, delimiter: str) -> None:
             width = len(header)
             for number, row in enumerate(reader, start=2):
                 if len(row) != width and row:  # a blank line pandas skips too
-                    what = "more" if len(row) > width else "fewer"
-                    hint = "" if what == "more" else " (truncated?)"
-                    raise ValidationError(
-                        "FILE", f"row {number}", f"has {what} cells than the header{hint}"
-                    )
+                    hint = " (truncated?)" if len(row) < width else ""
+                    rule = f"where the header has {width}{hint}"
+                    problems.add_one(ValidationError("cells", str(len(row)), rule, row=number))
         except csv.Error as exc:
             raise ValidationError(
                 "FILE", path.name, f"is not a well-formed CSV (line {reader.line_num}: {exc})"
             ) from None
+    if problems:
+        _refuse_bare_carriage_return(path)
+    problems.raise_any()
 
 
-def csv_options(delimiter: str, decimal: str) -> tuple[str, str]:
-    """The file's delimiter and decimal separator, refusing an ambiguous pair."""
-    if delimiter not in DELIMITERS:
+def _refuse_bare_carriage_return(path: Path) -> None:
+    """A carriage return not followed by a line feed ends a row for CSV readers (old Mac
+    line ends) but not for people, who meant a line break in a cell: when rows are ragged
+    and the file has one, that is the problem to name."""
+    line, tail = 1, b""
+    with path.open("rb") as handle:
+        while block := handle.read(1 << 20):
+            data = tail + block
+            found = re.search(rb"\r(?!\n)", data[:-1] if len(block) == 1 << 20 else data)
+            if found:
+                at = line + data.count(b"\n", 0, found.start())
+                raise ValidationError(
+                    "FILE",
+                    path.name,
+                    f"has a bare carriage return (U+000D) on line {at}: it splits the row "
+                    "there; a line break inside a cell must be a line feed, in quotes",
+                )
+            line += data[:-1].count(b"\n")
+            tail = data[-1:]
+
+
+def csv_options(delimiter: str | None, decimal: str) -> tuple[str | None, str]:
+    """The file's delimiter (None: detected from its header) and decimal separator,
+    refusing an ambiguous pair."""
+    if delimiter is not None and delimiter not in DELIMITERS:
         raise ValidationError("--delimiter", repr(delimiter), "must be ',', ';' or 'tab'")
     if decimal not in DECIMALS:
         raise ValidationError("--decimal", repr(decimal), "must be '.' or ','")
-    delimiter = DELIMITERS[delimiter]
+    delimiter = DELIMITERS.get(delimiter) if delimiter is not None else None
     if delimiter == "," and decimal == ",":
         raise ValidationError(
             "--decimal", "','", "cannot be the delimiter too (decimal commas need --delimiter ';')"
@@ -278,9 +513,15 @@ def csv_options(delimiter: str, decimal: str) -> tuple[str, str]:
     return delimiter, decimal
 
 
-def read_header(path: Path, delimiter: str = ",") -> list[str]:
-    """The header's cells, read with a size limit (never the whole first line of a huge
-    file), or a refusal saying how to read a semicolon-delimited file."""
+def read_header(path: Path, delimiter: str | None = ",") -> tuple[list[str], str]:
+    """The header's cells and the file's delimiter, read with a size limit (never the
+    whole first line of a huge file).
+
+    With ``delimiter=None`` it is detected: a header with semicolons (or tabs) and no
+    comma is semicolon- (or tab-) delimited, as European spreadsheets write CSV; any
+    other header is comma-delimited. A stated delimiter the header does not use is
+    refused with the option that reads the file.
+    """
     with path.open("rb") as handle:
         head = handle.read(MAX_HEADER_BYTES + 1)
     if not head.strip():
@@ -294,6 +535,9 @@ def read_header(path: Path, delimiter: str = ",") -> list[str]:
         line = head[: end if end >= 0 else len(head)].decode("utf-8-sig").rstrip("\r")
     except UnicodeDecodeError:
         raise ValidationError("FILE", path.name, "is not UTF-8 text") from None
+    if delimiter is None:
+        found = [d for d in (";", "\t") if d in line]
+        delimiter = found[0] if len(found) == 1 and "," not in line else ","
     cells = next(csv.reader([line], delimiter=delimiter), [])
     if len(cells) <= 1:
         for other, option in ((";", "';'"), ("\t", "tab")):
@@ -305,4 +549,4 @@ def read_header(path: Path, delimiter: str = ",") -> list[str]:
                     f"spreadsheets write CSV): import it with --delimiter {option}, and "
                     "--decimal ',' if its numbers have decimal commas",
                 )
-    return cells
+    return cells, delimiter

@@ -185,7 +185,7 @@ def test_an_angle_that_disagrees_with_the_velocities_is_refused(
 ) -> None:
     path = write(tmp_path / "a.csv", [GOOD, row(run="r2", incidence_angle="45")])
     line = refused(cli, db, path)
-    assert line.startswith("Error: row 3: incidence_angle [deg]: 45 disagrees with atan(")
+    assert line.startswith("Error: a.csv: row 3: incidence_angle [deg]: 45 disagrees with atan(")
     assert "= 20.00° by more than 3°" in line
 
 
@@ -200,7 +200,7 @@ def test_an_angle_within_the_tolerance_is_kept_as_stated(cli, db: str, tmp_path:
 def test_every_header_problem_is_reported_in_one_line(cli, db: str, tmp_path: Path) -> None:
     bad = header(diameter="diameter", v_n_in="v_n_in [kg]", notes="remarks")
     line = refused(cli, db, write(tmp_path / "h.csv", [GOOD], bad))
-    assert line.startswith("Error: collisions.csv header: 3 problems: (1) 'diameter' needs a")
+    assert line.startswith("Error: h.csv header: 3 problems: (1) 'diameter' needs a")
     assert "(2) 'v_n_in [kg]': [kg] is not a velocity" in line
     assert "(3) 'remarks' is not a known column" in line
 
@@ -228,18 +228,21 @@ def test_headers_are_case_insensitive_and_take_units_in_parentheses(
     assert rows[0]["v_n_in_m_s"] == 0.3 and rows[0]["diameter_m"] == 0.0127
 
 
-def test_semicolon_decimal_comma_files_are_refused_with_the_options_to_read_them(
+def test_semicolon_files_are_detected_and_decimal_commas_never_guessed(
     cli, db: str, tmp_path: Path
 ) -> None:
-    european = [row(diameter="12,7", v_t_in="109,2")]
+    plain = write(tmp_path / "plain.csv", [row(run="s1")], delimiter=";")
+    assert imported(cli, db, plain)[0]["diameter_m"] == 0.0127  # detected: no comma at all
+    european = [row(run="s2", diameter="12,7", v_t_in="109,2")]
     path = write(tmp_path / "eu.csv", european, delimiter=";")
-    line = refused(cli, db, path)
+    line = refused(cli, db, path)  # "12,7" could be 12.7 or 127: said, not guessed
+    assert line.startswith("Error: eu.csv: 2 problems: row 2: diameter [mm]: '12,7' has a")
+    assert "decimal comma: use a decimal point, or import with --decimal ','" in line
+    line = refused(cli, db, path, "--delimiter", ",")
     assert "looks semicolon-delimited" in line and "--delimiter ';'" in line
     assert "--decimal ','" in line
-    line = refused(cli, db, path, "--delimiter", ";")
-    assert "'12,7' has a decimal comma: use a decimal point, or import with --decimal ','" in line
-    rows = imported(cli, db, path, "--delimiter", ";", "--decimal", ",")
-    assert rows[0]["diameter_m"] == 0.0127 and rows[0]["v_t_in_m_s"] == 0.1092
+    rows = imported(cli, db, path, "--decimal", ",")
+    assert rows[-1]["diameter_m"] == 0.0127 and rows[-1]["v_t_in_m_s"] == 0.1092
 
 
 def test_a_point_in_a_decimal_comma_file_is_refused_not_guessed(
@@ -277,7 +280,8 @@ def test_a_run_outside_the_fluids_data_is_refused_and_reads_keep_working(
     hot = write(tmp_path / "hot.csv", [row(run="hot", fluid="water", temperature="80")])
     line = refused(cli, db, hot)
     assert line.startswith(
-        "Error: row 2: temperature [degC]: 80 °C is outside fluid water's viscosity data (10–60 °C)"
+        "Error: hot.csv: row 2: temperature [degC]: 80 °C is outside fluid water's viscosity "
+        "data (10–60 °C)"
     )
     assert "dataset d" in line
     listed = cli("collisions", "list", "--format", "json", db=db)

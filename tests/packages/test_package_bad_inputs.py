@@ -121,7 +121,7 @@ CASES: dict[str, tuple[Callable[[Path], None], str]] = {
     ),
     "bytes not a number": (
         lambda p: _edit(p, lambda d: d["resources"][0].update(bytes="many")),
-        "the descriptor says many",
+        "bytes must be a whole number (Table Schema), not str 'many'",
     ),
 }
 
