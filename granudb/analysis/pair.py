@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from sqlalchemy.engine import Connection
 
+from granudb.analysis.dry_values import DryValues, resolve
 from granudb.analysis.fluid_state import FluidState, fluid_state
 from granudb.analysis.refusals import physics_refusal
 from granudb.db import catalog_rows
@@ -61,6 +62,7 @@ class PairResult:
     fluid_state: FluidState | None
     inputs: dict[str, Any]
     derived: dict[str, Any]
+    dry: DryValues
     citations: dict[str, str] = field(default_factory=dict)
 
 
@@ -149,6 +151,10 @@ def derive_pair(
     second = catalog_rows.get_material_row(connection, wall, dataset_id)
     fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(connection, fluid, dataset_id)
     state = fluid_state(fluid_row, temperature_c, viscosity_pa_s) if fluid_row else None
+    measured = catalog_rows.pair_value_rows(
+        connection, particle, wall, before=catalog_rows.released_at(connection, dataset_id)
+    )
+    dry = resolve(first, second, measured)
     inputs = {
         "diameter_m": diameter_m,
         "wall_diameter_m": wall_diameter_m,
@@ -177,6 +183,8 @@ def derive_pair(
                 else np.nan
             ),
             critical_stokes=critical_stokes,
+            dry_restitution=dry.restitution,
+            dry_friction=dry.friction,
         )
     derived = {k: v for k, v in scalar_view(result).items() if k not in MEASURED_ONLY}
     citations = {
@@ -191,6 +199,7 @@ def derive_pair(
         state,
         inputs,
         derived,
+        dry,
         citations,
     )
 
@@ -198,7 +207,8 @@ def derive_pair(
 def pair_json(result: PairResult) -> dict[str, Any]:
     """The document of ``granudb pair --format json`` and ``granudb.pair()``: SI values
     under the vocabulary's names. The fluid carries its stored reference values
-    (``reference_viscosity_pa_s``) and its state at the temperature (``viscosity_pa_s``)."""
+    (``reference_viscosity_pa_s``) and its state at the temperature (``viscosity_pa_s``);
+    ``dry_values`` the pair's dry e and μ with each one's basis and source."""
     fluid = None
     if result.fluid is not None and result.fluid_state is not None:
         fluid = {
@@ -213,6 +223,7 @@ def pair_json(result: PairResult) -> dict[str, Any]:
         "wall": result.wall,
         "fluid": fluid,
         "inputs": result.inputs,
+        "dry_values": result.dry.record(),
         **result.derived,
         "sources": result.citations,
     }

@@ -47,6 +47,9 @@ NAMES: dict[str, str] = {
     "remove_fluid": "catalog_changes",
     "add_fluid_point": "catalog_changes",
     "import_fluid_points": "catalog_changes",
+    "pair_values": "pair_dry",
+    "add_pair_value": "pair_dry",
+    "dry_values": "pair_dry",
     # collisions and what is derived from them
     "pair": "scenario",
     "derive": "derivation",
@@ -99,6 +102,7 @@ FACE: dict[str, str] = {
     "MATERIALS": "presentation",
     "FLUIDS": "presentation",
     "POINT_COLUMNS": "presentation",
+    "PAIR_VALUE_COLUMNS": "presentation",
     "SOURCE_COLUMNS": "presentation",
     "SOURCE_NARROW": "presentation",
     "DATASET_COLUMNS": "presentation",

@@ -122,6 +122,10 @@ def add_material(
     correlation_length: Any = None,
     shear_modulus: Any = None,
     yield_stress: Any = None,
+    dry_restitution: Any = None,
+    dry_friction: Any = None,
+    dry_source: str | None = None,
+    brittleness: str | None = None,
     description: str | None = None,
     source: str | None = None,
     source_locator: str | None = None,
@@ -130,6 +134,9 @@ def add_material(
     """Add a material; returns it as ``material`` does. Density, Young's modulus, Poisson
     ratio and roughness are required; a shear modulus not given is derived,
     G = E / (2(1 + ν)); with a ``yield_stress`` (in tension) yield starts at 1.6 Y.
+    ``dry_restitution`` and ``dry_friction`` are the material's own dry values, cited by
+    ``dry_source`` (the pair's prediction uses them, docs/physics.md §18);
+    ``brittleness`` is "brittle" (cracks instead of yielding) or "ductile".
 
     Examples
     --------
@@ -152,6 +159,10 @@ def update_material(
     correlation_length: Any = None,
     shear_modulus: Any = None,
     yield_stress: Any = None,
+    dry_restitution: Any = None,
+    dry_friction: Any = None,
+    dry_source: str | None = None,
+    brittleness: str | None = None,
     description: str | None = None,
     source: str | None = None,
     source_locator: str | None = None,

@@ -38,12 +38,22 @@ __all__ = [
     "Fluid",
     "FluidPoint",
     "Material",
+    "PairValue",
     "PublishedValue",
     "SeedRecord",
     "Source",
     "name_key",
     "utcnow",
 ]
+
+
+#: The dry values' ranges, on materials and on pairs alike (migration 0006).
+DRY_VALUE_RULES = {
+    "dry_restitution_range": "dry_restitution IS NULL OR "
+    "(dry_restitution > 0 AND dry_restitution <= 1)",
+    "dry_friction_non_negative": "dry_friction IS NULL OR dry_friction >= 0",
+}
+DRY_VALUE_CHECKS = tuple(CheckConstraint(rule, name=n) for n, rule in DRY_VALUE_RULES.items())
 
 
 # Stable constraint names, so migrations can refer to them on every dialect.
@@ -89,6 +99,12 @@ class Material(Timestamped, Base):
     #: Yield stress Y in tension (Johnson 1985 §11.4: yield starts at p_max = 1.6 Y);
     #: empty where not known or for brittle solids, which crack instead.
     yield_stress_pa: Mapped[float | None] = mapped_column(Float)
+    #: The material's own dry restitution and friction, and where they come from
+    #: (docs/physics.md §18); empty where not known. Brittleness: "brittle" or "ductile".
+    dry_restitution: Mapped[float | None] = mapped_column(Float)
+    dry_friction: Mapped[float | None] = mapped_column(Float)
+    dry_provenance: Mapped[str | None] = mapped_column(Text)
+    brittleness: Mapped[str | None] = mapped_column(String(20))
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     #: Set on a revision: the values this material had when a released dataset used it,
@@ -112,6 +128,11 @@ class Material(Timestamped, Base):
         ),
         CheckConstraint(
             "yield_stress_pa IS NULL OR yield_stress_pa > 0", name="yield_stress_positive"
+        ),
+        *DRY_VALUE_CHECKS,
+        CheckConstraint(
+            "brittleness IS NULL OR brittleness IN ('brittle', 'ductile')",
+            name="brittleness_word",
         ),
     )
 
@@ -400,6 +421,32 @@ class PublishedValue(Base):
     __table_args__ = (
         UniqueConstraint("source_id", "label", "quantity"),
         CheckConstraint("uncertainty IS NULL OR uncertainty >= 0", name="uncertainty_non_negative"),
+    )
+
+
+class PairValue(Timestamped, Base):
+    """Dry values a source measured for one pair of materials (either way round: steel
+    on Zerodur is Zerodur hit by steel), docs/physics.md §18. They come before the two
+    materials' own values; ``created_at`` lets a release read only the pair values that
+    existed when it was released."""
+
+    __tablename__ = "pair_values"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    particle_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    wall_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    dry_restitution: Mapped[float | None] = mapped_column(Float)
+    dry_friction: Mapped[float | None] = mapped_column(Float)
+    source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
+    source_locator: Mapped[str | None] = mapped_column(String(200))
+    notes: Mapped[str | None] = mapped_column(Text)
+
+    __table_args__ = (
+        UniqueConstraint("particle_id", "wall_id"),
+        CheckConstraint(
+            "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL", name="has_a_value"
+        ),
+        *(CheckConstraint(rule, name=n) for n, rule in DRY_VALUE_RULES.items()),
     )
 
 
