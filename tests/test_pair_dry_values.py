@@ -94,7 +94,7 @@ def test_adding_pair_values_once_and_refusing_bad_ones(opened) -> None:
     with pytest.raises(ValidationError, match="dry_restitution"):
         granudb.add_pair_value("steel", "Delrin", dry_restitution=1.5, notes="a test",
                                db=opened)  # fmt: skip
-    with pytest.raises(ValidationError, match="or dry_friction is needed"):
+    with pytest.raises(ValidationError, match="or dry_friction or immersed_friction is needed"):
         granudb.add_pair_value("steel", "Delrin", notes="a test", db=opened)
     with pytest.raises(ValidationError, match="source: .* is required unless notes say"):
         granudb.add_pair_value("steel", "Delrin", dry_friction=0.2, db=opened)
@@ -195,3 +195,17 @@ def test_stored_runs_use_the_same_rule(opened) -> None:
         e = granudb.dry_values(particle, wall, db=opened)["dry_restitution"]
         chosen = runs[(runs["particle"] == particle) & (runs["wall"] == wall)]
         assert (chosen["predicted_restitution"] == e).all()
+
+
+def test_immersed_glass_uses_the_friction_measured_in_a_liquid(opened) -> None:
+    """Where asperities touch in a liquid, the pair's immersed value (glass on Zerodur:
+    0.15, Joseph & Hunt §4) is used, not the dry 0.106; without one, the dry value, said
+    so."""
+    wet = granudb.pair("glass", "Zerodur", fluid="glycerol-45", angle="30 deg",
+                       diameter="12.7 mm", velocity="0.1 m/s", db=opened)  # fmt: skip
+    assert wet["roughness_regime"] == "asperity_contact"
+    assert wet["friction_coefficient_used"] == wet["dry_values"]["immersed_friction"] == 0.15
+    assert "in a liquid (joseph-hunt-2004" in _verdict(wet, "lubricated_friction_state")["text"]
+    steel = granudb.dry_values("steel", "Zerodur", db=opened)
+    assert steel["immersed_friction"] == steel["dry_friction"] == 0.11
+    assert steel["immersed_friction_source"].startswith("the dry value (no immersed value")

@@ -226,7 +226,7 @@ def _derive_stored(
         for name in DRY_VALUE_PROPERTIES
     }
     names = (np.asarray(stored[k], dtype=object) for k in ("particle", "wall"))
-    dry_e, dry_mu = dry_values.per_run(*names, own, measured)
+    dry_e, dry_mu, wet_mu = dry_values.per_run(*names, own, measured)
     with physics_refusal():
         result = derive(
             **props,
@@ -241,6 +241,7 @@ def _derive_stored(
             critical_stokes=critical_stokes,
             dry_restitution=dry_e,
             dry_friction=dry_mu,
+            immersed_friction=wet_mu,
         )
     chunk: dict[str, np.ndarray] = {
         **{k: np.asarray(stored[k], dtype=object) for k in ("dataset", "version")},

@@ -41,7 +41,8 @@ BASES = ("pair", "materials", "borrowed")
 @dataclass(frozen=True)
 class DryValues:
     """A pair's dry restitution and friction, each with its basis ("pair",
-    "materials", "borrowed") and its source in words."""
+    "materials", "borrowed") and its source in words; and the friction used where
+    asperities touch in a liquid (the pair's measured value, else the dry one)."""
 
     restitution: float
     restitution_basis: str
@@ -49,28 +50,41 @@ class DryValues:
     friction: float
     friction_basis: str
     friction_source: str
+    #: Where asperities touch in a liquid: the pair's measured value, else the dry one.
+    immersed_friction: float
+    immersed_friction_basis: str
+    immersed_friction_source: str
 
     def record(self) -> dict[str, Any]:
         """The values as JSON/CSV fields (``dry_restitution``, ``dry_restitution_basis``,
-        ``dry_restitution_source``, the same for friction)."""
-        return {f"dry_{key}": value for key, value in asdict(self).items()}
+        ``dry_restitution_source``, the same for ``dry_friction`` and
+        ``immersed_friction``)."""
+        return {
+            key if key.startswith("immersed") else f"dry_{key}": value
+            for key, value in asdict(self).items()
+        }
 
 
 #: The borrowed values, for a caller without a pair (``verdicts`` of an old document).
 BORROWED_VALUES = DryValues(
-    DRY_RESTITUTION, "borrowed", BORROWED, DRY_FRICTION, "borrowed", BORROWED
+    DRY_RESTITUTION, *("borrowed", BORROWED), *(DRY_FRICTION, "borrowed", BORROWED) * 2
 )
+#: What the immersed friction says when the pair has no measured value of its own.
+NO_IMMERSED = "the dry value (no immersed value measured for the pair): "
 
 
-def _cited(row: catalog_rows.PairValueRow) -> str:
+def _cited(row: catalog_rows.PairValueRow, where_measured: str = "") -> str:
     """ "measured for steel on Zerodur (joseph-hunt-2004, §3, figure 4)": the source's key
     (``granudb sources show`` gives the citation) and where in it; without a source, the
     notes."""
     key = catalog_rows.source_key(row.source)
+    pair = f"measured for {row.particle} on {row.wall}" + (
+        f" {where_measured}" if where_measured else ""
+    )
     if key is None:
-        return f"measured for {row.particle} on {row.wall} ({row.notes or 'no source given'})"
+        return f"{pair} ({row.notes or 'no source given'})"
     where = f", {row.source_locator}" if row.source_locator else ""
-    return f"measured for {row.particle} on {row.wall} ({key}{where})"
+    return f"{pair} ({key}{where})"
 
 
 def _own(material: MaterialRow, column: str) -> float | None:
@@ -114,7 +128,12 @@ def resolve(
         else:
             chosen[column] = (default, "borrowed", BORROWED)
     e, mu = chosen["dry_restitution"], chosen["dry_friction"]
-    return DryValues(*e, *mu)
+    wet = next((r for r in measured if r.immersed_friction is not None), None)
+    if wet is not None:
+        immersed = (float(wet.immersed_friction), "pair", _cited(wet, "in a liquid"))
+    else:
+        immersed = (mu[0], mu[1], NO_IMMERSED + mu[2])
+    return DryValues(*e, *mu, *immersed)
 
 
 def dry_values(
@@ -138,8 +157,9 @@ def per_run(
     wall: np.ndarray,
     own: dict[str, np.ndarray],
     measured: list[catalog_rows.PairValueRow],
-) -> tuple[np.ndarray, np.ndarray]:
-    """The same rule for stored runs: each run's dry e and μ from the material names,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The same rule for stored runs: each run's dry e, μ and immersed μ (NaN: the dry
+    one) from the material names,
     the two materials' own values as the runs use them (``own``:
     ``particle_dry_restitution``, ``wall_dry_friction``, …; NaN where not known) and the
     measured pair values. One resolution per distinct pair and values."""
@@ -160,7 +180,13 @@ def per_run(
         distinct[key] = resolve(first, second, [pair] if pair is not None else [])
     e = np.fromiter((distinct[k].restitution for k in keys), dtype=float, count=len(keys))
     mu = np.fromiter((distinct[k].friction for k in keys), dtype=float, count=len(keys))
-    return e, mu
+    wet = np.fromiter(
+        (v.immersed_friction if v.immersed_friction_basis == "pair" else np.nan
+         for v in (distinct[k] for k in keys)),
+        dtype=float,
+        count=len(keys),
+    )  # fmt: skip
+    return e, mu, wet
 
 
 #: The materials' own dry values a stored run carries, in ``per_run``'s key order.

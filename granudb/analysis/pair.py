@@ -185,6 +185,7 @@ def derive_pair(
             critical_stokes=critical_stokes,
             dry_restitution=dry.restitution,
             dry_friction=dry.friction,
+            immersed_friction=dry.immersed_friction,
         )
     derived = {k: v for k, v in scalar_view(result).items() if k not in MEASURED_ONLY}
     citations = {

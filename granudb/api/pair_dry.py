@@ -40,17 +40,19 @@ def add_pair_value(
     *,
     dry_restitution: Any = None,
     dry_friction: Any = None,
+    immersed_friction: Any = None,
     source: str | None = None,
     source_locator: str | None = None,
     notes: str | None = None,
     db: Any = None,
 ) -> dict[str, Any]:
     """Store the dry restitution and/or friction measured for ``particle`` on ``wall``
-    (either way round), with ``source`` (a source key) and ``source_locator``, or ``notes``
-    saying where they come from (one of them is required). They come before
-    the two materials' own values in every prediction (``dry_values``). A pair's values
-    are never changed once stored (released datasets read them); returns the pair's
-    values as ``dry_values`` gives them.
+    (either way round), and its ``immersed_friction`` where asperities touch in a
+    liquid, with ``source`` (a source key) and ``source_locator``, or ``notes`` saying
+    where they come from (one of them is required). They come before the two materials'
+    own values in every prediction (``dry_values``). A pair's values are never changed
+    once stored (released datasets read them); returns the pair's values as
+    ``dry_values`` gives them.
 
     Examples
     --------
@@ -64,11 +66,12 @@ def add_pair_value(
     if source is None and notes is None:
         raise inputs.missing("source", "is required unless notes say where the values come from")
     source = None if source is None else inputs.text(source, "source")
-    values = {
-        column: inputs.quantity(given, column, column)
-        for column, given in (("dry_restitution", dry_restitution), ("dry_friction", dry_friction))
-        if given is not None
+    given = {
+        "dry_restitution": dry_restitution,
+        "dry_friction": dry_friction,
+        "immersed_friction": immersed_friction,
     }
+    values = {c: inputs.quantity(v, c, c) for c, v in given.items() if v is not None}
     texts = {
         name: check_text(name, inputs.text(given, name))
         for name, given in (("source_locator", source_locator), ("notes", notes))

@@ -55,6 +55,10 @@ def add(
     dry_friction: Annotated[
         str | None, typer.Option("--dry-friction", help='Dry friction, e.g. "0.11".')
     ] = None,
+    immersed_friction: Annotated[
+        str | None,
+        typer.Option("--immersed-friction", help='Friction with asperities in a liquid, "0.15".'),
+    ] = None,
     source: Annotated[
         str | None,
         typer.Option("--source", help="Key of a source (granudb sources list), or use --notes."),
@@ -71,6 +75,7 @@ def add(
         wall,
         dry_restitution=dry_restitution,
         dry_friction=dry_friction,
+        immersed_friction=immersed_friction,
         source=source,
         source_locator=source_locator,
         notes=notes,

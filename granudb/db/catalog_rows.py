@@ -71,6 +71,7 @@ class PairValueRow:
     wall: str
     dry_restitution: float | None
     dry_friction: float | None
+    immersed_friction: float | None
     source_locator: str | None
     notes: str | None
     source: SourceRow | None

@@ -437,6 +437,9 @@ class PairValue(Timestamped, Base):
     wall_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
     dry_restitution: Mapped[float | None] = mapped_column(Float)
     dry_friction: Mapped[float | None] = mapped_column(Float)
+    #: Friction of the pair where asperities touch in a liquid (Joseph & Hunt §4: glass on
+    #: Zerodur, 0.15); empty: the dry value is used there.
+    immersed_friction: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     notes: Mapped[str | None] = mapped_column(Text)
@@ -444,7 +447,13 @@ class PairValue(Timestamped, Base):
     __table_args__ = (
         UniqueConstraint("particle_id", "wall_id"),
         CheckConstraint(
-            "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL", name="has_a_value"
+            "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL "
+            "OR immersed_friction IS NOT NULL",
+            name="has_a_value",
+        ),
+        CheckConstraint(
+            "immersed_friction IS NULL OR immersed_friction >= 0",
+            name="immersed_friction_non_negative",
         ),
         *(CheckConstraint(rule, name=n) for n, rule in DRY_VALUE_RULES.items()),
     )

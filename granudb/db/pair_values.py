@@ -13,6 +13,9 @@ from granudb.db.models import PairValue
 from granudb.errors import ConflictError, ValidationError
 from granudb.vocabulary import check_record
 
+#: The numbers a pair's row may hold.
+PAIR_NUMBERS = ("dry_restitution", "dry_friction", "immersed_friction")
+
 
 def add_pair_value(
     session: Session,
@@ -27,9 +30,11 @@ def add_pair_value(
     ``particle`` on ``wall`` by ``source`` (a source key; None: ``notes`` say where from);
     refuses a pair that has values already
     (either way round), a pair without a value, and values that break a rule."""
-    if not any(values.get(c) is not None for c in ("dry_restitution", "dry_friction")):
+    if not any(values.get(c) is not None for c in PAIR_NUMBERS):
         raise ValidationError(
-            "dry_restitution", "(missing)", "or dry_friction is needed to add a pair's values"
+            "dry_restitution",
+            "(missing)",
+            "or dry_friction or immersed_friction is needed to add a pair's values",
         )
     check_record(values)
     connection = session.connection()
@@ -49,7 +54,7 @@ def add_pair_value(
         source_id=None if source is None else catalog_rows.source_id(connection, source),
         source_locator=source_locator,
         notes=notes,
-        **{c: values.get(c) for c in ("dry_restitution", "dry_friction")},
+        **{c: values.get(c) for c in PAIR_NUMBERS},
     )
     session.add(row)
     session.flush()

@@ -33,7 +33,7 @@ FLUID_TEXT = [
 ]
 POINT_NUMERIC = ["temperature_c", "viscosity_pa_s", "density_kg_m3"]
 POINT_TEXT = ["fluid", "source", "source_locator"]
-PAIR_NUMERIC = ["dry_restitution", "dry_friction"]
+PAIR_NUMERIC = ["dry_restitution", "dry_friction", "immersed_friction"]
 PAIR_TEXT = ["particle", "wall", "source", "source_locator", "notes"]
 PUBLISHED_NUMERIC = ["value", "uncertainty"]
 PUBLISHED_TEXT = [

@@ -37,9 +37,10 @@ min(``dry_friction``, ``limiting_shear_slope``), Bair & Winer 1979),
 "no_pressure_coefficient" or "dry".
 
 **Friction for Maw's regime** (``friction_coefficient_used``): ``dry_friction`` where
-the collision is dry or σ > h_m (asperities touch, the paper's §4 argument; with the
-default h_m = x₁/3 a roughness in Davis's "uncertain" band x₁/4 < σ ≤ x₁/3 is still
-treated as a film, and ``roughness_regime`` says it is uncertain); else the film's:
+the collision is dry, and where σ > h_m (asperities touch, the paper's §4 argument) in a
+liquid the pair's ``immersed_friction`` where one is known (NaN: ``dry_friction``). With
+the default h_m = x₁/3 a roughness in Davis's "uncertain" band x₁/4 < σ ≤ x₁/3 is still
+treated as a film, and ``roughness_regime`` says it is uncertain. Else the film's:
 (5.8) when in range; the cap min(dry, γ_max) — a film at its limiting shear stress —
 when (5.8) is above it. For a fluid without a pressure–viscosity coefficient (water in
 the seed data) μ_f is not computed: water's viscosity *decreases* with pressure below
@@ -126,6 +127,7 @@ _INPUTS = {
     "wall_omega_out_rad_s": "w_w_out",
     "dry_restitution": "e_dry",
     "dry_friction": "mu_dry",
+    "immersed_friction": "mu_wet",
 }
 _TARGET_VELOCITIES = ("w_vn", "w_vt", "w_w", "w_vn_out", "w_vt_out", "w_w_out")
 
@@ -144,6 +146,8 @@ def _validate(x: dict[str, np.ndarray]) -> None:
         "dry_restitution", x["e_dry"], (x["e_dry"] > 0) & (x["e_dry"] <= 1), "must be > 0 and ≤ 1"
     )
     _check("dry_friction", x["mu_dry"], x["mu_dry"] >= 0, "must be ≥ 0")
+    wet = x["mu_wet"]
+    _check("immersed_friction", wet, np.isnan(wet) | (wet >= 0), "must be ≥ 0 (NaN: the dry value)")
     for name in ("particle_youngs_modulus_pa", "wall_youngs_modulus_pa"):
         _check(name, x[_INPUTS[name]], x[_INPUTS[name]] > 0, "must be > 0")
     for name in ("particle_density_kg_m3", "wall_density_kg_m3"):
@@ -223,6 +227,7 @@ def derive(
     dry_friction: Numeric = DRY_FRICTION,
     gap_fraction: float = lubrication.GAP_FRACTION,
     dry_restitution: Numeric = DRY_RESTITUTION,
+    immersed_friction: Numeric = np.nan,
     limiting_shear_slope: float = limits.LIMITING_SHEAR_SLOPE,
     threads: int | None = None,
 ) -> dict[str, np.ndarray]:
@@ -277,7 +282,7 @@ def _derive_block(
     h = steps.hertz(x, p)
     f = steps.fluid_numbers(x, p, gap_fraction)
     lub = steps.lubricated(x, p, h, f, caps)
-    tan = steps.tangential(p, f, lub, caps)
+    tan = steps.tangential(p, f, lub, caps, x["mu_wet"])
     col = steps.collision(p)
     return _columns(p, h, f, lub, tan, col, critical_stokes)
 

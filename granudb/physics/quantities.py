@@ -166,16 +166,22 @@ def lubricated(x: Arrays, p: Arrays, h: Arrays, f: Arrays, caps: Caps) -> Arrays
     }
 
 
-def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: Caps) -> Arrays:
+def tangential(
+    p: Arrays, f: Arrays, lub: Arrays, caps: Caps, immersed_friction: np.ndarray
+) -> Arrays:
     """Maw's regime with the friction the physics supports (``derive`` documents the rule)."""
     dry, _ = caps
+    # asperities touching in a liquid: the pair's immersed value where one is known
+    touching = np.where(f["immersed"] & np.isfinite(immersed_friction), immersed_friction, dry)
     cap = limits.friction_cap(*caps)
     film = f["immersed"] & ~f["rough"]
     state = lub["state"]
     # No tangential motion: nothing slips, and (5.8) gives 0; Maw's ψ_in = 0 with the dry
     # value, as before issue 13 (a 0/0 here would read as gross slip).
     still = lub["u_abs"] == 0.0
-    mu_used = np.where(~film | still, dry, np.where(state == limits.IN_RANGE, lub["mu_lub"], cap))
+    mu_used = np.where(
+        ~film | still, touching, np.where(state == limits.IN_RANGE, lub["mu_lub"], cap)
+    )
     ratio = impact.stiffness_ratio(p["g_star"], p["e_star"])
     chi = ratio * p["walton"]
     psi = impact.maw_psi(ratio, lub["u_abs"], mu_used, p["v_n"])

@@ -44,11 +44,14 @@ BRITTLE_NOTE = (
 BORROWED_DRY = BORROWED_VALUES.record()
 
 
-def dry_words(dry: Mapping[str, Any], which: str) -> str:
-    """ "e_dry = 0.97 (measured for steel on Zerodur: Joseph & Hunt …)": a dry value with
-    its source, for ``which`` "restitution" or "friction"."""
-    symbol = "e_dry" if which == "restitution" else "μ_dry"
-    return f"{symbol} = {dry[f'dry_{which}']:g} ({dry[f'dry_{which}_source']})"
+_SYMBOLS = {"dry_restitution": "e_dry", "dry_friction": "μ_dry", "immersed_friction": "μ"}
+
+
+def dry_words(dry: Mapping[str, Any], key: str) -> str:
+    """A pair's value with its source, "e_dry = 0.97 (measured for steel on Zerodur
+    (joseph-hunt-2004, §3, figure 4))", for ``key`` "dry_restitution", "dry_friction" or
+    "immersed_friction"."""
+    return f"{_SYMBOLS[key]} = {dry[key]:.3g} ({dry[f'{key}_source']})"
 
 
 @dataclass(frozen=True)
@@ -107,7 +110,7 @@ def rebound_verdict(
     if not immersed:
         text = (
             "expected: a dry collision rebounds (restitution set by the solids, "
-            f"{dry_words(dry, 'restitution')})."
+            f"{dry_words(dry, 'dry_restitution')})."
         )
         return Verdict("rebound_expected", "Rebound", text)
     if not is_number(st_n):
@@ -135,9 +138,9 @@ def _ceiling(derived: Mapping[str, Any], dry: Mapping[str, Any]) -> str:
         return (
             f"past yield: the elastic–plastic e = {in_words(derived.get('restitution_ceiling'))} "
             f"({THORNTON}; V_y = {in_words(derived.get('yield_speed_m_s'), 'm/s')}), below "
-            f"{dry_words(dry, 'restitution')}"
+            f"{dry_words(dry, 'dry_restitution')}"
         )
-    return dry_words(dry, "restitution")
+    return dry_words(dry, "dry_restitution")
 
 
 def restitution_verdict(
@@ -235,7 +238,8 @@ def friction_verdict(
     state = str(derived.get("lubricated_friction_state") or ("dry" if not immersed else ""))
     mu = derived.get("lubricated_friction")
     cap = friction_cap(dry["dry_friction"])
-    mu_dry = dry_words(dry, "friction")
+    mu_dry = dry_words(dry, "dry_friction")
+    touching = dry_words(dry, "immersed_friction")
     bound = (
         f"min({mu_dry}, limiting-shear slope γ_max = "
         f"{limits.LIMITING_SHEAR_SLOPE:g}, Bair & Winer 1979) = {cap:g}"
@@ -258,7 +262,7 @@ def friction_verdict(
             "Hunt §5), so neither a borrowed C nor the piezoviscous film (5.6) applies. "
             f"Decided: μ_f is only bounded, μ_f ≤ {bound}, and that bound is used for Maw's "
             "regime only where it already settles it."
-            + (" Asperities touch here, so the dry value is used." if asperities else ""),
+            + (f" Asperities touch here, so {touching} is used." if asperities else ""),
             raised=True,
         )
     if state == "above_limit":
@@ -269,7 +273,7 @@ def friction_verdict(
             f"{bound}; a film cannot carry more shear than its limiting shear stress, so "
             "this is not a prediction. "
             + (
-                "Asperities touch here, so the dry value is used for Maw's regime."
+                f"Asperities touch here, so {touching} is used for Maw's regime."
                 if asperities
                 else f"Maw's regime uses the cap μ_f = {cap:g} (a film at its limiting shear)."
             ),
@@ -277,7 +281,7 @@ def friction_verdict(
         )
     if state == "in_range":
         use = (
-            f"not used: asperities touch, so the dry value is used, {mu_dry}."
+            f"not used: asperities touch, so {touching} is used."
             if asperities
             else "used for Maw's regime."
         )
@@ -298,6 +302,8 @@ _REGIME_WORDS = {
 
 def _friction_basis(derived: Mapping[str, Any]) -> str:
     regime, state = derived.get("roughness_regime"), derived.get("lubricated_friction_state")
+    if regime == "asperity_contact" and state != "dry":
+        return "the pair's with asperities touching in a liquid"
     if regime in ("dry", "asperity_contact") or state == "dry":
         return "the dry value"
     if state == "in_range":

@@ -155,6 +155,7 @@ PAIR_VALUE_COLUMNS = [
     "wall",
     "dry_restitution",
     "dry_friction",
+    "immersed_friction",
     "source",
     "source_locator",
     "notes",

@@ -91,6 +91,7 @@ RULES: dict[str, Rule] = {
     "yield_stress_pa": POSITIVE,
     "dry_restitution": Rule(0.0, 1.0, min_inclusive=False),
     "dry_friction": NON_NEGATIVE,
+    "immersed_friction": NON_NEGATIVE,
     "v_n_in_m_s": POSITIVE,
     "v_t_in_m_s": NON_NEGATIVE,
     "v_n_out_m_s": NON_NEGATIVE,

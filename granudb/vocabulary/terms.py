@@ -172,6 +172,15 @@ TERMS: dict[str, Term] = {
         option="--dry-friction",
         example="0.11",
     ),
+    "immersed_friction": Term(
+        "Immersed friction",
+        None,
+        "Sliding friction coefficient μ_f of a pair where asperities touch in a liquid "
+        "(Joseph & Hunt §4: glass on Zerodur, 0.15), ≥ 0; empty: the dry value is used.",
+        symbol="μ_wet",
+        option="--immersed-friction",
+        example="0.15",
+    ),
     "dry_provenance": Term(
         "Source of the dry values",
         None,

@@ -4,8 +4,8 @@
   (where they come from) and ``brittleness`` ("brittle" or "ductile"), all empty on
   existing rows: nothing a user stored changes, and an empty value means "not known"
   (the resolver then says which value it borrowed, docs/physics.md §18).
-- pair_values: dry values a source measured for one pair of materials, with the source
-  and where in it; ``created_at`` lets a release read only what existed when released.
+- pair_values: dry values a source measured for one pair of materials (and its friction
+  where asperities touch in a liquid), with the source and where in it; ``created_at`` lets a release read only what existed when released.
 
 The downgrade drops the four columns and the table (the values they held are lost:
 ``granudb db downgrade`` says so and asks first).
@@ -60,6 +60,7 @@ def upgrade() -> None:
         sa.Column("wall_id", sa.Integer(), nullable=False),
         sa.Column("dry_restitution", sa.Float(), nullable=True),
         sa.Column("dry_friction", sa.Float(), nullable=True),
+        sa.Column("immersed_friction", sa.Float(), nullable=True),
         sa.Column("source_id", sa.Integer(), nullable=True),
         sa.Column("source_locator", sa.String(length=200), nullable=True),
         sa.Column("notes", sa.Text(), nullable=True),
@@ -76,11 +77,19 @@ def upgrade() -> None:
             nullable=False,
         ),
         sa.CheckConstraint(
-            "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL",
+            "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL "
+            "OR immersed_friction IS NOT NULL",
             name=op.f("ck_pair_values_has_a_value"),
         ),
+        sa.CheckConstraint(
+            "immersed_friction IS NULL OR immersed_friction >= 0",
+            name=op.f("ck_pair_values_immersed_friction_non_negative"),
+        ),
         *(sa.CheckConstraint(rule, name=op.f(f"ck_pair_values_{n}")) for n, rule in RULES.items()),
-        *(sa.CheckConstraint(_finite(c), name=op.f(f"ck_pair_values_{c}_finite")) for c in FLOATS),
+        *(
+            sa.CheckConstraint(_finite(c), name=op.f(f"ck_pair_values_{c}_finite"))
+            for c in (*FLOATS, "immersed_friction")
+        ),
         sa.ForeignKeyConstraint(
             ["particle_id"],
             ["materials.id"],
