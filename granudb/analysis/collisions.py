@@ -14,10 +14,11 @@ from typing import Any
 
 import numpy as np
 
+from granudb.analysis import dry_values
 from granudb.analysis.collision_query import CollisionQuery
 from granudb.analysis.fluid_state import assumptions_per_row, fluid_states_per_row
 from granudb.analysis.refusals import physics_refusal
-from granudb.db.catalog_rows import fluid_rows_by_id
+from granudb.db.catalog_rows import fluid_rows_by_id, pair_value_rows
 from granudb.db.collision_queries import iter_collisions, reading, survey_collisions
 from granudb.lazy import pandas as pd
 from granudb.physics.derive import derive
@@ -27,9 +28,14 @@ from granudb.vocabulary import (
     DERIVED_TERMS,
     MATERIAL_PROPERTIES,
 )
+from granudb.vocabulary.catalogue import DRY_VALUE_PROPERTIES
 from granudb.vocabulary.listings import COLLISION_WIDE, units_of
 
-_MATERIAL = [c for c in MATERIAL_PROPERTIES if c not in ("correlation_length_m",)]
+#: The material properties ``derive`` takes per body; the dry values go through the pair
+#: rule (``granudb.analysis.dry_values.per_run``) first.
+_MATERIAL = [
+    c for c in MATERIAL_PROPERTIES if c not in ("correlation_length_m", *DRY_VALUE_PROPERTIES)
+]
 
 
 def select_collisions(
@@ -103,12 +109,13 @@ def collision_table(
     """
     session = reading(session)  # a Core connection: no ORM on a read of runs
     fluids = fluid_rows_by_id(session)
+    measured = pair_value_rows(session)
     chunk_filters = {k: v for k, v in filters.items() if k != "chunk_rows"}
     count, present = survey_collisions(session, **chunk_filters)
     out = _Columns(count)
     text = columns is None or bool({"run", "notes"} & set(columns))
     for stored in iter_collisions(session, text=text, measured=present, **filters):
-        chunk = _derive_stored(stored, fluids, critical_stokes)
+        chunk = _derive_stored(stored, fluids, critical_stokes, measured)
         del stored
         keep = where(chunk) if where is not None else None
         names = list(chunk) if columns is None else [c for c in columns if c in chunk]
@@ -195,7 +202,7 @@ def _floats(frame: Any, name: str) -> np.ndarray:
 
 
 def _derive_stored(
-    stored: Any, fluids: dict[int, Any], critical_stokes: float
+    stored: Any, fluids: dict[int, Any], critical_stokes: float, measured: list[Any]
 ) -> dict[str, np.ndarray]:
     """One chunk of stored runs (``iter_collisions``) with every derived column, as arrays
     in presentation order (no DataFrame per chunk: pandas would turn every text column into
@@ -209,6 +216,13 @@ def _derive_stored(
         for name in _MATERIAL
     }
     barus = _per_fluid(fluids, fluid_ids, "pressure_viscosity_pa_inv")
+    own = {
+        f"{p}_{name}": _floats(stored, f"{p}_{name}")
+        for p in ("particle", "wall")
+        for name in DRY_VALUE_PROPERTIES
+    }
+    names = (np.asarray(stored[k], dtype=object) for k in ("particle", "wall"))
+    dry_e, dry_mu, wet_mu = dry_values.per_run(*names, own, measured)
     with physics_refusal():
         result = derive(
             **props,
@@ -221,6 +235,9 @@ def _derive_stored(
             viscosity_pa_s=viscosity,
             pressure_viscosity_pa_inv=barus,
             critical_stokes=critical_stokes,
+            dry_restitution=dry_e,
+            dry_friction=dry_mu,
+            immersed_friction=wet_mu,
         )
     chunk: dict[str, np.ndarray] = {
         **{k: np.asarray(stored[k], dtype=object) for k in ("dataset", "version")},

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from sqlalchemy.engine import Connection
 
+from granudb.analysis.dry_values import DryValues, resolve
 from granudb.analysis.fluid_state import FluidState, fluid_state, state_uncertainty
 from granudb.analysis.refusals import physics_refusal
 from granudb.db import catalog_rows
@@ -73,6 +74,7 @@ class PairResult:
     fluid_state: FluidState | None
     inputs: dict[str, Any]
     derived: dict[str, Any]
+    dry: DryValues
     citations: dict[str, str] = field(default_factory=dict)
 
 
@@ -198,6 +200,10 @@ def derive_pair(
         given_u["u_viscosity_pa_s"] = u_viscosity
     if u_density is not None:
         given_u["u_fluid_density_kg_m3"] = u_density
+    measured = catalog_rows.pair_value_rows(
+        connection, particle, wall, before=catalog_rows.released_at(connection, dataset_id)
+    )
+    dry = resolve(first, second, measured)
     inputs = {
         "diameter_m": diameter_m,
         "wall_diameter_m": wall_diameter_m,
@@ -230,6 +236,9 @@ def derive_pair(
             uncertainties={k: np.nan if v is None else v for k, v in propagated.items()},
             correlated_materials=first.name.casefold() == second.name.casefold(),
             one_speed=True,
+            dry_restitution=dry.restitution,
+            dry_friction=dry.friction,
+            immersed_friction=dry.immersed_friction,
         )
     derived = {k: v for k, v in scalar_view(result).items() if k not in MEASURED_ONLY}
     citations = {
@@ -244,6 +253,7 @@ def derive_pair(
         state,
         inputs,
         derived,
+        dry,
         citations,
     )
 
@@ -251,7 +261,8 @@ def derive_pair(
 def pair_json(result: PairResult) -> dict[str, Any]:
     """The document of ``granudb pair --format json`` and ``granudb.pair()``: SI values
     under the vocabulary's names. The fluid carries its stored reference values
-    (``reference_viscosity_pa_s``) and its state at the temperature (``viscosity_pa_s``)."""
+    (``reference_viscosity_pa_s``) and its state at the temperature (``viscosity_pa_s``);
+    ``dry_values`` the pair's dry e and μ with each one's basis and source."""
     fluid = None
     if result.fluid is not None and result.fluid_state is not None:
         fluid = {
@@ -266,6 +277,7 @@ def pair_json(result: PairResult) -> dict[str, Any]:
         "wall": result.wall,
         "fluid": fluid,
         "inputs": result.inputs,
+        "dry_values": result.dry.record(),
         **result.derived,
         "sources": result.citations,
     }

@@ -48,6 +48,9 @@ NAMES: dict[str, str] = {
     "remove_fluid": "catalog_changes",
     "add_fluid_point": "catalog_changes",
     "import_fluid_points": "catalog_changes",
+    "pair_values": "pair_dry",
+    "add_pair_value": "pair_dry",
+    "dry_values": "pair_dry",
     # collisions and what is derived from them
     "pair": "scenario",
     "derive": "derivation",
@@ -101,6 +104,7 @@ FACE: dict[str, str] = {
     "MATERIALS": "presentation",
     "FLUIDS": "presentation",
     "POINT_COLUMNS": "presentation",
+    "PAIR_VALUE_COLUMNS": "presentation",
     "SOURCE_COLUMNS": "presentation",
     "SOURCE_NARROW": "presentation",
     "DATASET_COLUMNS": "presentation",

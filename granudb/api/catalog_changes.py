@@ -155,10 +155,14 @@ def add_material(
 ) -> dict[str, Any]:
     """Add a material; returns it as ``material`` does. ``values``: ``density``,
     ``youngs_modulus``, ``poisson_ratio`` and ``roughness`` (required),
-    ``correlation_length``, ``shear_modulus``, ``yield_stress`` (each an SI number or a
-    string with its unit), ``description`` and ``source_locator`` (text). A shear modulus
-    not given is derived, G = E / (2(1 + ν)); with a ``yield_stress`` (in tension) yield
-    starts at 1.6 Y.
+    ``correlation_length``, ``shear_modulus``, ``yield_stress``, ``dry_restitution``,
+    ``dry_friction`` (each an SI number or a string with its unit, optionally with its
+    standard uncertainty, "190 GPa ± 5 %"), ``dry_source``, ``brittleness``,
+    ``description`` and ``source_locator`` (text). A shear modulus not given is derived,
+    G = E / (2(1 + ν)); with a ``yield_stress`` (in tension) yield starts at 1.6 Y.
+    ``dry_restitution`` and ``dry_friction`` are the material's own dry values, cited by
+    ``dry_source`` (the pair's prediction uses them, docs/physics.md §18); ``brittleness``
+    is "brittle" (cracks instead of yielding) or "ductile".
 
     Examples
     --------

@@ -12,6 +12,7 @@ from granudb.analysis import collision_query
 from granudb.reporting.format import display, display_uncertain
 from granudb.vocabulary import DERIVED_TERMS, FLUIDS, MATERIALS, Term, term
 from granudb.vocabulary.catalogue import (
+    PAIR_VALUE_COLUMNS,
     POINT_COLUMNS,
     SOURCE_COLUMNS,
     SOURCE_NARROW,
@@ -43,6 +44,7 @@ __all__ = [
     "FIT_TABLE_COLUMNS",
     "FLUIDS",
     "MATERIALS",
+    "PAIR_VALUE_COLUMNS",
     "POINT_COLUMNS",
     "PUBLISHED_NARROW",
     "SOURCE_COLUMNS",

@@ -109,6 +109,7 @@ def pair(
         immersed=document["fluid"] is not None,
         materials=(document["particle"], document["wall"]),
         fluid_name=document["fluid"]["name"] if document["fluid"] else None,
+        dry=document["dry_values"],
     )
     document["critical_stokes"] = st_c
     document["verdicts"] = [

@@ -43,6 +43,11 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
         "app",
         "Sources (papers, correlations) cited by stored values.",
     ),
+    "pairs": (
+        "granudb.cli.pairs",
+        "app",
+        "Dry restitution and friction of pairs of materials, with their sources.",
+    ),
     "collisions": (
         "granudb.cli.collisions",
         "app",

@@ -125,6 +125,18 @@ def print_pair(document: dict[str, Any]) -> None:
         )
     props.add_row("source", Text(_cite(particle)), Text(_cite(wall)))
     out.print(props)
+    dry = document["dry_values"]
+    values = Table(title="Dry values of the pair", title_justify="left")
+    for heading in ("value", "", "basis", "source"):
+        values.add_column(heading, overflow="fold")
+    for which, symbol in (("restitution", "e_dry"), ("friction", "μ_dry")):
+        values.add_row(
+            symbol,
+            f"{dry[f'dry_{which}']:.4g}",
+            dry[f"dry_{which}_basis"],
+            Text(dry[f"dry_{which}_source"]),
+        )
+    out.print(values)
 
     derived = Table(title="Derived quantities", title_justify="left")
     derived.add_column("quantity")

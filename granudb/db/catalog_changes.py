@@ -24,7 +24,7 @@ from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, P
 from granudb.db.upsert import Change, same_value
 from granudb.errors import ConflictError, ValidationError
 from granudb.vocabulary import Catalogue, check_record
-from granudb.vocabulary.catalogue import check_entry
+from granudb.vocabulary.catalogue import check_entry, check_words
 from granudb.vocabulary.text import check_name, name_key
 
 MODELS: dict[str, type] = {"material": Material, "fluid": Fluid}
@@ -59,6 +59,7 @@ def _check_fields(catalogue: Catalogue, values: dict[str, Any]) -> None:
     if unknown:
         raise ValidationError(unknown[0], values[unknown[0]], f"is not a {catalogue.kind} field")
     check_record(values)
+    check_words(catalogue, values)
 
 
 def add_entry(

@@ -26,7 +26,7 @@ from sqlalchemy.sql.expression import TableClause
 from granudb.errors import NotFoundError
 from granudb.vocabulary.catalogue import FLUIDS as FLUID_CATALOGUE
 from granudb.vocabulary.catalogue import MATERIALS as MATERIAL_CATALOGUE
-from granudb.vocabulary.catalogue import SOURCE_COLUMNS, Catalogue
+from granudb.vocabulary.catalogue import PAIR_VALUE_COLUMNS, SOURCE_COLUMNS, Catalogue
 from granudb.vocabulary.text import name_key
 
 
@@ -59,10 +59,31 @@ class MaterialRow:
     u_correlation_length_m: float | None
     u_shear_modulus_pa: float | None
     u_yield_stress_pa: float | None
+    dry_restitution: float | None
+    dry_friction: float | None
+    dry_provenance: str | None
+    brittleness: str | None
+    u_dry_restitution: float | None
+    u_dry_friction: float | None
     source_locator: str | None
     source: SourceRow | None
     created_at: Any
     updated_at: Any
+
+
+@dataclass(frozen=True, slots=True)
+class PairValueRow:
+    """Dry values a source measured for one pair (``granudb.db.models.PairValue``), with
+    the two materials' names."""
+
+    particle: str
+    wall: str
+    dry_restitution: float | None
+    dry_friction: float | None
+    immersed_friction: float | None
+    source_locator: str | None
+    notes: str | None
+    source: SourceRow | None
 
 
 @dataclass(frozen=True, slots=True)
@@ -113,7 +134,11 @@ def _stored(record: type) -> list[str]:
 
 
 #: Columns read with a type, so every backend gives the same Python value.
-TYPED = {"created_at": DateTime(timezone=True), "updated_at": DateTime(timezone=True)}
+TYPED = {
+    "created_at": DateTime(timezone=True),
+    "updated_at": DateTime(timezone=True),
+    "released_at": DateTime(timezone=True),
+}
 
 
 def lightweight_table(name: str, columns: list[str]) -> TableClause:
@@ -126,8 +151,13 @@ SOURCES = lightweight_table("sources", ["id", *SOURCE_COLUMNS])
 MATERIALS = lightweight_table("materials", ["id", "name_key", "revision_of", *_stored(MaterialRow)])
 FLUIDS = lightweight_table("fluids", ["id", "name_key", "revision_of", *_stored(FluidRow)])
 FLUID_POINTS = lightweight_table("fluid_points", ["id", "fluid_id", *_stored(FluidPointRow)])
+PAIR_VALUES = lightweight_table(
+    "pair_values",
+    ["id", "particle_id", "wall_id", "created_at",
+     *(c for c in _stored(PairValueRow) if c not in ("particle", "wall"))],
+)  # fmt: skip
 #: Every lightweight table above, for the test that holds them to the models.
-TABLES = (SOURCES, MATERIALS, FLUIDS, FLUID_POINTS)
+TABLES = (SOURCES, MATERIALS, FLUIDS, FLUID_POINTS, PAIR_VALUES)
 
 
 def _sources(connection: Connection) -> dict[int, SourceRow]:
@@ -389,3 +419,49 @@ def point_records(fluid: Any) -> list[dict[str, Any]]:
         }
         for p in sorted(fluid.points, key=lambda p: p.temperature_c)
     ]
+
+
+def pair_value_rows(
+    connection: Connection,
+    particle: str | None = None,
+    wall: str | None = None,
+    before: Any = None,
+) -> list[PairValueRow]:
+    """The pairs' measured dry values, by particle and wall name; with ``particle`` and
+    ``wall`` the values of that pair either way round (none: an empty list); with
+    ``before`` (a release's ``released_at``) only those stored before it."""
+    first, second = MATERIALS.alias("first"), MATERIALS.alias("second")
+    query = (
+        select(*PAIR_VALUES.c, first.c.name.label("particle"), second.c.name.label("wall"))
+        .select_from(PAIR_VALUES)
+        .join(first, first.c.id == PAIR_VALUES.c.particle_id)
+        .join(second, second.c.id == PAIR_VALUES.c.wall_id)
+        .order_by(first.c.name_key, second.c.name_key)
+    )
+    if particle is not None and wall is not None:
+        one, other = name_key(particle), name_key(wall)
+        query = query.where(
+            or_(
+                (first.c.name_key == one) & (second.c.name_key == other),
+                (first.c.name_key == other) & (second.c.name_key == one),
+            )
+        )
+    if before is not None:
+        query = query.where(PAIR_VALUES.c.created_at <= before)
+    sources = _sources(connection)
+    return [_build(PairValueRow, row, sources) for row in connection.execute(query).mappings()]
+
+
+def pair_value_record(row: PairValueRow) -> dict[str, Any]:
+    """A pair's measured dry values as a record (``PAIR_VALUE_COLUMNS``)."""
+    return {c: source_key(row.source) if c == "source" else getattr(row, c)
+            for c in PAIR_VALUE_COLUMNS}  # fmt: skip
+
+
+def released_at(connection: Connection, dataset_id: int | None) -> Any:
+    """When dataset ``dataset_id`` was released (None: a draft, or no dataset)."""
+    if dataset_id is None:
+        return None
+    datasets = lightweight_table("datasets", ["id", "released_at"])
+    query = select(datasets.c.released_at).where(datasets.c.id == dataset_id)
+    return connection.execute(query).scalar_one_or_none()

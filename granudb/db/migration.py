@@ -212,6 +212,13 @@ def downgrade(
 #: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
 #: rows that lose something, what happens to them). Checked constraints are not data.
 _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
+    "0006": [
+        *(
+            ("materials", c, f"{c} IS NOT NULL", "dropped")
+            for c in ("dry_restitution", "dry_friction", "dry_provenance", "brittleness")
+        ),
+        ("pair_values", "dry_restitution", "1 = 1", "dropped (the pair values table goes)"),
+    ],
     "0005": [
         (
             "collisions",

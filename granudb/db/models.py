@@ -51,12 +51,22 @@ __all__ = [
     "Fluid",
     "FluidPoint",
     "Material",
+    "PairValue",
     "PublishedValue",
     "SeedRecord",
     "Source",
     "name_key",
     "utcnow",
 ]
+
+
+#: The dry values' ranges, on materials and on pairs alike (migration 0006).
+DRY_VALUE_RULES = {
+    "dry_restitution_range": "dry_restitution IS NULL OR "
+    "(dry_restitution > 0 AND dry_restitution <= 1)",
+    "dry_friction_non_negative": "dry_friction IS NULL OR dry_friction >= 0",
+}
+DRY_VALUE_CHECKS = tuple(CheckConstraint(rule, name=n) for n, rule in DRY_VALUE_RULES.items())
 
 
 # Stable constraint names, so migrations can refer to them on every dialect.
@@ -110,6 +120,14 @@ class Material(Timestamped, Base):
     u_correlation_length_m: Mapped[float | None] = mapped_column(Float)
     u_shear_modulus_pa: Mapped[float | None] = mapped_column(Float)
     u_yield_stress_pa: Mapped[float | None] = mapped_column(Float)
+    #: The material's own dry restitution and friction, and where they come from
+    #: (docs/physics.md §18); empty where not known. Brittleness: "brittle" or "ductile".
+    dry_restitution: Mapped[float | None] = mapped_column(Float)
+    dry_friction: Mapped[float | None] = mapped_column(Float)
+    dry_provenance: Mapped[str | None] = mapped_column(Text)
+    brittleness: Mapped[str | None] = mapped_column(String(20))
+    u_dry_restitution: Mapped[float | None] = mapped_column(Float)
+    u_dry_friction: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     #: Set on a revision: the values this material had when a released dataset used it,
@@ -128,6 +146,11 @@ class Material(Timestamped, Base):
         _positive_if_given("shear_modulus_pa", "shear_modulus_positive"),
         _positive_if_given("yield_stress_pa", "yield_stress_positive"),
         *_non_negative_if_given(MATERIALS.uncertainties.values()),
+        *DRY_VALUE_CHECKS,
+        CheckConstraint(
+            "brittleness IS NULL OR brittleness IN ('brittle', 'ductile')",
+            name="brittleness_word",
+        ),
     )
 
 
@@ -421,6 +444,41 @@ class PublishedValue(Base):
     __table_args__ = (
         UniqueConstraint("source_id", "label", "quantity"),
         CheckConstraint("uncertainty IS NULL OR uncertainty >= 0", name="uncertainty_non_negative"),
+    )
+
+
+class PairValue(Timestamped, Base):
+    """Dry values a source measured for one pair of materials (either way round: steel
+    on Zerodur is Zerodur hit by steel), docs/physics.md §18. They come before the two
+    materials' own values; ``created_at`` lets a release read only the pair values that
+    existed when it was released."""
+
+    __tablename__ = "pair_values"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    particle_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    wall_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    dry_restitution: Mapped[float | None] = mapped_column(Float)
+    dry_friction: Mapped[float | None] = mapped_column(Float)
+    #: Friction of the pair where asperities touch in a liquid (Joseph & Hunt §4: glass on
+    #: Zerodur, 0.15); empty: the dry value is used there.
+    immersed_friction: Mapped[float | None] = mapped_column(Float)
+    source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
+    source_locator: Mapped[str | None] = mapped_column(String(200))
+    notes: Mapped[str | None] = mapped_column(Text)
+
+    __table_args__ = (
+        UniqueConstraint("particle_id", "wall_id"),
+        CheckConstraint(
+            "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL "
+            "OR immersed_friction IS NOT NULL",
+            name="has_a_value",
+        ),
+        CheckConstraint(
+            "immersed_friction IS NULL OR immersed_friction >= 0",
+            name="immersed_friction_non_negative",
+        ),
+        *(CheckConstraint(rule, name=n) for n, rule in DRY_VALUE_RULES.items()),
     )
 
 

@@ -25,6 +25,7 @@ from granudb.db.models import (
     Fluid,
     FluidPoint,
     Material,
+    PairValue,
     PublishedValue,
     SeedRecord,
     Source,
@@ -138,6 +139,16 @@ def apply_seed(session: Session, data: Any, *, overwrite_edits: bool = False) ->
         row["fluid_id"] = resolve.named(Fluid, row.pop("fluid"), where)
         label = f"published value {key['label']} / {key['quantity']}"
         changes.append(upsert(session, PublishedValue, key, row, label)[1])
+
+    for row in (dict(r) for r in data.pairs):
+        pair = f"{row['particle']} on {row['wall']}"
+        where = f"pair_values.csv {pair}"
+        key = {
+            "particle_id": resolve.named(Material, row.pop("particle"), where),
+            "wall_id": resolve.named(Material, row.pop("wall"), where),
+        }
+        row["source_id"] = resolve.source(row.pop("source"), where)
+        changes.append(upsert(session, PairValue, key, row, f"pair values {pair}")[1])
 
     session.flush()
     return summarize(changes)

@@ -8,18 +8,18 @@ them (idempotently, reporting every change).
 from __future__ import annotations
 
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from granudb.io.tables import convert_frame, map_headers
 from granudb.lazy import pandas as pd
 from granudb.resources import shipped_dir
-from granudb.vocabulary import FLUID_PROPERTIES, MATERIAL_PROPERTIES
+from granudb.vocabulary import FLUID_PROPERTIES, MATERIAL_PROPERTIES, MATERIALS
 from granudb.vocabulary.rules import check_record
 
 MATERIAL_NUMERIC = list(MATERIAL_PROPERTIES)
-MATERIAL_TEXT = ["name", "description", "source", "source_locator"]
+MATERIAL_TEXT = ["name", "description", "source", "source_locator", *MATERIALS.texts]
 FLUID_NUMERIC = list(FLUID_PROPERTIES)
 FLUID_TEXT = [
     "name",
@@ -33,6 +33,8 @@ FLUID_TEXT = [
 ]
 POINT_NUMERIC = ["temperature_c", "viscosity_pa_s", "density_kg_m3"]
 POINT_TEXT = ["fluid", "source", "source_locator"]
+PAIR_NUMERIC = ["dry_restitution", "dry_friction", "immersed_friction"]
+PAIR_TEXT = ["particle", "wall", "source", "source_locator", "notes"]
 PUBLISHED_NUMERIC = ["value", "uncertainty"]
 PUBLISHED_TEXT = [
     "source",
@@ -75,6 +77,7 @@ class SeedData:
     fluids: list[dict[str, Any]]
     points: list[dict[str, Any]]
     published: list[dict[str, Any]]
+    pairs: list[dict[str, Any]] = field(default_factory=list)
 
 
 def read_seed(folder: Path | None = None) -> SeedData:
@@ -82,10 +85,12 @@ def read_seed(folder: Path | None = None) -> SeedData:
     folder = folder or shipped_dir("seed_data")
     sources = tomllib.loads((folder / "sources.toml").read_text(encoding="utf-8"))["sources"]
     points = folder / "fluid_points.csv"
+    pairs = folder / "pair_values.csv"
     return SeedData(
         sources=list(sources),
         materials=read_table(folder / "materials.csv", MATERIAL_NUMERIC, MATERIAL_TEXT),
         fluids=read_table(folder / "fluids.csv", FLUID_NUMERIC, FLUID_TEXT),
         points=read_table(points, POINT_NUMERIC, POINT_TEXT) if points.exists() else [],
         published=read_table(folder / "published_values.csv", PUBLISHED_NUMERIC, PUBLISHED_TEXT),
+        pairs=read_table(pairs, PAIR_NUMERIC, PAIR_TEXT) if pairs.exists() else [],
     )

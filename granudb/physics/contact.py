@@ -274,10 +274,8 @@ def contact_time(
 
     Parameters
     ----------
-    mass : mass m (the effective mass for two bodies) [kg]
-    radius : radius R (the effective radius for two bodies) [m]
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    speed : impact speed V (the normal component for an oblique impact) [m/s]
+    mass, radius : m [kg] and R [m] (the effective ones for two bodies)
+    reduced_modulus_pa, speed : E* [Pa] and the normal impact speed V [m/s]
 
     Examples
     --------
@@ -326,10 +324,7 @@ def peak_impact_force(
 
     Parameters
     ----------
-    mass : mass m (the effective mass for two bodies) [kg]
-    speed : impact speed V (the normal component for an oblique impact) [m/s]
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    radius : radius R (the effective radius for two bodies) [m]
+    mass, speed, reduced_modulus_pa, radius : m [kg], V [m/s], E* [Pa], R [m]
 
     Examples
     --------

@@ -37,9 +37,10 @@ min(``dry_friction``, ``limiting_shear_slope``), Bair & Winer 1979),
 "no_pressure_coefficient" or "dry".
 
 **Friction for Maw's regime** (``friction_coefficient_used``): ``dry_friction`` where
-the collision is dry or σ > h_m (asperities touch, the paper's §4 argument; with the
-default h_m = x₁/3 a roughness in Davis's "uncertain" band x₁/4 < σ ≤ x₁/3 is still
-treated as a film, and ``roughness_regime`` says it is uncertain); else the film's:
+the collision is dry, and where σ > h_m (asperities touch, the paper's §4 argument) in a
+liquid the pair's ``immersed_friction`` where one is known (NaN: ``dry_friction``). With
+the default h_m = x₁/3 a roughness in Davis's "uncertain" band x₁/4 < σ ≤ x₁/3 is still
+treated as a film, and ``roughness_regime`` says it is uncertain. Else the film's:
 (5.8) when in range; the cap min(dry, γ_max) — a film at its limiting shear stress —
 when (5.8) is above it. For a fluid without a pressure–viscosity coefficient (water in
 the seed data) μ_f is not computed: water's viscosity *decreases* with pressure below
@@ -49,10 +50,20 @@ film vanish (the isoviscous limit of (5.8) is not finite). The same cap is then 
 an upper bound: the regime is "gross_slip" where the bound already gives it (a smaller
 μ_f only slips more) and "undetermined" otherwise.
 
-**Restitution.** ``predicted_restitution`` = ``dry_restitution`` × exp(−35/St) with
-Legendre et al.'s added-mass St of the pair's normal approach, 0 where rebound is not
-expected (St_n ≤ ``critical_stokes``), ``dry_restitution`` for dry rows, NaN for an
-immersed row without fluid density.
+**Restitution.** ``dry_restitution`` and ``dry_friction`` are the pair's dry values, per
+row (``granudb.analysis.dry_values`` resolves them with their sources; the defaults are
+Joseph & Hunt's steel on Zerodur, borrowed). Past yield (``elastic_state``
+"yield_exceeded") the dry e is bounded by Thornton's elastic–plastic restitution,
+``restitution_ceiling`` = min(e_dry, e_Thornton(V_y/V)) (docs/physics.md §15) and
+``restitution_model`` says "elastic_plastic"; else it is e_dry ("elastic").
+``predicted_restitution`` = ``restitution_ceiling`` × exp(−35/St) with Legendre et al.'s
+added-mass St of the pair's normal approach, 0 where rebound is not expected
+(St_n ≤ ``critical_stokes``), ``restitution_ceiling`` for dry rows, NaN for an immersed
+row without fluid density.
+
+**Hertz's small strain.** ``contact_radius_ratio`` a/R* and ``approach_ratio`` δ/R*;
+``hertz_strain_valid`` where a/R* ≤ 0.1 (``limits.HERTZ_STRAIN_LIMIT``, docs/physics.md
+§16).
 """
 
 from __future__ import annotations
@@ -115,6 +126,9 @@ _INPUTS = {
     "wall_v_n_out_m_s": "w_vn_out",
     "wall_v_t_out_m_s": "w_vt_out",
     "wall_omega_out_rad_s": "w_w_out",
+    "dry_restitution": "e_dry",
+    "dry_friction": "mu_dry",
+    "immersed_friction": "mu_wet",
 }
 _TARGET_VELOCITIES = ("w_vn", "w_vt", "w_w", "w_vn_out", "w_vt_out", "w_w_out")
 
@@ -129,6 +143,12 @@ def _validate(x: dict[str, np.ndarray]) -> None:
         "must be > 0 (the normal speed towards the wall)",
     )
     _check("v_t_in_m_s", x["vt"], x["vt"] >= 0, "must be ≥ 0 (the tangential axis points along it)")
+    _check(
+        "dry_restitution", x["e_dry"], (x["e_dry"] > 0) & (x["e_dry"] <= 1), "must be > 0 and ≤ 1"
+    )
+    _check("dry_friction", x["mu_dry"], x["mu_dry"] >= 0, "must be ≥ 0")
+    wet = x["mu_wet"]
+    _check("immersed_friction", wet, np.isnan(wet) | (wet >= 0), "must be ≥ 0 (NaN: the dry value)")
     for name in ("particle_youngs_modulus_pa", "wall_youngs_modulus_pa"):
         _check(name, x[_INPUTS[name]], x[_INPUTS[name]] > 0, "must be > 0")
     for name in ("particle_density_kg_m3", "wall_density_kg_m3"):
@@ -205,9 +225,10 @@ def derive(
     wall_v_t_out_m_s: Numeric = np.nan,
     wall_omega_out_rad_s: Numeric = np.nan,
     critical_stokes: float = flow.CRITICAL_STOKES_NUMBER,
-    dry_friction: float = DRY_FRICTION,
+    dry_friction: Numeric = DRY_FRICTION,
     gap_fraction: float = lubrication.GAP_FRACTION,
-    dry_restitution: float = DRY_RESTITUTION,
+    dry_restitution: Numeric = DRY_RESTITUTION,
+    immersed_friction: Numeric = np.nan,
     limiting_shear_slope: float = limits.LIMITING_SHEAR_SLOPE,
     threads: int | None = None,
     uncertainties: Mapping[str, Numeric] | None = None,
@@ -260,10 +281,9 @@ def derive(
     compute = partial(
         _derive_block,
         uncertain=uncertainties is not None,
-        caps=(dry_friction, limiting_shear_slope),
+        limiting_shear_slope=limiting_shear_slope,
         gap_fraction=gap_fraction,
         critical_stokes=critical_stokes,
-        dry_restitution=dry_restitution,
     )
     try:
         return run_blocked(compute, x, threads)
@@ -276,21 +296,21 @@ def _derive_block(
     x: dict[str, np.ndarray],
     *,
     uncertain: bool,
-    caps: tuple[float, float],
+    limiting_shear_slope: float,
     gap_fraction: float,
     critical_stokes: float,
-    dry_restitution: float,
 ) -> dict[str, np.ndarray]:
     """Every derived column for broadcast inputs ``x`` (one block of rows), after
     ``_validate``."""
     _validate(x)
+    caps = (x["mu_dry"], limiting_shear_slope)
     p = steps.pair_properties(x)
     h = steps.hertz(x, p)
     f = steps.fluid_numbers(x, p, gap_fraction)
     lub = steps.lubricated(x, p, h, f, caps)
-    tan = steps.tangential(p, f, lub, caps)
+    tan = steps.tangential(p, f, lub, caps, x["mu_wet"])
     col = steps.collision(p)
-    columns = _columns(p, h, f, lub, tan, col, critical_stokes, dry_restitution)
+    columns = _columns(p, h, f, lub, tan, col, critical_stokes)
     if uncertain:
         u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
         columns.update(
@@ -337,11 +357,10 @@ def _columns(
     tan: dict[str, np.ndarray],
     col: dict[str, np.ndarray],
     critical_stokes: float,
-    dry_restitution: float,
 ) -> dict[str, np.ndarray]:
     """The derived columns under granudb's names (``DERIVED_TERMS``)."""
     rebound = ~f["immersed"] | (f["st_n"] > critical_stokes)
-    predicted = flow.predicted_restitution(f["st_am"], dry_restitution, critical_stokes)
+    predicted = flow.predicted_restitution(f["st_am"], h["e_dry"], critical_stokes)
     predicted = np.where(f["immersed"] & ~rebound, 0.0, predicted)
     predicted = np.where(f["immersed"] & np.isnan(f["st_am"]), np.nan, predicted)
     return {
@@ -368,6 +387,11 @@ def _columns(
         "quasi_static_valid": h["qs_valid"],
         "yield_speed_m_s": h["yield_speed"],
         "elastic_state": limits.names(limits.ELASTIC_STATES, h["elastic_state"]),
+        "restitution_ceiling": h["e_dry"],
+        "restitution_model": h["e_model"],
+        "contact_radius_ratio": h["a_ratio"],
+        "approach_ratio": h["delta_ratio"],
+        "hertz_strain_valid": h["strain_valid"],
         "elastic_length_m": f["x1"],
         "min_gap_m": f["h_m"],
         "eta_hat_pa_inv": f["eta_hat"],

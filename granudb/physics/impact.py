@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from granudb.physics import pair
 from granudb.physics.numeric import Numeric, as_float
 
 #: Squared radius of gyration over R² of a solid sphere, K² = 2/5.
@@ -102,15 +103,14 @@ def effective_rebound(v_T_out: Numeric, v_n_in: Numeric) -> Numeric:
 
     Parameters
     ----------
-    v_T_out : tangential velocity of the contact point after impact v_T,out [m/s]
-    v_n_in : normal speed before impact v_N,in [m/s]
+    v_T_out, v_n_in : v_T,out of the contact point after impact, v_N,in before it [m/s]
 
     Examples
     --------
     >>> float(effective_rebound(-0.034, 0.2))
     -0.17
     """
-    return as_float(v_T_out) / as_float(v_n_in)
+    return effective_incidence(v_T_out, v_n_in)
 
 
 def gyration_factor(gyration: Numeric = SOLID_SPHERE_GYRATION) -> Numeric:
@@ -141,9 +141,7 @@ def sliding_friction(
 
     Parameters
     ----------
-    psi_in : effective incidence Ψ_in [-]
-    psi_out : effective rebound Ψ_out [-]
-    restitution : normal restitution e [-]
+    psi_in, psi_out, restitution : Ψ_in, Ψ_out and e [-]
     gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
 
     Examples
@@ -151,9 +149,7 @@ def sliding_friction(
     >>> round(float(sliding_friction(2.0, 2.0 - 0.11 * 1.97 * 3.5, 0.97)), 6)
     0.11
     """
-    return (as_float(psi_in) - as_float(psi_out)) / (
-        (1.0 + as_float(restitution)) * gyration_factor(gyration)
-    )
+    return pair.pair_sliding_friction(psi_in, psi_out, restitution, gyration_factor(gyration))
 
 
 def sticking_friction(psi_in: Numeric, beta: Numeric, restitution: Numeric) -> Numeric:

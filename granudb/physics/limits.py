@@ -126,6 +126,89 @@ def elastic_state(
     return np.where(exceeded, YIELD_EXCEEDED, np.where(both, ELASTIC, YIELD_UNKNOWN))
 
 
+#: Largest a/R at which granudb calls Hertz's small-strain theory valid (docs/physics.md
+#: §16). Hertz assumes the contact small against the radii (a ≪ R, Johnson 1985 §4.2);
+#: at a/R = 0.1 the approach is δ/R = (a/R)² = 0.01, strains of about a percent, and the
+#: error of the theory a few percent. Beyond it a number is outside the theory's range.
+HERTZ_STRAIN_LIMIT = 0.1
+
+
+def thornton_restitution(yield_speed: Numeric, normal_speed: Numeric) -> Numeric:
+    r"""Restitution of an elastic–perfectly plastic impact above the yield speed V_y,
+    Thornton (1997), docs/physics.md eq. (15.1), with r = V_y / V [-]:
+
+    e = (6√3/5)^{1/2} [1 − r²/6]^{1/2} {r / [r + 2√(6/5 − r²/5)]}^{1/4}
+
+    (Thornton, C. 1997, "Coefficient of restitution for collinear collisions of
+    elastic-perfectly plastic spheres", J. Appl. Mech. 64, 383–386.) It is 1 at V = V_y,
+    decreases with V and tends to 1.185 (V_y/V)^{1/4} for V ≫ V_y, the power law of
+    Johnson (1985) §11.5. Below V_y (r ≥ 1) the impact is elastic: 1 here, and the
+    caller's dry e is the ceiling (``elastic_plastic_restitution``). NaN V_y gives NaN.
+
+    Parameters
+    ----------
+    yield_speed : normal impact speed at the onset of yield V_y [m/s]
+    normal_speed : normal impact speed V [m/s]
+
+    Examples
+    --------
+    Hard steel on aluminium at 11 × V_y (the issue's figure, about 0.64):
+
+    >>> round(float(thornton_restitution(0.3 / 11, 0.3)), 3)
+    0.644
+    >>> float(thornton_restitution(0.3, 0.3))
+    1.0
+    """
+    r = np.minimum(as_float(yield_speed) / as_float(normal_speed), 1.0)
+    with np.errstate(invalid="ignore"):
+        return (
+            np.sqrt(6.0 * np.sqrt(3.0) / 5.0)
+            * np.sqrt(1.0 - r * r / 6.0)
+            * (r / (r + 2.0 * np.sqrt(6.0 / 5.0 - r * r / 5.0))) ** 0.25
+        )
+
+
+def elastic_plastic_restitution(
+    dry_restitution: Numeric, yield_speed: Numeric, normal_speed: Numeric
+) -> Numeric:
+    r"""The dry restitution with yield: min(e_dry, e_Thornton(V_y/V)) [-] (docs/physics.md
+    §15). The pair's measured (or borrowed) e_dry is the elastic ceiling; past V_y
+    Thornton's (15.1) takes over where it is lower. NaN V_y (yield not known): e_dry.
+
+    Parameters
+    ----------
+    dry_restitution : the pair's dry restitution e_dry [-]
+    yield_speed : normal impact speed at the onset of yield V_y [m/s]; NaN where not known
+    normal_speed : normal impact speed V [m/s]
+
+    Examples
+    --------
+    >>> [round(float(e), 3) for e in elastic_plastic_restitution(
+    ...     0.97, np.array([1.0, 0.3 / 11, np.nan]), 0.3)]
+    [0.97, 0.644, 0.97]
+    """
+    plastic = thornton_restitution(yield_speed, normal_speed)
+    return np.fmin(as_float(dry_restitution), plastic)
+
+
+def hertz_strain(contact_radius: Numeric, effective_radius: Numeric) -> tuple[Numeric, Numeric]:
+    r"""Hertz's small-strain measures a/R* and δ/R* = (a/R*)² [-] (docs/physics.md §16;
+    Hertz: δ = a²/R*, Johnson 1985 §4.2).
+
+    Parameters
+    ----------
+    contact_radius : Hertz contact radius a [m]
+    effective_radius : effective radius R* [m]
+
+    Examples
+    --------
+    >>> [round(float(x), 2) for x in hertz_strain(2.794e-3, 6.35e-3)]
+    [0.44, 0.19]
+    """
+    ratio = as_float(contact_radius) / as_float(effective_radius)
+    return ratio, ratio * ratio
+
+
 def lubricated_friction_state(
     friction: Numeric,
     immersed: Numeric,

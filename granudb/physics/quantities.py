@@ -13,6 +13,8 @@ from granudb.physics import contact, flow, impact, limits, lubrication, pair
 from granudb.physics.numeric import hypot
 
 Arrays = dict[str, np.ndarray]
+#: (the dry friction per row, the limiting-shear slope γ_max)
+Caps = tuple[np.ndarray | float, float]
 
 
 def pair_properties(x: Arrays) -> Arrays:
@@ -82,6 +84,9 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
     ratio = contact.quasi_static_ratio(a, c_wave, t_c)
     y_soft = np.fmin(x["y1"], x["y2"])
     state = limits.elastic_state(p_max, x["y1"], x["y2"])
+    yield_speed = limits.yield_speed_from_pressure(v_n, p_max, y_soft)
+    a_ratio, delta_ratio = limits.hertz_strain(a, r_eff)
+    plastic = state == limits.YIELD_EXCEEDED
     return {
         "load": load,
         "a": a,
@@ -91,8 +96,16 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
         "c_wave": c_wave,
         "qs_ratio": ratio,
         "qs_valid": (ratio < contact.QUASI_STATIC_LIMIT) & (state != limits.YIELD_EXCEEDED),
-        "yield_speed": limits.yield_speed_from_pressure(v_n, p_max, y_soft),
+        "yield_speed": yield_speed,
         "elastic_state": state,
+        "a_ratio": a_ratio,
+        "delta_ratio": delta_ratio,
+        "strain_valid": a_ratio <= limits.HERTZ_STRAIN_LIMIT,
+        # past yield Thornton's (15.1) bounds the dry e (docs/physics.md §15)
+        "e_dry": np.where(
+            plastic, limits.elastic_plastic_restitution(x["e_dry"], yield_speed, v_n), x["e_dry"]
+        ),
+        "e_model": np.where(plastic, "elastic_plastic", "elastic").astype(object),
     }
 
 
@@ -127,7 +140,7 @@ def fluid_numbers(x: Arrays, p: Arrays, gap_fraction: float) -> Arrays:
     }
 
 
-def lubricated(x: Arrays, p: Arrays, h: Arrays, f: Arrays, caps: tuple[float, float]) -> Arrays:
+def lubricated(x: Arrays, p: Arrays, h: Arrays, f: Arrays, caps: Caps) -> Arrays:
     """Gohar's film, A(c) and (5.8) at the contact point's relative speed, with its state.
 
     (5.8) is only evaluated where the fluid has a pressure–viscosity coefficient; the
@@ -153,16 +166,22 @@ def lubricated(x: Arrays, p: Arrays, h: Arrays, f: Arrays, caps: tuple[float, fl
     }
 
 
-def tangential(p: Arrays, f: Arrays, lub: Arrays, caps: tuple[float, float]) -> Arrays:
+def tangential(
+    p: Arrays, f: Arrays, lub: Arrays, caps: Caps, immersed_friction: np.ndarray
+) -> Arrays:
     """Maw's regime with the friction the physics supports (``derive`` documents the rule)."""
     dry, _ = caps
+    # asperities touching in a liquid: the pair's immersed value where one is known
+    touching = np.where(f["immersed"] & np.isfinite(immersed_friction), immersed_friction, dry)
     cap = limits.friction_cap(*caps)
     film = f["immersed"] & ~f["rough"]
     state = lub["state"]
     # No tangential motion: nothing slips, and (5.8) gives 0; Maw's ψ_in = 0 with the dry
     # value, as before issue 13 (a 0/0 here would read as gross slip).
     still = lub["u_abs"] == 0.0
-    mu_used = np.where(~film | still, dry, np.where(state == limits.IN_RANGE, lub["mu_lub"], cap))
+    mu_used = np.where(
+        ~film | still, touching, np.where(state == limits.IN_RANGE, lub["mu_lub"], cap)
+    )
     ratio = impact.stiffness_ratio(p["g_star"], p["e_star"])
     chi = ratio * p["walton"]
     psi = impact.maw_psi(ratio, lub["u_abs"], mu_used, p["v_n"])

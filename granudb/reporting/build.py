@@ -160,6 +160,7 @@ def _pair_sections(
             immersed,
             materials=(result.particle, result.wall),
             fluid_name=result.fluid["name"] if result.fluid else None,
+            dry=result.dry.record(),
         )
     ]
     report["properties"] = [

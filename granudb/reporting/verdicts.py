@@ -14,8 +14,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from granudb.analysis.dry_values import BORROWED_VALUES
 from granudb.physics import flow, limits
-from granudb.physics.derive import DRY_FRICTION, DRY_RESTITUTION
 from granudb.physics.uncertainty import LIKELY, UNLIKELY, certainty
 from granudb.reporting.format import display, engineering, is_number
 
@@ -30,12 +30,29 @@ ROUGHNESS_WORDS = {
 PREDICTION_FORM = (
     f"e = e_dry exp(−{flow.LEGENDRE_BETA:g}/St) (Legendre, Zenit, Daniel & Guiraud 2006), "
     f"St = (ρ_p + ρ_f/2) 2R* v_N,in / (9μ) the added-mass Stokes number of the pair's normal "
-    f"approach, e_dry = {DRY_RESTITUTION:g} (Joseph & Hunt §3); 0 where St_n ≤ St_c"
+    f"approach; 0 where St_n ≤ St_c"
+)
+#: Where the elastic–plastic restitution comes from (docs/physics.md §15).
+THORNTON = (
+    "Thornton (1997), J. Appl. Mech. 64, 383: e = min(e_dry, e_T(V_y/V)), elastic–perfectly "
+    "plastic spheres"
 )
 BRITTLE_NOTE = (
-    "Brittle bodies (glasses, ceramics, glass-ceramics) do not yield: they fail by "
-    "Hertzian cone cracks, which granudb does not predict (a note, not a number)."
+    "{names} {verb} stored as brittle: brittle bodies do not yield, they fail by Hertzian "
+    "cone cracks, which granudb does not predict (a note, not a number)."
 )
+#: Without stored dry values: Joseph & Hunt's steel on Zerodur (``analysis.dry_values``).
+BORROWED_DRY = BORROWED_VALUES.record()
+
+
+_SYMBOLS = {"dry_restitution": "e_dry", "dry_friction": "μ_dry", "immersed_friction": "μ"}
+
+
+def dry_words(dry: Mapping[str, Any], key: str) -> str:
+    """A pair's value with its source, "e_dry = 0.97 (measured for steel on Zerodur
+    (joseph-hunt-2004, §3, figure 4))", for ``key`` "dry_restitution", "dry_friction" or
+    "immersed_friction"."""
+    return f"{_SYMBOLS[key]} = {dry[key]:.3g} ({dry[f'{key}_source']})"
 
 
 @dataclass(frozen=True)
@@ -54,8 +71,8 @@ def in_words(value: Any, unit: str = "", missing: str = "not known") -> str:
     return engineering(float(value), unit, 3) if unit else f"{float(value):.3g}"
 
 
-def friction_cap() -> float:
-    return float(limits.friction_cap(DRY_FRICTION, limits.LIMITING_SHEAR_SLOPE))
+def friction_cap(dry_friction: float = BORROWED_VALUES.friction) -> float:
+    return float(limits.friction_cap(dry_friction, limits.LIMITING_SHEAR_SLOPE))
 
 
 def verdicts(
@@ -64,19 +81,24 @@ def verdicts(
     immersed: bool = True,
     materials: Sequence[Mapping[str, Any]] = (),
     fluid_name: str | None = None,
+    dry: Mapping[str, Any] | None = None,
 ) -> list[Verdict]:
     """Rebound and predicted restitution, roughness against gap, the lubricated friction,
-    Maw's tangential regime, Hertz validity and yield. ``materials`` (particle, wall
-    records) name the bodies whose yield stress is not known; ``fluid_name`` the fluid.
-    Where the inputs carry uncertainties, the rebound, roughness and yield verdicts say
-    their probability (``with_probability``)."""
+    Maw's tangential regime, Hertz validity (quasi-static, small strain) and yield.
+    ``materials`` (particle, wall records) name the bodies whose yield stress is not known
+    or that are brittle; ``fluid_name`` the fluid; ``dry`` the pair's dry values with their
+    sources (``DryValues.record()``; None: the borrowed ones, said so). Where the inputs
+    carry uncertainties, the rebound, roughness and yield verdicts say their probability
+    (``with_probability``)."""
+    dry = dry or BORROWED_DRY
     said = [
-        rebound_verdict(derived, critical_stokes, immersed),
-        restitution_verdict(derived, critical_stokes, immersed),
+        rebound_verdict(derived, critical_stokes, immersed, dry),
+        restitution_verdict(derived, critical_stokes, immersed, dry),
         roughness_verdict(derived, immersed),
-        friction_verdict(derived, immersed, fluid_name),
+        friction_verdict(derived, immersed, fluid_name, dry),
         tangential_verdict(derived),
         quasi_static_verdict(derived),
+        strain_verdict(derived),
         yield_verdict(derived, materials),
     ]
     return [with_probability(verdict, derived) for verdict in said]
@@ -113,12 +135,17 @@ def with_probability(verdict: Verdict, derived: Mapping[str, Any]) -> Verdict:
     return Verdict(verdict.key, verdict.name, text, verdict.raised or word == "uncertain")
 
 
-def rebound_verdict(derived: Mapping[str, Any], critical_stokes: float, immersed: bool) -> Verdict:
+def rebound_verdict(
+    derived: Mapping[str, Any],
+    critical_stokes: float,
+    immersed: bool,
+    dry: Mapping[str, Any] = BORROWED_DRY,
+) -> Verdict:
     st_n = derived.get("normal_stokes_number")
     if not immersed:
         text = (
-            "expected: a dry collision rebounds "
-            f"(restitution set by the solids, ē ≈ {DRY_RESTITUTION:g} on Zerodur)."
+            "expected: a dry collision rebounds (restitution set by the solids, "
+            f"{dry_words(dry, 'dry_restitution')})."
         )
         return Verdict("rebound_expected", "Rebound", text)
     if not is_number(st_n):
@@ -140,18 +167,35 @@ def rebound_verdict(derived: Mapping[str, Any], critical_stokes: float, immersed
     )
 
 
+def _ceiling(derived: Mapping[str, Any], dry: Mapping[str, Any]) -> str:
+    """The dry e the prediction starts from, with its source; past yield Thornton's."""
+    if derived.get("restitution_model") == "elastic_plastic":
+        return (
+            f"past yield: the elastic–plastic e = {in_words(derived.get('restitution_ceiling'))} "
+            f"({THORNTON}; V_y = {in_words(derived.get('yield_speed_m_s'), 'm/s')}), below "
+            f"{dry_words(dry, 'dry_restitution')}"
+        )
+    return dry_words(dry, "dry_restitution")
+
+
 def restitution_verdict(
-    derived: Mapping[str, Any], critical_stokes: float, immersed: bool
+    derived: Mapping[str, Any],
+    critical_stokes: float,
+    immersed: bool,
+    dry: Mapping[str, Any] = BORROWED_DRY,
 ) -> Verdict:
-    """The predicted wet restitution with its form and Stokes number named (docs/physics.md §10)."""
+    """The predicted restitution with its form, Stokes number and dry e named, each with
+    its source (docs/physics.md §10, §18, §15)."""
     e_pred = derived.get("predicted_restitution")
     st = derived.get("added_mass_stokes_number")
     name = "Predicted restitution"
+    plastic = derived.get("restitution_model") == "elastic_plastic"
     if not immersed:
         return Verdict(
             "predicted_restitution",
             name,
-            f"e = e_dry = {DRY_RESTITUTION:g} (dry; Joseph & Hunt §3).",
+            f"e = {in_words(e_pred)}: dry, {_ceiling(derived, dry)}.",
+            raised=plastic,
         )
     if not is_number(e_pred):
         return Verdict(
@@ -168,9 +212,10 @@ def restitution_verdict(
         return Verdict("predicted_restitution", name, text)
     text = (
         f"e ≈ {e_pred:.2f} at the added-mass Stokes number St = {in_words(st)}. "
-        f"Form: {PREDICTION_FORM}. A prediction where nothing is measured, not a fit."
+        f"Form: {PREDICTION_FORM}, with {_ceiling(derived, dry)}. A prediction where "
+        "nothing is measured, not a fit."
     )
-    return Verdict("predicted_restitution", name, text)
+    return Verdict("predicted_restitution", name, text, raised=plastic)
 
 
 def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verdict:
@@ -218,14 +263,20 @@ def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verd
 
 
 def friction_verdict(
-    derived: Mapping[str, Any], immersed: bool, fluid_name: str | None = None
+    derived: Mapping[str, Any],
+    immersed: bool,
+    fluid_name: str | None = None,
+    dry: Mapping[str, Any] = BORROWED_DRY,
 ) -> Verdict:
-    """The lubricated friction (5.8) and whether it is used (docs/physics.md §12)."""
+    """The lubricated friction (5.8) and whether it is used (docs/physics.md §12), with
+    the pair's dry friction and its source (§18)."""
     state = str(derived.get("lubricated_friction_state") or ("dry" if not immersed else ""))
     mu = derived.get("lubricated_friction")
-    cap = friction_cap()
+    cap = friction_cap(dry["dry_friction"])
+    mu_dry = dry_words(dry, "dry_friction")
+    touching = dry_words(dry, "immersed_friction")
     bound = (
-        f"min(μ_dry = {DRY_FRICTION:g}, limiting-shear slope γ_max = "
+        f"min({mu_dry}, limiting-shear slope γ_max = "
         f"{limits.LIMITING_SHEAR_SLOPE:g}, Bair & Winer 1979) = {cap:g}"
     )
     name = "Lubricated friction (5.8)"
@@ -234,7 +285,7 @@ def friction_verdict(
         return Verdict(
             "lubricated_friction_state",
             name,
-            f"dry contact: the dry μ_f = {DRY_FRICTION:g} is used.",
+            f"dry contact: the dry value is used, {mu_dry}.",
         )
     if state == "no_pressure_coefficient":
         fluid = fluid_name or "the fluid"
@@ -246,7 +297,7 @@ def friction_verdict(
             "Hunt §5), so neither a borrowed C nor the piezoviscous film (5.6) applies. "
             f"Decided: μ_f is only bounded, μ_f ≤ {bound}, and that bound is used for Maw's "
             "regime only where it already settles it."
-            + (" Asperities touch here, so the dry value is used." if asperities else ""),
+            + (f" Asperities touch here, so {touching} is used." if asperities else ""),
             raised=True,
         )
     if state == "above_limit":
@@ -257,7 +308,7 @@ def friction_verdict(
             f"{bound}; a film cannot carry more shear than its limiting shear stress, so "
             "this is not a prediction. "
             + (
-                "Asperities touch here, so the dry value is used for Maw's regime."
+                f"Asperities touch here, so {touching} is used for Maw's regime."
                 if asperities
                 else f"Maw's regime uses the cap μ_f = {cap:g} (a film at its limiting shear)."
             ),
@@ -265,7 +316,7 @@ def friction_verdict(
         )
     if state == "in_range":
         use = (
-            f"not used: asperities touch, so the dry μ_f = {DRY_FRICTION:g} is used."
+            f"not used: asperities touch, so {touching} is used."
             if asperities
             else "used for Maw's regime."
         )
@@ -286,6 +337,8 @@ _REGIME_WORDS = {
 
 def _friction_basis(derived: Mapping[str, Any]) -> str:
     regime, state = derived.get("roughness_regime"), derived.get("lubricated_friction_state")
+    if regime == "asperity_contact" and state != "dry":
+        return "the pair's with asperities touching in a liquid"
     if regime in ("dry", "asperity_contact") or state == "dry":
         return "the dry value"
     if state == "in_range":
@@ -342,6 +395,28 @@ def quasi_static_verdict(derived: Mapping[str, Any]) -> Verdict:
     )
 
 
+def strain_verdict(derived: Mapping[str, Any]) -> Verdict:
+    """Hertz's small strain: a/R* and δ/R* against a/R* ≤ 0.1 (docs/physics.md §16)."""
+    a_ratio, d_ratio = derived.get("contact_radius_ratio"), derived.get("approach_ratio")
+    name = "Hertz small strain"
+    words = (
+        f"a/R* = {in_words(a_ratio)}, δ/R* = {in_words(d_ratio)} (threshold a/R* ≤ "
+        f"{limits.HERTZ_STRAIN_LIMIT:g}: Hertz assumes a ≪ R, Johnson 1985 §4.2)"
+    )
+    if not is_number(a_ratio):
+        return Verdict("hertz_strain_valid", name, f"not computed: {words}.", raised=True)
+    if derived.get("hertz_strain_valid"):
+        return Verdict("hertz_strain_valid", name, f"valid: {words}.")
+    return Verdict(
+        "hertz_strain_valid",
+        "Hertz not valid",
+        f"Hertz not valid: {words}. The contact is too large for small-strain theory; "
+        "the Hertz load, contact time, pressure and everything built on them are outside "
+        "their range.",
+        raised=True,
+    )
+
+
 def _yield_known(materials: Sequence[Mapping[str, Any]]) -> tuple[list[str], list[str]]:
     known = [
         f"{m['name']} (Y = {display(m['yield_stress_pa'], 'youngs_modulus_pa')})"
@@ -371,7 +446,8 @@ def yield_verdict(
             f"{in_words(v_n, 'm/s')}): {pressure} > 1.6 Y of "
             f"{', '.join(known) or 'the softer body'} (Johnson 1985 §11.4). Hertz's elastic "
             "relations (2.1), (2.2), (5.5) and the lubricated friction built on them are "
-            "outside their range here.",
+            "outside their range here; the predicted restitution uses the elastic–plastic "
+            f"e = {in_words(derived.get('restitution_ceiling'))} ({THORNTON}).",
             raised=True,
         )
     if state == "elastic":
@@ -387,9 +463,14 @@ def yield_verdict(
         if known
         else ""
     )
+    brittle = [str(m["name"]) for m in materials if m.get("brittleness") == "brittle"]
+    note = ""
+    if brittle:
+        verb = "is" if len(brittle) == 1 else "are"
+        note = " " + BRITTLE_NOTE.format(names=" and ".join(brittle), verb=verb)
     return Verdict(
         "elastic_state",
         name,
         f"unknown: yield stress not known for {who}, so the onset of yield is not checked "
-        f"({pressure}).{partial} {BRITTLE_NOTE}",
+        f"({pressure}).{partial}{note}",
     )

@@ -46,6 +46,9 @@ class Catalogue:
     companions: dict[str, str] = field(default_factory=dict)
     trailing: tuple[str, ...] = ()
     reserved: dict[str, str] = field(default_factory=dict)
+    #: Text fields of this kind only (besides ``TEXT_FIELDS``), each with its allowed
+    #: words (empty: free text), shown in listings right after the properties.
+    texts: dict[str, tuple[str, ...]] = field(default_factory=dict)
 
     @property
     def columns(self) -> list[str]:
@@ -56,12 +59,15 @@ class Catalogue:
             if name in self.companions:
                 shown.append(self.companions[name])
             shown.append(uncertainty_column(name))  # u of the value; empty: not given
+        shown.extend(self.texts)
         return [*shown, "source", "source_locator", *self.trailing]
 
     @property
     def fields(self) -> frozenset[str]:
         """The stored fields a user may set: the properties and the text fields."""
-        return frozenset((*self.properties, *self.uncertainties.values(), *TEXT_FIELDS))
+        return frozenset(
+            (*self.properties, *self.uncertainties.values(), *self.texts, *TEXT_FIELDS)
+        )
 
     @property
     def uncertainties(self) -> dict[str, str]:
@@ -74,7 +80,7 @@ class Catalogue:
         """Python parameter → stored column, for the properties and the text fields
         (``youngs_modulus`` → ``youngs_modulus_pa``); the option is the parameter with
         dashes."""
-        return {parameter_of(c): c for c in (*self.properties, *TEXT_FIELDS)}
+        return {parameter_of(c): c for c in (*self.properties, *self.texts, *TEXT_FIELDS)}
 
 
 def parameter_of(column: str) -> str:
@@ -82,6 +88,14 @@ def parameter_of(column: str) -> str:
     option = TERMS[column].option
     return option.removeprefix("--").replace("-", "_") if option else column
 
+
+#: A material's own dry values (docs/physics.md §18): optional, with where they came from
+#: (``dry_provenance``, set by ``--dry-source``); a pair's measured values are kept apart
+#: (``PAIR_VALUE_COLUMNS``).
+DRY_VALUE_PROPERTIES = ("dry_restitution", "dry_friction")
+#: Brittle solids crack (Hertzian cone cracks) instead of yielding; stored, never guessed.
+BRITTLENESS = ("brittle", "ductile")
+MATERIAL_TEXTS: dict[str, tuple[str, ...]] = {"dry_provenance": (), "brittleness": BRITTLENESS}
 
 MATERIALS = Catalogue(
     kind="material",
@@ -94,6 +108,7 @@ MATERIALS = Catalogue(
         "correlation_length_m",
         "shear_modulus_pa",
         "yield_stress_pa",
+        *DRY_VALUE_PROPERTIES,
     ),
     required=("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m"),
     narrow=(
@@ -106,6 +121,7 @@ MATERIALS = Catalogue(
         "source",
     ),
     companions={"shear_modulus_pa": "shear_modulus_derived"},
+    texts=MATERIAL_TEXTS,
 )
 
 FLUIDS = Catalogue(
@@ -144,9 +160,30 @@ SOURCE_REQUIRED = ["key", "citation", "kind"]
 #: What a table of sources shows.
 SOURCE_NARROW = ["key", "year", "kind", "citation", "doi"]
 
+#: The columns of a pair's measured dry values (``granudb pairs list``): a source measured
+#: them for this particle material on this wall material (either way round).
+PAIR_VALUE_COLUMNS = [
+    "particle",
+    "wall",
+    "dry_restitution",
+    "dry_friction",
+    "immersed_friction",
+    "source",
+    "source_locator",
+    "notes",
+]
+
 CATALOGUES = {c.kind: c for c in (MATERIALS, FLUIDS)}
 MATERIAL_PROPERTIES = list(MATERIALS.properties)
 FLUID_PROPERTIES = list(FLUIDS.properties)
+
+
+def check_words(catalogue: Catalogue, values: dict[str, object]) -> None:
+    """A text field with allowed words (``Catalogue.texts``) takes only those words."""
+    for column, words in catalogue.texts.items():
+        value = values.get(column)
+        if words and value is not None and value not in words:
+            raise ValidationError(column, value, f"must be one of {', '.join(words)}")
 
 
 def check_entry(catalogue: Catalogue, values: dict[str, float | None]) -> None:

@@ -92,6 +92,25 @@ DERIVED_TERMS: dict[str, Term] = {
         "yield",
         "elastic / yield_exceeded (p_max > 1.6 Y) / unknown (a Y not known: not 'safe')",
     ),
+    "restitution_ceiling": _derived(
+        "Dry restitution used",
+        None,
+        "e_dry,V",
+        "the pair's dry e, bounded past yield by Thornton (1997): min(e_dry, e_T(V_y/V)) (§15)",
+    ),
+    "restitution_model": _derived(
+        "Restitution model",
+        None,
+        "e model",
+        "elastic (e_dry) or elastic_plastic (Thornton 1997, past V_y) (§15)",
+    ),
+    "contact_radius_ratio": _derived(
+        "Contact radius / radius", None, "a/R*", "a/R*, Hertz's small-strain measure (§16)"
+    ),
+    "approach_ratio": _derived("Approach / radius", None, "δ/R*", "δ/R* = (a/R*)² (§16)"),
+    "hertz_strain_valid": _derived(
+        "Hertz small strain valid", None, "a/R* ≤ 0.1", "a/R* ≤ 0.1, Hertz's small strain (§16)"
+    ),
     "elastic_length_m": _derived(
         "Elastic length", "m", "x₁", "x₁ = (4μv₀R^{3/2}/(πE*))^{2/5} (§1, Davis et al.)"
     ),

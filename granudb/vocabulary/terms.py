@@ -163,6 +163,49 @@ TERMS: dict[str, Term] = {
         option="--yield-stress",
         example="1.7 GPa",
     ),
+    # a material's own dry values and brittleness (docs/physics.md §18)
+    "dry_restitution": Term(
+        "Dry restitution",
+        None,
+        "Normal restitution e of a dry collision of this material (on itself or as a "
+        "source measured it), in (0, 1]; cite it with --dry-source. Empty where not known.",
+        symbol="e_dry",
+        option="--dry-restitution",
+        example="0.97",
+    ),
+    "dry_friction": Term(
+        "Dry friction",
+        None,
+        "Sliding friction coefficient μ_f of a dry contact of this material, ≥ 0; cite it "
+        "with --dry-source. Empty where not known.",
+        symbol="μ_dry",
+        option="--dry-friction",
+        example="0.11",
+    ),
+    "immersed_friction": Term(
+        "Immersed friction",
+        None,
+        "Sliding friction coefficient μ_f of a pair where asperities touch in a liquid "
+        "(Joseph & Hunt §4: glass on Zerodur, 0.15), ≥ 0; empty: the dry value is used.",
+        symbol="μ_wet",
+        option="--immersed-friction",
+        example="0.15",
+    ),
+    "dry_provenance": Term(
+        "Source of the dry values",
+        None,
+        "Where the dry restitution and friction come from (citation and table, figure or section).",
+        option="--dry-source",
+        example="Joseph & Hunt 2004 §3",
+    ),
+    "brittleness": Term(
+        "Brittleness",
+        None,
+        "brittle (fails by Hertzian cone cracks instead of yielding: no yield stress, no "
+        "elastic–plastic restitution) or ductile; empty where not known.",
+        option="--brittleness",
+        example="brittle",
+    ),
     # datasets
     "version": Term("Version", None, "Version of the dataset (semantic versioning)."),
     "title": Term("Title", None, "Human-readable title."),

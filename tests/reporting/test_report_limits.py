@@ -131,13 +131,19 @@ def test_yield_exceeded_is_a_raised_verdict_with_the_yield_speed() -> None:
 
 
 def test_unknown_yield_stress_is_said_in_words_with_a_brittle_note() -> None:
+    """The brittle note follows the stored brittleness, never a missing yield stress."""
     found = _by_key(
         _scenario(),
-        materials=({"name": "glass", "yield_stress_pa": None}, {"name": "Zerodur"}),
+        materials=(
+            {"name": "glass", "yield_stress_pa": None, "brittleness": "brittle"},
+            {"name": "PTFE"},
+        ),
     )
     verdict = found["elastic_state"]
-    assert "yield stress not known for glass and Zerodur" in verdict.text
-    assert "Hertzian cone cracks" in verdict.text
+    assert "yield stress not known for glass and PTFE" in verdict.text
+    assert "glass is stored as brittle" in verdict.text and "Hertzian cone cracks" in verdict.text
+    ductile = _by_key(_scenario(), materials=({"name": "PTFE"}, {"name": "PEEK"}))
+    assert "brittle" not in ductile["elastic_state"].text
     assert qualified_value(_scenario(), "yield_speed_m_s") == "not known (no yield stress)"
     _no_nan(found)
 

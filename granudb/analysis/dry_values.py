@@ -1,0 +1,194 @@
+"""The one rule for a pair's dry restitution and friction, and where each came from
+(docs/physics.md §18).
+
+For a particle material hitting a wall (or second sphere) material, each of e_dry and
+μ_dry is taken, in this order, from:
+
+1. **the pair table** (``pair_values``): a source measured it for this pair, either way
+   round (steel on Zerodur, Joseph & Hunt 2004 §3);
+2. **the two materials' own values**: e_dry the lower of the two (the more dissipative
+   body bounds the pair's rebound), μ_dry the geometric mean √(μ₁μ₂) (symmetric, and
+   equal to both when they agree). No source gives a rule for combining them: these are
+   granudb's, and the output says so. Where only one material has a value, it is used and
+   the output names the material whose value is missing;
+3. **borrowed**: Joseph & Hunt's steel on Zerodur, ē_dry = 0.97 and μ_f = 0.11 (§3),
+   labelled "borrowed" in every output.
+
+``predicted_restitution`` (``pair``, reports, ``derive`` of stored runs), the verdicts and
+the DEM export all take the values and their sources from ``dry_values``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from types import SimpleNamespace
+from typing import Any
+
+import numpy as np
+from sqlalchemy.engine import Connection
+
+from granudb.db import catalog_rows
+from granudb.db.catalog_rows import MaterialRow
+from granudb.physics.derive import DRY_FRICTION, DRY_RESTITUTION
+
+#: What a value borrowed from the global default says.
+BORROWED = "borrowed: steel on Zerodur, Joseph & Hunt 2004 §3"
+#: The bases, in the order they are tried.
+BASES = ("pair", "materials", "borrowed")
+
+
+@dataclass(frozen=True)
+class DryValues:
+    """A pair's dry restitution and friction, each with its basis ("pair",
+    "materials", "borrowed") and its source in words; and the friction used where
+    asperities touch in a liquid (the pair's measured value, else the dry one)."""
+
+    restitution: float
+    restitution_basis: str
+    restitution_source: str
+    friction: float
+    friction_basis: str
+    friction_source: str
+    #: Where asperities touch in a liquid: the pair's measured value, else the dry one.
+    immersed_friction: float
+    immersed_friction_basis: str
+    immersed_friction_source: str
+
+    def record(self) -> dict[str, Any]:
+        """The values as JSON/CSV fields (``dry_restitution``, ``dry_restitution_basis``,
+        ``dry_restitution_source``, the same for ``dry_friction`` and
+        ``immersed_friction``)."""
+        return {
+            key if key.startswith("immersed") else f"dry_{key}": value
+            for key, value in asdict(self).items()
+        }
+
+
+#: The borrowed values, for a caller without a pair (``verdicts`` of an old document).
+BORROWED_VALUES = DryValues(
+    DRY_RESTITUTION, *("borrowed", BORROWED), *(DRY_FRICTION, "borrowed", BORROWED) * 2
+)
+#: What the immersed friction says when the pair has no measured value of its own.
+NO_IMMERSED = "the dry value (no immersed value measured for the pair): "
+
+
+def _cited(row: catalog_rows.PairValueRow, where_measured: str = "") -> str:
+    """ "measured for steel on Zerodur (joseph-hunt-2004, §3, figure 4)": the source's key
+    (``granudb sources show`` gives the citation) and where in it; without a source, the
+    notes."""
+    key = catalog_rows.source_key(row.source)
+    pair = f"measured for {row.particle} on {row.wall}" + (
+        f" {where_measured}" if where_measured else ""
+    )
+    if key is None:
+        return f"{pair} ({row.notes or 'no source given'})"
+    where = f", {row.source_locator}" if row.source_locator else ""
+    return f"{pair} ({key}{where})"
+
+
+def _own(material: MaterialRow, column: str) -> float | None:
+    value = getattr(material, column)
+    return None if value is None or not math.isfinite(value) else float(value)
+
+
+def _from_materials(
+    first: MaterialRow, second: MaterialRow, column: str
+) -> tuple[float, str] | None:
+    """The combination rule (module doc) for ``column`` of the two materials, or None."""
+    bodies = (first,) if first.name == second.name else (first, second)
+    known = [(m, v) for m in bodies if (v := _own(m, column)) is not None]
+    if not known:
+        return None
+    where = "; ".join(f"{m.name}: {m.dry_provenance or 'no source given'}" for m, _ in known)
+    if len(known) == 1:
+        material, value = known[0]
+        missing = [m.name for m in bodies if _own(m, column) is None]
+        note = f" ({missing[0]}'s not known)" if missing else ""
+        return value, f"{material.name}'s own value{note} [{where}]"
+    (a, x), (b, y) = known
+    if column == "dry_restitution":
+        return min(x, y), f"the lower of {a.name}'s and {b.name}'s (granudb's rule) [{where}]"
+    return math.sqrt(x * y), f"√(μ₁μ₂) of {a.name}'s and {b.name}'s (granudb's rule) [{where}]"
+
+
+def resolve(
+    first: MaterialRow,
+    second: MaterialRow,
+    measured: list[catalog_rows.PairValueRow],
+) -> DryValues:
+    """The rule of the module doc, for two material rows and the pair's measured rows."""
+    chosen: dict[str, tuple[float, str, str]] = {}
+    for column, default in (("dry_restitution", DRY_RESTITUTION), ("dry_friction", DRY_FRICTION)):
+        pair = next((r for r in measured if getattr(r, column) is not None), None)
+        if pair is not None:
+            chosen[column] = (float(getattr(pair, column)), "pair", _cited(pair))
+        elif (combined := _from_materials(first, second, column)) is not None:
+            chosen[column] = (combined[0], "materials", combined[1])
+        else:
+            chosen[column] = (default, "borrowed", BORROWED)
+    e, mu = chosen["dry_restitution"], chosen["dry_friction"]
+    wet = next((r for r in measured if r.immersed_friction is not None), None)
+    if wet is not None:
+        immersed = (float(wet.immersed_friction), "pair", _cited(wet, "in a liquid"))
+    else:
+        immersed = (mu[0], mu[1], NO_IMMERSED + mu[2])
+    return DryValues(*e, *mu, *immersed)
+
+
+def dry_values(
+    connection: Connection,
+    particle: str,
+    wall: str,
+    dataset_id: int | None = None,
+) -> DryValues:
+    """The dry e and μ of ``particle`` on ``wall`` with where each came from; with
+    ``dataset_id`` as that dataset's runs use the materials (a release reads the values
+    it was released with, and only the pair values stored before its release)."""
+    first = catalog_rows.get_material_row(connection, particle, dataset_id)
+    second = catalog_rows.get_material_row(connection, wall, dataset_id)
+    before = catalog_rows.released_at(connection, dataset_id)
+    measured = catalog_rows.pair_value_rows(connection, particle, wall, before=before)
+    return resolve(first, second, measured)
+
+
+def per_run(
+    particle: np.ndarray,
+    wall: np.ndarray,
+    own: dict[str, np.ndarray],
+    measured: list[catalog_rows.PairValueRow],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The same rule for stored runs: each run's dry e, μ and immersed μ (NaN: the dry
+    one) from the material names,
+    the two materials' own values as the runs use them (``own``:
+    ``particle_dry_restitution``, ``wall_dry_friction``, …; NaN where not known) and the
+    measured pair values. One resolution per distinct pair and values."""
+    columns = [[None if v != v else v for v in own[c].tolist()] for c in _OWN]
+    keys = list(zip(particle.tolist(), wall.tolist(), *columns, strict=True))
+    by_pair = {frozenset((row.particle.casefold(), row.wall.casefold())): row for row in measured}
+    distinct: dict[tuple, DryValues] = {}
+    for key in dict.fromkeys(keys):
+        p_name, w_name, p_e, w_e, p_mu, w_mu = key
+        if not isinstance(p_name, str) or not isinstance(w_name, str):
+            distinct[key] = BORROWED_VALUES
+            continue
+        first = SimpleNamespace(name=p_name, dry_restitution=p_e, dry_friction=p_mu,
+                                dry_provenance=None)  # fmt: skip
+        second = SimpleNamespace(name=w_name, dry_restitution=w_e, dry_friction=w_mu,
+                                 dry_provenance=None)  # fmt: skip
+        pair = by_pair.get(frozenset((p_name.casefold(), w_name.casefold())))
+        distinct[key] = resolve(first, second, [pair] if pair is not None else [])
+    e = np.fromiter((distinct[k].restitution for k in keys), dtype=float, count=len(keys))
+    mu = np.fromiter((distinct[k].friction for k in keys), dtype=float, count=len(keys))
+    wet = np.fromiter(
+        (v.immersed_friction if v.immersed_friction_basis == "pair" else np.nan
+         for v in (distinct[k] for k in keys)),
+        dtype=float,
+        count=len(keys),
+    )  # fmt: skip
+    return e, mu, wet
+
+
+#: The materials' own dry values a stored run carries, in ``per_run``'s key order.
+_OWN = ("particle_dry_restitution", "wall_dry_restitution",
+        "particle_dry_friction", "wall_dry_friction")  # fmt: skip
