@@ -9,8 +9,15 @@ from typing import Annotated, Any
 import typer
 
 from granudb import api
-from granudb.cli.dataset import remove_runs
-from granudb.cli.options import DbOption, Format, FormatOption, collision_filters, wraps
+from granudb.cli.confirm import asker
+from granudb.cli.options import (
+    DbOption,
+    Format,
+    FormatOption,
+    YesOption,
+    collision_filters,
+    wraps,
+)
 from granudb.cli.output import emit, say
 from granudb.lazy import rich_progress
 
@@ -109,7 +116,14 @@ def list_(
     emit(records, shown, fmt, title=f"Collisions ({len(records)} runs)", symbols=True)
 
 
-#: The same command as ``dataset remove-runs`` (one function, two names).
-app.command(
-    "remove", help="Delete some runs of a draft dataset version (by run label); asks first."
-)(remove_runs)
+@app.command("remove")
+@wraps("remove_collisions")
+def remove(
+    dataset: Annotated[str, typer.Argument(help="Dataset as NAME@VERSION (or NAME: the newest).")],
+    runs: Annotated[list[str], typer.Argument(help="Run labels to delete.")],
+    yes: YesOption = False,
+    db: DbOption = None,
+) -> None:
+    """Delete some runs of a draft dataset version (by run label); asks first."""
+    count = api.remove_collisions(dataset, runs, confirm=asker(yes), db=db)
+    say(f"removed {count} runs from dataset {dataset}")
