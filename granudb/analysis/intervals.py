@@ -30,6 +30,9 @@ LEVEL = 0.95
 #: A parameter determined in fewer resamples than this share gets no interval.
 MIN_DETERMINED = 0.5
 METHOD = "studentized bootstrap (bootstrap-t) over runs"
+#: A standard error below this share of the estimate is rounding (exact data: the sums of
+#: squares cancel to ~1e-8 of the estimate): zero.
+ROUNDING = 1e-6
 
 
 @dataclass(frozen=True)
@@ -73,7 +76,7 @@ def studentized(
     share = float(np.mean(valid)) if boot.size else 0.0
     if not math.isfinite(point):
         return Interval(nan, nan, share, "not determined by these runs")
-    if not (math.isfinite(se) and se > 0):
+    if not (math.isfinite(se) and se > ROUNDING * abs(point)):
         return Interval(nan, nan, share, "interval not determined: zero standard error")
     if share < MIN_DETERMINED:
         return Interval(

@@ -143,8 +143,9 @@ def _dataset_values(
             interval = ""
             if low is not None and high is not None and high - low > 1e-9 * abs(mu):
                 interval = f", 95 % interval {low:.3g}–{high:.3g}"
-            elif low is not None:
-                interval = ", interval not determined (every resample gave the same value)"
+            else:  # the fit's own words: too few runs, or a degenerate bootstrap
+                why = [p for p in str(fit.get("reason") or "").split("; ") if "of μ_f" in p]
+                interval = ", interval not determined" + (f" ({why[0]})" if why else "")
             friction = Value(float(mu), f"dataset {dataset}: Walton fit{interval}")
         elif fit.get("reason"):
             friction = Value(
