@@ -145,7 +145,8 @@ def _dataset_values(
                 interval = f", 95 % interval {low:.3g}–{high:.3g}"
             else:  # the fit's own words: too few runs, or a degenerate bootstrap
                 why = [p for p in str(fit.get("reason") or "").split("; ") if "of μ_f" in p]
-                interval = ", interval not determined" + (f" ({why[0]})" if why else "")
+                said = f" ({why[0].split(': ', 1)[-1]})" if why else ""
+                interval = ", interval not determined" + said
             friction = Value(float(mu), f"dataset {dataset}: Walton fit{interval}")
         elif fit.get("reason"):
             friction = Value(

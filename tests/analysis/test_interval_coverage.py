@@ -12,7 +12,9 @@ from analysis import coverage
 from analysis.synthetic import walton_frame
 from analysis.test_gap_viscosity import sliding_runs
 from analysis.test_restitution_fit import runs as restitution_runs
+from paper_runs import paper_rows, write_csv
 
+import granudb
 from granudb.analysis import fits, intervals
 
 SETS, QUICK_BOUND = 60, 0.85  # true coverage 0.93 (0.95): P(< 51 of 60) = 0.8 % (0.07 %)
@@ -62,3 +64,24 @@ def test_a_degenerate_bootstrap_is_not_determined() -> None:
     assert "20%" in intervals.studentized(0.3, 0.01, rare, np.full(500, 0.01)).reason
     assert intervals.too_few(3, 6) == "not determined: 3 runs, at least 6 needed"
     assert intervals.too_few(6, 6) == ""
+
+
+def test_three_runs_read_interval_not_determined_in_reports_and_decks(cli, db, tmp_path) -> None:
+    # issue 23's case end to end: three dry runs, printed "0.0854 [exact]" and written into a
+    # deck as "95 % interval 0.0854–0.0854"
+    rows = [r for r in paper_rows(runs_per_group=3) if r[3] == ""][:3]
+    source = write_csv(tmp_path / "three.csv", rows)
+    assert cli("collisions", "import", str(source), "--dataset", "three", db=db).exit_code == 0
+    out = tmp_path / "r.md"
+    result = cli("report", "--dataset", "three", "--format", "md", "--output", str(out), db=db)
+    assert result.exit_code == 0, result.stderr
+    text = out.read_text("utf-8")
+    assert "interval not determined" in text or "not determined by these runs" in text
+    particle, wall = rows[0][1], rows[0][2]
+    deck = granudb.dem_export(
+        "lammps", [particle], [wall], values="dataset", dataset="three", db=db,
+        diameter="12.7 mm", velocity="0.3 m/s",
+    )  # fmt: skip
+    assert "95 % interval" not in deck or "–" not in deck.split("95 % interval")[1][:30]
+    comments = " ".join(deck.replace("\n#", " ").split())  # comments wrap across lines
+    assert "Walton fit, interval not determined (3 runs, at least 10 needed)" in comments
