@@ -351,7 +351,7 @@ def _group_row(
         else resamples,
         "bootstrap_seed": SEED,
         "interval_reason": "",
-        "stokes_number": "St_n = ρ_p v_n,in 2R / (9μ) of the particle (as stored)",
+        "stokes_number": "St_n = m* v_N,in/(6πμR*²) of the relative normal approach (as derived)",
         "reason": "",
     }
     needed = 2 if fixed is not None else 3
