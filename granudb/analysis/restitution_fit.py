@@ -10,8 +10,10 @@ verdict. Every empty fit says why in ``reason``.
 Intervals: a studentized bootstrap over runs (``granudb.analysis.intervals``): each
 resample is refitted by Gauss–Newton steps from the fit (vectorised over resamples, a step
 halved until the sum of squares falls; the threshold form's runs below St_c drop out of
-the Jacobian), and its standard error is √diag((JᵀWJ)⁻¹ S/(n−p)). The asymptotic
-± 1.96 se alone covered the threshold 75 % of the time at n = 5 and 82 % at n = 24.
+the Jacobian), and its standard error is √diag((JᵀWJ)⁻¹ S/(n−p)). Above
+``walton_bootstrap.RULE_RUNS`` runs one Gauss–Newton step with the fit's Jacobian stands
+for the refit (``one_step``: asymptotically the same, a few weighted sums per resample).
+The asymptotic ± 1.96 se alone covered the threshold 75 % of the time at n = 5 and 82 % at n = 24.
 """
 
 from __future__ import annotations
@@ -43,12 +45,14 @@ PARAMETER_NAMES = {"threshold": "fitted_critical_stokes", "exponential": "k"}
 DEFAULT_MODEL = "exponential"
 E_DRY_MAX = 1.0
 SEED = 0
-#: Fewer runs than this give no interval (measured in benchmarks/fit_coverage.py).
-MIN_RUNS_FOR_INTERVAL = 5
+#: Fewer runs than this give no interval: St_c's bootstrap-t interval covered 0.85 to 0.86
+#: at n = 10 (benchmarks/fit_coverage.py; a pivot on ln St_c did no better).
+MIN_RUNS_FOR_INTERVAL = 20
 #: Gauss–Newton iterations of each resample's refit (it starts at the fit).
 ITERATIONS = 30
-#: ... or until no resample's parameters move by more than this (relative).
-TOLERANCE = 1e-7
+#: ... or until no resample's parameters move by more than this share of the fit's
+#: standard errors (the pivot needs the estimates to a small fraction of their spread).
+TOLERANCE = 1e-3
 _INPUTS = ["dataset", "particle", "wall", "fluid", "normal_stokes_number", "normal_restitution"]
 
 
@@ -196,10 +200,15 @@ def _curve(model: str, u: np.ndarray, a: np.ndarray, p: np.ndarray) -> tuple:
     return a * decay, decay, -a * u * decay
 
 
-def refit(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple, fixed: bool):
+def refit(
+    model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple, fixed: bool,
+    scale: tuple = (math.nan, math.nan),
+):  # fmt: skip
     """Weighted least-squares fits, one per row of the weights ``w`` (m, n), by damped
     Gauss–Newton from ``start`` = (e_dry, parameter) within 0 ≤ e_dry ≤ 1, parameter ≥ 0
-    (e_dry held when ``fixed``): ((e_dry, se), (parameter, se)), arrays of shape (m,)."""
+    (e_dry held when ``fixed``): ((e_dry, se), (parameter, se)), arrays of shape (m,);
+    ``scale``: the fit's standard errors, which set when the steps are small enough."""
+    a_tol, p_tol = (TOLERANCE * v if math.isfinite(v) and v > 0 else 0.0 for v in scale)
     u = 1.0 / np.asarray(st, dtype=float)
     m = len(w)
     a = np.full((m, 1), float(start[0]))
@@ -224,6 +233,8 @@ def refit(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple
             with np.errstate(invalid="ignore", divide="ignore"):
                 da = np.where(det > 0, (pp * ga - ap * gp) / det, 0.0)
                 dp = np.where(det > 0, (aa * gp - ap * ga) / det, 0.0)
+        if np.all((np.abs(dp) <= p_tol) & (np.abs(da) <= a_tol)):
+            break  # every resample's next step is a small share of the standard errors
         step = np.ones(m)
         moved = np.zeros(m, dtype=bool)
         for _ in range(8):  # halve until the sum of squares falls
@@ -236,8 +247,7 @@ def refit(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple
             step = np.where(moved, step, step / 2)
             if moved.all():
                 break
-        change = np.abs(step * dp) / np.maximum(p[:, 0], 1e-300) + np.abs(step * da)
-        if not moved.any() or np.max(np.where(moved, change, 0.0)) < TOLERANCE:
+        if not moved.any():
             break
     f, ja, jp = _curve(model, u, a, p)
     count = w.sum(axis=1)
@@ -254,17 +264,46 @@ def refit(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple
     return (a[:, 0], a_se), (p[:, 0], p_se)
 
 
+def one_step(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple, fixed: bool):
+    """``refit`` by one Gauss–Newton step from ``start`` with the Jacobian of the fit (the
+    one-step bootstrap of large groups: the fit's residuals and Jacobian are shared by all
+    resamples, so each costs a few weighted sums)."""
+    u = 1.0 / np.asarray(st, dtype=float)
+    a0, p0 = (np.asarray(float(v)) for v in start)
+    f, ja, jp = _curve(model, u, a0, p0)
+    r = e - f
+    sums = w @ np.stack([ja * r, jp * r, ja * ja, ja * jp, jp * jp, r * r], axis=1)
+    ga, gp, aa, ap, pp, rr = sums.T
+    with np.errstate(invalid="ignore", divide="ignore"):
+        if fixed:
+            da, dp, det = np.zeros(len(w)), gp / pp, pp
+        else:
+            det = aa * pp - ap * ap
+            da, dp = (pp * ga - ap * gp) / det, (aa * gp - ap * ga) / det
+        a = np.clip(a0 + da, 0.0, E_DRY_MAX)
+        p = np.maximum(p0 + dp, 0.0)
+        dof = w.sum(axis=1) - (1 if fixed else 2)
+        scale = np.where(dof > 0, np.maximum(rr - da * ga - dp * gp, 0.0) / dof, np.nan)
+        a_se = np.full(len(w), np.nan) if fixed else np.sqrt(scale * pp / det)
+        p_se = np.sqrt(scale / pp) if fixed else np.sqrt(scale * aa / det)
+    return (a, a_se), (p, p_se)
+
+
 def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
                         resamples: int, seed: int) -> dict[str, intervals.Interval]:  # fmt: skip
     """Studentized bootstrap intervals of e_dry (unless ``fixed``) and the parameter, from
     ``fit`` = (e_dry, e_dry_se, parameter, parameter_se)."""
     n = len(st)
     rng = np.random.default_rng(seed)
-    batch = max(1, resampling.BATCH_CELLS // (8 * n))
+    large = n > resampling.RULE_RUNS
+    batch = max(1, resampling.BATCH_CELLS // (n if large else 8 * n))
     parts = []
     for start in range(0, resamples, batch):
         w = resampling.draw_counts(rng, min(batch, resamples - start), n, n)
-        parts.append(refit(model, st, e, w, (fit[0], fit[2]), fixed))
+        if large:
+            parts.append(one_step(model, st, e, w, (fit[0], fit[2]), fixed))
+        else:
+            parts.append(refit(model, st, e, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
     (a, a_se), (p, p_se) = (
         tuple(np.concatenate([part[i][j] for part in parts]) for j in range(2)) for i in range(2)
     )
@@ -312,7 +351,7 @@ def _group_row(
         else resamples,
         "bootstrap_seed": SEED,
         "interval_reason": "",
-        "stokes_number": "St_n = ρ_p v_n,in 2R / (9μ) of the particle (as stored)",
+        "stokes_number": "St_n = m* v_N,in/(6πμR*²) of the relative normal approach (as derived)",
         "reason": "",
     }
     needed = 2 if fixed is not None else 3

@@ -164,8 +164,10 @@ def _dataset_values(
             interval = ""
             if low is not None and high is not None and high - low > 1e-9 * abs(mu):
                 interval = f", 95 % interval {low:.3g}–{high:.3g}"
-            elif low is not None:
-                interval = ", interval not determined (every resample gave the same value)"
+            else:  # the fit's own words: too few runs, or a degenerate bootstrap
+                why = [p for p in str(fit.get("reason") or "").split("; ") if "of μ_f" in p]
+                said = f" ({why[0].split(': ', 1)[-1]})" if why else ""
+                interval = ", interval not determined" + said
             friction = Value(float(mu), f"dataset {dataset}: Walton fit{interval}")
         elif fit.get("reason"):
             friction = Value(

@@ -162,13 +162,15 @@ def interval(value: Any, low: Any, high: Any) -> str:
 
     >>> interval(0.3412, 0.30, 0.39)
     '0.34 [0.30, 0.39]'
+    >>> interval(0.0854, float("nan"), float("nan"))
+    '0.0854 (interval not determined)'
     >>> interval(0.96999999999999986, 0.96999999999999986, 0.97000000000000008)
     '0.97 (interval not determined: every resample gave the same value)'
     """
     if not is_number(value):
         return "—"
-    if not (is_number(low) and is_number(high)):
-        return f"{float(value):.3g}"
+    if not (is_number(low) and is_number(high)):  # the fit gave none (too few runs, degenerate)
+        return f"{float(value):.3g} (interval not determined)"
     half = max(abs(float(high) - float(value)), abs(float(value) - float(low)))
     if half <= 1e-9 * abs(float(value)) or half == 0:
         return f"{float(value):.3g} (interval not determined: every resample gave the same value)"

@@ -100,15 +100,23 @@ def test_bootstrap_is_deterministic_and_states_its_seed() -> None:
 
 
 def test_interval_coverage_is_roughly_right() -> None:
-    # over 50 data sets the truth lies inside the 95 % interval in ≥ 85 % of them
-    hits = np.zeros(2)
+    # over 50 data sets the truth lies inside the 95 % interval in ≥ 85 % of those given
+    # one (β needs 10 runs on its sticking line: here 43 of 50 sets; the full table is
+    # benchmarks/fit_coverage.py's)
+    hits, given = np.zeros(2), np.zeros(2)
     for seed in range(50):
         fit = one(walton_frame(60, spin=30.0, seed=100 + seed), resamples=400)
-        hits += [
-            fit["rotational_restitution_low"] <= BETA <= fit["rotational_restitution_high"],
-            fit["sliding_friction_low"] <= MU <= fit["sliding_friction_high"],
-        ]
-    assert np.all(hits >= 0.85 * 50), hits
+        for i, (name, truth) in enumerate(
+            (("rotational_restitution", BETA), ("sliding_friction", MU))
+        ):
+            low, high = fit[f"{name}_low"], fit[f"{name}_high"]
+            if math.isnan(low):
+                assert f"at least {fits.MIN_RUNS_FOR_INTERVAL} needed" in fit["reason"]
+                continue
+            given[i] += 1
+            hits[i] += low <= truth <= high
+    assert np.all(given >= 0.8 * 50), given
+    assert np.all(hits >= 0.85 * given), (hits, given)
 
 
 def test_old_keys_carry_the_honest_numbers() -> None:
