@@ -382,11 +382,11 @@ def propagate(
     )  # fmt: skip
     out: Arrays = {}
     for name in (name for name in columns if name in relative):
-        value = np.abs(columns[name])
-        if name == "incidence_angle_rad":
-            out[f"u_{name}"] = relative[name] + 0.0 * value  # absolute already
+        if name == "incidence_angle_rad":  # absolute already; NaN where the angle is
+            out[f"u_{name}"] = relative[name] + 0.0 * columns[name]
         else:
-            out[f"u_{name}"] = value * relative[name]
+            u_q = columns[name] * relative[name]
+            out[f"u_{name}"] = np.abs(u_q, out=u_q) if isinstance(u_q, np.ndarray) else abs(u_q)
     rebound = np.isfinite(f["st_am"]) & (columns["predicted_restitution"] > 0) & f["immersed"]
     out["u_predicted_restitution"] = np.where(
         rebound,
