@@ -299,8 +299,10 @@ def dem_export(
     """The input fragment for ``code`` (liggghts, lammps, yade or mercurydpm) for these
     particle and wall materials in ``fluid``, every number commented with its source.
 
-    ``values`` says where e and μ_f come from: "published" (the paper's fits where the
-    database has them), "dataset" (``dataset``'s Walton fit) or "predicted". A value the
+    ``values`` says where e, μ_f and Walton's β come from: "published" (the paper's fits
+    where the database has them), "dataset" (``dataset``'s Walton fit) or "predicted" (no
+    β). An immersed pair's comment states the speeds over which its constant e holds. A
+    value the
     code cannot take is refused naming its rule, or with ``clamp=True`` written at the
     nearest allowed value with a comment. With ``output`` the fragment is also written
     to that new file (an existing one is refused). Returns the fragment.
