@@ -42,9 +42,13 @@ from granudb.io.tables import TINY_RULE, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.rules import RULES
-from granudb.vocabulary.text import check_name, check_text
+from granudb.vocabulary.text import check_name, check_text, name_key
 
 __all__ = ["PackageError", "Validated", "import_package", "validate_package"]
+
+#: Resources whose names granudb matches case-insensitively (``name_key``): two rows
+#: whose names differ only in case would be one material or fluid.
+CASE_INSENSITIVE = ("materials", "fluids")
 
 MAX_ROWS = 20_000_000
 MAX_CELL_CHARS = 10_000
@@ -178,6 +182,15 @@ def _read_table(name: str, path: Path, problems: list[str]) -> Any:
     duplicated = frame.duplicated(subset=key, keep="first")
     if duplicated.any():
         problems.append(f"{name}: duplicate {'+'.join(key)} in {_rows(duplicated)}")
+    elif name in CASE_INSENSITIVE:
+        keys = frame[key[0]].map(lambda n: name_key(n) if isinstance(n, str) else n)
+        twins = keys.duplicated(keep=False) & frame[key[0]].notna()
+        if twins.any():
+            shown = ", ".join(repr(n) for n in frame[key[0]][twins].iloc[:4])
+            problems.append(
+                f"{name}.{key[0]}: {shown} differ only in case or spacing (names match "
+                f"case-insensitively) in {_rows(twins)}"
+            )
     return out
 
 
