@@ -49,9 +49,13 @@ from granudb.io.tables import TINY_RULE, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.rules import RULES
-from granudb.vocabulary.text import check_name, check_text
+from granudb.vocabulary.text import check_name, check_text, name_key
 
 __all__ = ["PackageError", "Validated", "import_package", "validate_package"]
+
+#: Resources whose names granudb matches case-insensitively (``name_key``): two rows
+#: whose names differ only in case would be one material or fluid.
+CASE_INSENSITIVE = ("materials", "fluids")
 
 MAX_ROWS = 20_000_000
 MAX_CELL_CHARS = 10_000
@@ -206,6 +210,19 @@ def _check_block(
             e > MAX_RESTITUTION,
             first_row,
         )
+    if name in CASE_INSENSITIVE:  # materials and fluids: one block, a table of names
+        column = PRIMARY_KEYS[name][0]
+        raw = frame[column]
+        keys = raw.map(lambda n: name_key(n) if isinstance(n, str) else n)
+        twins = keys.duplicated(keep=False) & ~raw.duplicated(keep=False) & (raw != "")
+        if twins.any():
+            shown = ", ".join(repr(n) for n in raw[twins].iloc[:4])
+            found.add(
+                f"{name}.{column}: {shown} differ only in case or spacing (names match "
+                "case-insensitively) in {rows}",
+                twins,
+                first_row,
+            )
     return out
 
 
