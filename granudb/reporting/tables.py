@@ -320,7 +320,7 @@ def _run_cell(value: Any, column: str) -> str:
     return display(value, column, 3)
 
 
-def runs_csv(runs: Any) -> str:
+def runs_csv(runs: Any) -> bytes:
     """The CSV of every run beside a report: machine names and SI values as stored (the
     shortest text that reads back as the same float, as every CSV granudb writes), text
     quoted, empty where there is no value. Written by Arrow's CSV writer: pandas' took
@@ -328,4 +328,4 @@ def runs_csv(runs: Any) -> str:
     table = pyarrow.Table.from_pandas(runs, preserve_index=False)
     out = pyarrow.BufferOutputStream()
     pyarrow_csv.write_csv(table, out, pyarrow_csv.WriteOptions(quoting_style="needed"))
-    return out.getvalue().to_pybytes().decode("utf-8")
+    return out.getvalue().to_pybytes()  # UTF-8

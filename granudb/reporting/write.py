@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from granudb.errors import ValidationError
-from granudb.output_files import write_text
+from granudb.output_files import write_bytes, write_text
 from granudb.reporting.render import render
 from granudb.reporting.tables import runs_csv
 
@@ -67,7 +67,7 @@ def _beside(target: Path, force: bool) -> Path:
     return target
 
 
-def _runs_file(report: dict[str, Any], path: Path, force: bool) -> dict[Path, str]:
+def _runs_file(report: dict[str, Any], path: Path, force: bool) -> dict[Path, bytes]:
     """The CSV of every run beside a report whose run table shows only the first runs. An
     existing CSV with exactly these rows (the HTML and the Markdown report of the same
     runs share it) is kept as it is."""
@@ -75,12 +75,12 @@ def _runs_file(report: dict[str, Any], path: Path, force: bool) -> dict[Path, st
     if not runs or runs["count"] <= runs["limit"]:
         return {}
     target = path.with_name(path.stem + "_runs.csv")
-    text = runs_csv(runs["frame"])
+    payload = runs_csv(runs["frame"])
     runs["file"] = target.name
-    unchanged = target.is_file() and not target.is_symlink() and target.read_text("utf-8") == text
+    unchanged = target.is_file() and not target.is_symlink() and target.read_bytes() == payload
     if unchanged and not force:
         return {}
-    return {_beside(target, force): text}
+    return {_beside(target, force): payload}
 
 
 def write_report(
@@ -101,6 +101,8 @@ def write_report(
     text = render(report, fmt)
     if figures:
         next(iter(figures)).parent.mkdir(exist_ok=True)
-    for target, content in {**figures, **beside}.items():
-        write_text(target, content, replace=force, field="--output")
+    for target, svg in figures.items():
+        write_text(target, svg, replace=force, field="--output")
+    for target, payload in beside.items():
+        write_bytes(target, payload, replace=force, field="--output")
     return write_text(path, text, replace=force, field="--output")
