@@ -26,6 +26,7 @@ from granudb.db.datasets import check_dataset_name, check_version
 from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
 from granudb.db.upsert import same_value
 from granudb.errors import ConflictError
+from granudb.vocabulary.text import MAX_NAME
 
 FLUID_SOURCES = {
     "source": "source_id",
@@ -101,6 +102,25 @@ def _point_differences(existing: Fluid, points: list[dict[str, Any]]) -> list[st
     ]
 
 
+def renamed(name: str, tag: str, number: int | None = None, limit: int = MAX_NAME) -> str:
+    """``NAME (tag)`` or ``NAME (tag number)`` within the name rule's ``limit`` characters:
+    a long tag and then a long name are shortened with "…" (the number never is, so each
+    candidate differs), and granudb never builds a name it would refuse.
+
+    >>> len(renamed("m" * 200, "p" * 200, 12))
+    200
+    >>> renamed("steel", "lab", 2)
+    'steel (lab 2)'
+    """
+    count = f" {number}" if number is not None else ""
+    suffix = f" ({tag}{count})"
+    if len(name) + len(suffix) <= limit:
+        return name + suffix
+    if len(suffix) > limit // 2:
+        suffix = f" ({tag[: limit // 2 - 5 - len(count)].rstrip()}…{count})"
+    return name[: limit - len(suffix) - 1].rstrip() + "…" + suffix
+
+
 class Merger:
     """Matches the package's sources, materials and fluids against the database."""
 
@@ -113,12 +133,12 @@ class Merger:
         self.source_ids: dict[str, int] = {}
 
     def _renamed(self, model: type, name: str) -> str:
-        candidate = f"{name} ({self.package})"
+        candidate = renamed(name, self.package)
         number = 2
         while self.session.scalars(
             select(model.id).filter_by(name_key=name_key(candidate))
         ).first():
-            candidate = f"{name} ({self.package} {number})"
+            candidate = renamed(name, self.package, number)
             number += 1
         return candidate
 
