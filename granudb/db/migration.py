@@ -27,6 +27,7 @@ from granudb.lazy import (
 )
 from granudb.resources import shipped_dir
 from granudb.vocabulary import COLLISION_TARGET
+from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
 
 if TYPE_CHECKING:
     from alembic.config import Config
@@ -212,12 +213,29 @@ def downgrade(
 #: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
 #: rows that lose something, what happens to them). Checked constraints are not data.
 _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
-    "0006": [
+    "0007": [
         *(
             ("materials", c, f"{c} IS NOT NULL", "dropped")
-            for c in ("dry_restitution", "dry_friction", "dry_provenance", "brittleness")
+            for c in (
+                "dry_restitution",
+                "dry_friction",
+                "dry_provenance",
+                "brittleness",
+                "u_dry_restitution",
+                "u_dry_friction",
+            )
         ),
         ("pair_values", "dry_restitution", "1 = 1", "dropped (the pair values table goes)"),
+    ],
+    "0006": [
+        (table, c, f"{c} IS NOT NULL", "dropped (the standard uncertainty)")
+        for table, columns in (
+            ("materials", MATERIALS.uncertainties.values()),
+            ("fluids", FLUIDS.uncertainties.values()),
+            ("fluid_points", ("u_viscosity_pa_s", "u_density_kg_m3")),
+        )
+        for c in columns
+        if c not in ("u_dry_restitution", "u_dry_friction")  # 0007's
     ],
     "0005": [
         (
