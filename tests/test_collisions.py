@@ -140,7 +140,10 @@ BAD = [
     ([_with(incidence_angle="90")], "row 2: incidence_angle [deg]: 90 must be ≥ 0 and < 1.5708"),
     ([_with(incidence_angle="-1")], "row 2: incidence_angle [deg]: -1 must be ≥ 0"),
     ([_with(v_n_out="400")], "row 2: v_n_out / v_n_in: 1.333 must be ≤ 1.05"),
-    ([_with(particle="brass")], "row 2: particle: 'brass' is not in the database (known: glass"),
+    (
+        [_with(particle="brass")],
+        "row 2: particle: 'brass' is not in the database (known: Delrin",
+    ),
     ([_with(fluid="mercury")], "row 2: fluid: 'mercury' is not in the database"),
     ([_with(v_t_in="nan")], "row 2: v_t_in [mm/s]: 'nan' is not a number"),
     ([_with(v_t_in="inf")], "row 2: v_t_in [mm/s]: 'inf' must be a finite number"),

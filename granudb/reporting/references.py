@@ -84,6 +84,13 @@ WORKS = [
         "10.1115/1.3453342",
     ),
     Work(
+        "thornton-1997",
+        ("Thornton (1997)", "Thornton 1997"),
+        "Thornton, C. (1997). Coefficient of restitution for collinear collisions of "
+        "elastic-perfectly plastic spheres. J. Appl. Mech. 64, 383–386.",
+        "10.1115/1.2787319",
+    ),
+    Work(
         "cheng-2008",
         ("Cheng (2008)", "cheng-2008"),
         "Cheng, N.-S. (2008). Formula for the viscosity of a glycerol–water mixture. "

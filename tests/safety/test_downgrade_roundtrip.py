@@ -11,6 +11,7 @@ from support import dump_hash, engine_for, execute
 from granudb.api.database import connect
 from granudb.db import migration
 from granudb.errors import ConfirmationNeeded
+from granudb.io.seed import read_seed
 
 LAB_DATA = [
     "INSERT INTO materials (name, name_key, density_kg_m3, youngs_modulus_pa, poisson_ratio, "
@@ -71,6 +72,13 @@ def _rows(db: str, sql: str) -> list[tuple]:
     return rows
 
 
+SEED = read_seed()
+#: 0006 drops the seeded materials' dry values and brittleness and the pair values table.
+DRY_LOSSES = [
+    f"materials.{c}: {n} values dropped"
+    for c in ("dry_restitution", "dry_friction", "dry_provenance", "brittleness")
+    if (n := sum(m.get(c) is not None for m in SEED.materials))
+] + [f"pair_values.dry_restitution: {len(SEED.pairs)} values dropped (the pair values table goes)"]
 EXPECTED_LOSSES = {
     "0003": [
         "datasets.authors: 1 values dropped",
@@ -104,7 +112,9 @@ def test_downgrade_to_every_revision_and_back_keeps_every_row_or_asks(db: str, t
         ]
     else:
         order = ["0003", "0002", "0001"]
-        expected = [line for r in order[: order.index(target) + 1] for line in EXPECTED_LOSSES[r]]
+        expected = DRY_LOSSES + [
+            line for r in order[: order.index(target) + 1] for line in EXPECTED_LOSSES[r]
+        ]
         assert losses == expected
 
     before = dump_hash(db)
@@ -121,11 +131,19 @@ def test_downgrade_to_every_revision_and_back_keeps_every_row_or_asks(db: str, t
         return
     # seed_records is bookkeeping the downgrade of 0004 drops (and says so in its docstring)
     counts.pop("seed_records"), after.pop("seed_records")
+    # the pair values table goes with 0006 (listed among the losses the person accepted)
+    assert after.pop("pair_values") == 0 and counts.pop("pair_values") == len(SEED.pairs)
     assert after == counts
     assert _rows(db, KEPT) == kept
 
 
 def test_downgrade_that_loses_nothing_runs_without_asking(db: str) -> None:
+    execute(db, "DELETE FROM pair_values")
+    execute(
+        db,
+        "UPDATE materials SET dry_restitution = NULL, dry_friction = NULL, "
+        "dry_provenance = NULL, brittleness = NULL",
+    )
     database = connect(db)
     assert migration.plan_downgrade(database, "0003") == []
     assert migration.downgrade(database, "0003") == (migration.head_revision(), "0003")
@@ -151,12 +169,13 @@ def test_cli_downgrade_says_what_it_loses_and_needs_yes(cli, db: str) -> None:
     assert refused.exit_code == 1
     lines = refused.stderr.strip().splitlines()
     assert len(lines) == 1 and "materials.yield_stress_pa: 1 values dropped" in lines[0]
+    assert "materials.dry_restitution" in lines[0]
     assert "--yes" in lines[0] and "internal error" not in lines[0]
     assert dump_hash(db) == before
     done = cli("db", "downgrade", "0002", "--yes", db=db)
     assert done.exit_code == 0, done.stderr
     assert "lost collisions.wall_v_n_in_m_s: 1 values dropped" in done.stdout
-    assert "schema: 0005 → 0002" in done.stdout
+    assert f"schema: {migration.head_revision()} → 0002" in done.stdout
 
 
 def test_cli_downgrade_asks_on_a_terminal(cli, db: str, monkeypatch) -> None:
@@ -175,4 +194,4 @@ def test_cli_downgrade_asks_on_a_terminal(cli, db: str, monkeypatch) -> None:
     assert dump_hash(db) == before
     yes = runner.invoke(app, ["db", "downgrade", "base", "--db", db], input="y\n")
     assert yes.exit_code == 0, yes.stderr
-    assert "schema: 0005 → empty" in yes.stdout
+    assert f"schema: {migration.head_revision()} → empty" in yes.stdout
