@@ -18,17 +18,6 @@ from pathlib import Path
 import pytest
 from support import dump_hash
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "collisions_example.csv"
-
-
-@pytest.fixture
-def package(cli, db: str, tmp_path: Path) -> Path:
-    imported = cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db)
-    assert imported.exit_code == 0, imported.stderr
-    out = tmp_path / "pkg"
-    assert cli("dataset", "export", "example", "--output", str(out), db=db).exit_code == 0
-    return out
-
 
 def _one_line(result, *expected: str) -> str:
     assert result.exit_code == 1, (result.stdout, result.stderr)
@@ -266,12 +255,9 @@ def test_sigkill_during_a_package_import_leaves_the_database_as_before(
     body = "".join(f"k{i},{rest[i % len(rest)]}\n" for i in range(rows))
     _rewrite(package, "collisions", lambda _: header + "\n" + body)
     before = dump_hash(db)
-    process = subprocess.Popen(
-        [sys.executable, "-m", "granudb", "dataset", "import", str(package), "--as", "big"]
-        + ["--db", db],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-    )
+    command = [sys.executable, "-m", "granudb", "dataset", "import", str(package)]
+    command += ["--as", "big", "--db", db]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     wal = Path(db + "-wal")
     deadline = time.time() + 240
     while time.time() < deadline and process.poll() is None:
@@ -284,13 +270,7 @@ def test_sigkill_during_a_package_import_leaves_the_database_as_before(
     with sqlite3.connect(db) as connection:
         assert connection.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
     assert dump_hash(db) == before
-    again = subprocess.run(
-        [sys.executable, "-m", "granudb", "dataset", "import", str(package), "--as", "big"]
-        + ["--db", db],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
+    again = subprocess.run(command, capture_output=True, text=True, timeout=600)
     assert again.returncode == 0, again.stderr
     with sqlite3.connect(db) as connection:
         assert connection.execute("SELECT count(*) FROM collisions").fetchone()[0] == rows + 12
