@@ -123,6 +123,8 @@ def check_unit_expression(text: str) -> str:
         position = match.end()
         kind = match.lastgroup if match.lastgroup not in {"implicit", "sup"} else "name"
         if kind == "power":
+            if out and out[-1].startswith("**"):  # 10**9**9**9 is 10**(9**9**9) to Python
+                raise UnitSyntaxError("has an exponent of an exponent (write one, e.g. m^3)")
             exponent = _EXPONENT.match(text, position)
             if exponent is None:
                 raise UnitSyntaxError(

@@ -9,6 +9,7 @@ often handed in, and regenerating it by accident must not destroy the copy.
 
 from __future__ import annotations
 
+import contextlib
 import re
 from pathlib import Path
 from typing import Any
@@ -99,10 +100,22 @@ def write_report(
     figures = _figure_files(report, path, force) if fmt == "md" else {}
     beside = _runs_file(report, path, force)
     text = render(report, fmt)
-    if figures:
-        next(iter(figures)).parent.mkdir(exist_ok=True)
-    for target, svg in figures.items():
-        write_text(target, svg, replace=force, field="--output")
-    for target, payload in beside.items():
-        write_bytes(target, payload, replace=force, field="--output")
-    return write_text(path, text, replace=force, field="--output")
+    folder = next(iter(figures)).parent if figures else None
+    made_folder = folder is not None and not folder.exists()
+    new_files = [target for target in (*figures, *beside) if not target.exists()]
+    try:
+        if folder is not None:
+            folder.mkdir(exist_ok=True)
+        for target, svg in figures.items():
+            write_text(target, svg, replace=force, field="--output")
+        for target, payload in beside.items():
+            write_bytes(target, payload, replace=force, field="--output")
+        return write_text(path, text, replace=force, field="--output")
+    except BaseException:
+        # all or nothing: a figure or run table written before the failure (disk full) goes
+        for target in new_files:
+            target.unlink(missing_ok=True)
+        if made_folder and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        raise

@@ -18,17 +18,6 @@ from pathlib import Path
 import pytest
 from support import dump_hash
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "collisions_example.csv"
-
-
-@pytest.fixture
-def package(cli, db: str, tmp_path: Path) -> Path:
-    imported = cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db)
-    assert imported.exit_code == 0, imported.stderr
-    out = tmp_path / "pkg"
-    assert cli("dataset", "export", "example", "--output", str(out), db=db).exit_code == 0
-    return out
-
 
 def _one_line(result, *expected: str) -> str:
     assert result.exit_code == 1, (result.stdout, result.stderr)
@@ -191,17 +180,24 @@ def test_unit_bombs_in_a_schema_are_refused_at_bounded_cost(
 LIMITED = """
 import resource, signal, sys
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a write past the limit fails with EFBIG
-limit = int(sys.argv[1])
-resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+limit, folder = int(sys.argv[1]), sys.argv[2]
+
+def limit_output(event, args):
+    # the limit starts when the first file in the output folder is opened: the database
+    # (and Python's start-up) are read without it, as on a disk that filled meanwhile
+    if event == "open" and str(args[0]).startswith(folder):
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+sys.addaudithook(limit_output)
 from granudb.cli.main import main
-sys.argv = ["granudb", *sys.argv[2:]]
+sys.argv = ["granudb", *sys.argv[3:]]
 main()
 """
 
 
-def _limited(limit: int, *argv: str) -> subprocess.CompletedProcess:
+def _limited(limit: int, out: Path, *argv: str) -> subprocess.CompletedProcess:
     return subprocess.run(
-        [sys.executable, "-c", LIMITED, str(limit), *argv],
+        [sys.executable, "-c", LIMITED, str(limit), str(out), *argv],
         capture_output=True,
         text=True,
         timeout=300,
@@ -229,20 +225,16 @@ def _listing(folder: Path) -> list[str]:
 def test_a_file_size_limit_during_output_is_one_line_and_leaves_nothing(
     cli, db: str, package: Path, tmp_path: Path, argv: list[str]
 ) -> None:
-    import sqlite3
-
-    with sqlite3.connect(db) as connection:  # a reader then writes nothing to the database
-        connection.execute("PRAGMA journal_mode=DELETE")
     out = tmp_path / "out"
     out.mkdir()
     args = [a.replace("{out}", str(out)) for a in argv] + ["--db", db]
-    full = _limited(10**9, *args)  # the same command without the limit writes its output
+    full = _limited(10**9, out, *args)  # the same command without the limit writes its output
     assert full.returncode == 0, full.stderr
     written = max(p.stat().st_size for p in out.rglob("*") if p.is_file())
     for p in sorted(out.rglob("*"), reverse=True):
         p.unlink() if p.is_file() else p.rmdir()
     before, listing = dump_hash(db), _listing(out)
-    limited = _limited(written // 2, *args)
+    limited = _limited(written // 2, out, *args)
     assert limited.returncode == 1, (limited.stdout, limited.stderr)
     lines = limited.stderr.strip().splitlines()
     assert len(lines) == 1 and "internal error" not in lines[0], limited.stderr
@@ -266,12 +258,9 @@ def test_sigkill_during_a_package_import_leaves_the_database_as_before(
     body = "".join(f"k{i},{rest[i % len(rest)]}\n" for i in range(rows))
     _rewrite(package, "collisions", lambda _: header + "\n" + body)
     before = dump_hash(db)
-    process = subprocess.Popen(
-        [sys.executable, "-m", "granudb", "dataset", "import", str(package), "--as", "big"]
-        + ["--db", db],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-    )
+    command = [sys.executable, "-m", "granudb", "dataset", "import", str(package)]
+    command += ["--as", "big", "--db", db]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     wal = Path(db + "-wal")
     deadline = time.time() + 240
     while time.time() < deadline and process.poll() is None:
@@ -284,13 +273,7 @@ def test_sigkill_during_a_package_import_leaves_the_database_as_before(
     with sqlite3.connect(db) as connection:
         assert connection.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
     assert dump_hash(db) == before
-    again = subprocess.run(
-        [sys.executable, "-m", "granudb", "dataset", "import", str(package), "--as", "big"]
-        + ["--db", db],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
+    again = subprocess.run(command, capture_output=True, text=True, timeout=600)
     assert again.returncode == 0, again.stderr
     with sqlite3.connect(db) as connection:
         assert connection.execute("SELECT count(*) FROM collisions").fetchone()[0] == rows + 12
