@@ -127,3 +127,25 @@ def require_binary(binary: str) -> None:
     if os.environ.get("GRANUDB_REQUIRE_DEM") == "1":
         pytest.fail(f"{binary} is required (GRANUDB_REQUIRE_DEM=1) but not installed")
     pytest.skip(f"{binary} not installed")
+
+
+class CostBound:
+    """Bounded cost, not speed: the block must finish within ``cpu_seconds`` of this
+    process's CPU time (a hang, or an exponent evaluated by brute force, overruns it by
+    orders of magnitude; other processes on the machine do not count). Speed itself is
+    measured in benchmarks/, never here."""
+
+    def __init__(self, cpu_seconds: float = 10.0) -> None:
+        self.cpu_seconds = cpu_seconds
+
+    def __enter__(self) -> CostBound:
+        import time
+
+        self.started = time.process_time()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        import time
+
+        used = time.process_time() - self.started
+        assert used < self.cpu_seconds, f"{used:.1f} s of CPU (bound {self.cpu_seconds} s)"

@@ -196,11 +196,13 @@ def test_fluid_points_carry_their_uncertainty_into_the_viscosity(opened) -> None
     assert st_n == pytest.approx(relative, rel=1e-9)
 
 
+@pytest.mark.parametrize("dropped", [("u_",), ("u_", "dry_", "brittleness")])
 def test_a_package_from_before_the_uncertainties_still_imports(
-    cli, db: str, new_db: str, tmp_path: Path
+    cli, db: str, new_db: str, tmp_path: Path, dropped: tuple[str, ...]
 ) -> None:
-    """A package whose materials, fluids and points end without the u columns (written
-    before they existed) is read with them empty."""
+    """A package whose materials, fluids and points lack the u columns, or also the dry
+    values, their origin and brittleness (the previous release's packages), is read with
+    them empty; a package of today carries them and round-trips them."""
     assert cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db).exit_code == 0
     out = tmp_path / "old"
     assert cli("dataset", "export", "example", "--output", str(out), db=db).exit_code == 0
@@ -208,7 +210,7 @@ def test_a_package_from_before_the_uncertainties_still_imports(
     for resource in descriptor["resources"]:
         path = out / resource["path"]
         rows = list(csv.reader(io.StringIO(path.read_text("utf-8"), newline="")))
-        keep = [i for i, name in enumerate(rows[0]) if not name.startswith("u_")]
+        keep = [i for i, name in enumerate(rows[0]) if not name.startswith(dropped)]
         buffer = io.StringIO(newline="")
         csv.writer(buffer, lineterminator="\n").writerows([[r[i] for i in keep] for r in rows])
         payload = buffer.getvalue().encode("utf-8")
@@ -216,7 +218,7 @@ def test_a_package_from_before_the_uncertainties_still_imports(
         resource["bytes"] = len(payload)
         resource["hash"] = "sha256:" + hashlib.sha256(payload).hexdigest()
         fields = resource["schema"]["fields"]
-        resource["schema"]["fields"] = [f for f in fields if not f["name"].startswith("u_")]
+        resource["schema"]["fields"] = [f for f in fields if not f["name"].startswith(dropped)]
     (out / "datapackage.json").write_text(json.dumps(descriptor), "utf-8")
     result = cli("dataset", "import", str(out), db=new_db)
     assert result.exit_code == 0, result.stderr

@@ -51,7 +51,15 @@ from granudb.output_files import write_text
 DEM_CODES = WRITER_NAMES
 VERIFY_CODES = ("liggghts", "lammps", "yade")
 WRITERS = {"liggghts": liggghts, "lammps": lammps, "yade": yade, "mercurydpm": mercurydpm}
-DRY_RESTITUTION = 0.97  # Joseph & Hunt 2004 §3: ē_dry = 0.97 ± 0.02 on Zerodur
+
+
+def _provenance(basis: str, source: str) -> str:
+    """A dry value's origin in a deck's comment, from its basis and source as
+    ``granudb.dry_values`` gives them ("measured for steel on Zerodur (…)" says itself)."""
+    word = {"materials": "from the materials' own values", "borrowed": "assumed"}.get(basis)
+    return f"{word}: {source}" if word else source
+
+
 VALUE_SOURCES = ("published", "dataset", "predicted")
 DEM_VALUE_SOURCES = VALUE_SOURCES
 
@@ -83,7 +91,7 @@ def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dic
 def _predicted(
     session: Any, particle: str, wall: str, fluid: str | None, scenario: dict, pinned: Any
 ) -> Any:
-    return derive_pair(session, particle, wall, fluid=fluid, dataset_id=pinned, **scenario).derived
+    return derive_pair(session, particle, wall, fluid=fluid, dataset_id=pinned, **scenario)
 
 
 def _pair_values(
@@ -100,7 +108,8 @@ def _pair_values(
     pair; with
     ``pinned`` (a dataset's id) the catalogue as that dataset's runs use it."""
     fluid_name = fluid.name if fluid else None
-    derived = _predicted(session, particle.material, wall, fluid_name, scenario, pinned)
+    result = _predicted(session, particle.material, wall, fluid_name, scenario, pinned)
+    derived, pair_dry = result.derived, result.dry
     used = float(derived["friction_coefficient_used"])
     lubricated = (
         fluid is not None
@@ -109,13 +118,22 @@ def _pair_values(
     )
     if lubricated:
         said = f"predicted: lubricated μ_f (5.8) of {particle.material}/{wall} at the stated speed"
-    else:
-        why = "no value for this pair"
+    else:  # the pair's dry (or, asperities touching in a liquid, immersed) value, as pair says
+        immersed = fluid is not None and used == pair_dry.immersed_friction != pair_dry.friction
+        kind, basis, source = (
+            ("immersed", pair_dry.immersed_friction_basis, pair_dry.immersed_friction_source)
+            if immersed
+            else ("dry", pair_dry.friction_basis, pair_dry.friction_source)
+        )
+        said = f"the {kind} friction {used:g}, {_provenance(basis, source)}"
         if fluid is not None:  # the export is of a normal impact: (5.8) has no sliding speed
-            why += "; the export has no sliding speed, so (5.8) gives no lubricated μ_f"
-        said = f"assumed: the dry friction {used:g} of Joseph & Hunt 2004 §3 ({why})"
+            said += " (the export has no sliding speed, so (5.8) gives no lubricated μ_f)"
     friction = Value(used, said)
-    dry = Value(DRY_RESTITUTION, "Joseph & Hunt 2004 §3: ē_dry = 0.97 ± 0.02 (assumed)")
+    ceiling = float(derived["restitution_ceiling"])
+    dry_said = _provenance(pair_dry.restitution_basis, pair_dry.restitution_source)
+    if derived.get("restitution_model") == "elastic_plastic":
+        dry_said += f"; past yield at the stated speed Thornton (1997) gives {ceiling:.3g}"
+    dry = Value(ceiling, dry_said)
     beta = None
     if values == "published":
         dry_found = _dry_values(session, particle.material, wall)

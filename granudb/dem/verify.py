@@ -312,7 +312,8 @@ def table(records: Sequence[Record]) -> str:
                 f"{r.friction_rel_error:+7.2%}"
             )
             beta = "" if r.target_beta is None else f"{r.target_beta:.2f}"
-            line += f" {beta:>5} {r.achieved_beta:6.3f}"
+            achieved = "" if r.achieved_beta is None else f"{r.achieved_beta:.3f}"
+            line += f" {beta:>5} {achieved:>6}"
         else:
             line += " " * 63
         rows.append(

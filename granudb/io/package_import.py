@@ -39,7 +39,7 @@ from granudb.io.package_files import (
 )
 from granudb.io.package_schema import (
     FOREIGN_KEYS,
-    OPTIONAL_TRAILING,
+    OPTIONAL_COLUMNS,
     PRIMARY_KEYS,
     RESOURCES,
     check_schema,
@@ -48,6 +48,7 @@ from granudb.io.package_schema import (
 from granudb.io.tables import TINY_RULE, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
+from granudb.vocabulary.catalogue import MATERIALS
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import check_name, check_text, name_key
 
@@ -132,15 +133,19 @@ class _Findings:
         return found
 
 
-def _older_header(name: str, header: list[str]) -> bool:
-    """A header from before the uncertainty columns (``OPTIONAL_TRAILING``): read as empty."""
-    trailing = OPTIONAL_TRAILING.get(name, [])
-    return bool(trailing) and header == columns(name)[: -len(trailing)]
+def _absent(name: str, header: list[str]) -> list[str] | None:
+    """The optional columns (``OPTIONAL_COLUMNS``) an older package's header lacks, read
+    as empty; None where the header is not the schema's with some of them left out."""
+    expected = columns(name)
+    absent = [c for c in expected if c not in header]
+    if header != [c for c in expected if c in header]:
+        return None
+    return absent if set(absent) <= set(OPTIONAL_COLUMNS.get(name, ())) else None
 
 
 def _header_problem(name: str, header: list[str]) -> str | None:
     expected = columns(name)
-    if header == expected or _older_header(name, header):
+    if _absent(name, header) is not None:
         return None
     missing = [c for c in expected if c not in header]
     extra = [c for c in header if c not in expected]
@@ -174,6 +179,13 @@ def _check_block(
             found.add(f"{name}.{column}: empty in {{rows}} (required)", empty, first_row)
         if kind == "string":
             _check_strings(name, column, raw, found, first_row, bad)
+            words = MATERIALS.texts.get(column) if name == "materials" else None
+            if words:  # brittleness: one of its words, as the command line asks
+                found.add(
+                    f"{name}.{column}: must be one of {', '.join(words)} in {{rows}}",
+                    ~empty & ~raw.isin(words),
+                    first_row,
+                )
             out[column] = raw.where(~empty, None)
             continue
         values = pd.to_numeric(raw.where(~empty, None), errors="coerce")
@@ -264,9 +276,10 @@ def _read_table(
                     if header is not None:
                         problems.append(header)
                         return None, 0
-                if _older_header(name, list(frame.columns)):
-                    for column in OPTIONAL_TRAILING[name]:
-                        frame[column] = ""
+                absent = _absent(name, list(frame.columns)) or []
+                for column in absent:  # checked as empty, then left out: not stated
+                    frame[column] = ""
+                frame = frame[columns(name)]
                 if rows + len(frame) > MAX_ROWS:
                     problems.append(f"{name}: more than {MAX_ROWS} rows")
                     return None, rows + len(frame)
@@ -275,8 +288,8 @@ def _read_table(
                 key_hashes.append(
                     pd.util.hash_pandas_object(frame[PRIMARY_KEYS[name]], index=False).to_numpy()
                 )
-                if keep:
-                    kept.append(block)
+                if keep:  # an absent column is not stated: the merge leaves it as it is
+                    kept.append(block.drop(columns=absent))
                 rows += len(frame)
     except UnicodeDecodeError:
         problems.append(f"{name}: {path.name} is not UTF-8 text")

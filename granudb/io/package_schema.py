@@ -25,11 +25,12 @@ from granudb.vocabulary import (
     Catalogue,
     term,
 )
+from granudb.vocabulary.catalogue import DRY_VALUE_PROPERTIES
 from granudb.vocabulary.rules import RULES
 
 #: Text columns of a package's tables (names, keys, citations); sources and locators too.
 _TEXT = {"key", "citation", "doi", "url", "kind", "notes", "name", "description", "run"}
-_TEXT |= {"particle", "wall", "fluid"}
+_TEXT |= {"particle", "wall", "fluid", *MATERIALS.texts}
 
 
 def _fields(columns: list[str], required: list[str]) -> list[tuple[str, str, bool]]:
@@ -50,9 +51,16 @@ def _catalogue(spec: Catalogue) -> list[tuple[str, str, bool]]:
         if extra.endswith("_source"):
             sources += [extra, extra.removesuffix("_source") + "_locator"]
     required = ["name", *spec.required, *spec.defaults]
-    # the standard uncertainties last: a package written before them lacks only those
-    # (``OPTIONAL_TRAILING``) and still reads
-    shown = ["name", "description", *spec.properties, *sources, *spec.uncertainties.values()]
+    # the standard uncertainties last; a package written before them (or before the dry
+    # values) lacks those columns (``OPTIONAL_COLUMNS``) and still reads
+    shown = [
+        "name",
+        "description",
+        *spec.properties,
+        *spec.texts,
+        *sources,
+        *spec.uncertainties.values(),
+    ]
     return _fields(shown, required)
 
 
@@ -73,10 +81,14 @@ RESOURCES: dict[str, list[tuple[str, str, bool]]] = {
     ),
 }
 
-#: Columns a resource's file may end without (packages from before issue 27's
-#: uncertainties): read as empty.
-OPTIONAL_TRAILING: dict[str, list[str]] = {
-    "materials": list(MATERIALS.uncertainties.values()),
+#: Columns a resource's file may lack, read as empty: those added after granudb's first
+#: packages (issue 27's uncertainties; issue 23's dry values, their origin and brittleness).
+OPTIONAL_COLUMNS: dict[str, list[str]] = {
+    "materials": [
+        *DRY_VALUE_PROPERTIES,
+        *MATERIALS.texts,
+        *MATERIALS.uncertainties.values(),
+    ],
     "fluids": list(FLUIDS.uncertainties.values()),
     "fluid_points": list(POINT_UNCERTAINTIES),
 }

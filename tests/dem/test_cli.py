@@ -170,7 +170,8 @@ def test_glycerol_78_verifies_and_a_wrong_deck_exits_non_zero(cli, db: str, monk
 
 def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
     """Issue 26: a wet export is of a normal impact, so (5.8) has no sliding speed and
-    gives no μ_f; the 0.11 written is the dry value, and its label says so."""
+    gives no μ_f; the value written is the pair's own (for glass on Zerodur in a liquid the
+    immersed 0.15 Joseph & Hunt measured, as ``pair`` uses), and its label says so."""
     import granudb
 
     text = granudb.dem_export("liggghts", ["glass"], ["Zerodur"], fluid="glycerol-78",
@@ -178,7 +179,11 @@ def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
                               db=db)  # fmt: skip
     comments = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
     assert "predicted: lubricated μ_f (5.8)" not in comments
-    assert "assumed: the dry friction 0.11" in comments and "no sliding speed" in comments
+    said = "coefficientFriction = 0.15 (the immersed friction 0.15, measured for glass on Zerodur"
+    assert said in comments and "no sliding speed" in comments
+    pair = granudb.pair("glass", "Zerodur", fluid="glycerol-78", diameter="12.7 mm",
+                        velocity="0.3 m/s", db=db)  # fmt: skip
+    assert pair["friction_coefficient_used"] == 0.15  # one answer: pair and the deck
 
 
 @pytest.mark.parametrize(

@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import math
 import re
-import time
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from support import CostBound
 
 from granudb.errors import ValidationError
 from granudb.io.units import (
@@ -178,9 +178,8 @@ def test_unit_expressions_outside_the_grammar_are_refused(text: str, rule: str) 
 )
 def test_hostile_exponents_are_refused_at_once(text: str) -> None:
     # Before: Pint evaluated 9**9**9 and never returned.
-    start = time.perf_counter()
-    refused(text, "m_s", "--velocity")
-    assert time.perf_counter() - start < 1.0
+    with CostBound():
+        refused(text, "m_s", "--velocity")
 
 
 UNITISH = st.lists(
@@ -201,28 +200,26 @@ UNITISH = st.lists(
 def test_fuzzed_unit_expressions_parse_or_refuse_quickly_in_one_line(
     number: str, unit_text: str, target: str
 ) -> None:
-    start = time.perf_counter()
-    try:
-        value = parse_quantity(number + unit_text, target, "--x")
-    except ValidationError as exc:
-        assert "\n" not in str(exc) and str(exc).startswith("--x: ")
-    else:
-        assert math.isfinite(value)
-    try:
-        scale, offset = conversion(unit_text, UNITS[target])
-    except ValidationError as exc:
-        assert "\n" not in str(exc)
-    else:
-        assert math.isfinite(scale) and math.isfinite(offset)
-    assert time.perf_counter() - start < 0.5
+    with CostBound():
+        try:
+            value = parse_quantity(number + unit_text, target, "--x")
+        except ValidationError as exc:
+            assert "\n" not in str(exc) and str(exc).startswith("--x: ")
+        else:
+            assert math.isfinite(value)
+        try:
+            scale, offset = conversion(unit_text, UNITS[target])
+        except ValidationError as exc:
+            assert "\n" not in str(exc)
+        else:
+            assert math.isfinite(scale) and math.isfinite(offset)
 
 
 @settings(max_examples=200, deadline=None)
 @given(st.text(max_size=200))
 def test_any_text_is_parsed_or_refused_quickly(text: str) -> None:
-    start = time.perf_counter()
-    try:
-        parse_quantity(text, "m_s", "--velocity")
-    except ValidationError as exc:
-        assert "\n" not in str(exc)
-    assert time.perf_counter() - start < 0.5
+    with CostBound():
+        try:
+            parse_quantity(text, "m_s", "--velocity")
+        except ValidationError as exc:
+            assert "\n" not in str(exc)
