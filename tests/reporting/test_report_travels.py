@@ -5,10 +5,12 @@ never the folder it sits in on the author's machine; fit texts pluralise ("1 val
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pandas as pd
 
 from granudb.analysis import fits
+from granudb.reporting.build import database_name
 
 
 def test_header_names_the_database_by_its_file_name(cli, example_db, tmp_path) -> None:
@@ -20,7 +22,8 @@ def test_header_names_the_database_by_its_file_name(cli, example_db, tmp_path) -
         text = out.read_text("utf-8")
         folder = str(tmp_path)
         assert folder not in text and folder.replace("/", "\\/") not in text
-        name = example_db.rsplit("/", 1)[-1]
+        # a file by its name; a server database by its name and backend, never its URL
+        name = database_name(example_db) if "://" in example_db else Path(example_db).name
         assert f"Database: <code>{name}</code>" in text or f"Database: ` {name} `" in text
 
 
