@@ -38,7 +38,7 @@ REPORT_COLUMNS = [
     *("walton_factor", "rotational_restitution", "sliding_friction", "normal_stokes_number"),
     *("added_mass_stokes_number", "shear_strain", "effective_radius_m", "reduced_modulus_pa"),
     *("eta_hat_pa_inv", "effective_mass_kg", "roughness_exceeds_gap", "roughness_regime"),
-    *("composite_roughness_m", "film_parameter", "derivation_note"),
+    *("composite_roughness_m", "film_parameter", "derivation_note", "restitution_ceiling"),
 ]
 
 #: Scenario inputs granudb assumes when ``report --pair`` is not given them.

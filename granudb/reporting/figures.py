@@ -284,19 +284,27 @@ def dataset_figures(
 
 
 #: What ``restitution_figure`` and ``predicted_curves`` read of the immersed runs.
-WET_COLUMNS = ("normal_stokes_number", "normal_restitution", "added_mass_stokes_number")
+WET_COLUMNS = (
+    "normal_stokes_number",
+    "normal_restitution",
+    "added_mass_stokes_number",
+    "restitution_ceiling",
+)
 
 
 def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) -> list[dict]:
     """Per group, the predicted e(St_n) = e_dry exp(−35/St) of Legendre et al. (2006) with
     St the group's added-mass Stokes number (St_am = St_n (1 + ρ_f/(2ρ_p)), its median
-    ratio in the group), 0 where St_n ≤ St_c, as ``derive``'s ``predicted_restitution``."""
+    ratio in the group), 0 where St_n ≤ St_c, as ``derive``'s ``predicted_restitution``;
+    e_dry is the pair's own (``restitution_ceiling``, the resolved dry value ``derive``
+    used for the group's runs; their median), the borrowed 0.97 only without it."""
     if "added_mass_stokes_number" not in frame:
         return []
     st_n = frame["normal_stokes_number"].to_numpy(float)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = frame["added_mass_stokes_number"].to_numpy(float) / st_n
     names = np.asarray(labels, dtype=object)
+    dry = frame["restitution_ceiling"].astype(float) if "restitution_ceiling" in frame else None
     curves = []
     for label in sorted(set(names.tolist())):
         mask = (names == label) & np.isfinite(ratio) & np.isfinite(st_n) & (st_n > 0)
@@ -304,8 +312,10 @@ def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) 
             continue
         low, high = float(np.min(st_n[mask])), float(np.max(st_n[mask]))
         grid = np.geomspace(max(min(low / 2, critical_stokes / 2), 0.1), high * 2, 200)
-        e = flow.predicted_restitution(grid * float(np.median(ratio[mask])), DRY_RESTITUTION,
-                                       critical_stokes)  # fmt: skip
+        e = flow.predicted_restitution(
+            grid * float(np.median(ratio[mask])), dry[mask].median() if dry is not None else
+            DRY_RESTITUTION, critical_stokes
+        )  # fmt: skip
         curves.append({"label": label, "st_n": grid, "e": np.where(grid > critical_stokes, e, 0.0)})
     return curves
 
