@@ -18,6 +18,7 @@ on the first wall, and the comment says so.
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict
 from pathlib import Path
 from typing import Any
@@ -31,6 +32,7 @@ from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.db import catalog_rows, lookup_rows, sources
 from granudb.dem import (
+    PARAMETER_SETS,
     WRITER_NAMES,
     DemModel,
     PairParameters,
@@ -64,8 +66,13 @@ VALUE_SOURCES = ("published", "dataset", "predicted")
 DEM_VALUE_SOURCES = VALUE_SOURCES
 
 
-#: What a DEM export reads from the published values: ē, μ_f and Walton's β.
-PUBLISHED_QUANTITIES = ("normal_restitution_mean", "sliding_friction", "rotational_restitution")
+#: What a DEM export reads from the published values: ē, μ_f and Walton's β, with the
+#: physical range an interval of each is cut to.
+PUBLISHED_QUANTITIES = {
+    "normal_restitution_mean": (0.0, 1.0),
+    "sliding_friction": (0.0, math.inf),
+    "rotational_restitution": (-1.0, 1.0),
+}
 
 
 def _dry_values(session: Any, particle: str, wall: str) -> dict[str, Any]:
@@ -84,7 +91,13 @@ def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dic
         if immersed_row != (fluid is not None) or (row["fluid"] and row["fluid"] != fluid):
             continue
         where = f"{row['source']} {row['source_locator']}: {row['value_as_printed']}"
-        found.setdefault(row["quantity"], (row["value"], where))
+        found.setdefault(
+            row["quantity"],
+            Value.uncertain(
+                row["value"], where, row["uncertainty"], "(the source's ±)",
+                PUBLISHED_QUANTITIES[row["quantity"]],
+            ),
+        )  # fmt: skip
     return found
 
 
@@ -103,10 +116,12 @@ def _pair_values(
     values: str,
     dataset: Any,
     pinned: int | None = None,
+    parameter_set: str = "central",
 ) -> tuple[Any, Any, Any, Any]:
     """(restitution Value, friction Value, WetParameters or None, β Value or None) for one
-    pair; with
-    ``pinned`` (a dataset's id) the catalogue as that dataset's runs use it."""
+    pair, each with its interval where one is stated and at ``parameter_set``'s end of it
+    (``Value.at``); with ``pinned`` (a dataset's id) the catalogue as that dataset's runs
+    use it."""
     fluid_name = fluid.name if fluid else None
     result = _predicted(session, particle.material, wall, fluid_name, scenario, pinned)
     derived, pair_dry = result.derived, result.dry
@@ -128,7 +143,10 @@ def _pair_values(
         said = f"the {kind} friction {used:g}, {_provenance(basis, source)}"
         if fluid is not None:  # the export is of a normal impact: (5.8) has no sliding speed
             said += " (the export has no sliding speed, so (5.8) gives no lubricated μ_f)"
-    friction = Value(used, said)
+    friction = Value.uncertain(
+        used, said, derived.get("u_friction_coefficient_used"), "(propagated, GUM)",
+        PUBLISHED_QUANTITIES["sliding_friction"],
+    )  # fmt: skip
     ceiling = float(derived["restitution_ceiling"])
     dry_said = _provenance(pair_dry.restitution_basis, pair_dry.restitution_source)
     if derived.get("restitution_model") == "elastic_plastic":
@@ -140,21 +158,30 @@ def _pair_values(
         found = dry_found if fluid is None else _published(
             session, particle.material, wall, fluid.name
         )  # fmt: skip
-        if "sliding_friction" in found:
-            friction = Value(*found["sliding_friction"])
-        if "rotational_restitution" in found:
-            beta = Value(*found["rotational_restitution"])
-        if "normal_restitution_mean" in dry_found:
-            dry = Value(*dry_found["normal_restitution_mean"])
+        friction = found.get("sliding_friction", friction)
+        beta = found.get("rotational_restitution")
+        dry = dry_found.get("normal_restitution_mean", dry)
     elif values == "dataset":
         friction, dry, beta = _dataset_values(
             session, dataset, particle.material, wall, fluid, friction, dry
         )
+    dry, friction = dry.at(parameter_set), friction.at(parameter_set)
+    beta = None if beta is None else beta.at(parameter_set)
     if fluid is None:
         return dry, friction, None, beta
-    restitution, law = predicted_wet_restitution(
-        dry, particle, fluid.viscosity_pa_s, scenario["speed_m_s"], fluid.density_kg_m3
-    )
+
+    def wet(e_dry: Value) -> tuple[Value, Any]:
+        return predicted_wet_restitution(
+            e_dry, particle, fluid.viscosity_pa_s, scenario["speed_m_s"], fluid.density_kg_m3
+        )
+
+    restitution, law = wet(dry)
+    if dry.low is not None and dry.high is not None:  # e_wet rises with e_dry
+        ends = [wet(Value(end, dry.provenance))[0].value for end in (dry.low, dry.high)]
+        restitution = Value(
+            restitution.value, restitution.provenance, min(ends[0], restitution.value),
+            max(ends[1], restitution.value), f"from the dry e's {dry.interval}",
+        )  # fmt: skip
     if restitution.value == 0.0:
         raise ValidationError(
             f"restitution {particle.material}/{wall}",
@@ -175,18 +202,12 @@ def _dataset_values(
     for fit in fits.walton(select_collisions(session, query)):
         b = fit.get("rotational_restitution")
         if b is not None and b == b and -1.0 < b < 1.0:
-            beta = Value(float(b), f"dataset {dataset}: Walton fit of the sticking runs")
+            beta = _fitted(
+                fit, "rotational_restitution", "Walton fit of the sticking runs", dataset
+            )
         mu = fit.get("sliding_friction")
         if mu is not None and mu == mu:
-            low, high = fit.get("sliding_friction_low"), fit.get("sliding_friction_high")
-            interval = ""
-            if low is not None and high is not None and high - low > 1e-9 * abs(mu):
-                interval = f", 95 % interval {low:.3g}–{high:.3g}"
-            else:  # the fit's own words: too few runs, or a degenerate bootstrap
-                why = [p for p in str(fit.get("reason") or "").split("; ") if "of μ_f" in p]
-                said = f" ({why[0].split(': ', 1)[-1]})" if why else ""
-                interval = ", interval not determined" + said
-            friction = Value(float(mu), f"dataset {dataset}: Walton fit{interval}")
+            friction = _fitted(fit, "sliding_friction", "Walton fit", dataset)
         elif fit.get("reason"):
             friction = Value(
                 friction.value,
@@ -195,25 +216,47 @@ def _dataset_values(
             )
         e = fit.get("normal_restitution_mean")
         if e is not None and e == e and fluid is None:
-            dry = Value(min(float(e), 1.0), f"dataset {dataset}: mean e of the dry runs")
+            dry = _fitted(fit, "normal_restitution", "mean e of the dry runs", dataset, e)
     return friction, dry, beta
+
+
+def _fitted(fit: dict, name: str, what: str, dataset: str, value: Any = None) -> Value:
+    """A fitted value (``fit[name]``, or ``value``) with its 95 % bootstrap interval
+    (``name``_low/_high), or the fit's reason why it has none."""
+    central = float(fit[name] if value is None else value)
+    bounds = PUBLISHED_QUANTITIES.get(name, PUBLISHED_QUANTITIES["normal_restitution_mean"])
+    central = min(max(central, bounds[0]), bounds[1])
+    low, high = fit.get(f"{name}_low"), fit.get(f"{name}_high")
+    said = f"dataset {dataset}: {what}"
+    if low is not None and high is not None and high - low > 1e-9 * abs(central):
+        low, high = max(float(low), bounds[0]), min(float(high), bounds[1])
+        if low <= central <= high:
+            return Value(central, said, low, high, "95 % studentized bootstrap interval")
+    symbol = {"sliding_friction": "μ_f", "rotational_restitution": "β"}.get(name, "ē")
+    why = [p for p in str(fit.get("reason") or "").split("; ") if f"of {symbol}" in p]
+    return Value(
+        central,
+        f"{said}, interval not determined" + (f" ({why[0].split(': ', 1)[-1]})" if why else ""),
+    )
 
 
 #: What a DEM model is built from, besides the materials, and the defaults.
 MODEL_OPTIONS = {
-    "diameter": None, "velocity": None, "fluid": None, "values": "published", "dataset": None
+    "diameter": None, "velocity": None, "fluid": None, "values": "published", "dataset": None,
+    "parameter_set": "central",
 }  # fmt: skip
 
 
 def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **options: Any) -> Any:
     """The ``granudb.dem.DemModel`` for these particle and wall materials, ``options``
-    being ``MODEL_OPTIONS`` (diameter, velocity, fluid, values, dataset)."""
+    being ``MODEL_OPTIONS`` (diameter, velocity, fluid, values, dataset, parameter_set)."""
     for name in options:
         if name not in MODEL_OPTIONS:
             raise ValidationError(name, options[name], "is not a DEM model option", parameter=True)
-    diameter, velocity, fluid, values, dataset = (
+    diameter, velocity, fluid, values, dataset, parameter_set = (
         {**MODEL_OPTIONS, **options}[k] for k in MODEL_OPTIONS
     )
+    parameter_set = inputs.choice(parameter_set, PARAMETER_SETS, "parameter_set")
     if values not in VALUE_SOURCES:
         raise ValidationError(
             "values", values, f"must be one of {', '.join(VALUE_SOURCES)}", parameter=True
@@ -267,8 +310,9 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
         for particle in [t for t in types if not t.is_wall]:
             for wall in [t for t in types if t.is_wall]:
                 e, mu, law, beta = _pair_values(
-                    session, particle, wall.material, state, scenario, values, dataset, pinned
-                )
+                    session, particle, wall.material, state, scenario, values, dataset, pinned,
+                    parameter_set,
+                )  # fmt: skip
                 on_first_wall.setdefault(particle.name, (e, mu, law, wall.name))
                 pairs.append(
                     PairParameters(
@@ -276,7 +320,7 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
                     )
                 )
     pairs += _particle_pairs([t for t in types if not t.is_wall], on_first_wall)
-    return DemModel(types, pairs, scenario["speed_m_s"])
+    return DemModel(types, pairs, scenario["speed_m_s"], parameter_set)
 
 
 def _particle_pairs(particles: list[Any], on_wall: dict[str, Any]) -> list[Any]:
@@ -292,8 +336,8 @@ def _particle_pairs(particles: list[Any], on_wall: dict[str, Any]) -> list[Any]:
                 PairParameters(
                     first.name,
                     second.name,
-                    Value(e.value, f"{note} ({e.provenance})"),
-                    Value(mu.value, f"{note} ({mu.provenance})"),
+                    Value(e.value, f"{note} ({e.provenance})", e.low, e.high, e.interval),
+                    Value(mu.value, f"{note} ({mu.provenance})", mu.low, mu.high, mu.interval),
                     wet=law,
                 )
             )
@@ -310,6 +354,7 @@ def dem_export(
     fluid: str | None = None,
     values: str = "published",
     dataset: str | None = None,
+    parameter_set: str = "central",
     clamp: bool = False,
     output: str | Path | None = None,
     db: Any = None,
@@ -319,11 +364,15 @@ def dem_export(
 
     ``values`` says where e, μ_f and Walton's β come from: "published" (the paper's fits
     where the database has them), "dataset" (``dataset``'s Walton fit) or "predicted" (no
-    β). An immersed pair's comment states the speeds over which its constant e holds. A
-    value the
-    code cannot take is refused naming its rule, or with ``clamp=True`` written at the
-    nearest allowed value with a comment. With ``output`` the fragment is also written
-    to that new file (an existing one is refused). Returns the fragment.
+    β). Each value's comment gives its interval where one is stated (a fit's 95 %
+    interval, or ± 2u from a stated standard uncertainty u); ``parameter_set`` "low" or
+    "high" writes every value at that end of its interval, for sensitivity runs
+    (``PARAMETER_SETS``; a value without an interval keeps its central value and its
+    comment says so). An immersed pair's comment states the speeds over which its constant
+    e holds. A value the code cannot take is refused naming its rule, or with
+    ``clamp=True`` written at the nearest allowed value with a comment. With ``output``
+    the fragment is also written to that new file (an existing one is refused). Returns
+    the fragment.
 
     Examples
     --------
@@ -331,6 +380,10 @@ def dem_export(
     >>> text = granudb.dem_export("liggghts", ["steel"], ["Zerodur"], diameter="12.7 mm",
     ...                           velocity="0.3 m/s", db=db)
     >>> "coefficientFriction peratomtypepair 2" in text and "μ_f = 0.11 ± 0.003" in text
+    True
+    >>> low = granudb.dem_export("liggghts", ["steel"], ["Zerodur"], diameter="12.7 mm",
+    ...                          velocity="0.3 m/s", parameter_set="low", db=db)
+    >>> "Parameter set: LOW" in low and "the low end of the ± 2u" in low
     True
     """
     writer = WRITERS.get(inputs.choice(code, DEM_CODES, "code"))
@@ -341,7 +394,7 @@ def dem_export(
         )
     model = dem_model(
         particles, walls, diameter=diameter, velocity=velocity, fluid=fluid, values=values,
-        dataset=dataset, db=db,
+        dataset=dataset, parameter_set=parameter_set, db=db,
     )  # fmt: skip
     text = writer.write(model, clamp=clamp)
     if target is not None:
@@ -361,6 +414,7 @@ def dem_verify(
     fluid: str | None = None,
     values: str = "published",
     dataset: str | None = None,
+    parameter_set: str = "central",
 ) -> list[Record]:
     """Run the exported parameters in every installed code (LIGGGHTS, LAMMPS, Yade) on
     normal wall impacts at 0.1, 0.3 and 0.5 m/s, oblique ones at 30° and 60° and head-on
@@ -368,7 +422,8 @@ def dem_verify(
     within 1 %; μ_f within 3 % on the sliding branch; Ψ_out within 10 % of Walton's
     relation where β is measured, or a "stated limit" the deck explains), and "not
     checked" (never "pass") for a code that is not installed; ``codes`` chooses some.
-    The options are ``dem_export``'s; ``verify_table(records)`` prints them,
+    The options are ``dem_export``'s (a low or high ``parameter_set`` is verified as
+    written); ``verify_table(records)`` prints them,
     ``verify_passed(records)`` is the overall verdict (the command's exit status).
 
     Examples
@@ -381,7 +436,7 @@ def dem_verify(
     """
     model = dem_model(
         particles, walls, diameter=diameter, velocity=velocity, fluid=fluid, values=values,
-        dataset=dataset, db=db,
+        dataset=dataset, parameter_set=parameter_set, db=db,
     )  # fmt: skip
     chosen = tuple(inputs.choice(c, VERIFY_CODES, "code") for c in codes or VERIFY_CODES)
     return verify(model, codes=chosen, clamp=clamp)

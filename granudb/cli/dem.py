@@ -35,6 +35,14 @@ Values = Annotated[
 DatasetName = Annotated[
     str | None, typer.Option("--dataset", help="The dataset whose fits to use (--values dataset).")
 ]
+ParameterSet = Annotated[
+    str,
+    typer.Option(
+        "--set",
+        help="central, or low / high: every value at that end of its stated interval "
+        "(sensitivity runs).",
+    ),
+]
 Clamp = Annotated[
     bool, typer.Option("--clamp", help="Write a value outside a code's limits at the limit.")
 ]
@@ -51,6 +59,7 @@ def export(
     fluid: Fluid = None,
     values: Values = "published",
     dataset: DatasetName = None,
+    parameter_set: ParameterSet = "central",
     clamp: Clamp = False,
     output: Annotated[
         Path | None, typer.Option("--output", help="Write to this new file (default: stdout).")
@@ -67,6 +76,7 @@ def export(
         fluid=fluid,
         values=values,
         dataset=dataset,
+        parameter_set=parameter_set,
         clamp=clamp,
         output=output,
         db=db,
@@ -94,6 +104,7 @@ def verify(
     fluid: Fluid = None,
     values: Values = "published",
     dataset: DatasetName = None,
+    parameter_set: ParameterSet = "central",
 ) -> None:
     """Run the exported values in LIGGGHTS, LAMMPS and Yade (where installed): target
     against achieved e, μ_f on the sliding branch and Ψ_out against Walton's relation with
@@ -102,6 +113,7 @@ def verify(
     records = api.dem_verify(
         particle, wall, codes=tuple(codes) if codes else None, clamp=clamp, db=db,
         diameter=diameter, velocity=velocity, fluid=fluid, values=values, dataset=dataset,
+        parameter_set=parameter_set,
     )  # fmt: skip
     json_wanted = fmt is Format.json
     typer.echo(to_json(api.verify_document(records)) if json_wanted else api.verify_table(records))

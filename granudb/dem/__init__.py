@@ -8,6 +8,7 @@ real collisions where they are installed.
 """
 
 from granudb.dem.spec import (
+    PARAMETER_SETS,
     ContactScales,
     DemModel,
     PairParameters,
@@ -20,6 +21,7 @@ from granudb.dem.spec import (
 WRITER_NAMES = ("liggghts", "lammps", "yade", "mercurydpm")
 
 __all__ = [
+    "PARAMETER_SETS",
     "WRITER_NAMES",
     "ContactScales",
     "DemModel",

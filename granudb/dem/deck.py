@@ -39,7 +39,10 @@ def comment(text: str, prefix: str = "# ", width: int = 96) -> list[str]:
 
 
 def describe(value: Value) -> str:
-    return f"{num(value.value)} ({value.provenance})"
+    """A value as its comment says it: the number, where it came from, and its interval
+    where one is stated."""
+    interval = value.stated_interval()
+    return f"{num(value.value)} ({value.provenance}{'; ' + interval if interval else ''})"
 
 
 def pair_label(pair: PairParameters) -> str:
@@ -142,6 +145,13 @@ def header(code: str, version: str, model: DemModel) -> list[str]:
         f"granudb DEM export for {code} ({version}), SI units (m, kg, s, Pa).",
         f"Characteristic impact speed {num(v)} m/s. Every number below says where it came from.",
     ]
+    if model.parameter_set != "central":
+        lines.append(
+            f"Parameter set: {model.parameter_set.upper()}, for sensitivity runs: every value "
+            f"at the {model.parameter_set} end of its stated interval (a fit's 95 % interval, or "
+            "± 2u from a stated standard uncertainty u); a value without an interval keeps its "
+            "central value and says so. Wet restitutions follow from the dry e of the set."
+        )
     out = [line for text in lines for line in comment(text)]
     return out + type_lines(model)
 

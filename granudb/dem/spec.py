@@ -35,13 +35,27 @@ from granudb.physics.flow import (
     predicted_restitution,
 )
 
+#: The parameter sets a DEM export writes for sensitivity runs: every value at its central
+#: estimate, or at the lower / upper end of its stated interval (``Value.at``).
+PARAMETER_SETS = ("central", "low", "high")
+
+#: GUM's coverage factor for an interval from a standard uncertainty: k = 2 gives about
+#: 95 % for a normal distribution (JCGM 100:2008 §6.3), the level of the fits' intervals.
+COVERAGE_FACTOR = 2.0
+
 
 @dataclass(frozen=True)
 class Value:
-    """A number and where it came from, e.g. ``Value(0.97, "Joseph & Hunt 2004 §3")``."""
+    """A number and where it came from, e.g. ``Value(0.97, "Joseph & Hunt 2004 §3")``,
+    with its interval where one is stated: ``low``–``high`` and ``interval`` saying what
+    it is ("95 % studentized bootstrap interval", "± 2u (k = 2) from the stated u").
+    """
 
     value: float
     provenance: str
+    low: float | None = None
+    high: float | None = None
+    interval: str = ""
 
     def __post_init__(self) -> None:
         if not math.isfinite(self.value):
@@ -50,6 +64,82 @@ class Value:
             raise ValidationError(
                 "provenance", repr(self.provenance), "must say where it came from"
             )
+        if (self.low is None) != (self.high is None):
+            raise ValidationError("interval", (self.low, self.high), "needs both ends")
+        if self.low is not None and self.high is not None:
+            if not (math.isfinite(self.low) and math.isfinite(self.high)):
+                raise ValidationError("interval", (self.low, self.high), "must be finite")
+            if not self.low <= self.value <= self.high:
+                raise ValidationError(
+                    "interval",
+                    f"{self.low:g}–{self.high:g}",
+                    f"must hold the value {self.value:g}",
+                )
+            if not self.interval.strip():
+                raise ValidationError("interval", repr(self.interval), "must say what it is")
+
+    @classmethod
+    def uncertain(
+        cls,
+        value: float,
+        provenance: str,
+        u: float | None,
+        stated: str,
+        bounds: tuple[float, float] = (-math.inf, math.inf),
+    ) -> Value:
+        """``value`` with the interval value ± k·u (``COVERAGE_FACTOR``), cut to the
+        quantity's physical ``bounds``; no interval where ``u`` is missing, zero or not
+        finite. ``stated`` says whose u it is.
+
+        >>> v = Value.uncertain(0.11, "paper", 0.003, "the paper's ±")
+        >>> (round(v.low, 3), round(v.high, 3)), v.interval
+        ((0.104, 0.116), "± 2u (k = 2, about 95 %), u = 0.003 the paper's ±")
+        """
+        if u is None or not math.isfinite(u) or u <= 0.0:
+            return cls(value, provenance)
+        low = max(value - COVERAGE_FACTOR * u, bounds[0])
+        high = min(value + COVERAGE_FACTOR * u, bounds[1])
+        said = f"± {COVERAGE_FACTOR:g}u (k = {COVERAGE_FACTOR:g}, about 95 %), u = {u:.2g} {stated}"
+        if (low, high) != (value - COVERAGE_FACTOR * u, value + COVERAGE_FACTOR * u):
+            said += f", cut to [{bounds[0]:g}, {bounds[1]:g}]"
+        return cls(value, provenance, min(low, value), max(high, value), said)
+
+    def stated_interval(self) -> str:
+        """The interval as a deck comment says it, or "" where none is stated."""
+        if self.low is None or self.high is None:
+            return ""
+        return f"{self.interval}: {self.low:.3g}–{self.high:.3g}"
+
+    def at(self, which: str) -> Value:
+        """This value in the parameter set ``which`` (``PARAMETER_SETS``): the central
+        value, or the low / high end of its interval, the provenance saying which; a
+        value without an interval keeps its central value and says so.
+
+        >>> Value(0.5, "x", 0.4, 0.7, "95 % interval").at("high").value
+        0.7
+        >>> Value(0.5, "x").at("low").provenance
+        'x; low set: no interval stated, the central value kept'
+        """
+        if which not in PARAMETER_SETS:
+            raise ValidationError(
+                "parameter_set",
+                which,
+                f"must be one of {', '.join(PARAMETER_SETS)}",
+                parameter=True,
+            )
+        if which == "central":
+            return self
+        if self.low is None or self.high is None:
+            return Value(
+                self.value, f"{self.provenance}; {which} set: no interval stated, the central "
+                "value kept",
+            )  # fmt: skip
+        end = self.low if which == "low" else self.high
+        said = (
+            f"{which} set: the {which} end of the {self.stated_interval()} (central "
+            f"{self.value:.3g}); {self.provenance}"
+        )
+        return Value(end, said)
 
 
 #: What every code takes as a name: an ASCII letter, then letters, digits or underscores
@@ -325,6 +415,8 @@ class DemModel:
     types: tuple[ParticleType, ...]
     pairs: tuple[PairParameters, ...]
     characteristic_velocity_m_s: float
+    #: Which of ``PARAMETER_SETS`` the pair values are (each ``Value.at`` that set).
+    parameter_set: str
     _by_key: dict[frozenset[str], PairParameters] = field(init=False, repr=False, compare=False)
 
     def __init__(
@@ -332,11 +424,17 @@ class DemModel:
         types: list[ParticleType] | tuple[ParticleType, ...],
         pairs: list[PairParameters] | tuple[PairParameters, ...],
         characteristic_velocity_m_s: float,
+        parameter_set: str = "central",
     ) -> None:
         object.__setattr__(self, "types", tuple(types))
         object.__setattr__(self, "pairs", tuple(pairs))
         object.__setattr__(self, "characteristic_velocity_m_s", characteristic_velocity_m_s)
         _positive("characteristic_velocity", characteristic_velocity_m_s, "m/s")
+        if parameter_set not in PARAMETER_SETS:
+            raise ValidationError(
+                "parameter_set", parameter_set, f"must be one of {', '.join(PARAMETER_SETS)}"
+            )
+        object.__setattr__(self, "parameter_set", parameter_set)
         object.__setattr__(self, "_by_key", _pair_index(self.types, self.pairs))
 
     def type(self, name: str) -> ParticleType:
