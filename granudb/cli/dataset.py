@@ -11,7 +11,7 @@ import typer
 from granudb import api
 from granudb.cli import collisions
 from granudb.cli.confirm import asker
-from granudb.cli.options import DbOption, Format, FormatOption, YesOption, wraps
+from granudb.cli.options import DbOption, Format, FormatOption, YesOption, text, wraps
 from granudb.cli.output import emit, emit_one, note, say
 
 app = typer.Typer(
@@ -169,10 +169,8 @@ def edit(
     dataset: Ref,
     title: Annotated[str | None, typer.Option("--title")] = None,
     description: Annotated[str | None, typer.Option("--description")] = None,
-    license: Annotated[
-        str | None, typer.Option("--license", help='SPDX id, e.g. "CC-BY-4.0".')
-    ] = None,
-    doi: Annotated[str | None, typer.Option("--doi", help="The dataset's own DOI.")] = None,
+    license: text('SPDX id, e.g. "CC-BY-4.0".') = None,
+    doi: text("The dataset's own DOI.") = None,
     author: Annotated[
         list[str] | None,
         typer.Option(
@@ -181,13 +179,7 @@ def edit(
             "each; replaces the list).",
         ),
     ] = None,
-    authors_json: Annotated[
-        str | None,
-        typer.Option(
-            "--authors-json",
-            help='JSON list of {"given_names","family_names","orcid","affiliation"}.',
-        ),
-    ] = None,
+    authors_json: text('JSON list of {"given_names","family_names","orcid","affiliation"}.') = None,
     keyword: Annotated[
         list[str] | None, typer.Option("--keyword", help="Repeat for each; replaces the list.")
     ] = None,
@@ -225,9 +217,7 @@ def release(dataset: Ref, db: DbOption = None) -> None:
 @wraps("new_dataset_version")
 def new_version(
     dataset: Ref,
-    version: Annotated[
-        str | None, typer.Option("--version", help="The new version, e.g. 1.1.0.")
-    ] = None,
+    version: text("The new version, e.g. 1.1.0.") = None,
     db: DbOption = None,
 ) -> None:
     """Copy a version (metadata and runs) as a new draft version to change."""

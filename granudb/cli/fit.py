@@ -7,12 +7,12 @@ every key the fit returns (``granudb.analysis.fits`` documents them).
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Any
 
 import typer
 
 from granudb import api
-from granudb.cli.options import DbOption, Format, FormatOption, collision_filters, wraps
+from granudb.cli.options import DbOption, Format, FormatOption, collision_filters, text, wraps
 from granudb.cli.output import emit
 
 app = typer.Typer(
@@ -52,10 +52,7 @@ _fit_command(
 @collision_filters
 @wraps("fit_restitution")
 def restitution(
-    model: Annotated[
-        str | None,
-        typer.Option("--model", help="exponential (the default) or threshold."),
-    ] = None,
+    model: text("exponential (the default) or threshold.") = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
     filters: dict | None = None,

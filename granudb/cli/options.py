@@ -41,12 +41,15 @@ FormatOption = Annotated[
     Format, typer.Option("--format", "-f", help="table for people; json or csv (SI) for scripts.")
 ]
 YesOption = Annotated[bool, typer.Option("--yes", "-y", help="Do it without asking (for scripts).")]
-CriticalStokes = Annotated[
-    str | None,
-    typer.Option(
-        "--critical-stokes", help="No rebound below this normal Stokes number (default 10)."
-    ),
-]
+
+
+def text(help: str) -> Any:
+    """An optional option taking text (a number with its unit, a name), ``None`` when not
+    given; its flag is the parameter's name with dashes, as Typer makes it (``wall_diameter``
+    → ``--wall-diameter``). Use: ``diameter: Annotated[str | None, …]`` written once,
+    ``Diameter = text('Particle diameter, "12.7 mm".')``."""
+    return Annotated[str | None, typer.Option(help=help)]
+
 
 #: The collision filters (``granudb.api.COLLISION_FILTERS``) as options, with their help.
 FILTER_HELP: dict[str, str] = {
@@ -65,6 +68,7 @@ FILTER_HELP: dict[str, str] = {
     "critical_stokes": "No rebound below this normal Stokes number (default 10).",
 }
 _FLAGS = ("roughness_exceeds_gap", "rebound_expected")
+CriticalStokes = text(FILTER_HELP["critical_stokes"])
 
 
 def option_name(parameter: str) -> str:

@@ -13,51 +13,36 @@ from typing import Annotated, Any
 import typer
 
 from granudb import api
-from granudb.cli.options import CriticalStokes, DbOption, Format, FormatOption, wraps
+from granudb.cli.options import CriticalStokes, DbOption, Format, FormatOption, text, wraps
 from granudb.cli.output import console, emit, to_json
 from granudb.lazy import rich_table, rich_text
+
+Particle = Annotated[str, typer.Argument(help="Particle material, e.g. steel.")]
+Wall = Annotated[str, typer.Argument(help="Wall (or second particle) material, e.g. Zerodur.")]
+Diameter = text('Particle diameter, "12.7 mm" (required).')
+Velocity = text('Impact speed V of the centre, "0.3 m/s" (required).')
+Fluid = text("Fluid; omit (or 'dry') for a dry collision.")
+Angle = text('Incidence angle from the normal, "30 deg" (default 0°).')
+Temperature = text('Fluid temperature, "20 degC" (default: the fluid\'s reference).')
+Viscosity = text('Override the fluid viscosity, "0.8 cP" (what-if).')
+WallDiameter = text(
+    "Diameter of a second sphere, free and at rest unless --target fixed (default: a flat wall)."
+)
+Target = text("wall, fixed or free (a second sphere's default).")
 
 
 @wraps("pair")
 def pair(
-    particle: Annotated[str, typer.Argument(help="Particle material, e.g. steel.")],
-    wall: Annotated[str, typer.Argument(help="Wall (or second particle) material, e.g. Zerodur.")],
-    diameter: Annotated[
-        str | None, typer.Option("--diameter", help='Particle diameter, "12.7 mm" (required).')
-    ] = None,
-    velocity: Annotated[
-        str | None,
-        typer.Option("--velocity", help='Impact speed V of the centre, "0.3 m/s" (required).'),
-    ] = None,
-    fluid: Annotated[
-        str | None, typer.Option("--fluid", help="Fluid; omit (or 'dry') for a dry collision.")
-    ] = None,
-    angle: Annotated[
-        str | None,
-        typer.Option("--angle", help='Incidence angle from the normal, "30 deg" (default 0°).'),
-    ] = None,
-    temperature: Annotated[
-        str | None,
-        typer.Option(
-            "--temperature", help='Fluid temperature, "20 degC" (default: the fluid\'s reference).'
-        ),
-    ] = None,
-    viscosity: Annotated[
-        str | None,
-        typer.Option("--viscosity", help='Override the fluid viscosity, "0.8 cP" (what-if).'),
-    ] = None,
-    wall_diameter: Annotated[
-        str | None,
-        typer.Option(
-            "--wall-diameter",
-            help="Diameter of a second sphere, free and at rest unless --target fixed "
-            "(default: a flat wall).",
-        ),
-    ] = None,
-    target: Annotated[
-        str | None,
-        typer.Option("--target", help="wall, fixed or free (a second sphere's default)."),
-    ] = None,
+    particle: Particle,
+    wall: Wall,
+    diameter: Diameter = None,
+    velocity: Velocity = None,
+    fluid: Fluid = None,
+    angle: Angle = None,
+    temperature: Temperature = None,
+    viscosity: Viscosity = None,
+    wall_diameter: WallDiameter = None,
+    target: Target = None,
     critical_stokes: CriticalStokes = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,

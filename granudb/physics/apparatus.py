@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from granudb.physics.arguments import parameters
 from granudb.physics.numeric import Numeric, as_float
 
 
+@parameters
 def string_torsional_stiffness(density: Numeric, radius: Numeric, period: Numeric) -> Numeric:
     r"""String torsional stiffness from the sphere's torsional oscillation period τ,
     K_s = 4π² I₀/τ² = (32/15) π³ ρ R⁵ / τ² [N·m] (A 1), with I₀ = (2/5) m R².
@@ -18,12 +20,6 @@ def string_torsional_stiffness(density: Numeric, radius: Numeric, period: Numeri
     Note: the K_s printed in the paper's table 3 is 32 times this formula with
     R = 6.35 mm, as if R had been the diameter; granudb keeps the printed numbers and
     computes from the formula.
-
-    Parameters
-    ----------
-    density : density ρ of the sphere [kg/m³]
-    radius : sphere radius R [m]
-    period : torsional oscillation period τ [s]
 
     Examples
     --------
@@ -35,15 +31,11 @@ def string_torsional_stiffness(density: Numeric, radius: Numeric, period: Numeri
     )
 
 
+@parameters
 def lateral_contact_stiffness(
     contact_radius: Numeric, reduced_shear_modulus_pa: Numeric
 ) -> Numeric:
     r"""Lateral (tangential) stiffness of a Hertz contact, κ = 8 a G* [N/m] (Appendix).
-
-    Parameters
-    ----------
-    contact_radius : contact radius a [m]
-    reduced_shear_modulus_pa : reduced shear modulus G* [Pa]
 
     Examples
     --------
@@ -53,16 +45,11 @@ def lateral_contact_stiffness(
     return 8.0 * as_float(contact_radius) * as_float(reduced_shear_modulus_pa)
 
 
+@parameters
 def time_scale_ratio(
     radius: Numeric, contact_stiffness: Numeric, string_stiffness: Numeric
 ) -> Numeric:
     r"""τ_string / τ_collision ≈ (1/R) √(κ_contact / K_s) [-] (A 2).
-
-    Parameters
-    ----------
-    radius : sphere radius R [m]
-    contact_stiffness : lateral contact stiffness κ [N/m]
-    string_stiffness : string torsional stiffness K_s [N·m]
 
     Examples
     --------
@@ -72,6 +59,7 @@ def time_scale_ratio(
     return np.sqrt(as_float(contact_stiffness) / as_float(string_stiffness)) / as_float(radius)
 
 
+@parameters
 def consistent_time_scale_ratio(
     radius: Numeric, contact_stiffness: Numeric, string_stiffness: Numeric
 ) -> Numeric:
@@ -81,12 +69,6 @@ def consistent_time_scale_ratio(
     (A 2) as printed, (1/R)√(κ/K_s) (``time_scale_ratio``), has units of m⁻²; this is the
     consistent form: the collision's tangential time scale is √(m/κ) and the string's
     √(I₀/K_s).
-
-    Parameters
-    ----------
-    radius : sphere radius R [m]
-    contact_stiffness : lateral contact stiffness κ [N/m]
-    string_stiffness : string torsional stiffness K_s [N·m]
 
     Examples
     --------

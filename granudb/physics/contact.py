@@ -9,19 +9,16 @@ from __future__ import annotations
 
 import numpy as np
 
+from granudb.physics.arguments import parameters
 from granudb.physics.numeric import Numeric, as_float, hypot
 
 #: Hertz contact duration prefactor, t_c ≈ 2.87 (m² / (R E*² V))^{1/5} (Johnson 1985 §11.4).
 CONTACT_TIME_FACTOR = 2.87
 
 
+@parameters
 def shear_modulus(youngs_modulus: Numeric, poisson_ratio: Numeric) -> Numeric:
     r"""Shear modulus of an isotropic solid, G = E / (2(1 + ν)).
-
-    Parameters
-    ----------
-    youngs_modulus : Young's modulus E [Pa]
-    poisson_ratio : Poisson ratio ν [-]
 
     Returns
     -------
@@ -35,17 +32,13 @@ def shear_modulus(youngs_modulus: Numeric, poisson_ratio: Numeric) -> Numeric:
     return as_float(youngs_modulus) / (2.0 * (1.0 + as_float(poisson_ratio)))
 
 
+@parameters
 def reduced_modulus(
     youngs_1: Numeric, poisson_1: Numeric, youngs_2: Numeric, poisson_2: Numeric
 ) -> Numeric:
     r"""Reduced (plane-strain) modulus of a pair, 1/E* = (1−ν₁²)/E₁ + (1−ν₂²)/E₂.
 
     Joseph & Hunt §1; Johnson (1985) p. 92. A rigid body has E = ∞ (its term vanishes).
-
-    Parameters
-    ----------
-    youngs_1, youngs_2 : Young's moduli [Pa]
-    poisson_1, poisson_2 : Poisson ratios [-]
 
     Returns
     -------
@@ -64,15 +57,11 @@ def reduced_modulus(
     return 1.0 / compliance
 
 
+@parameters
 def reduced_shear_modulus(
     shear_1: Numeric, poisson_1: Numeric, shear_2: Numeric, poisson_2: Numeric
 ) -> Numeric:
     r"""Reduced shear modulus of a pair, 1/G* = (2−ν₁)/G₁ + (2−ν₂)/G₂ (Appendix).
-
-    Parameters
-    ----------
-    shear_1, shear_2 : shear moduli [Pa]
-    poisson_1, poisson_2 : Poisson ratios [-]
 
     Returns
     -------
@@ -90,13 +79,9 @@ def reduced_shear_modulus(
     return 1.0 / compliance
 
 
+@parameters
 def effective_radius(radius_1: Numeric, radius_2: Numeric = np.inf) -> Numeric:
     r"""Effective radius of curvature, 1/R = 1/R₁ + 1/R₂; a flat wall has R₂ = ∞ (thesis).
-
-    Parameters
-    ----------
-    radius_1 : radius of body 1 [m]
-    radius_2 : radius of body 2 [m]; ∞ for a flat wall
 
     Examples
     --------
@@ -108,13 +93,9 @@ def effective_radius(radius_1: Numeric, radius_2: Numeric = np.inf) -> Numeric:
     return 1.0 / (1.0 / as_float(radius_1) + 1.0 / as_float(radius_2))
 
 
+@parameters
 def effective_mass(mass_1: Numeric, mass_2: Numeric = np.inf) -> Numeric:
     r"""Effective mass, m = m₁m₂/(m₁+m₂) = 1/(1/m₁ + 1/m₂); a wall has m₂ = ∞.
-
-    Parameters
-    ----------
-    mass_1 : mass of body 1 [kg]
-    mass_2 : mass of body 2 [kg]; ∞ for a wall or a fixed sphere
 
     Examples
     --------
@@ -124,13 +105,9 @@ def effective_mass(mass_1: Numeric, mass_2: Numeric = np.inf) -> Numeric:
     return 1.0 / (1.0 / as_float(mass_1) + 1.0 / as_float(mass_2))
 
 
+@parameters
 def sphere_mass(density: Numeric, diameter: Numeric) -> Numeric:
     r"""Mass of a solid sphere, m = ρ π d³ / 6 [kg] from density [kg/m³] and diameter [m].
-
-    Parameters
-    ----------
-    density : density ρ of the sphere [kg/m³]
-    diameter : diameter d [m]
 
     Examples
     --------
@@ -141,13 +118,9 @@ def sphere_mass(density: Numeric, diameter: Numeric) -> Numeric:
     return as_float(density) * np.pi * (d * d * d) / 6.0  # d·d·d: a pow costs ~10× more
 
 
+@parameters
 def composite_roughness(roughness_1: Numeric, roughness_2: Numeric) -> Numeric:
     r"""Composite RMS roughness of two surfaces, σ = √(σ₁² + σ₂²) [m] (tribology).
-
-    Parameters
-    ----------
-    roughness_1 : RMS roughness of surface 1 [m]
-    roughness_2 : RMS roughness of surface 2 [m]
 
     Examples
     --------
@@ -157,13 +130,9 @@ def composite_roughness(roughness_1: Numeric, roughness_2: Numeric) -> Numeric:
     return hypot(roughness_1, roughness_2)
 
 
+@parameters(density="density ρ of the material [kg/m³]")
 def wave_speed(youngs_modulus: Numeric, density: Numeric) -> Numeric:
     r"""Bulk elastic wave speed, c = √(E/ρ) [m/s] (thesis §3).
-
-    Parameters
-    ----------
-    youngs_modulus : Young's modulus E [Pa]
-    density : density ρ [kg/m³]
 
     Examples
     --------
@@ -173,14 +142,9 @@ def wave_speed(youngs_modulus: Numeric, density: Numeric) -> Numeric:
     return np.sqrt(as_float(youngs_modulus) / as_float(density))
 
 
+@parameters
 def hertz_force(reduced_modulus_pa: Numeric, radius: Numeric, approach: Numeric) -> Numeric:
     r"""Static Hertz force, F = (4/3) E* R^{1/2} δ^{3/2} [N] (thesis (3.1)).
-
-    Parameters
-    ----------
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    radius : radius R (the effective radius for two bodies) [m]
-    approach : approach of the centres δ [m]
 
     Examples
     --------
@@ -198,13 +162,9 @@ def hertz_force(reduced_modulus_pa: Numeric, radius: Numeric, approach: Numeric)
     )
 
 
+@parameters
 def contact_radius_from_approach(radius: Numeric, approach: Numeric) -> Numeric:
     r"""Hertz contact radius under approach δ, a = √(R δ) [m] (thesis (3.5)).
-
-    Parameters
-    ----------
-    radius : radius R (the effective radius for two bodies) [m]
-    approach : approach of the centres δ [m]
 
     Examples
     --------
@@ -214,16 +174,11 @@ def contact_radius_from_approach(radius: Numeric, approach: Numeric) -> Numeric:
     return np.sqrt(as_float(radius) * as_float(approach))
 
 
+@parameters
 def elastic_energy(reduced_modulus_pa: Numeric, radius: Numeric, approach: Numeric) -> Numeric:
     r"""Elastic energy stored at approach δ, W_el = (8/15) E* R^{1/2} δ^{5/2} [J].
 
     The integral of (3.1) over δ.
-
-    Parameters
-    ----------
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    radius : radius R (the effective radius for two bodies) [m]
-    approach : approach of the centres δ [m]
 
     Examples
     --------
@@ -239,6 +194,7 @@ def elastic_energy(reduced_modulus_pa: Numeric, radius: Numeric, approach: Numer
     )
 
 
+@parameters
 def max_approach(
     mass: Numeric, speed: Numeric, reduced_modulus_pa: Numeric, radius: Numeric
 ) -> Numeric:
@@ -246,13 +202,6 @@ def max_approach(
 
     Found by equating the kinetic energy ½mV² with the stored energy (8/15)E*R^{1/2}δ^{5/2}
     (Johnson 1985 §11.4). ``mass`` is the effective mass, ``speed`` the normal speed.
-
-    Parameters
-    ----------
-    mass : mass m (the effective mass for two bodies) [kg]
-    speed : impact speed V (the normal component for an oblique impact) [m/s]
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -267,15 +216,11 @@ def max_approach(
     ) ** 0.4
 
 
+@parameters
 def contact_time(
     mass: Numeric, radius: Numeric, reduced_modulus_pa: Numeric, speed: Numeric
 ) -> Numeric:
     r"""Hertz contact duration, t_c ≈ 2.87 (m² / (R E*² V))^{1/5} [s] (Johnson §11.4).
-
-    Parameters
-    ----------
-    mass, radius : m [kg] and R [m] (the effective ones for two bodies)
-    reduced_modulus_pa, speed : E* [Pa] and the normal impact speed V [m/s]
 
     Examples
     --------
@@ -292,6 +237,7 @@ def contact_time(
     )
 
 
+@parameters(approach="maximum approach δ_max [m]")
 def contact_time_from_approach(approach: Numeric, speed: Numeric) -> Numeric:
     r"""Hertz contact duration from the maximum approach, t_c = 2.87 (16/15)^{2/5} δ_max / V [s].
 
@@ -299,11 +245,6 @@ def contact_time_from_approach(approach: Numeric, speed: Numeric) -> Numeric:
     δ_max = (15/16)^{2/5} (m/(E*R^{1/2}))^{2/5} V^{4/5}, the factor (m²/(R E*² V))^{1/5} of
     ``contact_time`` is (16/15)^{2/5} δ_max / V. ``derive`` has δ_max already, and a
     division is far cheaper than a fifth root.
-
-    Parameters
-    ----------
-    approach : maximum approach δ_max [m]
-    speed : normal impact speed V [m/s]
 
     Examples
     --------
@@ -314,6 +255,7 @@ def contact_time_from_approach(approach: Numeric, speed: Numeric) -> Numeric:
     return CONTACT_TIME_FACTOR * (16.0 / 15.0) ** 0.4 * as_float(approach) / as_float(speed)
 
 
+@parameters
 def peak_impact_force(
     mass: Numeric, speed: Numeric, reduced_modulus_pa: Numeric, radius: Numeric
 ) -> Numeric:
@@ -321,10 +263,6 @@ def peak_impact_force(
 
     For a sphere of density ρ_p on a flat wall this equals the equivalent impact load
     (2.2) exactly (``hertz_impact_load``); for two spheres it uses the effective mass.
-
-    Parameters
-    ----------
-    mass, speed, reduced_modulus_pa, radius : m [kg], V [m/s], E* [Pa], R [m]
 
     Examples
     --------
@@ -336,19 +274,13 @@ def peak_impact_force(
     return hertz_force(reduced_modulus_pa, radius, delta)
 
 
+@parameters
 def hertz_impact_load(
     radius: Numeric, reduced_modulus_pa: Numeric, particle_density: Numeric, speed: Numeric
 ) -> Numeric:
     r"""Equivalent impact load, W = (4/3) R² E* (5π ρ_p V² / (4E*))^{3/5} [N] (2.2).
 
     ``speed`` is the normal component v_N,in for an oblique impact.
-
-    Parameters
-    ----------
-    radius : radius R (the effective radius for two bodies) [m]
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    particle_density : particle density ρ_p [kg/m³]
-    speed : impact speed V (the normal component for an oblique impact) [m/s]
 
     Examples
     --------
@@ -365,14 +297,9 @@ def hertz_impact_load(
     )
 
 
+@parameters
 def max_contact_radius(radius: Numeric, load: Numeric, reduced_modulus_pa: Numeric) -> Numeric:
     r"""Contact radius at the peak load, a = (3 R W / (4 E*))^{1/3} [m] (2.1).
-
-    Parameters
-    ----------
-    radius : radius R (the effective radius for two bodies) [m]
-    load : impact load W [N]
-    reduced_modulus_pa : reduced modulus E* [Pa]
 
     Examples
     --------
@@ -382,13 +309,9 @@ def max_contact_radius(radius: Numeric, load: Numeric, reduced_modulus_pa: Numer
     return np.cbrt(3.0 * as_float(radius) * as_float(load) / (4.0 * as_float(reduced_modulus_pa)))
 
 
+@parameters
 def max_pressure(load: Numeric, contact_radius: Numeric) -> Numeric:
     r"""Maximum Hertz pressure, p_max = 3W / (2π a²) [Pa] (5.5).
-
-    Parameters
-    ----------
-    load : impact load W [N]
-    contact_radius : contact radius a [m]
 
     Examples
     --------
@@ -398,17 +321,12 @@ def max_pressure(load: Numeric, contact_radius: Numeric) -> Numeric:
     return 3.0 * as_float(load) / (2.0 * np.pi * as_float(contact_radius) ** 2)
 
 
+@parameters
 def max_pressure_from_impact(
     particle_density: Numeric, speed: Numeric, reduced_modulus_pa: Numeric
 ) -> Numeric:
     r"""Maximum Hertz pressure of a sphere hitting a flat wall,
     p_max = (40 ρ_p V² E*⁴ / π⁴)^{1/5} [Pa] (5.5).
-
-    Parameters
-    ----------
-    particle_density : particle density ρ_p [kg/m³]
-    speed : impact speed V (the normal component for an oblique impact) [m/s]
-    reduced_modulus_pa : reduced modulus E* [Pa]
 
     Examples
     --------
@@ -424,6 +342,7 @@ def max_pressure_from_impact(
     ) ** 0.2
 
 
+@parameters
 def quasi_static_ratio(
     contact_radius: Numeric, wave_speed_m_s: Numeric, contact_time_s: Numeric
 ) -> Numeric:
@@ -433,12 +352,6 @@ def quasi_static_ratio(
     of the elastic waves it radiates, λ ≫ a (thesis (3.18); Johnson 1985 pp. 351–360).
     granudb calls the impact quasi-static when this ratio is below
     ``QUASI_STATIC_LIMIT``.
-
-    Parameters
-    ----------
-    contact_radius : contact radius a [m]
-    wave_speed_m_s : bulk elastic wave speed c [m/s]
-    contact_time_s : contact duration t_c [s]
 
     Examples
     --------

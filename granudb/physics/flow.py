@@ -8,23 +8,18 @@ from __future__ import annotations
 
 import numpy as np
 
+from granudb.physics.arguments import parameters
 from granudb.physics.numeric import Numeric, as_float
 
 #: No rebound below this Stokes number "in the cited experiments" (Joseph & Hunt §1).
 CRITICAL_STOKES_NUMBER = 10.0
 
 
+@parameters
 def reynolds_number(
     fluid_density: Numeric, radius: Numeric, speed: Numeric, viscosity: Numeric
 ) -> Numeric:
     r"""Particle Reynolds number, Re = 2 ρ_f R V / μ (Joseph & Hunt §1).
-
-    Parameters
-    ----------
-    fluid_density : fluid density ρ_f [kg/m³]
-    radius : radius R (the effective radius for two bodies) [m]
-    speed : impact speed V (the normal component for an oblique impact) [m/s]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
 
     Examples
     --------
@@ -36,19 +31,13 @@ def reynolds_number(
     return 2.0 * as_float(fluid_density) * as_float(radius) * as_float(speed) / as_float(viscosity)
 
 
+@parameters
 def stokes_number(
     particle_density: Numeric, radius: Numeric, speed: Numeric, viscosity: Numeric
 ) -> Numeric:
     r"""Stokes number, St = m V / (6π μ R²) = 2 ρ_p R V / (9 μ) (Joseph & Hunt §1).
 
     The ratio of the particle's inertia to the viscous force; equal to Re (ρ_p/ρ_f) / 9.
-
-    Parameters
-    ----------
-    particle_density : particle density ρ_p [kg/m³]
-    radius : radius R (the effective radius for two bodies) [m]
-    speed : impact speed V (the normal component for an oblique impact) [m/s]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
 
     Examples
     --------
@@ -66,19 +55,13 @@ def stokes_number(
     )
 
 
+@parameters
 def normal_stokes_number(
     particle_density: Numeric, radius: Numeric, normal_speed: Numeric, viscosity: Numeric
 ) -> Numeric:
     r"""Normal Stokes number, St_n = St cos ζ_in = 2 ρ_p R v_N,in / (9 μ) (§4).
 
     Rebound is expected when St_n exceeds the critical Stokes number (about 10).
-
-    Parameters
-    ----------
-    particle_density : particle density ρ_p [kg/m³]
-    radius : radius R (the effective radius for two bodies) [m]
-    normal_speed : normal approach speed v_N,in [m/s]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
 
     Examples
     --------
@@ -88,17 +71,11 @@ def normal_stokes_number(
     return stokes_number(particle_density, radius, normal_speed, viscosity)
 
 
+@parameters
 def speed_for_stokes_number(
     stokes: Numeric, particle_density: Numeric, radius: Numeric, viscosity: Numeric
 ) -> Numeric:
     r"""The speed giving Stokes number ``stokes``: V = 9 μ St / (2 ρ_p R) [m/s].
-
-    Parameters
-    ----------
-    stokes : Stokes number St [-]
-    particle_density : particle density ρ_p [kg/m³]
-    radius : radius R (the effective radius for two bodies) [m]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
 
     Examples
     --------
@@ -120,6 +97,7 @@ LEGENDRE_BETA = 35.0
 ADDED_MASS_COEFFICIENT = 0.5
 
 
+@parameters
 def added_mass_stokes_number(
     particle_density: Numeric,
     fluid_density: Numeric,
@@ -130,15 +108,6 @@ def added_mass_stokes_number(
 ) -> Numeric:
     r"""Stokes number with added mass, St = (ρ_p + C_M ρ_f) 2 R V / (9 μ) [-]
     (Legendre, Zenit, Daniel & Guiraud 2006, Chem. Eng. Sci. 61, 3543; C_M = 1/2).
-
-    Parameters
-    ----------
-    particle_density : particle density ρ_p [kg/m³]
-    fluid_density : fluid density ρ_f [kg/m³]
-    radius : radius R (the effective radius for two bodies) [m]
-    speed : normal impact speed V [m/s]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    added_mass : added-mass coefficient C_M; 1/2 for a sphere [-]
 
     Examples
     --------
@@ -155,6 +124,7 @@ def added_mass_stokes_number(
     )
 
 
+@parameters(stokes="Stokes number St (the added-mass one the form was fitted with) [-]")
 def predicted_restitution(
     stokes: Numeric,
     dry_restitution: Numeric = 0.97,
@@ -168,13 +138,6 @@ def predicted_restitution(
     added-mass Stokes number the form was fitted with (``added_mass_stokes_number``);
     ``dry_restitution`` defaults to Joseph & Hunt's ē_dry = 0.97 (§3). A NaN Stokes
     number (dry) gives e_dry.
-
-    Parameters
-    ----------
-    stokes : Stokes number St (the added-mass one the form was fitted with) [-]
-    dry_restitution : dry normal restitution e_dry [-]
-    critical_stokes : critical Stokes number St_c, no rebound below it [-]
-    coefficient : β_L of the exponential law [-]
 
     Examples
     --------

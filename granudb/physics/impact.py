@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from granudb.physics import pair
+from granudb.physics.arguments import parameters
 from granudb.physics.numeric import Numeric, as_float
 
 #: Squared radius of gyration over R² of a solid sphere, K² = 2/5.
@@ -26,13 +27,9 @@ TANGENTIAL_REGIME_NAMES = ("stick", "slip_then_stick", "gross_slip")
 STICK, SLIP_THEN_STICK, GROSS_SLIP = 0, 1, 2
 
 
+@parameters
 def normal_restitution(v_n_in: Numeric, v_n_out: Numeric) -> Numeric:
     r"""Normal coefficient of restitution e = v_n_out / v_n_in (§2, stored speeds positive).
-
-    Parameters
-    ----------
-    v_n_in : normal speed before impact v_N,in [m/s]
-    v_n_out : normal speed after impact (positive, away from the target) [m/s]
 
     Examples
     --------
@@ -42,14 +39,9 @@ def normal_restitution(v_n_in: Numeric, v_n_out: Numeric) -> Numeric:
     return as_float(v_n_out) / as_float(v_n_in)
 
 
+@parameters
 def contact_point_velocity(v_t: Numeric, omega: Numeric, radius: Numeric) -> Numeric:
     r"""Tangential velocity of the contact point, v_T = v_t + ωR [m/s] (§2).
-
-    Parameters
-    ----------
-    v_t : tangential velocity of the centre v_t [m/s]
-    omega : angular velocity ω [rad/s]
-    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -59,16 +51,12 @@ def contact_point_velocity(v_t: Numeric, omega: Numeric, radius: Numeric) -> Num
     return as_float(v_t) + as_float(omega) * as_float(radius)
 
 
+@parameters
 def rotational_restitution(v_T_in: Numeric, v_T_out: Numeric) -> Numeric:
     r"""Rotational (tangential) restitution β = −v_T,out / v_T,in (2.8).
 
     −1 pure sliding, 0 rolling, +1 full recoil. Undefined (NaN, never ±inf) for a normal
     impact, v_T,in = 0.
-
-    Parameters
-    ----------
-    v_T_in : tangential velocity of the contact point before impact v_T,in [m/s]
-    v_T_out : tangential velocity of the contact point after impact v_T,out [m/s]
 
     Examples
     --------
@@ -82,13 +70,9 @@ def rotational_restitution(v_T_in: Numeric, v_T_out: Numeric) -> Numeric:
         return np.where(v_in == 0.0, np.nan, -as_float(v_T_out) / v_in)
 
 
+@parameters
 def effective_incidence(v_T_in: Numeric, v_n_in: Numeric) -> Numeric:
     r"""Effective incidence angle Ψ_in = v_T,in / v_N,in = tan ζ_in (2.5).
-
-    Parameters
-    ----------
-    v_T_in : tangential velocity of the contact point before impact v_T,in [m/s]
-    v_n_in : normal speed before impact v_N,in [m/s]
 
     Examples
     --------
@@ -98,12 +82,9 @@ def effective_incidence(v_T_in: Numeric, v_n_in: Numeric) -> Numeric:
     return as_float(v_T_in) / as_float(v_n_in)
 
 
+@parameters
 def effective_rebound(v_T_out: Numeric, v_n_in: Numeric) -> Numeric:
     r"""Effective rebound angle Ψ_out = v_T,out / v_N,in = e tan ζ_out (2.5).
-
-    Parameters
-    ----------
-    v_T_out, v_n_in : v_T,out of the contact point after impact, v_N,in before it [m/s]
 
     Examples
     --------
@@ -113,12 +94,9 @@ def effective_rebound(v_T_out: Numeric, v_n_in: Numeric) -> Numeric:
     return effective_incidence(v_T_out, v_n_in)
 
 
+@parameters
 def gyration_factor(gyration: Numeric = SOLID_SPHERE_GYRATION) -> Numeric:
     r"""1 + 1/K², the factor of the Walton relations; 7/2 for a solid sphere.
-
-    Parameters
-    ----------
-    gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
 
     Examples
     --------
@@ -128,6 +106,7 @@ def gyration_factor(gyration: Numeric = SOLID_SPHERE_GYRATION) -> Numeric:
     return 1.0 + 1.0 / as_float(gyration)
 
 
+@parameters
 def sliding_friction(
     psi_in: Numeric,
     psi_out: Numeric,
@@ -139,11 +118,6 @@ def sliding_friction(
     Equals the sliding friction coefficient for a sliding collision; for a sticking one it
     is 2(1+β)Ψ_in / (7(1+e)) (2.10), a lower bound.
 
-    Parameters
-    ----------
-    psi_in, psi_out, restitution : Ψ_in, Ψ_out and e [-]
-    gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
-
     Examples
     --------
     >>> round(float(sliding_friction(2.0, 2.0 - 0.11 * 1.97 * 3.5, 0.97)), 6)
@@ -152,14 +126,9 @@ def sliding_friction(
     return pair.pair_sliding_friction(psi_in, psi_out, restitution, gyration_factor(gyration))
 
 
+@parameters
 def sticking_friction(psi_in: Numeric, beta: Numeric, restitution: Numeric) -> Numeric:
     r"""(2.10): μ_f = 2(1+β) Ψ_in / (7(1+e)), i.e. (2.9) with Ψ_out = −βΨ_in, K² = 2/5.
-
-    Parameters
-    ----------
-    psi_in : effective incidence Ψ_in [-]
-    beta : rotational restitution β [-]
-    restitution : normal restitution e [-]
 
     Examples
     --------
@@ -169,6 +138,7 @@ def sticking_friction(psi_in: Numeric, beta: Numeric, restitution: Numeric) -> N
     return 2.0 * (1.0 + as_float(beta)) * as_float(psi_in) / (7.0 * (1.0 + as_float(restitution)))
 
 
+@parameters
 def walton_rebound(
     psi_in: Numeric,
     beta: Numeric,
@@ -178,14 +148,6 @@ def walton_rebound(
 ) -> Numeric:
     r"""Walton's Ψ_out: −βΨ_in when sticking (2.7), Ψ_in − μ_f(1+e)(1+1/K²) when sliding
     (2.6), whichever is larger (the collision slides only while it can).
-
-    Parameters
-    ----------
-    psi_in : effective incidence Ψ_in [-]
-    beta : rotational restitution β [-]
-    friction : sliding friction coefficient μ_f [-]
-    restitution : normal restitution e [-]
-    gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
 
     Examples
     --------
@@ -197,13 +159,9 @@ def walton_rebound(
     return np.maximum(-as_float(beta) * psi, sliding)
 
 
+@parameters
 def stiffness_ratio(reduced_shear_modulus_pa: Numeric, reduced_modulus_pa: Numeric) -> Numeric:
     r"""2G*/E*, the pair's (1−ν)/(2−ν) (exactly so for identical materials; see module doc).
-
-    Parameters
-    ----------
-    reduced_shear_modulus_pa : reduced shear modulus G* [Pa]
-    reduced_modulus_pa : reduced modulus E* [Pa]
 
     Examples
     --------
@@ -217,15 +175,11 @@ def stiffness_ratio(reduced_shear_modulus_pa: Numeric, reduced_modulus_pa: Numer
     return 2.0 * as_float(reduced_shear_modulus_pa) / as_float(reduced_modulus_pa)
 
 
+@parameters
 def maw_chi(ratio: Numeric, gyration: Numeric = SOLID_SPHERE_GYRATION) -> Numeric:
     r"""Maw's modified radius of gyration χ = (1−ν)(1 + 1/K²)/(2−ν) (2.3).
 
     ``ratio`` is (1−ν)/(2−ν) for one material, or ``stiffness_ratio`` for a pair.
-
-    Parameters
-    ----------
-    ratio : (1−ν)/(2−ν) of the material, or the pair's stiffness ratio 2G*/E* [-]
-    gyration : K², the squared radius of gyration over R²; 2/5 for a solid sphere [-]
 
     Examples
     --------
@@ -235,15 +189,9 @@ def maw_chi(ratio: Numeric, gyration: Numeric = SOLID_SPHERE_GYRATION) -> Numeri
     return as_float(ratio) * gyration_factor(gyration)
 
 
+@parameters
 def maw_psi(ratio: Numeric, v_T: Numeric, friction: Numeric, v_n_in: Numeric) -> Numeric:
     r"""Maw's local contact angle ψ = 2(1−ν) v_T / (μ_f (2−ν) v_N,in) (2.4).
-
-    Parameters
-    ----------
-    ratio : (1−ν)/(2−ν) of the material, or the pair's stiffness ratio 2G*/E* [-]
-    v_T : tangential velocity of the contact point v_T [m/s]
-    friction : friction coefficient μ_f [-]
-    v_n_in : normal speed before impact v_N,in [m/s]
 
     Examples
     --------
@@ -254,15 +202,11 @@ def maw_psi(ratio: Numeric, v_T: Numeric, friction: Numeric, v_n_in: Numeric) ->
         return 2.0 * as_float(ratio) * as_float(v_T) / (as_float(friction) * as_float(v_n_in))
 
 
+@parameters
 def tangential_regime(psi_in: Numeric, chi: Numeric) -> np.ndarray:
     r"""Maw's regime (§2) as codes: ψ_in ≤ 1 stick (micro-slip at the rim), 0;
     1 < ψ_in < 4χ−1 gross slip then stick, 1; ψ_in ≥ 4χ−1 gross slip throughout, 2.
     Names: ``TANGENTIAL_REGIME_NAMES[code]``.
-
-    Parameters
-    ----------
-    psi_in : effective incidence Ψ_in [-]
-    chi : Maw's modified radius of gyration χ [-]
 
     Examples
     --------
@@ -274,13 +218,9 @@ def tangential_regime(psi_in: Numeric, chi: Numeric) -> np.ndarray:
     return np.where(psi <= 1.0, STICK, np.where(psi < limit, SLIP_THEN_STICK, GROSS_SLIP))
 
 
+@parameters
 def rolling_friction_coefficient(rolling_length: Numeric, radius: Numeric) -> Numeric:
     r"""Rolling friction coefficient μ_r = λ_r / R (thesis (3.11)).
-
-    Parameters
-    ----------
-    rolling_length : rolling friction length λ_r [m]
-    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -290,16 +230,11 @@ def rolling_friction_coefficient(rolling_length: Numeric, radius: Numeric) -> Nu
     return as_float(rolling_length) / as_float(radius)
 
 
+@parameters
 def rolling_resistance_moment(
     rolling_coefficient: Numeric, normal_force: Numeric, radius: Numeric
 ) -> Numeric:
     r"""Rolling resistance moment M_r = μ_r R_n R [N·m] (thesis (3.11)).
-
-    Parameters
-    ----------
-    rolling_coefficient : rolling friction coefficient μ_r [-]
-    normal_force : normal force R_n [N]
-    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -309,13 +244,9 @@ def rolling_resistance_moment(
     return as_float(rolling_coefficient) * as_float(normal_force) * as_float(radius)
 
 
+@parameters
 def restitution_from_energy(energy_returned: Numeric, energy_stored: Numeric) -> Numeric:
     r"""Restitution from energies, e = √(W′/W) (thesis (3.22)).
-
-    Parameters
-    ----------
-    energy_returned : energy returned in unloading W′ [J]
-    energy_stored : elastic energy stored at the peak W [J]
 
     Examples
     --------

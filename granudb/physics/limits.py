@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from granudb.physics.arguments import parameters
 from granudb.physics.numeric import Numeric, as_float
 
 #: Yield starts below the surface when p_max = 1.6 Y (Y in tension of the softer body;
@@ -37,17 +38,12 @@ GAP_BAND = (0.25, 1.0 / 3.0)
 ROUGHNESS_REGIMES = ("film", "uncertain", "asperity_contact", "dry")
 
 
+@parameters(particle_density="particle density ρ_p [kg/m³] (a sphere on a flat wall)")
 def yield_speed(
     particle_density: Numeric, yield_stress: Numeric, reduced_modulus_pa: Numeric
 ) -> Numeric:
     r"""Normal impact speed at the onset of yield, from ρ_p V_y²/Y = (π⁴ 1.6⁵/40)(Y/E*)⁴
     [m/s] (docs/physics.md §11: (5.5) with p_max = 1.6 Y, Johnson 1985 §11.4).
-
-    Parameters
-    ----------
-    particle_density : ρ_p [kg/m³] (a sphere on a flat wall)
-    yield_stress : Y of the softer body, in tension [Pa]
-    reduced_modulus_pa : E* [Pa]
 
     Examples
     --------
@@ -68,6 +64,7 @@ def yield_speed(
     )
 
 
+@parameters(normal_speed="normal speed V at which p_max was computed [m/s]")
 def yield_speed_from_pressure(
     normal_speed: Numeric, max_pressure_pa: Numeric, yield_stress: Numeric
 ) -> Numeric:
@@ -76,12 +73,6 @@ def yield_speed_from_pressure(
     Equals ``yield_speed`` for a sphere on a flat wall; for two spheres it uses the
     p_max computed with m* and R*. ``normal_speed`` V [m/s] is the speed p_max was
     computed at, ``max_pressure_pa`` [Pa], ``yield_stress`` Y [Pa].
-
-    Parameters
-    ----------
-    normal_speed : normal speed V at which p_max was computed [m/s]
-    max_pressure_pa : maximum Hertz pressure p_max [Pa]
-    yield_stress : yield stress Y of the softer body [Pa]
 
     Examples
     --------
@@ -94,6 +85,7 @@ def yield_speed_from_pressure(
     return as_float(normal_speed) * (q * q * np.sqrt(q))  # q^{5/2}; a power costs ~10× more
 
 
+@parameters
 def elastic_state(
     max_pressure_pa: Numeric, particle_yield_stress: Numeric, wall_yield_stress: Numeric
 ) -> np.ndarray:
@@ -104,12 +96,6 @@ def elastic_state(
     a yield stress is not known. Exceeded when p_max exceeds 1.6 × any known Y (the softer
     body yields no later); elastic only when both Y are known and neither is reached;
     otherwise unknown — never read as safe.
-
-    Parameters
-    ----------
-    max_pressure_pa : maximum Hertz pressure p_max [Pa]
-    particle_yield_stress : particle's yield stress Y [Pa]; NaN where not known
-    wall_yield_stress : target's yield stress Y [Pa]; NaN where not known
 
     Examples
     --------
@@ -133,6 +119,7 @@ def elastic_state(
 HERTZ_STRAIN_LIMIT = 0.1
 
 
+@parameters(normal_speed="normal impact speed V [m/s]")
 def thornton_restitution(yield_speed: Numeric, normal_speed: Numeric) -> Numeric:
     r"""Restitution of an elastic–perfectly plastic impact above the yield speed V_y,
     Thornton (1997), docs/physics.md eq. (15.1), with r = V_y / V [-]:
@@ -144,11 +131,6 @@ def thornton_restitution(yield_speed: Numeric, normal_speed: Numeric) -> Numeric
     decreases with V and tends to 1.185 (V_y/V)^{1/4} for V ≫ V_y, the power law of
     Johnson (1985) §11.5. Below V_y (r ≥ 1) the impact is elastic: 1 here, and the
     caller's dry e is the ceiling (``elastic_plastic_restitution``). NaN V_y gives NaN.
-
-    Parameters
-    ----------
-    yield_speed : normal impact speed at the onset of yield V_y [m/s]
-    normal_speed : normal impact speed V [m/s]
 
     Examples
     --------
@@ -168,18 +150,16 @@ def thornton_restitution(yield_speed: Numeric, normal_speed: Numeric) -> Numeric
         )
 
 
+@parameters(
+    normal_speed="normal impact speed V [m/s]",
+    yield_speed="normal impact speed at the onset of yield V_y [m/s]; NaN where not known",
+)
 def elastic_plastic_restitution(
     dry_restitution: Numeric, yield_speed: Numeric, normal_speed: Numeric
 ) -> Numeric:
     r"""The dry restitution with yield: min(e_dry, e_Thornton(V_y/V)) [-] (docs/physics.md
     §15). The pair's measured (or borrowed) e_dry is the elastic ceiling; past V_y
     Thornton's (15.1) takes over where it is lower. NaN V_y (yield not known): e_dry.
-
-    Parameters
-    ----------
-    dry_restitution : the pair's dry restitution e_dry [-]
-    yield_speed : normal impact speed at the onset of yield V_y [m/s]; NaN where not known
-    normal_speed : normal impact speed V [m/s]
 
     Examples
     --------
@@ -191,14 +171,10 @@ def elastic_plastic_restitution(
     return np.fmin(as_float(dry_restitution), plastic)
 
 
+@parameters
 def hertz_strain(contact_radius: Numeric, effective_radius: Numeric) -> tuple[Numeric, Numeric]:
     r"""Hertz's small-strain measures a/R* and δ/R* = (a/R*)² [-] (docs/physics.md §16;
     Hertz: δ = a²/R*, Johnson 1985 §4.2).
-
-    Parameters
-    ----------
-    contact_radius : Hertz contact radius a [m]
-    effective_radius : effective radius R* [m]
 
     Examples
     --------
@@ -209,6 +185,7 @@ def hertz_strain(contact_radius: Numeric, effective_radius: Numeric) -> tuple[Nu
     return ratio, ratio * ratio
 
 
+@parameters(friction="lubricated friction μ_f from (5.8) [-]")
 def lubricated_friction_state(
     friction: Numeric,
     immersed: Numeric,
@@ -222,14 +199,6 @@ def lubricated_friction_state(
     so (5.6) and (5.8) cannot be evaluated; ``"above_limit"`` μ_f exceeds the dry value
     or the limiting-shear cap γ_max (Bair & Winer 1979): the model is outside its range,
     not a prediction; ``"in_range"`` otherwise.
-
-    Parameters
-    ----------
-    friction : lubricated friction μ_f from (5.8) [-]
-    immersed : whether the collision is in a liquid [bool]
-    has_pressure_coefficient : whether the fluid has a pressure–viscosity coefficient [bool]
-    dry_friction : dry friction coefficient μ_dry [-]
-    limiting_shear_slope : slope γ of the limiting shear stress τ_L = τ_L0 + γ p [-]
 
     Examples
     --------
@@ -250,15 +219,11 @@ def lubricated_friction_state(
     )
 
 
+@parameters
 def friction_cap(
     dry_friction: Numeric = 0.11, limiting_shear_slope: Numeric = LIMITING_SHEAR_SLOPE
 ) -> Numeric:
     r"""The largest lubricated μ_f the film model may give: min(μ_dry, γ_max) [-] (§12).
-
-    Parameters
-    ----------
-    dry_friction : dry friction coefficient μ_dry [-]
-    limiting_shear_slope : slope γ of the limiting shear stress τ_L = τ_L0 + γ p [-]
 
     Examples
     --------
@@ -268,6 +233,7 @@ def friction_cap(
     return np.minimum(as_float(dry_friction), as_float(limiting_shear_slope))
 
 
+@parameters
 def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
     r"""Three-state roughness verdict from Davis's band h_m = x₁/4 … x₁/3 (§4, §12), as a
     code into ``ROUGHNESS_REGIMES``.
@@ -275,11 +241,6 @@ def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
     ``"asperity_contact"`` σ > x₁/3 (above the largest gap), ``"uncertain"``
     x₁/4 < σ ≤ x₁/3, ``"film"`` σ ≤ x₁/4; ``"dry"`` where x₁ is NaN (no liquid).
     ``roughness`` σ [m], ``elastic_length`` x₁ [m].
-
-    Parameters
-    ----------
-    roughness : composite RMS roughness σ [m]
-    elastic_length : Davis's elastic length x₁ [m]; NaN where there is no liquid
 
     Examples
     --------
@@ -297,13 +258,9 @@ def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
     return code
 
 
+@parameters
 def names(states: tuple[str, ...], code: Numeric) -> np.ndarray:
     """Text states from the integer codes the verdict functions return (object array).
-
-    Parameters
-    ----------
-    states : the names of the states, by code [-]
-    code : integer state codes [-]
 
     Examples
     --------

@@ -13,6 +13,7 @@ from math import comb
 
 import numpy as np
 
+from granudb.physics.arguments import parameters
 from granudb.physics.numeric import Numeric, as_float
 
 #: h_m = x₁ × this (the paper uses 1/3; Davis et al. 1986 give 1/4 to 1/3).
@@ -41,19 +42,13 @@ _A_COEFFICIENTS = np.array(
 )
 
 
+@parameters
 def davis_elastic_length(
     viscosity: Numeric, approach_speed: Numeric, radius: Numeric, reduced_modulus_pa: Numeric
 ) -> Numeric:
     r"""Davis et al. (1986) elastic length, x₁ = (4 μ v₀ R^{3/2} / (π E*))^{2/5} [m] (§1).
 
     The scale of the gap at which the approaching sphere's pressure deforms the surfaces.
-
-    Parameters
-    ----------
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    approach_speed : normal approach speed v₀ [m/s]
-    radius : radius R (the effective radius for two bodies) [m]
-    reduced_modulus_pa : reduced modulus E* [Pa]
 
     Examples
     --------
@@ -72,13 +67,9 @@ def davis_elastic_length(
     ) ** 0.4
 
 
+@parameters
 def ehd_min_gap(elastic_length: Numeric, fraction: float = GAP_FRACTION) -> Numeric:
     r"""Elastohydrodynamic minimum gap of a normal approach, h_m ≈ x₁/3 [m] (§1, §4).
-
-    Parameters
-    ----------
-    elastic_length : Davis's elastic length x₁ [m]; NaN where there is no liquid
-    fraction : h_m / x₁, 1/3 in the paper (Davis et al. give 1/4 to 1/3) [-]
 
     Examples
     --------
@@ -88,17 +79,11 @@ def ehd_min_gap(elastic_length: Numeric, fraction: float = GAP_FRACTION) -> Nume
     return as_float(elastic_length) * fraction
 
 
+@parameters
 def piezoviscous_length(
     eta_hat: Numeric, viscosity: Numeric, approach_speed: Numeric, radius: Numeric
 ) -> Numeric:
     r"""Piezoviscous length, x₃ = (η̂ μ₀ v₀ R)^{1/2} [m] (§1, Barnocky & Davis 1989).
-
-    Parameters
-    ----------
-    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    approach_speed : normal approach speed v₀ [m/s]
-    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -110,16 +95,11 @@ def piezoviscous_length(
     )
 
 
+@parameters
 def barus_viscosity(
     viscosity: Numeric, pressure_coefficient: Numeric, pressure: Numeric
 ) -> Numeric:
     r"""Barus law, μ(p) = μ₀ exp(C p) [Pa·s] (§5).
-
-    Parameters
-    ----------
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    pressure_coefficient : Barus pressure–viscosity coefficient C [1/Pa]
-    pressure : pressure p [Pa]
 
     Examples
     --------
@@ -129,12 +109,9 @@ def barus_viscosity(
     return as_float(viscosity) * np.exp(as_float(pressure_coefficient) * as_float(pressure))
 
 
+@parameters
 def chu_cameron_coefficient(pressure_coefficient: Numeric) -> Numeric:
     r"""η̂ = C/16, matching Chu–Cameron to Barus at low pressure [1/Pa] (§5).
-
-    Parameters
-    ----------
-    pressure_coefficient : Barus pressure–viscosity coefficient C [1/Pa]
 
     Examples
     --------
@@ -146,14 +123,9 @@ def chu_cameron_coefficient(pressure_coefficient: Numeric) -> Numeric:
     return as_float(pressure_coefficient) / CHU_CAMERON_EXPONENT
 
 
+@parameters
 def chu_cameron_viscosity(viscosity: Numeric, eta_hat: Numeric, pressure: Numeric) -> Numeric:
     r"""Chu–Cameron law, μ(p) = μ₀ (1 + η̂ p)^{16} [Pa·s] (5.1).
-
-    Parameters
-    ----------
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
-    pressure : pressure p [Pa]
 
     Examples
     --------
@@ -163,15 +135,12 @@ def chu_cameron_viscosity(viscosity: Numeric, eta_hat: Numeric, pressure: Numeri
     return as_float(viscosity) * (1.0 + as_float(eta_hat) * as_float(pressure)) ** 16
 
 
+@parameters
 def friction_integral(c: Numeric) -> Numeric:
     r"""A(c) = ∫₀¹ (1 + c√(1−z²))^{16} z dz, evaluated exactly [-] (5.9).
 
     With s = √(1−z²), A(c) = ∫₀¹ s (1 + c s)^{16} ds = Σ_{k=0}^{16} C(16,k) c^k/(k+2): a
     polynomial, evaluated by Horner's rule (no quadrature). A(0) = 1/2.
-
-    Parameters
-    ----------
-    c : c = η̂ p_max [-]
 
     Examples
     --------
@@ -192,16 +161,12 @@ def friction_integral(c: Numeric) -> Numeric:
     return result
 
 
+@parameters(integral="A(c) if already computed (``friction_integral``), else None [-]")
 def friction_integral_log_slope(c: Numeric, integral: Numeric | None = None) -> Numeric:
     r"""Logarithmic slope of (5.9), d ln A / d ln c = c A'(c) / A(c) [-], exactly.
 
     From the same polynomial: c A'(c) = Σ k C(16,k) c^k/(k+2). Used to propagate the
     uncertainty of c = η̂ p_max into A and (5.8) (``granudb.physics.uncertainty``).
-
-    Parameters
-    ----------
-    c : c = η̂ p_max [-]
-    integral : A(c) if already computed (``friction_integral``), else None [-]
 
     Examples
     --------
@@ -223,6 +188,7 @@ def friction_integral_log_slope(c: Numeric, integral: Numeric | None = None) -> 
     return slope / (friction_integral(c) if integral is None else as_float(integral))
 
 
+@parameters
 def traction_film_thickness(
     radius: Numeric,
     viscosity: Numeric,
@@ -234,15 +200,6 @@ def traction_film_thickness(
     r"""Gohar's traction film, h = 4.3384 R (μ₀ U η̂ / R)^{5/7} (W/(E* R²))^{−1/21} [m] (5.6).
 
     ``tangential_speed`` U is the contact point's tangential speed, ``load`` W from (2.2).
-
-    Parameters
-    ----------
-    radius : radius R (the effective radius for two bodies) [m]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    tangential_speed : tangential speed of the contact point U [m/s]
-    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
-    load : impact load W [N]
-    reduced_modulus_pa : reduced modulus E* [Pa]
 
     Examples
     --------
@@ -259,6 +216,7 @@ def traction_film_thickness(
     )
 
 
+@parameters(integral="A(η̂ p_max) of (5.9) if already computed, else None [-]")
 def lubricated_friction(
     viscosity: Numeric,
     tangential_speed: Numeric,
@@ -275,17 +233,6 @@ def lubricated_friction(
     The shear stress μ(r)U/h of the piezoviscous film integrated over the Hertz contact.
     Where U = 0 the result is 0 (μ_f ∝ U^{2/7} as U → 0). ``integral``: A(η̂ p_max) if
     the caller has it already (``friction_integral``), else it is computed here.
-
-    Parameters
-    ----------
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    tangential_speed : tangential speed of the contact point U [m/s]
-    load : impact load W [N]
-    film_thickness : film thickness h [m]
-    contact_radius : contact radius a [m]
-    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
-    max_pressure_pa : maximum Hertz pressure p_max [Pa]
-    integral : A(η̂ p_max) of (5.9) if already computed, else None [-]
 
     Examples
     --------
@@ -310,6 +257,7 @@ def lubricated_friction(
     return np.where(u == 0.0, 0.0, value)
 
 
+@parameters(factor="the constant of (5.10), 0.87 rounded; its exact value by default [-]")
 def lubricated_friction_dimensionless(
     viscosity: Numeric,
     tangential_speed: Numeric,
@@ -333,18 +281,6 @@ def lubricated_friction_dimensionless(
     (``PRINTED_FRICTION_FACTOR``, pass it as ``factor`` to reproduce the printed form).
     With the exact K this equals ``lubricated_friction`` (with W from (2.2)) to rounding.
 
-    Parameters
-    ----------
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    tangential_speed : tangential speed of the contact point U [m/s]
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    radius : radius R (the effective radius for two bodies) [m]
-    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
-    particle_density : particle density ρ_p [kg/m³]
-    normal_speed : normal approach speed v_N,in [m/s]
-    integral : A(η̂ p_max) of (5.9) [-]
-    factor : the constant of (5.10), 0.87 rounded; its exact value by default [-]
-
     Examples
     --------
     >>> round(float(lubricated_friction_dimensionless(1e-3, 0.1, 65.64e9, 6.35e-3, 375e-12,
@@ -361,17 +297,11 @@ def lubricated_friction_dimensionless(
     )
 
 
+@parameters
 def shear_strain(
     viscosity: Numeric, tangential_speed: Numeric, reduced_modulus_pa: Numeric, radius: Numeric
 ) -> Numeric:
     r"""The shear-strain regime axis of figure 15, (μ₀U/(E*R))^{2/7} [-] (§5).
-
-    Parameters
-    ----------
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    tangential_speed : tangential speed of the contact point U [m/s]
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    radius : radius R (the effective radius for two bodies) [m]
 
     Examples
     --------
@@ -385,6 +315,10 @@ def shear_strain(
     ) ** (2.0 / 7.0)
 
 
+@parameters(
+    friction="measured friction coefficient μ_f [-]",
+    factor="the constant K of (5.10); its exact value by default [-]",
+)
 def viscosity_for_friction(
     friction: Numeric,
     tangential_speed: Numeric,
@@ -402,18 +336,6 @@ def viscosity_for_friction(
     The paper fits μ₀ this way (figure 14) to find the temperature in the gap (table 2).
     K is the exact constant (``DIMENSIONLESS_FRICTION_FACTOR``) unless ``factor`` says
     otherwise.
-
-    Parameters
-    ----------
-    friction : measured friction coefficient μ_f [-]
-    tangential_speed : tangential speed of the contact point U [m/s]
-    reduced_modulus_pa : reduced modulus E* [Pa]
-    radius : radius R (the effective radius for two bodies) [m]
-    eta_hat : Chu–Cameron pressure coefficient η̂ [1/Pa]
-    particle_density : particle density ρ_p [kg/m³]
-    normal_speed : normal approach speed v_N,in [m/s]
-    integral : A(η̂ p_max) of (5.9) [-]
-    factor : the constant K of (5.10); its exact value by default [-]
 
     Examples
     --------

@@ -17,19 +17,16 @@ from __future__ import annotations
 
 import numpy as np
 
+from granudb.physics.arguments import parameters
 from granudb.physics.numeric import Numeric, as_float
 
 #: Squared radius of gyration over R² of a solid sphere, K² = I/(mR²) = 2/5.
 SOLID_SPHERE_GYRATION = 0.4
 
 
+@parameters
 def relative_normal_velocity(particle_v_n: Numeric, target_v_n: Numeric = 0.0) -> Numeric:
     r"""Relative normal velocity, v_N = (v₁ − v₂)·n [m/s] (§9).
-
-    Parameters
-    ----------
-    particle_v_n : the particle's velocity along n [m/s] (n from particle to target)
-    target_v_n : the target's velocity along n [m/s] (0 for a wall or fixed sphere)
 
     Examples
     --------
@@ -41,6 +38,7 @@ def relative_normal_velocity(particle_v_n: Numeric, target_v_n: Numeric = 0.0) -
     return as_float(particle_v_n) - as_float(target_v_n)
 
 
+@parameters
 def relative_tangential_velocity(
     particle_v_t: Numeric,
     particle_omega: Numeric,
@@ -51,12 +49,6 @@ def relative_tangential_velocity(
 ) -> Numeric:
     r"""Relative tangential velocity of the contact point,
     v_T = (v₁ − v₂)·t + ω₁R₁ + ω₂R₂ [m/s] (§9; sign convention in the module doc).
-
-    Parameters
-    ----------
-    particle_v_t, target_v_t : centre velocities along t [m/s]
-    particle_omega, target_omega : spins about n × t [rad/s]
-    particle_radius, target_radius : radii [m] (a wall's term is 0: pass 0 for it)
 
     Examples
     --------
@@ -74,6 +66,7 @@ def relative_tangential_velocity(
     )
 
 
+@parameters
 def walton_factor(
     effective_mass: Numeric,
     particle_mass: Numeric,
@@ -86,12 +79,6 @@ def walton_factor(
     Written with I = K² m R², so R²/I = 1/(K² m) and an immovable target (m₂ = ∞)
     contributes nothing. For solid spheres (K² = 2/5) B = 1 + 1/K² = 7/2 for a sphere on a
     wall, on a fixed sphere and for any two free spheres, since m*(1/m₁ + 1/m₂) = 1.
-
-    Parameters
-    ----------
-    effective_mass : m* [kg]
-    particle_mass, target_mass : m₁, m₂ [kg] (m₂ = ∞ for a wall or fixed sphere)
-    particle_gyration, target_gyration : K² = I/(mR²) of each body [-]
 
     Examples
     --------
@@ -108,17 +95,11 @@ def walton_factor(
     )
 
 
+@parameters
 def walton_sliding_rebound(
     psi_in: Numeric, friction: Numeric, restitution: Numeric, factor: Numeric = 3.5
 ) -> Numeric:
     r"""Walton, sliding, for a pair: Ψ_out = Ψ_in − μ_f (1+e) B [-] ((2.6) generalised, §9).
-
-    Parameters
-    ----------
-    psi_in : effective incidence Ψ_in [-]
-    friction : sliding friction coefficient μ_f [-]
-    restitution : normal restitution e [-]
-    factor : Walton factor B; 7/2 for a sphere on a wall or two equal spheres [-]
 
     Examples
     --------
@@ -128,18 +109,12 @@ def walton_sliding_rebound(
     return as_float(psi_in) - as_float(friction) * (1.0 + as_float(restitution)) * as_float(factor)
 
 
+@parameters
 def pair_sliding_friction(
     psi_in: Numeric, psi_out: Numeric, restitution: Numeric, factor: Numeric = 3.5
 ) -> Numeric:
     r"""Friction from one collision of a pair, μ_f = (Ψ_in − Ψ_out) / ((1+e) B) [-]
     ((2.9) generalised, §9; B = 7/2 gives (2.9)).
-
-    Parameters
-    ----------
-    psi_in : effective incidence Ψ_in [-]
-    psi_out : effective rebound Ψ_out [-]
-    restitution : normal restitution e [-]
-    factor : Walton factor B; 7/2 for a sphere on a wall or two equal spheres [-]
 
     Examples
     --------
@@ -151,6 +126,7 @@ def pair_sliding_friction(
     )
 
 
+@parameters(speed="relative impact speed V [m/s]")
 def pair_stokes_number(
     effective_mass: Numeric, speed: Numeric, viscosity: Numeric, effective_radius: Numeric
 ) -> Numeric:
@@ -159,13 +135,6 @@ def pair_stokes_number(
 
     For a sphere on a flat wall (m* = m, R* = R) it is Joseph & Hunt's 2ρ_p R V/(9μ);
     for two equal free spheres (m* = m/2, R* = R/2) it is twice that.
-
-    Parameters
-    ----------
-    effective_mass : effective mass m* [kg]
-    speed : relative impact speed V [m/s]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    effective_radius : effective radius R* [m]
 
     Examples
     --------
@@ -184,19 +153,13 @@ def pair_stokes_number(
     )
 
 
+@parameters
 def pair_normal_stokes_number(
     effective_mass: Numeric, normal_speed: Numeric, viscosity: Numeric, effective_radius: Numeric
 ) -> Numeric:
     r"""Normal Stokes number of a pair, St_n = m* v_N / (6π μ R*²) [-] (§4, §9).
 
     ``normal_speed`` is the relative normal approach speed v_N,in [m/s].
-
-    Parameters
-    ----------
-    effective_mass : effective mass m* [kg]
-    normal_speed : normal approach speed v_N,in [m/s]
-    viscosity : viscosity μ (μ₀ at ambient pressure) [Pa·s]
-    effective_radius : effective radius R* [m]
 
     Examples
     --------
@@ -207,16 +170,12 @@ def pair_normal_stokes_number(
     return pair_stokes_number(effective_mass, normal_speed, viscosity, effective_radius)
 
 
+@parameters
 def contact_incidence_angle(v_T_in: Numeric, v_N_in: Numeric) -> Numeric:
     r"""Incidence angle of the contact point's path, ζ_in = atan(|v_T,in| / v_N,in) [rad] (§5).
 
     ``v_T_in`` is the relative tangential velocity of the contact point (spin counts),
     ``v_N_in`` the relative normal approach speed (> 0). In [0, π/2).
-
-    Parameters
-    ----------
-    v_T_in : tangential velocity of the contact point before impact v_T,in [m/s]
-    v_N_in : relative normal approach speed v_N,in (> 0) [m/s]
 
     Examples
     --------

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from granudb.physics.arguments import parameters
 from granudb.physics.numeric import Numeric, PhysicsInputError, as_float
 
 KELVIN = 273.15
@@ -32,13 +33,10 @@ class ViscosityRangeError(PhysicsInputError):
     """A temperature (or viscosity) outside what a fluid model covers."""
 
 
+@parameters
 def water_viscosity_cheng(temperature_c: Numeric) -> Numeric:
     r"""Viscosity of water, μ_w = 1.790 exp((−1230 − T)T / (36100 + 360T)) mPa·s,
     T in °C (Cheng 2008, eq. 21); returned in Pa·s.
-
-    Parameters
-    ----------
-    temperature_c : temperature T [°C]
 
     Examples
     --------
@@ -49,13 +47,10 @@ def water_viscosity_cheng(temperature_c: Numeric) -> Numeric:
     return 1.790e-3 * np.exp((-1230.0 - t) * t / (36100.0 + 360.0 * t))
 
 
+@parameters
 def glycerol_viscosity_cheng(temperature_c: Numeric) -> Numeric:
     r"""Viscosity of glycerol, μ_g = 12100 exp((−1233 + T)T / (9900 + 70T)) mPa·s
     (Cheng 2008, eq. 22); returned in Pa·s.
-
-    Parameters
-    ----------
-    temperature_c : temperature T [°C]
 
     Examples
     --------
@@ -66,16 +61,12 @@ def glycerol_viscosity_cheng(temperature_c: Numeric) -> Numeric:
     return 12.100 * np.exp((-1233.0 + t) * t / (9900.0 + 70.0 * t))
 
 
+@parameters
 def glycerol_water_viscosity(mass_fraction: Numeric, temperature_c: Numeric) -> Numeric:
     r"""Viscosity of a water–glycerol mixture, μ = μ_w^α μ_g^{1−α} [Pa·s] (Cheng 2008).
 
     α = 1 − C_m + a b C_m (1 − C_m) / (a C_m + b (1 − C_m)), a = 0.705 − 0.0017 T,
     b = (4.9 + 0.036 T) a^{2.5}; C_m the glycerol mass fraction, T in °C.
-
-    Parameters
-    ----------
-    mass_fraction : glycerol mass fraction C_m [-]
-    temperature_c : temperature T [°C]
 
     Examples
     --------
@@ -97,12 +88,9 @@ def glycerol_water_viscosity(mass_fraction: Numeric, temperature_c: Numeric) -> 
     return water_viscosity_cheng(t) ** alpha * glycerol_viscosity_cheng(t) ** (1.0 - alpha)
 
 
+@parameters
 def water_density_volk(temperature_c: Numeric) -> Numeric:
     r"""Density of water, ρ_w = 1000 (1 − |(T − 3.98)/615|^{1.71}) kg/m³ (Volk & Kähler 2018).
-
-    Parameters
-    ----------
-    temperature_c : temperature T [°C]
 
     Examples
     --------
@@ -113,12 +101,9 @@ def water_density_volk(temperature_c: Numeric) -> Numeric:
     return 1000.0 * (1.0 - np.abs((t - 3.98) / 615.0) ** 1.71)
 
 
+@parameters
 def glycerol_density_volk(temperature_c: Numeric) -> Numeric:
     r"""Density of glycerol, ρ_g = 1273 − 0.612 T kg/m³ (Volk & Kähler 2018, after Cheng).
-
-    Parameters
-    ----------
-    temperature_c : temperature T [°C]
 
     Examples
     --------
@@ -128,15 +113,11 @@ def glycerol_density_volk(temperature_c: Numeric) -> Numeric:
     return 1273.0 - 0.612 * as_float(temperature_c)
 
 
+@parameters
 def glycerol_water_density(mass_fraction: Numeric, temperature_c: Numeric) -> Numeric:
     r"""Density of a water–glycerol mixture with volume contraction (Volk & Kähler 2018):
     ρ = ρ_ideal (1 + κ sin(C_m^{1.31} π)^{0.81}) [kg/m³], with
     1/ρ_ideal = C_m/ρ_g + (1 − C_m)/ρ_w and κ = 1.78×10⁻⁶ T² − 1.82×10⁻⁴ T + 1.41×10⁻².
-
-    Parameters
-    ----------
-    mass_fraction : glycerol mass fraction C_m [-]
-    temperature_c : temperature T [°C]
 
     Examples
     --------

@@ -17,6 +17,7 @@ MODULES = [
     "derive",
     "pair",
     "limits",
+    "arguments",
 ]
 
 
