@@ -294,9 +294,9 @@ def store_collisions(
                 rows += _store_block(session, dataset, target, block, names, seen, hasher, problems)
                 if progress is not None:
                     progress(rows)
-            problems.raise_any()  # rolls the transaction back
             if not target.file_sha256:
-                _refuse_earlier_import(session, dataset, target)
+                _refuse_earlier_import(session, dataset, target)  # before its runs' repeats
+            problems.raise_any()  # rolls the transaction back
             if indexes is not None:
                 if hasher is not None:
                     hasher.start()  # hashed on its thread while SQLite builds the indexes
@@ -394,8 +394,11 @@ def _repeated_runs(
         return
     seen = index.as_set()
     stored = [run in seen for run in block.runs]
-    if any(stored) and not target.file_sha256:
-        _refuse_earlier_import(session, dataset, target)  # the same file again?
+    if any(stored) and not target.file_sha256 and isinstance(problems, FirstProblem):
+        # The same file again? Finding out finishes (and stops) the reader, so only when
+        # the first problem ends the import anyway; a collecting import reads on and asks
+        # once the file is read (``store_collisions``).
+        _refuse_earlier_import(session, dataset, target)
     here: set[str] = set()
     repeated = np.zeros(len(block), dtype=bool)
     for pos, run in enumerate(block.runs):

@@ -12,7 +12,7 @@ from support import COLLISION_HEADER, GOOD_ROW, dump_hash, write_csv
 
 import granudb
 from granudb.api.database import connect as open_database
-from granudb.errors import ValidationError
+from granudb.errors import ConflictError, ValidationError
 from granudb.io.collision_import import import_collisions as import_file
 from granudb.io.tables import SHOWN_ROW_PROBLEMS
 
@@ -179,4 +179,27 @@ def test_runs_already_stored_are_all_listed_with_the_files_problems(
     line = result.stderr.strip()
     assert listed_rows(line) == [3, 4, 5, 7]
     assert line.count("appears twice") == 3 and "row 4: v_n_in [mm/s]: -1" in line
+    assert dump_hash(db) == before
+
+
+def test_runs_already_stored_in_early_chunks_do_not_stop_the_reading(
+    db: str, tmp_path: Path
+) -> None:
+    """Asking "is this the same file again?" at a stored run finished the reader early; a
+    refusal that goes on to list every problem must read on (it hung before)."""
+    first = write_csv(tmp_path / "first.csv", [row(f"r{i}") for i in range(10)])
+    second = [row(f"s{i}") for i in range(200)]
+    second[1], second[150] = row("r3"), row("r7")  # spreadsheet rows 3 and 152
+    path = write_csv(tmp_path / "second.csv", second)
+    database = open_database(db)
+    try:
+        import_file(database, first, dataset="d")
+        before = dump_hash(db)
+        with pytest.raises(ValidationError) as caught:
+            import_file(database, path, dataset="d", chunk_rows=7)
+        with pytest.raises(ConflictError, match="was already imported"):
+            import_file(database, first, dataset="d", chunk_rows=3)  # the same file again
+    finally:
+        database.dispose()
+    assert listed_rows(str(caught.value)) == [3, 152]
     assert dump_hash(db) == before
