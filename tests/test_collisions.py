@@ -142,7 +142,11 @@ BAD = [
     ([_with(v_n_out="400")], "row 2: v_n_out / v_n_in: 1.333 must be ≤ 1.05"),
     (
         [_with(particle="brass")],
-        "row 2: particle: 'brass' is not in the database (known: Delrin",
+        "row 2: particle: 'brass' is not in the database; did you mean 'glass'?",
+    ),
+    (
+        [_with(particle="unobtainium")],
+        "row 2: particle: 'unobtainium' is not in the database (known: Delrin",
     ),
     ([_with(fluid="mercury")], "row 2: fluid: 'mercury' is not in the database"),
     ([_with(v_t_in="nan")], "row 2: v_t_in [mm/s]: 'nan' is not a number"),

@@ -11,8 +11,10 @@ import math
 from pathlib import Path
 
 import pytest
+from sqlalchemy import select
 
 import granudb
+from granudb.db.models import PublishedValue
 from granudb.errors import ConflictError, ValidationError
 from granudb.physics.limits import HERTZ_STRAIN_LIMIT, thornton_restitution
 
@@ -209,3 +211,46 @@ def test_immersed_glass_uses_the_friction_measured_in_a_liquid(opened) -> None:
     steel = granudb.dry_values("steel", "Zerodur", db=opened)
     assert steel["immersed_friction"] == steel["dry_friction"] == 0.11
     assert steel["immersed_friction_source"].startswith("the dry value (no immersed value")
+
+
+def test_alumina_on_soda_lime_glass_uses_kharaz_friction_once_the_pair_is_stored(
+    opened,
+) -> None:
+    """Kharaz et al. (2001) ship as published values (no readable source states the
+    roughness a material needs, docs/physics.md §18); with the materials added (the
+    roughness is the user's) and the pair stored from those values, pair uses μ = 0.092."""
+    with opened.session() as session:
+        shipped = {
+            (v.label.split(" (")[0], v.quantity): (v.value, v.source.key)
+            for v in session.scalars(select(PublishedValue))
+            if "Kharaz" in v.label
+        }
+    friction, source = shipped[("dry alumina on soda-lime glass", "sliding_friction")]
+    for name, label in (
+        ("alumina", "alumina sphere"),
+        ("soda-lime glass", "soda-lime glass anvil"),
+    ):
+        granudb.add_material(
+            name,
+            # the anvil's density and both roughnesses are the user's: no source states them
+            density=shipped.get((label, "density_kg_m3"), ("2500 kg/m^3",))[0],
+            youngs_modulus=f"{shipped[(label, 'youngs_modulus_pa')][0] / 1e9:g} GPa",
+            poisson_ratio=shipped[(label, "poisson_ratio")][0],
+            roughness="0.1 um",
+            db=opened,
+        )
+    granudb.add_pair_value(
+        "alumina",
+        "soda-lime glass",
+        dry_friction=friction,
+        source=source,
+        source_locator="Test4.py, material aluminium_oxide",
+        db=opened,
+    )
+    document = granudb.pair(
+        "alumina", "soda-lime glass", diameter="5 mm", velocity="3.9 m/s", db=opened
+    )
+    values = document["dry_values"]
+    assert values["dry_friction"] == 0.092
+    assert values["dry_friction_basis"] == "pair"
+    assert "yade-chung-ooi-test4" in values["dry_friction_source"]

@@ -12,7 +12,7 @@ from support import dump_hash
 
 from granudb.api.database import connect as open_database
 from granudb.api.schema import load_seed
-from granudb.db.models import Fluid, Material, PublishedValue
+from granudb.db.models import Fluid, Material, PublishedValue, Source
 from granudb.errors import ValidationError
 from granudb.resources import shipped_dir
 
@@ -135,3 +135,35 @@ def test_every_published_number_carries_its_source_and_place(db: str) -> None:
     assert (glass.value, glass.uncertainty) == (0.39, 0.06)
     assert any("table 2" in v.source_locator for v in values)
     assert any("table 3" in v.source_locator for v in values)
+
+
+def test_kharaz_alumina_on_soda_lime_glass_is_shipped_with_its_secondary_sources(
+    db: str,
+) -> None:
+    """Kharaz, Gorham & Salman (2001) as two readable sources quote it (issue 23): each
+    number names the source it was read in, and the paper is cited as not read."""
+    database = open_database(db)
+    with database.session() as session:
+        values = {
+            (v.label, v.quantity): (v.value, v.source.key, v.source_locator)
+            for v in session.scalars(select(PublishedValue))
+            if "Kharaz" in v.label
+        }
+        paper = session.scalars(select(Source).filter_by(key="kharaz-gorham-salman-2001")).one()
+        assert paper.doi == "10.1016/S0032-5910(01)00283-2"
+        assert "could not read the paper" in paper.notes
+        # no material carries Kharaz's numbers: their roughness is stated nowhere readable
+        names = set(session.scalars(select(Material.name)))
+    database.dispose()
+    pair = "dry alumina on soda-lime glass (Kharaz et al. 2001)"
+    alumina = "alumina sphere (Kharaz et al. 2001)"
+    anvil = "soda-lime glass anvil (Kharaz et al. 2001)"
+    assert values[(pair, "sliding_friction")][:2] == (0.092, "yade-chung-ooi-test4")
+    assert values[(pair, "normal_restitution_mean")][:2] == (0.98, "yade-chung-ooi-test4")
+    assert values[(alumina, "density_kg_m3")][:2] == (4000, "lethe-oblique-wall-impact")
+    assert values[(alumina, "youngs_modulus_pa")][0] == 380e9
+    assert values[(alumina, "poisson_ratio")][0] == 0.23
+    assert values[(anvil, "youngs_modulus_pa")][0] == 70e9
+    assert values[(anvil, "poisson_ratio")][0] == 0.25
+    assert all(locator.strip() for _, _, locator in values.values())
+    assert not {"alumina", "soda-lime glass"} & names

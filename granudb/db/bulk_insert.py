@@ -125,6 +125,9 @@ class CollisionBlock:
     fluid: NameColumn
     values: dict[str, Any]
     notes: list[str | None] | None
+    #: The file had problems in or before these rows: the block is checked against the
+    #: catalogue (so every problem is listed at once) but never written.
+    faulty: bool = False
 
     def __len__(self) -> int:
         return len(self.runs)

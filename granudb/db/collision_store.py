@@ -18,6 +18,7 @@ inserted), the same value ``granudb.db.content_hash`` gives.
 
 from __future__ import annotations
 
+import difflib
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
@@ -51,7 +52,13 @@ from granudb.db.models import (
 from granudb.errors import ConflictError, ValidationError
 from granudb.lazy import pyarrow as pa
 
-__all__ = ["BULK_CACHE_KIB", "ImportTarget", "insert_collisions", "store_collisions"]
+__all__ = [
+    "BULK_CACHE_KIB",
+    "FirstProblem",
+    "ImportTarget",
+    "insert_collisions",
+    "store_collisions",
+]
 
 
 @dataclass(frozen=True)
@@ -104,21 +111,44 @@ class NameIndex:
         known: list[str],
         header: str,
         first_row: int,
+        problems: Any = None,
     ) -> Any:
-        """Ids by row (-1 where empty); the first unknown name is refused with its row."""
+        """Ids by row (-1 where empty or unknown); every row naming an unknown name goes to
+        ``problems`` (each distinct name looked up once, its rows found with numpy)."""
+        problems = problems if problems is not None else FirstProblem()
         found = [table.get(name_key(n), -1) for n in column.names]
         codes = np.asarray(column.codes)
-        unknown = [k for k, i in enumerate(found) if i < 0]
-        if unknown:
-            pos = _first(np.isin(codes, unknown))
-            raise ValidationError(
-                header,
-                repr(column.names[codes[pos]]),
-                f"is not in the database (known: {', '.join(known)})",
-                row=first_row + pos,
+        for code in (k for k, i in enumerate(found) if i < 0):
+            name = column.names[code]
+            near = difflib.get_close_matches(name_key(name), list(map(name_key, known)), n=1)
+            shown = next((k for k in known if name_key(k) in near), None)
+            rule = "is not in the database" + (
+                f"; did you mean {shown!r}?" if shown else f" (known: {', '.join(known)})"
+            )
+            problems.add(
+                np.flatnonzero(codes == code),
+                lambda pos, name=name, rule=rule: ValidationError(
+                    header, repr(name), rule, row=first_row + pos
+                ),
             )
         lookup = np.array([*found, -1], dtype=np.int64)
         return lookup[codes]
+
+
+class FirstProblem:
+    """A problem collector that refuses the first problem at once (callers that do not
+    collect every problem of a file); ``granudb.io.tables.Problems`` collects them all."""
+
+    def __bool__(self) -> bool:
+        return False
+
+    def add(self, positions: Any, problem: Callable[[int], ValidationError]) -> None:
+        positions = np.asarray(positions)
+        if len(positions):
+            raise problem(int(positions[0]))
+
+    def raise_any(self) -> None:
+        return None
 
 
 class FluidRanges:
@@ -153,8 +183,10 @@ class FluidRanges:
             )
         }
 
-    def check(self, block: Any, dataset: str) -> None:
-        """Refuse the first row whose temperature its fluid's data does not cover."""
+    def check(self, block: Any, dataset: str, problems: Any = None) -> None:
+        """Every row whose temperature its fluid's data does not cover, to ``problems``
+        (the first refused at once without one)."""
+        problems = problems if problems is not None else FirstProblem()
         if not isinstance(block, CollisionBlock):
             block = block_from_frame(block)
         temperatures = block.values.get("temperature_c")
@@ -187,15 +219,16 @@ class FluidRanges:
                     "granudb does not extrapolate"
                 )
             bad |= off
-        if bad.any():
-            pos = _first(bad)
-            header = block.headers.get("temperature_c", "temperature_c")
-            raise ValidationError(
+        header = block.headers.get("temperature_c", "temperature_c")
+        problems.add(
+            np.flatnonzero(bad),
+            lambda pos: ValidationError(
                 header,
                 f"{temperatures[pos]:g} °C",
                 f"{rules[int(codes[pos])]}; nothing was imported into dataset {dataset}",
                 row=block.first_row + pos,
-            )
+            ),
+        )
 
 
 def _refuse_earlier_import(session: Any, dataset: Any, target: ImportTarget) -> None:
@@ -217,9 +250,18 @@ def store_collisions(
     frames: Iterable[Any],
     *,
     progress: Callable[[int], None] | None = None,
+    problems: Any = None,
 ) -> int:
     """Write every block of ``frames`` (``CollisionBlock``s or DataFrames) into ``target``
-    in one write transaction."""
+    in one write transaction.
+
+    What only the database can find (an unknown material or fluid name, a temperature
+    outside a fluid's data, a run label already in the dataset) goes to ``problems``
+    (``granudb.io.tables.Problems``: every offending row, capped, counted) and the
+    blocks are still checked to the end, but nothing more is written and the transaction
+    is refused (rolled back) with all of them; without ``problems`` the first is refused
+    at once. ``faulty`` blocks (the file had problems) are checked, never written."""
+    problems = problems if problems is not None else FirstProblem()
     rows = 0
     with database.session(write=True) as session:
         connection = session.connection()
@@ -248,12 +290,13 @@ def store_collisions(
         try:
             for frame in frames:
                 block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
-                ranges.check(block, target.dataset)
-                rows += _store_block(session, dataset, target, block, names, seen, hasher)
+                ranges.check(block, target.dataset, problems)
+                rows += _store_block(session, dataset, target, block, names, seen, hasher, problems)
                 if progress is not None:
                     progress(rows)
             if not target.file_sha256:
-                _refuse_earlier_import(session, dataset, target)
+                _refuse_earlier_import(session, dataset, target)  # before its runs' repeats
+            problems.raise_any()  # rolls the transaction back
             if indexes is not None:
                 if hasher is not None:
                     hasher.start()  # hashed on its thread while SQLite builds the indexes
@@ -337,29 +380,39 @@ class RunIndex:
         return {run for part in self.parts for run in part.to_pylist()}
 
 
-def _refuse_repeated_runs(
+def _repeated_runs(
     session: Any,
     dataset: Any,
     target: ImportTarget,
     block: CollisionBlock,
     index: RunIndex,
+    problems: Any,
 ) -> None:
-    """The first run label that repeats (in the file, or already in the dataset)."""
+    """Every run label of ``block`` that repeats (in the file, or already in the dataset)
+    to ``problems``; a file imported before is refused as that."""
     if not index.repeats(block.runs):
         return
     seen = index.as_set()
+    stored = [run in seen for run in block.runs]
+    if any(stored) and not target.file_sha256 and isinstance(problems, FirstProblem):
+        # The same file again? Finding out finishes (and stops) the reader, so only when
+        # the first problem ends the import anyway; a collecting import reads on and asks
+        # once the file is read (``store_collisions``).
+        _refuse_earlier_import(session, dataset, target)
     here: set[str] = set()
+    repeated = np.zeros(len(block), dtype=bool)
     for pos, run in enumerate(block.runs):
-        if run in seen and not target.file_sha256:
-            _refuse_earlier_import(session, dataset, target)  # the same file again?
-        if run in seen or run in here:
-            raise ValidationError(
-                "run",
-                repr(run),
-                "appears twice (in this file or already in the dataset)",
-                row=block.first_row + pos,
-            )
+        repeated[pos] = bool(run) and (stored[pos] or run in here)  # "": refused already
         here.add(run)
+    problems.add(
+        np.flatnonzero(repeated),
+        lambda pos: ValidationError(
+            block.headers.get("run", "run"),
+            repr(block.runs[pos]),
+            "appears twice (in this file or already in the dataset)",
+            row=block.first_row + pos,
+        ),
+    )
 
 
 def _store_block(
@@ -370,16 +423,43 @@ def _store_block(
     names: NameIndex,
     seen: RunIndex,
     hasher: BlockHasher | None,
+    problems: Any,
 ) -> int:
+    """Check ``block`` against the catalogue (problems to ``problems``) and write it if
+    neither it nor anything before it had a problem; the rows written."""
     first_row = block.first_row
-    _refuse_repeated_runs(session, dataset, target, block, seen)
+    _repeated_runs(session, dataset, target, block, seen, problems)
     seen.add(block.runs)
-    runs = seen.parts[-1]
+    runs = seen.parts[-1] if block.runs else None
+    headers = block.headers
     ids = (
-        names.ids(block.particle, names.materials, names.material_names, "particle", first_row),
-        names.ids(block.wall, names.materials, names.material_names, "wall", first_row),
-        names.ids(block.fluid, names.fluids, names.fluid_names, "fluid", first_row),
+        names.ids(
+            block.particle,
+            names.materials,
+            names.material_names,
+            headers.get("particle", "particle"),
+            first_row,
+            problems,
+        ),
+        names.ids(
+            block.wall,
+            names.materials,
+            names.material_names,
+            headers.get("wall", "wall"),
+            first_row,
+            problems,
+        ),
+        names.ids(
+            block.fluid,
+            names.fluids,
+            names.fluid_names,
+            headers.get("fluid", "fluid"),
+            first_row,
+            problems,
+        ),
     )
+    if block.faulty or problems:
+        return 0  # checked only: the transaction is refused at the end
     for column, header in ((ids[0], "particle"), (ids[1], "wall")):
         if (column < 0).any():  # a reader checks required names; this is the last guard
             row = first_row + _first(column < 0)

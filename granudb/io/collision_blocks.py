@@ -59,8 +59,11 @@ def read_blocks(
 ) -> Iterator[CollisionBlock]:
     """The file's rows as checked ``CollisionBlock``s of ``chunk_rows`` rows.
 
-    A broken row stops the blocks; the rest of the file is still read and checked, and
-    then every problem is refused at once, in row order (``FileProblems``, capped)."""
+    From the first chunk with a problem on, blocks come ``faulty`` (with what could be
+    read of them: names, and numbers with the unreadable cells empty) so the catalogue
+    checks still see every row, and nothing is written; the rest of the file is read and
+    checked, and then every problem is refused at once, in row order (``FileProblems``,
+    capped)."""
     headers = {column: cmap.header for column, cmap in source.mapping.items()}
     problems = Problems(source.path.name)
     rows = 0
@@ -71,8 +74,8 @@ def read_blocks(
                     "FILE", source.path.name, "has a header that is not one line of cells"
                 )
             block = _block(table, source, headers, rows + 2, problems)
-            if not problems:  # after a problem the rest is read for its problems only
-                yield block
+            block.faulty = bool(problems)  # after a problem the rest is only checked
+            yield block
             rows += table.num_rows
     except pa.ArrowInvalid as exc:
         _refuse_unparsable(source, exc)
@@ -173,8 +176,8 @@ def _refuse_huge_cells(table: Any, source: Any) -> None:
 
 def _block(
     table: Any, source: Any, headers: dict[str, str], first_row: int, problems: Problems
-) -> CollisionBlock | None:
-    """One chunk's checked block, or None when it has problems (added to ``problems``)."""
+) -> CollisionBlock:
+    """One chunk's checked block; its problems are added to ``problems``."""
     _refuse_huge_cells(table, source)
     values = _numbers(table, source)
     texts = _texts(table, source.mapping) if values is not None else None
@@ -186,15 +189,17 @@ def _block(
     found = problems.count
     rows = collision_file.Rows(columns, cell, source.mapping, first_row, problems)
     collision_file.check_values(rows)
-    if problems.count > found:
-        return None
-    return CollisionBlock(first_row, headers, runs, particle, wall, fluid, values, notes)
+    block = CollisionBlock(first_row, headers, runs, particle, wall, fluid, values, notes)
+    block.faulty = problems.count > found
+    return block
 
 
 def _pandas_block(
     table: Any, source: Any, headers: dict[str, str], first_row: int, problems: Problems
-) -> CollisionBlock | None:
-    """The earlier pandas path for one chunk: its problems, or its checked rows."""
+) -> CollisionBlock:
+    """The earlier pandas path for one chunk: its problems (to ``problems``) and its rows,
+    checked, or as far as they could be read (a name that breaks a rule is left out: it
+    was refused already)."""
     raw = table.to_pandas()
     found = problems.count
     frame = convert_frame(
@@ -209,11 +214,18 @@ def _pandas_block(
         if column not in frame:
             frame[column] = np.nan if column in collision_file.NUMERIC else None
     collision_file.check_chunk(frame, raw, source.mapping, first_row, problems)
-    if problems.count > found:
-        return None
+    faulty = problems.count > found
+    if faulty:
+        for column in ("run", "particle", "wall", "fluid"):
+            names = frame[column].astype(object)
+            readable = names.map(lambda n: isinstance(n, str) and _name_ok(n))
+            frame[column] = names.where(readable, None)
+        frame["run"] = frame["run"].where(frame["run"].notna(), "")
     frame.attrs["first_row"] = first_row
     frame.attrs["headers"] = headers
-    return block_from_frame(frame)
+    block = block_from_frame(frame)
+    block.faulty = faulty
+    return block
 
 
 def _numbers(table: Any, source: Any) -> dict[str, Any] | None:

@@ -30,7 +30,7 @@ from granudb.io.collision_file import (
     estimate_rows,
     open_collision_file,
 )
-from granudb.io.tables import FileProblems
+from granudb.io.tables import FileProblems, Problems
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.text import check_name
 
@@ -90,14 +90,15 @@ def import_collisions(
                 digest,
                 expected_rows=estimate_rows(opened.path),
             )
+            found = Problems(name)  # what only the database finds: names, runs, ranges
             try:
-                rows = store_collisions(database, target, blocks, progress=progress)
-            except FileProblems:
-                raise
+                rows = store_collisions(database, target, blocks, progress=progress, problems=found)
+            except FileProblems as exc:  # the file's own problems and the database's
+                raise found.merged(exc) from None
             except ValidationError as exc:
                 if exc.row is None:
                     raise
-                raise FileProblems(name, [exc], 1) from None  # a row's name, run or fluid
+                raise FileProblems(name, [exc], 1) from None  # a row's last guard
             finally:
                 blocks.close()
             sha256 = stream.hexdigest()
@@ -120,6 +121,8 @@ def collision_frames(source: Path | CollisionFile, chunk_rows: int = CHUNK_ROWS)
     stream = HashingFile(source.path)
     try:
         for block in read_blocks(source, stream, chunk_rows):
+            if block.faulty:
+                continue  # the file is refused with every problem at the end
             frame = pd.DataFrame({"run": block.runs})
             for column, names in (("particle", block.particle), ("wall", block.wall)):
                 frame[column] = block.names_by_row(names)

@@ -96,6 +96,15 @@ class Problems:
     def refusal(self) -> FileProblems:
         return FileProblems(self.file, self.found, self.count)
 
+    def merged(self, refusal: FileProblems) -> FileProblems:
+        """``refusal`` (another collector's) with these problems merged in, row order kept
+        (each list holds its first ``shown`` in row order, so the first ``shown`` of both
+        are among them); ``refusal`` itself when it is this collector's own."""
+        if refusal.problems is self.found or not self.count:
+            return refusal
+        found = sorted([*refusal.problems, *self.found], key=lambda p: p.row or 0)
+        return FileProblems(refusal.file, found[: self.shown], refusal.count + self.count)
+
     def raise_any(self) -> None:
         if self.count:
             raise self.refusal()
