@@ -24,8 +24,8 @@ from granudb.db.collision_store import insert_collisions
 from granudb.db.content_hash import update_content_hash
 from granudb.db.datasets import check_dataset_name, check_version
 from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
-from granudb.db.upsert import same_value
 from granudb.errors import ConflictError
+from granudb.vocabulary.rules import same_value
 from granudb.vocabulary.text import MAX_NAME
 
 FLUID_SOURCES = {
