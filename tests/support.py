@@ -149,3 +149,16 @@ class CostBound:
 
         used = time.process_time() - self.started
         assert used < self.cpu_seconds, f"{used:.1f} s of CPU (bound {self.cpu_seconds} s)"
+
+
+def release_ptfe_runs(database: Any, tmp_path: Any, example: Any) -> None:
+    """Add a PTFE material, import ``example``'s runs with PTFE for steel as dataset
+    "ptfe" and release it (a release using a material nothing else uses)."""
+    import granudb
+
+    granudb.add_material("PTFE", density="2.2 g/cm^3", youngs_modulus="0.5 GPa",
+                         poisson_ratio=0.46, roughness="0.2 um", db=database)  # fmt: skip
+    rows = example.read_text("utf-8").replace(",steel,", ",PTFE,")
+    (source := tmp_path / "ptfe.csv").write_text(rows, encoding="utf-8")
+    granudb.import_collisions(source, dataset="ptfe", db=database)
+    granudb.release_dataset("ptfe", db=database)

@@ -18,7 +18,9 @@ from granudb.analysis.collision_query import COLLISION_FILTERS, TANGENTIAL_REGIM
 from granudb.analysis.collisions import select_collisions
 from granudb.api import inputs
 from granudb.api.database import opened
+from granudb.db import lookup_rows
 from granudb.errors import ValidationError
+from granudb.reporting.pinned import announce_pinned
 from granudb.vocabulary.listings import COLLISION_NARROW
 
 #: The collision filters, in the order help texts list them.
@@ -119,6 +121,11 @@ def collisions(
     query = collision_query(**filters)
     with opened(db) as database, database.session() as session:
         frame = select_collisions(session, query)
+        if not frame.empty:  # a release's runs: say what it pins that has changed since
+            connection = session.connection()
+            pinned = lookup_rows.single_dataset_id(connection, frame)
+            ref = f"{frame['dataset'].iat[0]}@{frame['version'].iat[0]}"
+            announce_pinned(connection, pinned, ref)
     shown = chosen_columns(columns, wide, list(frame.columns))
     if not frame.empty:
         order = sorted(

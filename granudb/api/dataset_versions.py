@@ -27,9 +27,11 @@ from granudb.api import inputs
 from granudb.api.consent import Confirm, agreed, unchanged
 from granudb.api.database import opened
 from granudb.api.frames import records_frame
-from granudb.db import dataset_catalog
+from granudb.db import catalogue_differences, dataset_catalog
 from granudb.db import datasets as store
 from granudb.errors import ValidationError
+from granudb.reporting.format import difference_line
+from granudb.reporting.pinned import pinned_notes
 from granudb.vocabulary.listings import DATASET_COLUMNS
 from granudb.vocabulary.text import check_name, check_text
 
@@ -128,7 +130,9 @@ def check_metadata(values: dict[str, Any]) -> dict[str, str | None]:
 
 def datasets(db: Any = None, *, as_frame: bool = True) -> Any:
     """Every dataset version with its state, title, run count, content hash, licence and
-    source: a DataFrame, or a list of records with ``as_frame=False``.
+    source: a DataFrame, or a list of records with ``as_frame=False``, where each record
+    also has ``pinned_changes`` (what a release pins that today's
+    catalogue has changed).
 
     Examples
     --------
@@ -138,12 +142,15 @@ def datasets(db: Any = None, *, as_frame: bool = True) -> Any:
     """
     with opened(db) as database, database.session() as session:
         records = dataset_catalog.dataset_records(session)
+        for record in records:
+            record["pinned_changes"] = pinned_notes(session.connection(), record.pop("id"))
     return records_frame(records, DATASET_COLUMNS) if as_frame else records
 
 
 def dataset(name: str, *, version: str | None = None, db: Any = None) -> dict[str, Any]:
-    """One dataset version (``name`` as NAME or NAME@VERSION): its metadata, and
-    ``groups``, its runs counted by particle, wall and fluid.
+    """One dataset version (``name`` as NAME or NAME@VERSION): its metadata,
+    ``pinned_changes`` (what a release pins that today's catalogue has
+    changed) and ``groups``, its runs counted by particle, wall and fluid.
 
     Examples
     --------
@@ -156,13 +163,18 @@ def dataset(name: str, *, version: str | None = None, db: Any = None) -> dict[st
     with opened(db) as database, database.session() as session:
         chosen = store.get_dataset(session, name, version)
         record = dataset_catalog.dataset_record(session, chosen)
+        record["pinned_changes"] = pinned_notes(session.connection(), chosen.id)
         record["groups"] = dataset_catalog.group_counts(session, chosen)
     return record
 
 
-def diff_datasets(a: str, b: str, *, db: Any = None) -> list[dict[str, Any]]:
-    """The runs added, removed and changed from dataset ``a`` to ``b`` (each NAME or
-    NAME@VERSION), matched by run label: one record (change, run, fields) per run.
+def diff_datasets(a: str, b: str | None = None, *, db: Any = None) -> list[dict[str, Any]]:
+    """The differences from dataset ``a`` to ``b`` (each NAME or NAME@VERSION): the runs
+    added, removed and changed, matched by run label, one record (change, run, fields)
+    per run; then the catalogue values the two read differently (a release's pinned
+    revisions and pair values against the other's: materials, fluids, fluid points, dry
+    values), one record per value with change "catalogue" and the value in ``fields``.
+    Without ``b``: what ``a`` pins that today's catalogue has changed (change "pinned").
 
     Examples
     --------
@@ -170,11 +182,20 @@ def diff_datasets(a: str, b: str, *, db: Any = None) -> list[dict[str, Any]]:
     >>> _ = granudb.import_collisions(example_csv, dataset="diffed", db=db)
     >>> granudb.diff_datasets("diffed", "diffed@1.0.0", db=db)
     []
+    >>> granudb.diff_datasets("diffed", db=db)
+    []
     """
     with opened(db) as database, database.session() as session:
         first = store.get_dataset(session, *inputs.dataset_ref(a))
+        if b is None:
+            lines = pinned_notes(session.connection(), first.id)
+            return [{"change": "pinned", "run": None, "fields": line} for line in lines]
         second = store.get_dataset(session, *inputs.dataset_ref(b))
-        return dataset_catalog.diff_datasets(session, first, second)
+        runs = dataset_catalog.diff_datasets(session, first, second)
+        changes = catalogue_differences.catalogue_diff(session.connection(), first.id, second.id)
+    catalogue = [{"change": "catalogue", "run": None, "fields": difference_line(c)}
+                 for c in changes]  # fmt: skip
+    return runs + catalogue
 
 
 def remove_dataset(

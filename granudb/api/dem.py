@@ -48,6 +48,7 @@ from granudb.dem.spec import identifier
 from granudb.dem.verify import TOLERANCES, Record, passed, summary, table, verify
 from granudb.errors import ValidationError
 from granudb.output_files import write_text
+from granudb.reporting.pinned import announce_pinned
 
 #: The codes ``dem_export`` writes for, and those ``dem_verify`` runs.
 DEM_CODES = WRITER_NAMES
@@ -277,7 +278,9 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
     with opened(db) as database, database.reading() as session:
         pinned = None  # values=dataset: the catalogue as the dataset's runs use it
         if values == "dataset":
-            pinned = lookup_rows.dataset_row(session, *inputs.dataset_ref(dataset)).id
+            row = lookup_rows.dataset_row(session, *inputs.dataset_ref(dataset))
+            pinned = row.id
+            announce_pinned(session, pinned, f"{row.name}@{row.version}")
         fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(session, fluid, pinned)
         state = fluid_state(fluid_row) if fluid_row else None
         types, pairs, taken = [], [], set()

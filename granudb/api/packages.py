@@ -8,16 +8,18 @@ datasets" says what is checked on the way in.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from granudb.api import inputs
 from granudb.api.database import opened
+from granudb.db import datasets as store
 from granudb.db.package_queries import export_data
 from granudb.db.package_store import PackageImport
 from granudb.io.package_export import build_package, write_package
 from granudb.io.package_import import import_package, validate_package
+from granudb.reporting.pinned import pinned_notes
 
 #: Problems a validation prints before it counts the rest.
 SHOWN_PROBLEMS = 20
@@ -31,6 +33,10 @@ class Exported:
     version: str
     content_hash: str
     path: Path
+    #: What the release pins that today's catalogue has changed (``pinned_notes`` of
+    #: ``granudb.reporting.pinned``); the package holds the pinned values, its bytes
+    #: never change.
+    pinned_changes: list[str] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -72,8 +78,11 @@ def export_dataset(
     target = Path(inputs.path(output, "output"))
     with opened(db) as database, database.session() as session:
         data = export_data(session, name, version)
+        pinned = pinned_notes(session.connection(), store.get_dataset(session, name, version).id)
     written = write_package(build_package(data), target)
-    return Exported(data.dataset["name"], data.dataset["version"], data.content_hash, written)
+    return Exported(
+        data.dataset["name"], data.dataset["version"], data.content_hash, written, pinned
+    )
 
 
 def validate_dataset(path: str | Path) -> Validation:

@@ -39,7 +39,13 @@ def list_(
         for record in records:
             digest = record.get("content_hash")
             record["content_hash"] = f"{digest[:SHORT_HASH]}…" if digest else digest
+    if fmt is Format.json:
+        emit(records, [*api.DATASET_COLUMNS, "pinned_changes"], fmt)
+        return
     emit(records, api.DATASET_COLUMNS, fmt, title="Datasets")
+    for record in records:
+        for line in record["pinned_changes"]:
+            note(f"{record['name']}@{record['version']} {line}")
 
 
 @app.command()
@@ -48,33 +54,44 @@ def show(name: Ref, db: DbOption = None, fmt: FormatOption = Format.table) -> No
     """One dataset: metadata and run counts by particle, wall and fluid."""
     record = api.dataset(name, db=db)
     groups = record.pop("groups")
+    pinned = record.pop("pinned_changes")
     if fmt is Format.json:
-        emit_one(record, fmt, extra={"groups": groups})
-    elif fmt is Format.csv:
+        emit_one(record, fmt, extra={"pinned_changes": pinned, "groups": groups})
+        return
+    if fmt is Format.csv:
         emit(groups, api.DATASET_GROUP_COLUMNS, fmt)
     else:
         emit_one(record, fmt, title=f"Dataset {record['name']}")
         emit(groups, api.DATASET_GROUP_COLUMNS, fmt, title="Runs by pair and fluid")
+    for line in pinned:
+        note(line)
 
 
 @app.command()
 @wraps("diff_datasets")
 def diff(
     a: Annotated[str, typer.Argument(help="Dataset A as NAME or NAME@VERSION.")],
-    b: Annotated[str, typer.Argument(help="Dataset B as NAME or NAME@VERSION.")],
+    b: Annotated[
+        str | None,
+        typer.Argument(help="Dataset B as NAME or NAME@VERSION (none: today's catalogue)."),
+    ] = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
 ) -> None:
-    """Runs added, removed and changed from A to B (matched by run label)."""
+    """Runs added, removed and changed from A to B (matched by run label), and the
+    catalogue values they read differently; without B, what A pins that today's
+    catalogue has changed."""
     changes = api.diff_datasets(a, b, db=db)
     if fmt is Format.table:
-        counts = {
-            k: sum(c["change"] == k for c in changes) for k in ("added", "removed", "changed")
-        }
-        say(
-            f"{a} → {b}: {counts['added']} added, {counts['removed']} removed, "
-            f"{counts['changed']} changed"
-        )
+        kinds = ("added", "removed", "changed", "catalogue", "pinned")
+        counts = {k: sum(c["change"] == k for c in changes) for k in kinds}
+        if b is None:
+            say(f"{a} → today's catalogue: {counts['pinned']} pinned values differ")
+        else:
+            say(
+                f"{a} → {b}: {counts['added']} added, {counts['removed']} removed, "
+                f"{counts['changed']} changed; {counts['catalogue']} catalogue values differ"
+            )
     emit(changes, api.DIFF_COLUMNS, fmt, title="Differences")
 
 
@@ -93,6 +110,8 @@ def export(
         f"exported dataset {done.dataset} {done.version} to {done.path} "
         f"(content hash {done.content_hash[:16]}…)"
     )
+    for line in done.pinned_changes:
+        note(line)
 
 
 @app.command()

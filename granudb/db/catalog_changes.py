@@ -21,10 +21,11 @@ from sqlalchemy.orm import Session
 from granudb.db import catalog_rows
 from granudb.db.catalog_revisions import keep_for_releases, revisions
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, PublishedValue
-from granudb.db.upsert import Change, same_value
+from granudb.db.upsert import Change
 from granudb.errors import ConflictError, ValidationError
 from granudb.vocabulary import Catalogue, check_record
 from granudb.vocabulary.catalogue import check_entry, check_words
+from granudb.vocabulary.rules import same_value
 from granudb.vocabulary.text import check_name, name_key
 
 MODELS: dict[str, type] = {"material": Material, "fluid": Fluid}

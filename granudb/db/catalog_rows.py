@@ -294,16 +294,13 @@ def entry_history(connection: Connection, kind: str, name: str) -> list[dict[str
         if by_id is not None:
             record = fluid_record(by_id[row_id])
         else:
-            row = connection.execute(select(*MATERIALS.c).where(MATERIALS.c.id == row_id))
-            record = material_record(
-                _build(MaterialRow, row.mappings().one(), _sources(connection))
-            )
+            record = material_record(material_row_by_id(connection, row_id))
         used = []
-        for reference in _RUN_REFERENCES[kind]:
-            column = _RUNS.c[reference]
+        for reference in RUN_REFERENCES[kind]:
+            column = RUNS.c[reference]
             query = (
                 select(_DATASETS.c.name, _DATASETS.c.version, func.count())
-                .join(_DATASETS, _DATASETS.c.id == _RUNS.c.dataset_id)
+                .join(_DATASETS, _DATASETS.c.id == RUNS.c.dataset_id)
                 .where(column == row_id)
                 .group_by(_DATASETS.c.name, _DATASETS.c.version)
             )
@@ -322,8 +319,8 @@ def entry_history(connection: Connection, kind: str, name: str) -> list[dict[str
 
 
 #: The runs' references, to find the rows a dataset's runs use.
-_RUNS = lightweight_table("collisions", ["dataset_id", "particle_id", "wall_id", "fluid_id"])
-_RUN_REFERENCES = {"material": ("particle_id", "wall_id"), "fluid": ("fluid_id",)}
+RUNS = lightweight_table("collisions", ["dataset_id", "particle_id", "wall_id", "fluid_id"])
+RUN_REFERENCES = {"material": ("particle_id", "wall_id"), "fluid": ("fluid_id",)}
 _DATASETS = lightweight_table("datasets", ["id", "name", "version"])
 
 
@@ -332,13 +329,19 @@ def pinned_id(connection: Connection, kind: str, name: str, dataset_id: int) -> 
     revision when the dataset is a release that kept one, else the live row."""
     ids = entry_ids(connection, kind, name)
     used: set[int] = set()
-    for reference in _RUN_REFERENCES[kind]:
-        column = _RUNS.c[reference]
+    for reference in RUN_REFERENCES[kind]:
+        column = RUNS.c[reference]
         query = select(column).where(
-            _RUNS.c.dataset_id == dataset_id, or_(*(column == i for i in ids))
+            RUNS.c.dataset_id == dataset_id, or_(*(column == i for i in ids))
         )
         used |= set(connection.execute(query.distinct()).scalars())
     return used.pop() if len(used) == 1 else ids[0]
+
+
+def material_row_by_id(connection: Connection, row_id: int) -> MaterialRow:
+    """The material row ``row_id`` (live or a kept revision)."""
+    row = connection.execute(select(*MATERIALS.c).where(MATERIALS.c.id == row_id))
+    return _build(MaterialRow, row.mappings().one(), _sources(connection))
 
 
 def get_material_row(
@@ -352,9 +355,7 @@ def get_material_row(
     if dataset_id is None:
         return found[0]
     chosen = pinned_id(connection, "material", name, dataset_id)
-    query = select(*MATERIALS.c).where(MATERIALS.c.id == chosen)
-    row = connection.execute(query).mappings().one()
-    return _build(MaterialRow, row, _sources(connection))
+    return material_row_by_id(connection, chosen)
 
 
 def get_fluid_row(connection: Connection, name: str, dataset_id: int | None = None) -> FluidRow:

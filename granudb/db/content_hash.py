@@ -18,9 +18,7 @@ inserts, from the constants below (tests hold the two equal).
 from __future__ import annotations
 
 import hashlib
-import math
 from collections.abc import Iterable, Sequence
-from typing import Any
 
 from sqlalchemy import select
 from sqlalchemy.orm import Session, aliased
@@ -39,8 +37,12 @@ TARGET_HASHED = tuple(COLLISION_TARGET)
 _ROW = ("run", *NAMES, *ALWAYS_HASHED, "notes", *TARGET_HASHED)
 
 
-def content_hash(session: Session, dataset: Dataset) -> str:
-    """The dataset's content hash (see the module docstring)."""
+def content_hash(
+    session: Session, dataset: Dataset, renamed: tuple[dict, dict] | None = None
+) -> str:
+    """The dataset's content hash (see the module docstring); with ``renamed`` (material
+    and fluid names: {stored name: name to hash instead}), the hash of the same rows under
+    other names (a package's own, before its names were matched here)."""
     particle, wall = aliased(Material), aliased(Material)
     # Byte order of the UTF-8 run labels, on every backend (SQLite's BINARY collation,
     # PostgreSQL's "C"), streamed so a million runs hash in bounded memory.
@@ -62,7 +64,15 @@ def content_hash(session: Session, dataset: Dataset) -> str:
         .order_by(Collision.run.collate(collation)),
         execution_options={"yield_per": 20_000},
     )
-    return hash_rows(result.partitions())
+    batches = result.partitions()
+    if renamed:
+        materials, fluids = renamed
+        batches = (
+            [(r[0], materials.get(r[1], r[1]), materials.get(r[2], r[2]),
+              fluids.get(r[3], r[3]), *r[4:]) for r in rows]
+            for rows in batches
+        )  # fmt: skip
+    return hash_rows(batches)
 
 
 def hash_rows(batches: Iterable[Iterable[Sequence[object]]]) -> str:
@@ -79,17 +89,6 @@ def _canonical(row: Sequence[object]) -> list[str]:
     cells = ["" if v is None else repr(v) if type(v) is float else str(v) for v in row]
     kept = len(cells) - len(TARGET_HASHED)
     return cells if any(cells[kept:]) else cells[:kept]
-
-
-def hash_frame(frame: Any) -> str:
-    """The content hash of collisions given by name in a DataFrame (a package's table)."""
-    values = [frame[c].tolist() if c in frame else [None] * len(frame) for c in _ROW]
-    order = sorted(range(len(frame)), key=lambda i: str(values[0][i]).encode("utf-8"))
-    rows = (
-        [None if isinstance(v, float) and math.isnan(v) else v for v in (c[i] for c in values)]
-        for i in order
-    )
-    return hash_rows([rows])
 
 
 def update_content_hash(session: Session, dataset: Dataset) -> str:

@@ -9,9 +9,9 @@ from sqlalchemy import func, select
 from sqlalchemy.orm import Session, aliased
 
 from granudb.db.models import Collision, Dataset, Fluid, Material
-from granudb.db.upsert import same_value
 from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
 from granudb.vocabulary.listings import DATASET_DESCRIPTION
+from granudb.vocabulary.rules import same_value
 
 COMPARED = ["particle_id", "wall_id", "fluid_id", *COLUMNS, "notes"]
 
@@ -27,6 +27,7 @@ def dataset_records(session: Session) -> list[dict[str, Any]]:
     runs = _runs(session)
     return [
         {
+            "id": d.id,
             "name": d.name,
             "version": d.version,
             "state": d.state,
@@ -79,8 +80,22 @@ def group_counts(session: Session, dataset: Dataset) -> list[dict[str, Any]]:
     return [{"particle": p, "wall": w, "fluid": f or "dry", "runs": n} for p, w, f, n in rows]
 
 
+def _live_ids(session: Session, model: Any) -> dict[int, int]:
+    """{revision id: its live row's id} of a catalogue table."""
+    query = select(model.id, model.revision_of).where(model.revision_of.is_not(None))
+    return {row_id: live for row_id, live in session.execute(query)}
+
+
 def diff_datasets(session: Session, first: Dataset, second: Dataset) -> list[dict[str, Any]]:
     """Runs added in ``second``, removed from ``first``, and changed (field by field)."""
+
+    # A release's runs point at the revisions it keeps: runs are compared by the live
+    # rows, the catalogue values themselves by ``catalogue_differences.catalogue_diff``.
+    live = {
+        "particle_id": _live_ids(session, Material),
+        "wall_id": _live_ids(session, Material),
+        "fluid_id": _live_ids(session, Fluid),
+    }
 
     def load(dataset: Dataset) -> dict[str, dict[str, Any]]:
         rows = session.execute(
@@ -88,7 +103,13 @@ def diff_datasets(session: Session, first: Dataset, second: Dataset) -> list[dic
                 Collision.dataset_id == dataset.id
             )
         ).all()
-        return {row[0]: dict(zip(COMPARED, row[1:], strict=True)) for row in rows}
+        found = {}
+        for row in rows:
+            values = dict(zip(COMPARED, row[1:], strict=True))
+            for column, ids in live.items():
+                values[column] = ids.get(values[column], values[column])
+            found[row[0]] = values
+        return found
 
     before, after = load(first), load(second)
     changes: list[dict[str, Any]] = []

@@ -21,11 +21,11 @@ from sqlalchemy.orm import Session
 
 from granudb.db.catalog_rows import source_record
 from granudb.db.collision_store import insert_collisions
-from granudb.db.content_hash import update_content_hash
+from granudb.db.content_hash import content_hash, update_content_hash
 from granudb.db.datasets import check_dataset_name, check_version
 from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
-from granudb.db.upsert import same_value
 from granudb.errors import ConflictError
+from granudb.vocabulary.rules import same_value
 from granudb.vocabulary.text import MAX_NAME
 
 FLUID_SOURCES = {
@@ -61,6 +61,10 @@ class PackageImport:
     added: list[str] = field(default_factory=list)
     renamed: list[str] = field(default_factory=list)
     declared_hash: str | None = None
+
+
+class HashMismatch(ConflictError):
+    """The collisions as stored do not give the content hash the package declares."""
 
 
 class MergeConflict(ConflictError):
@@ -238,9 +242,16 @@ def _merge(merger: Merger, tables: dict[str, Any]) -> tuple[dict[str, int], dict
 
 
 def store_package(
-    database: Any, content: PackageContent, *, rename_conflicts: bool = False
+    database: Any,
+    content: PackageContent,
+    *,
+    rename_conflicts: bool = False,
+    declared_hash: str | None = None,
 ) -> PackageImport:
-    """Merge and insert ``content`` in one write transaction; all or nothing."""
+    """Merge and insert ``content`` in one write transaction; all or nothing. Its
+    collisions are a frame or an iterable of frames (blocks, inserted one at a time, so
+    memory is bounded by a block). With ``declared_hash``, the stored rows under the
+    package's own names must give it (``HashMismatch`` otherwise, nothing stored)."""
     with database.session(write=True) as session:
         if session.scalars(
             select(Dataset).filter_by(name=content.dataset, version=content.version)
@@ -263,12 +274,37 @@ def store_package(
         )
         session.add(dataset)
         session.flush()
-        frame = content.tables["collisions"].copy()
-        frame["particle_id"] = frame.pop("particle").map(materials)
-        frame["wall_id"] = frame.pop("wall").map(materials)
-        frame["fluid_id"] = frame.pop("fluid").map(fluids)
-        rows = insert_collisions(session, dataset.id, frame)
+        blocks = content.tables["collisions"]
+        rows = 0
+        for block in [blocks] if hasattr(blocks, "columns") else blocks:
+            frame = block.copy()
+            frame["particle_id"] = frame.pop("particle").map(materials)
+            frame["wall_id"] = frame.pop("wall").map(materials)
+            frame["fluid_id"] = frame.pop("fluid").map(fluids)
+            rows += insert_collisions(session, dataset.id, frame)
         result = merger.result
         result.dataset, result.version = content.dataset, content.version
         result.rows, result.content_hash = rows, update_content_hash(session, dataset)
+        if declared_hash is not None:
+            _check_declared(session, dataset, result.content_hash, declared_hash,
+                            (materials, fluids))  # fmt: skip
         return result
+
+
+def _check_declared(
+    session: Session, dataset: Dataset, stored: str, declared: str, ids: tuple[dict, dict]
+) -> None:
+    """Refuse a package whose collisions, under the package's own names, do not give the
+    hash it declares. They give the stored hash unless a name was matched in another case
+    or renamed; then the stored rows are hashed again with the package's names."""
+    own = []
+    for model, by_name in zip((Material, Fluid), ids, strict=True):
+        here = dict(session.execute(select(model.id, model.name).where(
+            model.id.in_(sorted(set(by_name.values()))))).all())  # fmt: skip
+        own.append({here[i]: name for name, i in by_name.items() if here[i] != name})
+    computed = stored if not any(own) else content_hash(session, dataset, renamed=tuple(own))
+    if computed != declared:
+        raise HashMismatch(
+            f"content hash: computed {computed[:16]}…, the package declares "
+            f"{str(declared)[:16]}…; the collisions changed"
+        )

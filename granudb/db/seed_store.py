@@ -31,8 +31,9 @@ from granudb.db.models import (
     Source,
     name_key,
 )
-from granudb.db.upsert import Change, same_value
+from granudb.db.upsert import Change
 from granudb.errors import ValidationError
+from granudb.vocabulary.rules import same_value
 
 
 class _Resolver:

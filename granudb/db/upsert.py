@@ -6,7 +6,6 @@ in a seed file updates its row and is reported field by field, never silently.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -14,12 +13,7 @@ from typing import Any
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-
-def same_value(old: Any, new: Any) -> bool:
-    """Equal, with floats compared to 1e-12 relative (a CSV's text is not bit-exact)."""
-    if isinstance(old, float) and isinstance(new, float | int):
-        return math.isclose(old, float(new), rel_tol=1e-12, abs_tol=0.0)
-    return old == new
+from granudb.vocabulary.rules import same_value
 
 
 @dataclass

@@ -21,12 +21,12 @@ under a name differing in case, or renamed by ``--rename-conflicts``: import the
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from granudb.db.content_hash import hash_frame
-from granudb.db.package_store import MergeConflict, PackageContent, store_package
+from granudb.db.package_store import HashMismatch, MergeConflict, PackageContent, store_package
 from granudb.errors import ValidationError
 from granudb.io.collision_file import MAX_RESTITUTION, MAX_SPEED_M_S, SPEEDS
 from granudb.io.package_files import (
@@ -97,6 +97,9 @@ class Validated:
     problems: list[str] = field(default_factory=list)
     #: Rows read per resource (also of a table not kept).
     counts: dict[str, int] = field(default_factory=dict)
+    #: Each resource's CSV file in the opened package (an import re-reads the collisions
+    #: from it block by block).
+    files: dict[str, Path] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -249,6 +252,42 @@ def _duplicate_rows(key_hashes: list[Any]) -> Any:
     return repeated
 
 
+def _csv_blocks(path: Path) -> Any:
+    """A resource's CSV as text cells, ``BLOCK_ROWS`` rows at a time."""
+    return pd.read_csv(
+        path,
+        dtype=str,
+        keep_default_na=False,
+        encoding="utf-8",
+        na_filter=False,
+        on_bad_lines="error",
+        chunksize=BLOCK_ROWS,
+    )
+
+
+def _known_columns(name: str, frame: Any) -> tuple[Any, list[str]]:
+    """A block with the resource's columns in order, an absent optional column added
+    empty (checked as empty, then left out: not stated); and those absent columns."""
+    absent = _absent(name, list(frame.columns)) or []
+    for column in absent:
+        frame[column] = ""
+    return frame[columns(name)], absent
+
+
+def stored_blocks(name: str, path: Path) -> Iterator[Any]:
+    """The rows of a validated resource as the SI blocks validation checked, one block of
+    ``BLOCK_ROWS`` at a time, for an import that never holds the whole table: memory is
+    bounded by a block, whatever the row count."""
+    found, bad = _Findings(), {}
+    rows = 0
+    with _csv_blocks(path) as reader:
+        for frame in reader:
+            frame, absent = _known_columns(name, frame)
+            block = _check_block(name, frame, rows + 2, found, bad)
+            rows += len(frame)
+            yield block.drop(columns=absent)
+
+
 def _read_table(
     name: str, path: Path, problems: list[str], known: dict[str, Any], *, keep: bool = True
 ) -> tuple[Any, int]:
@@ -260,26 +299,14 @@ def _read_table(
     kept, key_hashes = [], []
     rows = 0
     try:
-        reader = pd.read_csv(
-            path,
-            dtype=str,
-            keep_default_na=False,
-            encoding="utf-8",
-            na_filter=False,
-            on_bad_lines="error",
-            chunksize=BLOCK_ROWS,
-        )
-        with reader:
+        with _csv_blocks(path) as reader:
             for frame in reader:
                 if rows == 0:
                     header = _header_problem(name, list(frame.columns))
                     if header is not None:
                         problems.append(header)
                         return None, 0
-                absent = _absent(name, list(frame.columns)) or []
-                for column in absent:  # checked as empty, then left out: not stated
-                    frame[column] = ""
-                frame = frame[columns(name)]
+                frame, absent = _known_columns(name, frame)
                 if rows + len(frame) > MAX_ROWS:
                     problems.append(f"{name}: more than {MAX_ROWS} rows")
                     return None, rows + len(frame)
@@ -479,6 +506,7 @@ def validate_root(root: Path, *, keep_collisions: bool = True) -> Validated:
     problems: list[str] = []
     tables: dict[str, Any] = {}
     counts: dict[str, int] = {}
+    files: dict[str, Path] = {}
     found = _resources(descriptor, problems)
     for name in sorted(found, key=READ_ORDER.index):
         file = _resource_file(root, name, found[name], problems)
@@ -487,11 +515,12 @@ def validate_root(root: Path, *, keep_collisions: bool = True) -> Validated:
         check_schema(name, found[name], problems)
         keep = keep_collisions or name != "collisions"
         tables[name], counts[name] = _read_table(name, file, problems, tables, keep=keep)
+        files[name] = file
     if "fluid_points" not in tables:
         tables["fluid_points"] = pd.DataFrame({c: [] for c in columns("fluid_points")})
         counts["fluid_points"] = 0
     _check_metadata(descriptor, problems)
-    return Validated(descriptor, tables, problems, counts)
+    return Validated(descriptor, tables, problems, counts, files)
 
 
 def validate_package(path: Path, *, keep_collisions: bool = True) -> Validated:
@@ -534,31 +563,32 @@ def import_package(
     """Validate ``path`` and store it (``granudb.db.package_store``, one transaction);
     raise ``PackageError`` naming every problem or conflict, changing nothing, otherwise.
 
-    Returns a ``PackageImport``; its ``declared_hash`` is the package's content hash."""
+    The collisions are never held whole: validation reads them in blocks and keeps none,
+    then the store reads them again block by block (``stored_blocks``) and inserts each,
+    and the declared ``granudb:content_hash`` is checked against the stored rows (the
+    database sorts them), inside the same transaction: peak memory is bounded by a block,
+    whatever the row count. Returns a ``PackageImport``; its ``declared_hash`` is the
+    package's content hash."""
     if as_name is not None:
         check_name("--as", as_name)
-    validated = validate_package(path)
-    if validated.problems:
-        raise PackageError(validated.problems, hint="; `granudb dataset validate` lists them")
-    declared = validated.descriptor.get("granudb:content_hash")
-    if declared is not None:
-        computed = hash_frame(validated.tables["collisions"])
-        if declared != computed:
-            raise PackageError(
-                [
-                    f"content hash: computed {computed[:16]}…, the package declares "
-                    f"{str(declared)[:16]}…; the collisions changed"
-                ]
+    with package_root(path) as root:
+        validated = validate_root(root, keep_collisions=False)
+        if validated.problems:
+            raise PackageError(validated.problems, hint="; `granudb dataset validate` lists them")
+        declared = validated.descriptor.get("granudb:content_hash")
+        content = _content(validated, as_name)
+        content.tables["collisions"] = stored_blocks("collisions", validated.files["collisions"])
+        try:
+            result = store_package(
+                database, content, rename_conflicts=rename_conflicts, declared_hash=declared
             )
-    try:
-        result = store_package(
-            database, _content(validated, as_name), rename_conflicts=rename_conflicts
-        )
-    except MergeConflict as exc:
-        hint = (
-            "conflicting names are not overwritten; import with --rename-conflicts to bring "
-            "them in under new names"
-        )
-        raise PackageError([*exc.conflicts, hint], hint="") from None
+        except MergeConflict as exc:
+            hint = (
+                "conflicting names are not overwritten; import with --rename-conflicts to "
+                "bring them in under new names"
+            )
+            raise PackageError([*exc.conflicts, hint], hint="") from None
+        except HashMismatch as exc:
+            raise PackageError([str(exc)]) from None
     result.declared_hash = declared
     return result

@@ -26,6 +26,7 @@ from granudb.db import catalog_rows, lookup_rows
 from granudb.db import catalog_rows as catalog
 from granudb.reporting import blocks, figures, references, tables
 from granudb.reporting.groups import colours, fluid_names, labels_of
+from granudb.reporting.pinned import pinned_notes
 from granudb.reporting.verdicts import verdicts
 from granudb.version import __version__
 
@@ -74,6 +75,7 @@ def _header(header: Mapping[str, Any], title: str) -> dict[str, Any]:
         "flags": [],
         "assumed": [],
         "assumptions": [],
+        "pinned": [],
         "verdicts": [],
         "properties": [],
         "derived": [],
@@ -256,6 +258,8 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     if not pair:
         report["flags"].append(blocks.dataset_flag(frame))
         report["properties"], citations = _properties(connection, frame)
+        pinned = lookup_rows.single_dataset_id(connection, frame)
+        report["pinned"] = pinned_notes(connection, pinned)
     report["assumptions"] = _assumptions(frame)
     labels = labels_of(frame)
     palette = colours(labels)

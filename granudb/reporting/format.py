@@ -238,3 +238,50 @@ def unicode_math(text: Any) -> str:
     out = re.sub(r"\^\{([^{}]*)\}", sup, "" if text is None else str(text))
     out = re.sub(r"\^([0-9])", lambda m: superscript(m.group(1)), out)
     return re.sub(r"_\{([^{}]*)\}", sub, out)
+
+
+def _catalogue_value(value: Any, field: str) -> str:
+    if value is None:
+        return "(none)"
+    return repr(value) if isinstance(value, str) else display(value, field)
+
+
+def _catalogue_entry(change: dict[str, Any]) -> str:
+    """``steel youngs_modulus_pa``, ``glycerol-37 viscosity_pa_s at 20 °C``."""
+    at = change.get("temperature_c")
+    where = "" if at is None else f" at {format(at, 'g')} °C"
+    return f"{change['name']} {change['field']}{where}"
+
+
+def pinned_line(change: dict[str, Any]) -> str:
+    """One line saying what a release pins that today's catalogue has changed (a record
+    of ``granudb.db.catalogue_differences.pinned_changes``).
+
+    >>> pinned_line({"kind": "material", "name": "steel", "field": "youngs_modulus_pa",
+    ...   "temperature_c": None, "first": 1.9e11, "second": 1e11, "revision": 1,
+    ...   "kept_at": None})
+    'steel youngs_modulus_pa: release pins 190 GPa (revision 1), catalogue now 100 GPa'
+    """
+    field, revision, kept = change["field"], change.get("revision"), change.get("kept_at")
+    # a pair's values have no revision: the release reads those stored before it
+    when = "" if kept is None else f", kept {kept:%Y-%m-%d %H:%M} UTC"
+    which = "" if revision is None else f" (revision {revision}{when})"
+    return (
+        f"{_catalogue_entry(change)}: release pins {_catalogue_value(change['first'], field)}"
+        f"{which}, catalogue now {_catalogue_value(change['second'], field)}"
+    )
+
+
+def difference_line(change: dict[str, Any]) -> str:
+    """One catalogue difference between two datasets (``catalogue_diff``): ``first →
+    second``.
+
+    >>> difference_line({"kind": "fluid point", "name": "water", "field": "viscosity_pa_s",
+    ...   "temperature_c": 20.0, "first": 1.0e-3, "second": None})
+    'water viscosity_pa_s at 20 °C: 1 mPa·s → (none)'
+    """
+    field = change["field"]
+    return (
+        f"{_catalogue_entry(change)}: {_catalogue_value(change['first'], field)} → "
+        f"{_catalogue_value(change['second'], field)}"
+    )

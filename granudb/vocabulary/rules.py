@@ -125,3 +125,15 @@ def check_record(record: dict[str, Any], *, row: int | None = None) -> None:
     for column, value in record.items():
         if isinstance(value, int | float) and not isinstance(value, bool):
             check_value(column, value, row=row)
+
+
+def same_value(old: Any, new: Any) -> bool:
+    """Equal, with floats compared to 1e-12 relative (a CSV's text is not bit-exact): the
+    one rule by which granudb tells a changed stored value from an unchanged one.
+
+    >>> same_value(0.1 + 0.2, 0.3), same_value(1.0, 1.1), same_value("a", "a")
+    (True, False, True)
+    """
+    if isinstance(old, float) and isinstance(new, float | int):
+        return math.isclose(old, float(new), rel_tol=1e-12, abs_tol=0.0)
+    return old == new

@@ -1,0 +1,184 @@
+"""What a dataset's catalogue values are, and where they differ: from today's catalogue
+(a release that pins values the catalogue has since changed) or from another dataset's.
+
+A release's runs point at the revisions it keeps (``granudb.db.catalog_revisions``) and
+read only the pair values stored before its release; a draft reads the live rows. So the
+catalogue a dataset *reads* is: for each material and fluid its runs use, the row they
+point at (with a fluid's points), and for each pair of materials the pair values it
+sees. ``pinned_changes`` compares that with today's live rows and ``catalogue_diff``
+with another dataset's; every output that says "the release pins …" or "the catalogue
+differs …" (``dataset show|list|diff|export``, reports, DEM decks, derived listings)
+takes the records from here. Each record: ``kind`` ("material", "fluid", "fluid point",
+"pair"), ``name``, ``field`` (a stored column name, whose suffix says the unit),
+``temperature_c`` (a fluid point's; else None), ``first`` and ``second`` (the two values,
+SI; None: absent), and for a pinned revision its ``revision`` number and ``kept_at``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from sqlalchemy import func, select
+from sqlalchemy.engine import Connection
+
+from granudb.db import catalog_rows
+from granudb.vocabulary.rules import same_value
+
+#: Listing columns that are not values of their own (derived flags, counts).
+_NOT_COMPARED = {"shear_modulus_derived", "points"}
+_POINT_COLUMNS = ("viscosity_pa_s", "density_kg_m3", "u_viscosity_pa_s", "u_density_kg_m3",
+                  "source")  # fmt: skip
+_PAIR_COLUMNS = ("dry_restitution", "dry_friction", "immersed_friction", "source")
+
+
+def used_rows(connection: Connection, dataset_id: int) -> dict[str, dict[int, int]]:
+    """The catalogue rows dataset ``dataset_id``'s runs point at, per kind ("material",
+    "fluid"): {live row id: the id the runs use (the live row or a kept revision)}."""
+    runs = catalog_rows.RUNS
+    used: dict[str, dict[int, int]] = {}
+    for kind, references in catalog_rows.RUN_REFERENCES.items():
+        clause = catalog_rows.ENTRY_TABLES[kind]
+        ids: set[int] = set()
+        for reference in references:
+            column = runs.c[reference]
+            query = select(column).where(runs.c.dataset_id == dataset_id).distinct()
+            ids |= {i for i in connection.execute(query).scalars() if i is not None}
+        rows = connection.execute(
+            select(clause.c.id, clause.c.revision_of).where(clause.c.id.in_(sorted(ids)))
+        )
+        used[kind] = {live or row_id: row_id for row_id, live in rows}
+    return used
+
+
+def _entry(connection: Connection, kind: str, row_id: int, fluids: dict) -> dict[str, Any]:
+    """The listing record of one material or fluid row, a fluid's points under
+    ``points_by_temperature``."""
+    if kind == "fluid":
+        row = fluids[row_id]
+        record = catalog_rows.fluid_record(row)
+        record["points_by_temperature"] = {
+            p["temperature_c"]: p for p in catalog_rows.point_records(row)
+        }
+        return record
+    return catalog_rows.material_record(catalog_rows.material_row_by_id(connection, row_id))
+
+
+def _compare(kind: str, first: dict, second: dict) -> list[dict[str, Any]]:
+    """Field by field, where two records of the same entry differ (``first``'s name)."""
+    name = first["name"]
+    found = []
+    for field in first:
+        if field in _NOT_COMPARED or field == "points_by_temperature":
+            continue
+        if (
+            field == "shear_modulus_pa"
+            and first.get("shear_modulus_derived")
+            and second.get("shear_modulus_derived")
+        ):
+            continue  # G = E / (2(1 + ν)) on both: not a stored value; E or ν says it
+        if not same_value(first[field], second.get(field)):
+            found.append(_record(kind, name, field, first[field], second.get(field)))
+    if kind == "fluid":
+        one, other = first["points_by_temperature"], second["points_by_temperature"]
+        for t in sorted(one.keys() | other.keys()):
+            a, b = one.get(t, {}), other.get(t, {})
+            for field in _POINT_COLUMNS:
+                if not same_value(a.get(field), b.get(field)):
+                    found.append(_record("fluid point", name, field, a.get(field), b.get(field), t))
+    return found
+
+
+def _record(kind: str, name: str, field: str, first: Any, second: Any,
+            temperature_c: float | None = None) -> dict[str, Any]:  # fmt: skip
+    return {"kind": kind, "name": name, "field": field, "temperature_c": temperature_c,
+            "first": first, "second": second, "revision": None, "kept_at": None}  # fmt: skip
+
+
+def run_pairs(connection: Connection, dataset_id: int) -> set[frozenset[str]]:
+    """The pairs of materials dataset ``dataset_id``'s runs use, by their live names
+    (either way round)."""
+    runs = catalog_rows.RUNS
+    clause = catalog_rows.ENTRY_TABLES["material"]
+    rows = connection.execute(select(clause.c.id, clause.c.revision_of, clause.c.name)).all()
+    names = {row_id: name for row_id, live, name in rows if live is None}
+    live = {row_id: names[of] for row_id, of, _ in rows if of is not None}
+    query = select(runs.c.particle_id, runs.c.wall_id).where(runs.c.dataset_id == dataset_id)
+    return {
+        frozenset((live.get(p) or names[p], live.get(w) or names[w]))
+        for p, w in connection.execute(query.distinct())
+    }
+
+
+def _pairs(connection: Connection, dataset_id: int | None, pairs: set) -> dict[tuple, dict]:
+    """The pair values dataset ``dataset_id`` reads (a release: those stored before it;
+    None: today's) for ``pairs`` (``run_pairs``), keyed by the two names."""
+    before = catalog_rows.released_at(connection, dataset_id)
+    found = {}
+    for row in catalog_rows.pair_value_rows(connection, before=before):
+        if frozenset((row.particle, row.wall)) in pairs:
+            found[(row.particle, row.wall)] = catalog_rows.pair_value_record(row)
+    return found
+
+
+def _compare_pairs(first: dict[tuple, dict], second: dict[tuple, dict]) -> list[dict]:
+    found = []
+    for pair in sorted(first.keys() | second.keys()):
+        a, b = first.get(pair, {}), second.get(pair, {})
+        for field in _PAIR_COLUMNS:
+            if not same_value(a.get(field), b.get(field)):
+                found.append(_record("pair", " on ".join(pair), field, a.get(field), b.get(field)))
+    return found
+
+
+def pinned_changes(connection: Connection, dataset_id: int) -> list[dict[str, Any]]:
+    """Where the catalogue values dataset ``dataset_id`` reads (a release's pinned
+    revisions and pair values) differ from today's catalogue: ``first`` is what the
+    dataset pins, ``second`` the catalogue now. A draft reads today's values: none."""
+    if catalog_rows.released_at(connection, dataset_id) is None:
+        return []
+    used = used_rows(connection, dataset_id)
+    fluids = catalog_rows.fluid_rows_by_id(connection) if used["fluid"] else {}
+    changes = []
+    for kind, rows in used.items():
+        clause = catalog_rows.ENTRY_TABLES[kind]
+        for live, pinned in sorted(rows.items()):
+            if live == pinned:
+                continue
+            found = _compare(
+                kind,
+                _entry(connection, kind, pinned, fluids),
+                _entry(connection, kind, live, fluids),
+            )
+            number = connection.execute(
+                select(func.count()).select_from(clause)
+                .where(clause.c.revision_of == live, clause.c.id <= pinned)
+            ).scalar()  # fmt: skip
+            kept = connection.execute(
+                select(clause.c.updated_at).where(clause.c.id == pinned)
+            ).scalar()
+            changes += [{**c, "revision": number, "kept_at": kept} for c in found]
+    pairs = run_pairs(connection, dataset_id)
+    changes += _compare_pairs(
+        _pairs(connection, dataset_id, pairs), _pairs(connection, None, pairs)
+    )
+    return changes
+
+
+def catalogue_diff(connection: Connection, first_id: int, second_id: int) -> list[dict]:
+    """Where the catalogue values two datasets read differ, for the materials, fluids
+    (with their points) and pairs both use: ``first`` is dataset ``first_id``'s value,
+    ``second`` dataset ``second_id``'s (a release's pinned revision, a draft's live row)."""
+    one, other = used_rows(connection, first_id), used_rows(connection, second_id)
+    fluids = catalog_rows.fluid_rows_by_id(connection) if one["fluid"] else {}
+    changes = []
+    for kind in one:
+        for live in sorted(one[kind].keys() & other[kind].keys()):
+            a, b = one[kind][live], other[kind][live]
+            if a != b:
+                changes += _compare(
+                    kind, _entry(connection, kind, a, fluids), _entry(connection, kind, b, fluids)
+                )
+    pairs = run_pairs(connection, first_id) & run_pairs(connection, second_id)
+    return changes + _compare_pairs(
+        _pairs(connection, first_id, pairs), _pairs(connection, second_id, pairs)
+    )
