@@ -18,7 +18,12 @@ from __future__ import annotations
 from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
 from granudb.vocabulary.derived import DERIVED_TERMS
 from granudb.vocabulary.rules import NON_NEGATIVE, RULES
-from granudb.vocabulary.terms import TERMS, Term, uncertainty_column
+from granudb.vocabulary.terms import (
+    COLLISION_UNCERTAIN,
+    TERMS,
+    Term,
+    uncertainty_column,
+)
 
 
 def _uncertainty_term(column: str, term: Term, role: str) -> Term:
@@ -118,11 +123,17 @@ UNCERTAINTY_TERMS: dict[str, Term] = {
     **PROBABILITY_TERMS,
 }
 
+#: A collision's measured columns and their stated uncertainties' columns
+#: (``granudb.vocabulary.terms.COLLISION_UNCERTAINTIES``), by measured column.
+MEASURED_UNCERTAINTIES: dict[str, str] = {c: uncertainty_column(c) for c in COLLISION_UNCERTAIN}
+
 TERMS.update(
     {
         u: _uncertainty_term(column, TERMS[column], "stored")
-        for column, u in STORED_UNCERTAINTIES.items()
+        for column, u in (*STORED_UNCERTAINTIES.items(), *MEASURED_UNCERTAINTIES.items())
     }
 )
 TERMS.update(UNCERTAINTY_TERMS)  # ``term()`` finds them; derive's own list stays DERIVED_TERMS
-RULES.update({u: NON_NEGATIVE for u in STORED_UNCERTAINTIES.values()})
+RULES.update(
+    {u: NON_NEGATIVE for u in (*STORED_UNCERTAINTIES.values(), *MEASURED_UNCERTAINTIES.values())}
+)
