@@ -10,6 +10,7 @@ import io
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 from sqlalchemy import text
 from support import dump_hash
@@ -143,3 +144,34 @@ def test_migration_0008_keeps_every_run_and_its_downgrade_names_the_loss(
     assert after["u_v_n_in_m_s"].isna().all()  # dropped, as the downgrade said
     same = [c for c in before.columns if c not in COLLISION_UNCERTAINTIES]
     assert after[same].equals(before[same])
+
+
+def test_each_runs_e_psi_and_st_carry_u_that_a_monte_carlo_agrees_with(
+    cli, db: str, tmp_path: Path
+) -> None:
+    """u(e), u(Ψ_in) and u(St_n) of a stored run, from its stated speeds, agree with the
+    spread of 200,000 draws of those speeds (JCGM 101:2008) within 3 %; the JSON and CSV
+    listings carry the same u columns."""
+    path = with_u(tmp_path, {"u(v_n_in) [mm/s]": ["6"], "u(v_n_out) [mm/s]": ["9"],
+                             "u(v_t_in) [mm/s]": ["4"]})  # fmt: skip
+    assert cli("collisions", "import", str(path), "--dataset", "mc", db=db).exit_code == 0
+    shown = cli("collisions", "list", "--dataset", "mc", "--wide", "--format", "json", db=db)
+    runs = json.loads(shown.stdout)
+    wet = next(r for r in runs if r["fluid"] and r["omega_in_rad_s"] == 0)
+    rng = np.random.default_rng(1)
+    draws = 200_000
+    v_in = wet["v_n_in_m_s"] + 0.006 * rng.standard_normal(draws)
+    v_out = wet["v_n_out_m_s"] + 0.009 * rng.standard_normal(draws)
+    v_t = wet["v_t_in_m_s"] + 0.004 * rng.standard_normal(draws)
+    monte_carlo = {
+        "normal_restitution": v_out / v_in,
+        "effective_incidence": v_t / v_in,
+        "normal_stokes_number": wet["normal_stokes_number"] * v_in / wet["v_n_in_m_s"],
+    }
+    for name, sample in monte_carlo.items():
+        assert wet[f"u_{name}"] == pytest.approx(np.std(sample), rel=0.03), name
+    table = cli("collisions", "list", "--dataset", "mc", "--wide", "--format", "csv", db=db)
+    row = next(r for r in csv.DictReader(io.StringIO(table.stdout)) if r["run"] == wet["run"])
+    assert float(row["u_normal_restitution"]) == pytest.approx(wet["u_normal_restitution"])
+    dry = next(r for r in runs if r["fluid"] is None)
+    assert dry["u_normal_restitution"] > 0 and dry["u_normal_stokes_number"] is None

@@ -85,6 +85,15 @@ UNCERTAIN_DERIVED = (
     "maw_psi_in",
 )
 
+#: A run's parameters whose uncertainty comes from its measured speeds' stated ones
+#: (``granudb.physics.uncertainty.ratio_uncertainty``), listed where a run states any.
+MEASURED_DERIVED = (
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_incidence",
+    "effective_rebound",
+)
+
 #: The probability of each verdict, from the propagated uncertainties
 #: (``granudb.physics.uncertainty.verdict_probabilities`` states the model).
 PROBABILITY_TERMS: dict[str, Term] = {
@@ -131,6 +140,12 @@ TERMS.update(
     {
         u: _uncertainty_term(column, TERMS[column], "stored")
         for column, u in (*STORED_UNCERTAINTIES.items(), *MEASURED_UNCERTAINTIES.items())
+    }
+)
+TERMS.update(
+    {
+        uncertainty_column(name): _uncertainty_term(name, DERIVED_TERMS[name], "derived")
+        for name in MEASURED_DERIVED
     }
 )
 TERMS.update(UNCERTAINTY_TERMS)  # ``term()`` finds them; derive's own list stays DERIVED_TERMS
