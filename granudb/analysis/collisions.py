@@ -116,9 +116,10 @@ def collision_table(
     chunk_filters = {k: v for k, v in filters.items() if k != "chunk_rows"}
     count, present = survey_collisions(session, **chunk_filters)
     out = _Columns(count)
+    stated = bool(present & set(COLLISION_UNCERTAINTIES))  # then every chunk has the u columns
     text = columns is None or bool({"run", "notes"} & set(columns))
     for stored in iter_collisions(session, text=text, measured=present, **filters):
-        chunk = _derive_stored(stored, fluids, critical_stokes, measured)
+        chunk = _derive_stored(stored, fluids, critical_stokes, measured, stated)
         del stored
         keep = where(chunk) if where is not None else None
         names = list(chunk) if columns is None else [c for c in columns if c in chunk]
@@ -205,11 +206,16 @@ def _floats(frame: Any, name: str) -> np.ndarray:
 
 
 def _derive_stored(
-    stored: Any, fluids: dict[int, Any], critical_stokes: float, measured: list[Any]
+    stored: Any,
+    fluids: dict[int, Any],
+    critical_stokes: float,
+    measured: list[Any],
+    uncertain: bool = False,
 ) -> dict[str, np.ndarray]:
     """One chunk of stored runs (``iter_collisions``) with every derived column, as arrays
     in presentation order (no DataFrame per chunk: pandas would turn every text column into
-    Arrow strings, to be turned back when the chunk is kept)."""
+    Arrow strings, to be turned back when the chunk is kept). ``uncertain``: some run read
+    states an uncertainty, so every chunk carries the u columns (``_stated``)."""
     c = {name: _floats(stored, name) for name in COLLISION_MEASURED}
     fluid_ids = np.nan_to_num(_floats(stored, "fluid_id"), nan=-1).astype(int)
     viscosity, density, reason = fluid_states_per_row(fluids, fluid_ids, c["temperature_c"])
@@ -226,7 +232,7 @@ def _derive_stored(
     }
     names = (np.asarray(stored[k], dtype=object) for k in ("particle", "wall"))
     dry_e, dry_mu, wet_mu = dry_values.per_run(*names, own, measured)
-    stated = _stated(c)
+    stated = _stated(c) if uncertain else None
     with physics_refusal():
         result = derive(
             **props,
@@ -272,12 +278,8 @@ def _derive_stored(
     }
 
 
-def _stated(c: dict[str, np.ndarray]) -> dict[str, np.ndarray] | None:
-    """The chunk's stated uncertainties of derive's inputs (d, v_n,in, v_t,in), or None
-    when no run of the chunk states any measured column's u (derive then propagates none,
-    at no cost)."""
-    if not any(np.isfinite(c[u]).any() for u in COLLISION_UNCERTAINTIES):
-        return None
+def _stated(c: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The chunk's stated uncertainties of derive's inputs (d, v_n,in, v_t,in)."""
     return {u: c[u] for u in ("u_diameter_m", "u_v_n_in_m_s", "u_v_t_in_m_s")}
 
 
