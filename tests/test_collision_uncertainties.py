@@ -43,12 +43,11 @@ def test_file_columns_and_a_relative_default_are_stored_per_run(opened, tmp_path
     runs = granudb.collisions(dataset="u", wide=True, db=opened)
     assert set(COLLISION_UNCERTAINTIES) <= set(runs.columns)
     v_in, u_in = runs["v_n_in_m_s"].to_numpy(), runs["u_v_n_in_m_s"].to_numpy()
-    file_rows = [i for i, r in enumerate(_file_order(path)) if r]
+    own = dict(zip(_labels(path), _file_order(path), strict=True))
+    assert {bool(cell) for cell in own.values()} == {True, False}  # both kinds of run
     for i, run in enumerate(runs["run"]):
-        stated_in_file = _file_order(path)[_labels(path).index(run)]
-        expected = 0.005 if stated_in_file else 0.02 * v_in[i]  # the file's own cell wins
+        expected = 0.005 if own[run] else 0.02 * v_in[i]  # the file's own cell wins
         assert u_in[i] == pytest.approx(expected, rel=1e-12)
-    assert file_rows  # some runs state their own u, some take the default
     assert runs["u_v_n_out_m_s"].to_numpy() == pytest.approx(0.03 * runs["v_n_out_m_s"])
     # a temperature u is a difference: [K] is not shifted by 273.15 (0.5 K = 0.5 °C)
     wet = runs["temperature_c"].notna()

@@ -24,7 +24,9 @@ propagated absolutely in the same way.
 
 Temperature enters through the viscosity: the caller gives u(μ) including
 |∂μ/∂T| u(T) from the fluid model (``granudb.analysis.fluid_state``). The per-collision
-parameters (e, β, Ψ, μ_f of (2.9)) are not propagated here.
+parameters e, β, Ψ_in and Ψ_out of a measured run are ratios of measured speeds: their u
+is ``ratio_uncertainty``'s (with ``contact_speed_uncertainty``), not a sensitivity here;
+μ_f of (2.9) gets none yet.
 
 The first-order result is checked against Monte Carlo propagation (JCGM 101:2008) in
 tests/physics/test_uncertainty.py: within 10 % for input uncertainties up to 5 %; at

@@ -45,8 +45,8 @@ STORED_UNCERTAINTIES: dict[str, str] = {
 }
 
 #: Derived quantities that get a standard uncertainty (the continuous ones a scenario
-#: has; the per-collision parameters e, β, Ψ, μ_f need measured velocities' u and come
-#: later), in presentation order.
+#: has; a measured run's e, β and Ψ get theirs from its speeds': ``MEASURED_DERIVED``),
+#: in presentation order.
 UNCERTAIN_DERIVED = (
     "reduced_modulus_pa",
     "reduced_shear_modulus_pa",
