@@ -21,12 +21,15 @@ from granudb.analysis.refusals import physics_refusal
 from granudb.db.catalog_rows import fluid_rows_by_id, pair_value_rows
 from granudb.db.collision_queries import iter_collisions, reading, survey_collisions
 from granudb.lazy import pandas as pd
+from granudb.physics import uncertainty
 from granudb.physics.derive import derive
 from granudb.vocabulary import (
     COLLISION_MEASURED,
     COLLISION_TARGET,
+    COLLISION_UNCERTAINTIES,
     DERIVED_TERMS,
     MATERIAL_PROPERTIES,
+    UNCERTAINTY_TERMS,
 )
 from granudb.vocabulary.catalogue import DRY_VALUE_PROPERTIES
 from granudb.vocabulary.listings import COLLISION_WIDE, units_of
@@ -113,9 +116,10 @@ def collision_table(
     chunk_filters = {k: v for k, v in filters.items() if k != "chunk_rows"}
     count, present = survey_collisions(session, **chunk_filters)
     out = _Columns(count)
+    stated = bool(present & set(COLLISION_UNCERTAINTIES))  # then every chunk has the u columns
     text = columns is None or bool({"run", "notes"} & set(columns))
     for stored in iter_collisions(session, text=text, measured=present, **filters):
-        chunk = _derive_stored(stored, fluids, critical_stokes, measured)
+        chunk = _derive_stored(stored, fluids, critical_stokes, measured, stated)
         del stored
         keep = where(chunk) if where is not None else None
         names = list(chunk) if columns is None else [c for c in columns if c in chunk]
@@ -202,11 +206,16 @@ def _floats(frame: Any, name: str) -> np.ndarray:
 
 
 def _derive_stored(
-    stored: Any, fluids: dict[int, Any], critical_stokes: float, measured: list[Any]
+    stored: Any,
+    fluids: dict[int, Any],
+    critical_stokes: float,
+    measured: list[Any],
+    uncertain: bool = False,
 ) -> dict[str, np.ndarray]:
     """One chunk of stored runs (``iter_collisions``) with every derived column, as arrays
     in presentation order (no DataFrame per chunk: pandas would turn every text column into
-    Arrow strings, to be turned back when the chunk is kept)."""
+    Arrow strings, to be turned back when the chunk is kept). ``uncertain``: some run read
+    states an uncertainty, so every chunk carries the u columns (``_stated``)."""
     c = {name: _floats(stored, name) for name in COLLISION_MEASURED}
     fluid_ids = np.nan_to_num(_floats(stored, "fluid_id"), nan=-1).astype(int)
     viscosity, density, reason = fluid_states_per_row(fluids, fluid_ids, c["temperature_c"])
@@ -223,6 +232,7 @@ def _derive_stored(
     }
     names = (np.asarray(stored[k], dtype=object) for k in ("particle", "wall"))
     dry_e, dry_mu, wet_mu = dry_values.per_run(*names, own, measured)
+    stated = _stated(c) if uncertain else None
     with physics_refusal():
         result = derive(
             **props,
@@ -238,7 +248,14 @@ def _derive_stored(
             dry_restitution=dry_e,
             dry_friction=dry_mu,
             immersed_friction=wet_mu,
+            uncertainties=stated,
         )
+    if stated is not None:
+        # a run stating none of derive's input uncertainties has none propagated (not 0)
+        none = np.all([np.isnan(u) for u in stated.values()], axis=0)
+        for name in UNCERTAINTY_TERMS:
+            result[name] = np.where(none, np.nan, result[name])
+        result.update(_measured_uncertainties(c, result))
     chunk: dict[str, np.ndarray] = {
         **{k: np.asarray(stored[k], dtype=object) for k in ("dataset", "version")},
         **{k: np.asarray(stored[k], dtype=object) for k in ("run",) if k in stored},
@@ -258,6 +275,40 @@ def _derive_stored(
     return {
         **{n: chunk[n] for n in COLLISION_WIDE if n in chunk},
         **{n: values for n, values in chunk.items() if n not in COLLISION_WIDE},
+    }
+
+
+def _stated(c: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The chunk's stated uncertainties of derive's inputs (d, v_n,in, v_t,in)."""
+    return {u: c[u] for u in ("u_diameter_m", "u_v_n_in_m_s", "u_v_t_in_m_s")}
+
+
+def _measured_uncertainties(
+    c: dict[str, np.ndarray], result: dict[str, np.ndarray]
+) -> dict[str, np.ndarray]:
+    """u(e), u(β), u(Ψ_in), u(Ψ_out) of each run from its stated speed, spin and diameter
+    uncertainties (``granudb.physics.uncertainty``; a free target's speeds count as exact:
+    their u is not stored)."""
+    v_n = result["normal_speed_m_s"]
+    radius, u_radius = c["diameter_m"] / 2.0, c["u_diameter_m"] / 2.0
+    u_t_in = uncertainty.contact_speed_uncertainty(
+        c["u_v_t_in_m_s"], c["omega_in_rad_s"], c["u_omega_in_rad_s"], radius, u_radius
+    )
+    u_t_out = uncertainty.contact_speed_uncertainty(
+        c["u_v_t_out_m_s"], c["omega_out_rad_s"], c["u_omega_out_rad_s"], radius, u_radius
+    )
+    psi_in, psi_out = result["effective_incidence"], result["effective_rebound"]
+    ratio = uncertainty.ratio_uncertainty
+    u_n_in = c["u_v_n_in_m_s"]
+    return {
+        "u_normal_restitution": ratio(
+            result["normal_restitution"], v_n, c["u_v_n_out_m_s"], u_n_in
+        ),
+        "u_rotational_restitution": ratio(
+            result["rotational_restitution"], psi_in * v_n, u_t_out, u_t_in
+        ),
+        "u_effective_incidence": ratio(psi_in, v_n, u_t_in, u_n_in),
+        "u_effective_rebound": ratio(psi_out, v_n, u_t_out, u_n_in),
     }
 
 

@@ -290,9 +290,12 @@ def one_step(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tu
 
 
 def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
-                        resamples: int, seed: int) -> dict[str, intervals.Interval]:  # fmt: skip
+                        resamples: int, seed: int,
+                        stated: tuple | None = None) -> dict[str, intervals.Interval]:  # fmt: skip
     """Studentized bootstrap intervals of e_dry (unless ``fixed``) and the parameter, from
-    ``fit`` = (e_dry, e_dry_se, parameter, parameter_se)."""
+    ``fit`` = (e_dry, e_dry_se, parameter, parameter_se). ``stated``: the runs' relative
+    standard uncertainties of v_n,in and v_n,out (``resampling.stated_speeds``); each
+    resample then also perturbs every run's measured speeds by them (``perturbed``)."""
     n = len(st)
     rng = np.random.default_rng(seed)
     large = n > resampling.RULE_RUNS
@@ -300,7 +303,10 @@ def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, f
     parts = []
     for start in range(0, resamples, batch):
         w = resampling.draw_counts(rng, min(batch, resamples - start), n, n)
-        if large:
+        if stated is not None:
+            st_b, e_b = resampling.perturbed(rng, len(w), st, e, stated)
+            parts.append(refit(model, st_b, e_b, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
+        elif large:
             parts.append(one_step(model, st, e, w, (fit[0], fit[2]), fixed))
         else:
             parts.append(refit(model, st, e, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
@@ -320,6 +326,7 @@ def _group_row(
     e: np.ndarray,
     dry_e: np.ndarray,
     resamples: int | None = None,
+    stated: tuple | None = None,
 ) -> dict[str, Any]:
     fixed = float(min(np.mean(dry_e), E_DRY_MAX)) if dry_e.size else None
     row: dict[str, Any] = {
@@ -345,7 +352,7 @@ def _group_row(
         "parameter_high": math.nan,
         "e_dry_low": math.nan,
         "e_dry_high": math.nan,
-        "interval_method": intervals.METHOD,
+        "interval_method": intervals.METHOD + (resampling.STATED_METHOD if stated else ""),
         "bootstrap_resamples": resampling.resample_count(len(st))
         if resamples is None
         else resamples,
@@ -370,20 +377,22 @@ def _group_row(
         except (RuntimeError, ValueError) as exc:
             row["reason"] = f"least squares did not converge ({type(exc).__name__})"
         else:
-            _intervals(row, model, st, e, fixed is not None)
+            _intervals(row, model, st, e, fixed is not None, stated)
     if model == "threshold":
         row["fitted_critical_stokes"] = row["parameter"]
     return row
 
 
-def _intervals(row: dict, model: str, st: np.ndarray, e: np.ndarray, fixed: bool) -> None:
+def _intervals(
+    row: dict, model: str, st: np.ndarray, e: np.ndarray, fixed: bool, stated: tuple | None = None
+) -> None:
     """The bootstrap-t intervals into ``row``, or why there are none (``interval_reason``)."""
     refused = intervals.too_few(len(st), MIN_RUNS_FOR_INTERVAL)
     if refused:
         row["interval_reason"] = refused
         return
     fit = (row["e_dry"], row["e_dry_stderr"], row["parameter"], row["parameter_stderr"])
-    found = bootstrap_intervals(model, st, e, fit, fixed, row["bootstrap_resamples"], SEED)
+    found = bootstrap_intervals(model, st, e, fit, fixed, row["bootstrap_resamples"], SEED, stated)
     reasons = []
     for name, got in found.items():
         row[f"{name}_low"], row[f"{name}_high"] = got.low, got.high
@@ -406,7 +415,9 @@ def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
     (``interval_method``, ``bootstrap_resamples``, ``bootstrap_seed``; NaN with
     ``interval_reason`` below MIN_RUNS_FOR_INTERVAL runs or when degenerate);
     ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
-    ``reason`` (why the fit is empty, else '').
+    ``reason`` (why the fit is empty, else ''). Where runs carry stated uncertainties of
+    their normal speeds (``u_v_n_in_m_s``, ``u_v_n_out_m_s``), every resample perturbs
+    them too (``interval_method`` says so; docs/physics.md, "Fit intervals").
     """
     if model not in RESTITUTION_MODELS:
         raise ValidationError(
@@ -420,10 +431,14 @@ def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
     # Each group's row positions (frame order) from the key columns alone: no copy of the
     # frame, of its immersed or dry rows, or of the frame sorted by group.
     groups = frame.groupby([frame[k] for k in _INPUTS[:3]], sort=True).indices
+    speeds = resampling.stated_speeds(frame)
     results = []
     for key in sorted(groups):
         rows = groups[key]
         runs = rows[immersed[rows]]
         if runs.size:
-            results.append(_group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]]))
+            stated = None if speeds is None else tuple(r[runs] for r in speeds)
+            stated = stated if stated is not None and any(r.any() for r in stated) else None
+            row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]], stated=stated)
+            results.append(row)
     return results

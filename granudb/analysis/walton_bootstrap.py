@@ -31,6 +31,8 @@ count used, the seed and the rule's text.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from granudb.analysis import walton as core
@@ -54,6 +56,47 @@ REFINE_CELLS = 1 << 17
 # series: x², xy, y², c², dc, d², e, e², x, y, 1 (d = x − y)
 SERIES = 11
 XX, XY, YY, CC, DC, DD, EE, E2, X, Y, ONE = range(SERIES)
+
+
+#: What ``interval_method`` adds when the runs' stated speed uncertainties are used.
+STATED_METHOD = ", each run's measured normal speeds perturbed by their stated u (normal)"
+
+
+def stated_speeds(frame: Any) -> tuple[np.ndarray, np.ndarray] | None:
+    """Each run's relative standard uncertainty of v_n,in and of v_n,out (0 where none is
+    stated), from a collisions frame's ``u_v_n_in_m_s`` and ``u_v_n_out_m_s``; None when
+    the frame has neither column."""
+    if "u_v_n_in_m_s" not in frame and "u_v_n_out_m_s" not in frame:
+        return None
+    out = []
+    for name in ("v_n_in_m_s", "v_n_out_m_s"):
+        u = "u_" + name
+        if u not in frame or name not in frame:
+            out.append(np.zeros(len(frame)))
+            continue
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = frame[u].to_numpy(dtype=float) / np.abs(frame[name].to_numpy(dtype=float))
+        out.append(np.where(np.isfinite(r), r, 0.0))
+    return out[0], out[1]
+
+
+def perturbed(
+    rng: np.random.Generator,
+    m: int,
+    st: np.ndarray,
+    e: np.ndarray,
+    stated: tuple[np.ndarray, np.ndarray],
+) -> tuple[np.ndarray, np.ndarray]:
+    """(St_n, e) of ``m`` resamples, shape (m, n), with every run's measured normal speeds
+    drawn again from their stated relative uncertainties (``stated_speeds``), normal and
+    independent: v_n,in → v_n,in (1 + r_in z₁), v_n,out → v_n,out (1 + r_out z₂), so
+    St_n ∝ v_n,in and e = v_n,out / v_n,in move with them. A factor is kept above 1 %
+    (a speed never turns round)."""
+    r_in, r_out = stated
+    z = rng.standard_normal((2, m, len(st)))
+    f_in = np.maximum(1.0 + r_in * z[0], 0.01)
+    f_out = np.maximum(1.0 + r_out * z[1], 0.01)
+    return st * f_in, e * f_out / f_in
 
 
 def resample_count(n: int) -> int:

@@ -32,6 +32,7 @@ def import_collisions(
     delimiter: str | None = None,
     decimal: str = ".",
     columns: dict[str, str] | str | Path | None = None,
+    uncertainty: dict[str, str] | str | None = None,
     progress: Callable[[int], None] | None = None,
     db: Any = None,
 ) -> ImportResult:
@@ -40,7 +41,10 @@ def import_collisions(
     ``;`` or ``tab`` (None: ``;`` or tab where the header has them and no comma);
     ``decimal`` is ``.`` or ``,`` (never guessed); ``columns`` maps a lab's own headers
     to granudb's columns (``{"speed [mm/s]": "v_n_in", "shot": "run"}``, the same as text
-    ``"speed [mm/s]=v_n_in,shot=run"``, or a file of such lines); ``progress(rows)`` is
+    ``"speed [mm/s]=v_n_in,shot=run"``, or a file of such lines); ``uncertainty`` states
+    the dataset's default standard uncertainty of measured columns (``{"v_n_in": "± 3 %",
+    "v_n_out": "± 0.5 mm/s"}``, or ``"v_n_in=± 3 %, v_n_out=± 0.5 mm/s"``), given to every
+    run whose file leaves its ``u(v_n_in) [mm/s]`` cell empty; ``progress(rows)`` is
     called as rows are read. Every problem of the file is refused at once, in row order.
     Returns the dataset, version, row count and the file's sha256.
 
@@ -69,6 +73,7 @@ def import_collisions(
             delimiter=delimiter,
             decimal=decimal,
             columns=mapping,
+            uncertainty=uncertainty,
             progress=progress,
         )
 

@@ -65,6 +65,14 @@ def import_(
             "(a header's unit is kept), or a file of such lines.",
         ),
     ] = None,
+    uncertainty: Annotated[
+        str | None,
+        typer.Option(
+            "--uncertainty",
+            help="The dataset's standard uncertainty of measured columns, for runs whose "
+            "file has no u(...) cell: 'v_n_in=± 3 %, v_n_out=± 0.5 mm/s'.",
+        ),
+    ] = None,
     db: DbOption = None,
 ) -> None:
     """Import a CSV of collisions: all rows or none; a file is never imported twice.

@@ -28,7 +28,13 @@ from typing import Any
 
 import numpy as np
 
-from granudb.db.content_hash import ALWAYS_HASHED, FIELD_SEPARATOR, ROW_SEPARATOR, TARGET_HASHED
+from granudb.db.content_hash import (
+    ALWAYS_HASHED,
+    FIELD_SEPARATOR,
+    ROW_SEPARATOR,
+    TARGET_HASHED,
+    UNCERTAINTY_HASHED,
+)
 from granudb.lazy import pyarrow as pa
 from granudb.lazy import pyarrow_compute as pc
 
@@ -238,28 +244,39 @@ def _row_texts(
     notes: list[str | None] | None,
 ) -> tuple[Any, Any]:
     """(names' code by row, each row's canonical text after its names): the floats, notes
-    (and the target sphere's columns when the row has any), joined by the unit separator,
+    (and the target sphere's columns and the stated uncertainties, as
+    ``granudb.db.content_hash`` says when), joined by the unit separator,
     then the record separator that ends the row. Runs on the worker thread."""
     n = len(ids[0])
-    columns = {c: _column(values.get(c)) for c in (*ALWAYS_HASHED, *TARGET_HASHED)}
+    columns = {
+        c: _column(values.get(c)) for c in (*ALWAYS_HASHED, *TARGET_HASHED, *UNCERTAINTY_HASHED)
+    }
     texts = {c: float_texts(v) for c, v in columns.items() if v is not None}
     empty = pa.array([""] * n, type=pa.string())
     note_texts = empty if notes is None else pc.fill_null(pa.array(notes, pa.string()), "")
     kept = pc.binary_join_element_wise(
         *(texts.get(c, empty) for c in ALWAYS_HASHED), note_texts, FIELD_SEPARATOR
     )
-    has_target = np.zeros(n, dtype=bool)
-    for c in TARGET_HASHED:
-        if columns[c] is not None:
-            has_target |= ~np.isnan(columns[c])
-    if has_target.any():
-        target = pc.binary_join_element_wise(
-            *(texts.get(c, empty) for c in TARGET_HASHED), FIELD_SEPARATOR
-        )
-        kept = pc.if_else(
-            pa.array(has_target), pc.binary_join_element_wise(kept, target, FIELD_SEPARATOR), kept
-        )
+    has_stated = _has_any(columns, UNCERTAINTY_HASHED, n)
+    has_target = _has_any(columns, TARGET_HASHED, n) | has_stated
+    for group, present in ((TARGET_HASHED, has_target), (UNCERTAINTY_HASHED, has_stated)):
+        if present.any():
+            more = pc.binary_join_element_wise(
+                *(texts.get(c, empty) for c in group), FIELD_SEPARATOR
+            )
+            kept = pc.if_else(
+                pa.array(present), pc.binary_join_element_wise(kept, more, FIELD_SEPARATOR), kept
+            )
     return names.encode(ids), pc.binary_join_element_wise(kept, "", ROW_SEPARATOR)
+
+
+def _has_any(columns: dict[str, Any], group: tuple[str, ...], n: int) -> Any:
+    """By row: does any column of ``group`` hold a value?"""
+    present = np.zeros(n, dtype=bool)
+    for c in group:
+        if columns[c] is not None:
+            present |= ~np.isnan(columns[c])
+    return present
 
 
 def _unsigned_zero(values: Any) -> Any:

@@ -4,8 +4,9 @@ The content hash identifies a dataset's measurements independently of database i
 insertion order and backend: sha256 over the collisions sorted by run label (UTF-8 byte
 order), each written as its run, particle, wall and fluid names, its SI values in
 ``ALWAYS_HASHED`` order (``repr`` of the float, empty for none) and its notes, then the
-target sphere's values (``TARGET_HASHED``) only when the row has any (so datasets hashed
-before the target's columns existed keep their hash); fields separated by
+target sphere's values (``TARGET_HASHED``) only when the row has any or has stated
+uncertainties, then those uncertainties (``UNCERTAINTY_HASHED``) only when the row has
+any (so datasets hashed before these columns existed keep their hash); fields separated by
 ``FIELD_SEPARATOR`` (U+001F), each row ended by ``ROW_SEPARATOR`` (U+001E). Two
 databases (or a database and a Data Package) with the same hash hold the same runs with
 the same values.
@@ -24,17 +25,23 @@ from sqlalchemy import select
 from sqlalchemy.orm import Session, aliased
 
 from granudb.db.models import Collision, Dataset, Fluid, Material
-from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TARGET
+from granudb.vocabulary import COLLISION_MEASURED, COLLISION_TARGET, COLLISION_UNCERTAINTIES
 
 FIELD_SEPARATOR = "\x1f"
 ROW_SEPARATOR = "\x1e"
 #: The names that open every row, after the run label.
 NAMES = ("particle", "wall", "fluid")
 #: The SI columns every row carries, in order, before its notes.
-ALWAYS_HASHED = tuple(c for c in COLLISION_MEASURED if c not in COLLISION_TARGET)
-#: The target sphere's columns, after the notes, only in a row that has any of them.
+ALWAYS_HASHED = tuple(
+    c for c in COLLISION_MEASURED if c not in (*COLLISION_TARGET, *COLLISION_UNCERTAINTIES)
+)
+#: The target sphere's columns, after the notes, only in a row that has any of them (or
+#: any stated uncertainty).
 TARGET_HASHED = tuple(COLLISION_TARGET)
-_ROW = ("run", *NAMES, *ALWAYS_HASHED, "notes", *TARGET_HASHED)
+#: The stated uncertainties, last, only in a row that has any of them.
+UNCERTAINTY_HASHED = tuple(COLLISION_UNCERTAINTIES)
+_OPTIONAL = (*TARGET_HASHED, *UNCERTAINTY_HASHED)
+_ROW = ("run", *NAMES, *ALWAYS_HASHED, "notes", *_OPTIONAL)
 
 
 def content_hash(
@@ -55,7 +62,7 @@ def content_hash(
             Fluid.name,
             *(getattr(Collision, c) for c in ALWAYS_HASHED),
             Collision.notes,
-            *(getattr(Collision, c) for c in TARGET_HASHED),
+            *(getattr(Collision, c) for c in _OPTIONAL),
         )
         .join(particle, Collision.particle_id == particle.id)
         .join(wall, Collision.wall_id == wall.id)
@@ -77,7 +84,7 @@ def content_hash(
 
 def hash_rows(batches: Iterable[Iterable[Sequence[object]]]) -> str:
     """sha256 of rows already in canonical order, each (run, particle, wall, fluid,
-    *ALWAYS_HASHED, notes, *TARGET_HASHED), given in batches."""
+    *ALWAYS_HASHED, notes, *TARGET_HASHED, *UNCERTAINTY_HASHED), given in batches."""
     digest = hashlib.sha256()
     for rows in batches:
         text = "".join(FIELD_SEPARATOR.join(_canonical(row)) + ROW_SEPARATOR for row in rows)
@@ -87,8 +94,11 @@ def hash_rows(batches: Iterable[Iterable[Sequence[object]]]) -> str:
 
 def _canonical(row: Sequence[object]) -> list[str]:
     cells = ["" if v is None else repr(v) if type(v) is float else str(v) for v in row]
-    kept = len(cells) - len(TARGET_HASHED)
-    return cells if any(cells[kept:]) else cells[:kept]
+    stated = len(cells) - len(UNCERTAINTY_HASHED)
+    if any(cells[stated:]):
+        return cells
+    kept = stated - len(TARGET_HASHED)
+    return cells[:stated] if any(cells[kept:stated]) else cells[:kept]
 
 
 def update_content_hash(session: Session, dataset: Dataset) -> str:

@@ -26,7 +26,7 @@ from granudb.lazy import (
     alembic_script,
 )
 from granudb.resources import shipped_dir
-from granudb.vocabulary import COLLISION_TARGET
+from granudb.vocabulary import COLLISION_TARGET, COLLISION_UNCERTAINTIES
 from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
 
 if TYPE_CHECKING:
@@ -213,6 +213,10 @@ def downgrade(
 #: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
 #: rows that lose something, what happens to them). Checked constraints are not data.
 _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
+    "0008": [
+        ("collisions", c, f"{c} IS NOT NULL", "dropped (the stated standard uncertainty)")
+        for c in COLLISION_UNCERTAINTIES
+    ],
     "0007": [
         *(
             ("materials", c, f"{c} IS NOT NULL", "dropped")

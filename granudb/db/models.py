@@ -30,6 +30,7 @@ from sqlalchemy import (
 from sqlalchemy.orm import Mapped, mapped_column, relationship
 
 from granudb.db.base import Base, Timestamped, add_finite_checks, name_key, utcnow
+from granudb.vocabulary import COLLISION_UNCERTAINTIES
 from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
 
 
@@ -355,6 +356,16 @@ class Collision(Base):
     wall_omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
     temperature_c: Mapped[float | None] = mapped_column(Float)
     notes: Mapped[str | None] = mapped_column(Text)
+    #: The stated standard uncertainty of each measured value (same unit; NULL: not
+    #: stated), ``u_<column>`` (``granudb.vocabulary.terms.COLLISION_UNCERTAINTIES``).
+    u_diameter_m: Mapped[float | None] = mapped_column(Float)
+    u_v_n_in_m_s: Mapped[float | None] = mapped_column(Float)
+    u_v_t_in_m_s: Mapped[float | None] = mapped_column(Float)
+    u_omega_in_rad_s: Mapped[float | None] = mapped_column(Float)
+    u_v_n_out_m_s: Mapped[float | None] = mapped_column(Float)
+    u_v_t_out_m_s: Mapped[float | None] = mapped_column(Float)
+    u_omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
+    u_temperature_c: Mapped[float | None] = mapped_column(Float)
 
     dataset: Mapped[Dataset] = relationship()
     particle: Mapped[Material] = relationship(foreign_keys=[particle_id])
@@ -386,6 +397,7 @@ class Collision(Base):
         CheckConstraint(
             "temperature_c IS NULL OR temperature_c > -273.15", name="temperature_above_zero_k"
         ),
+        *_non_negative_if_given(COLLISION_UNCERTAINTIES),
     )
 
 

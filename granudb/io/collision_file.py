@@ -35,12 +35,21 @@ from granudb.errors import ValidationError
 from granudb.io.tables import (
     ColumnMap,
     Problems,
+    base_name,
     check_shape,
     csv_options,
     map_headers,
     read_header,
 )
-from granudb.vocabulary import COLLISION_MEASURED, COLLISION_REQUIRED, COLLISION_TEXT
+from granudb.io.units import parse_uncertainty
+from granudb.vocabulary import (
+    COLLISION_MEASURED,
+    COLLISION_REQUIRED,
+    COLLISION_TEXT,
+    COLLISION_UNCERTAIN,
+    uncertainty_column,
+    unit_of_column,
+)
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import (
     MAX_NAME,
@@ -89,6 +98,58 @@ class CollisionFile:
     delimiter: str
     decimal: str
     mapping: dict[str, ColumnMap]
+
+
+def stated_uncertainties(given: dict[str, str] | str | None) -> dict[str, tuple[float, bool]]:
+    """A dataset's default standard uncertainties, by measured column: ``{"v_n_in": "± 3 %",
+    "diameter": "0.01 mm"}`` or the same as text ``"v_n_in=± 3 %, diameter=0.01 mm"``
+    (column names as a file's headers name them, or SI), each read by the one quantity
+    parser (``parse_uncertainty``: absolute in the column's unit, or relative to each
+    run's value). Returns ``{SI column: (u or fraction, relative)}``; a column that
+    cannot carry an uncertainty (``COLLISION_UNCERTAIN``) is refused, naming those that can.
+    """
+    if not given:
+        return {}
+    if isinstance(given, str):
+        pairs = [p.rpartition("=") for p in given.split(",") if p.strip()]
+        for name, equals, text in pairs:
+            if not equals or not name.strip() or not text.strip():
+                raise ValidationError(
+                    "uncertainty",
+                    repr(f"{name}{equals}{text}".strip()),
+                    "must be 'column=± u', e.g. 'v_n_in=± 3 %'",
+                    parameter=True,
+                )
+        given = {name.strip(): text.strip() for name, _, text in pairs}
+    by_base = {base_name(c): c for c in COLLISION_UNCERTAIN}
+    stated = {}
+    for name, text in given.items():
+        column = name if name in COLLISION_UNCERTAIN else by_base.get(name.strip().lower())
+        if column is None:
+            raise ValidationError(
+                "uncertainty",
+                name,
+                f"is not a column with an uncertainty (one of: {', '.join(by_base)})",
+                parameter=True,
+            )
+        stated[column] = parse_uncertainty(text, unit_of_column(column), f"u({name})")
+    return stated
+
+
+def fill_stated(values: dict[str, Any], stated: dict[str, tuple[float, bool]]) -> None:
+    """Give each run the dataset's default uncertainty (``stated_uncertainties``) where its
+    own ``u_`` cell is empty and its value is measured; a file's own cells win."""
+    for column, (u, relative) in stated.items():
+        measured = values.get(column)
+        if measured is None:
+            continue
+        measured = np.asarray(measured, dtype=float)
+        default = np.abs(measured) * u if relative else np.full(len(measured), u)
+        default = np.where(np.isnan(measured), np.nan, default)
+        own = values.get(uncertainty_column(column))
+        values[uncertainty_column(column)] = (
+            default if own is None else np.where(np.isnan(own), default, own)
+        )
 
 
 def file_sha256(path: Path) -> str:

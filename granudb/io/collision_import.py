@@ -28,7 +28,9 @@ from granudb.io.collision_file import (
     NUMERIC,
     CollisionFile,
     estimate_rows,
+    fill_stated,
     open_collision_file,
+    stated_uncertainties,
 )
 from granudb.io.tables import FileProblems, Problems
 from granudb.lazy import pandas as pd
@@ -58,6 +60,7 @@ def import_collisions(
     delimiter: str | None = None,
     decimal: str = ".",
     columns: dict[str, str] | None = None,
+    uncertainty: dict[str, str] | str | None = None,
 ) -> ImportResult:
     """Import ``path`` into ``dataset`` (created if new), all or nothing.
 
@@ -65,15 +68,18 @@ def import_collisions(
     ``granudb.io.collision_blocks`` reads, hashes and checks the rows in one pass;
     ``granudb.db.collision_store`` resolves names, refuses repeated runs, a repeated file
     and temperatures outside a fluid's data, and writes everything in one transaction.
+    ``uncertainty`` states the dataset's default standard uncertainty of measured columns
+    (``stated_uncertainties``), given to every run whose own ``u_`` cell is empty.
     """
     check_name("dataset", dataset)
     check_name("version", version)
+    stated = stated_uncertainties(uncertainty)
     opened = open_collision_file(Path(path), delimiter=delimiter, decimal=decimal, columns=columns)
     name = opened.path.name
     stream = HashingFile(opened.path)
     try:
         with arrow_memory():
-            blocks = Prefetched(read_blocks(opened, stream, chunk_rows))
+            blocks = Prefetched(_with_stated(read_blocks(opened, stream, chunk_rows), stated))
 
             def digest() -> str:  # the reader thread stops before the rest is hashed
                 blocks.close()
@@ -105,6 +111,13 @@ def import_collisions(
     finally:
         stream.close()
     return ImportResult(dataset, version, rows, sha256, name)
+
+
+def _with_stated(blocks: Iterator[Any], stated: dict[str, tuple[float, bool]]) -> Iterator[Any]:
+    """The blocks with the dataset's default uncertainties filled in (``fill_stated``)."""
+    for block in blocks:
+        fill_stated(block.values, stated)
+        yield block
 
 
 def collision_frames(source: Path | CollisionFile, chunk_rows: int = CHUNK_ROWS) -> Iterator[Any]:

@@ -16,6 +16,7 @@ from granudb.io.units import check_unit_expression, registry
 from granudb.vocabulary import (
     COLLISION_MEASURED,
     COLLISION_REQUIRED,
+    COLLISION_UNCERTAINTIES,
     FLUIDS,
     MATERIALS,
     POINT_COLUMNS,
@@ -91,6 +92,7 @@ OPTIONAL_COLUMNS: dict[str, list[str]] = {
     ],
     "fluids": list(FLUIDS.uncertainties.values()),
     "fluid_points": list(POINT_UNCERTAINTIES),
+    "collisions": list(COLLISION_UNCERTAINTIES),
 }
 
 PRIMARY_KEYS = {

@@ -26,6 +26,7 @@ from granudb.errors import ValidationError
 from granudb.io.units import conversion, round_significant
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
+from granudb.vocabulary.terms import UNCERTAINTY_PREFIX, plain_uncertainty_header
 from granudb.vocabulary.units import Unit, unit_of_column
 
 #: ``name``, ``name [unit]`` or ``name (unit)``; names are matched case-insensitively.
@@ -137,7 +138,7 @@ def _map_one(
 ) -> ColumnMap:
     """One header's mapping, or ``ValidationError``/``_Unknown`` saying what is wrong."""
     by_base = {base_name(c): c for c in numeric}
-    match = _HEADER.match(header)
+    match = _HEADER.match(plain_uncertainty_header(header))
     if not match:
         raise ValidationError("", repr(header), "is not 'name', 'name [unit]' or 'name (unit)'")
     base = re.sub(r"\s+", "_", match["base"].strip()).lower()
@@ -161,12 +162,14 @@ def _map_one(
         scale, offset = conversion(unit_text, unit)
     except ValidationError as exc:
         raise ValidationError("", f"{header!r}: [{unit_text}]", exc.rule) from None
+    if column.startswith(UNCERTAINTY_PREFIX):
+        offset = 0.0  # an uncertainty is a difference: u(T) [K] is u(T) [degC]
     return ColumnMap(header, column, unit, True, scale, offset)
 
 
 def _column_named(header: str, numeric: list[str], aliases: dict[str, str]) -> str | None:
     """The column a (refused) header meant, so it is not also reported as missing."""
-    match = _HEADER.match(header)
+    match = _HEADER.match(plain_uncertainty_header(header))
     if not match:
         return None
     base = re.sub(r"\s+", "_", match["base"].strip()).lower()

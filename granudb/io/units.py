@@ -457,6 +457,31 @@ def parse_uncertain_quantity(
         return parse_quantity(text, unit, field), None
     value_text, u_text = split
     value = parse_quantity(value_text, unit, field)
+    u, relative = _uncertainty(u_text, unit, field, text)
+    return value, _finite(field, text, abs(value) * u if relative else u)
+
+
+def parse_uncertainty(text: str, unit: Unit | str, field: str) -> tuple[float, bool]:
+    """A standard uncertainty on its own, as a dataset states it for a measured column:
+    ``(u in unit (SI), False)`` from ``"± 0.5 mm/s"``, or ``(fraction, True)`` from a
+    relative ``"± 3 %"`` (of each value); the ``±`` may be left out. Refused as
+    ``parse_uncertain_quantity`` refuses the part after its ``±``.
+
+    >>> parse_uncertainty("± 0.5 mm/s", "m_s", "v_n_in")
+    (0.0005, False)
+    >>> parse_uncertainty("3 %", "m_s", "v_n_in")
+    (0.03, True)
+    """
+    unit = UNITS[unit] if isinstance(unit, str) else unit
+    raw = str(text).strip()
+    sign = PLUS_MINUS.match(raw)
+    u, relative = _uncertainty(raw[sign.end() :] if sign else raw, unit, field, raw)
+    return _finite(field, raw, u), relative
+
+
+def _uncertainty(u_text: str, unit: Unit, field: str, text: str) -> tuple[float, bool]:
+    """(magnitude, relative) of the text after a ±: a fraction when relative (``%``), else
+    converted to ``unit`` as a difference (no temperature offset)."""
     number = _LEADING_NUMBER.match(u_text)
     if number is None or u_text.startswith(("-", "+")):
         raise ValidationError(
@@ -465,17 +490,17 @@ def parse_uncertain_quantity(
     u_unit = u_text[number.end() :].strip()
     magnitude = float(number.group())
     if u_unit in {"%", "percent"}:
-        u = abs(value) * magnitude / 100.0
+        u, relative = magnitude / 100.0, True
     elif not u_unit:
         if unit.pint != "dimensionless":
             raise ValidationError(field, text, f"needs a unit after ±, e.g. '{unit.example} ± 1 %'")
-        u = magnitude
+        u, relative = magnitude, False
     else:
         try:
             scale, _ = _conversion(_spelled(u_unit), unit.suffix)
         except UnitSyntaxError as exc:
             raise ValidationError(field, text, f"has an uncertainty that {exc}") from None
-        u = magnitude * abs(scale)
+        u, relative = magnitude * abs(scale), False
     if not math.isfinite(u):
         raise ValidationError(field, text, "needs a finite uncertainty")
-    return value, _finite(field, text, u)
+    return u, relative

@@ -24,7 +24,9 @@ propagated absolutely in the same way.
 
 Temperature enters through the viscosity: the caller gives u(μ) including
 |∂μ/∂T| u(T) from the fluid model (``granudb.analysis.fluid_state``). The per-collision
-parameters (e, β, Ψ, μ_f of (2.9)) are not propagated here.
+parameters e, β, Ψ_in and Ψ_out of a measured run are ratios of measured speeds: their u
+is ``ratio_uncertainty``'s (with ``contact_speed_uncertainty``), not a sensitivity here;
+μ_f of (2.9) gets none yet.
 
 The first-order result is checked against Monte Carlo propagation (JCGM 101:2008) in
 tests/physics/test_uncertainty.py: within 10 % for input uncertainties up to 5 %; at
@@ -406,6 +408,69 @@ def propagate(
         )
     )
     return out
+
+
+def ratio_uncertainty(ratio: Any, denominator: Any, u_numerator: Any, u_denominator: Any) -> Any:
+    r"""u(q) of a ratio q = a/b of two independently measured values (GUM, JCGM 100:2008
+    eq. (10), first order): u(q) = √(u(a)² + q² u(b)²) / |b|.
+
+    A missing uncertainty (NaN) counts as zero where the other is given; with neither
+    given, u(q) is NaN (not stated, never zero). This is how a run's e = v_n,out/v_N,in,
+    Ψ_in = v_T,in/v_N,in, Ψ_out = v_T,out/v_N,in and β = −v_T,out/v_T,in (Joseph & Hunt
+    2004, (2.5), (2.8)) get their uncertainty from the measured speeds' (docs/physics.md,
+    "Measurement uncertainty of runs").
+
+    Parameters
+    ----------
+    ratio : q = a/b [any unit]
+    denominator : b [unit of b]
+    u_numerator : u(a), standard uncertainty of a [unit of a]
+    u_denominator : u(b), standard uncertainty of b [unit of b]
+
+    Examples
+    --------
+    >>> round(float(ratio_uncertainty(0.97, 0.3, 0.009, 0.009)), 5)  # u = 9 mm/s on each speed
+    0.04179
+    >>> float(ratio_uncertainty(0.97, 0.3, np.nan, np.nan))
+    nan
+    """
+    ua, ub = np.asarray(u_numerator, dtype=float), np.asarray(u_denominator, dtype=float)
+    q, b = np.asarray(ratio, dtype=float), np.asarray(denominator, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.hypot(np.nan_to_num(ua), q * np.nan_to_num(ub)) / np.abs(b)
+    return np.where(np.isnan(ua) & np.isnan(ub), np.nan, u)
+
+
+def contact_speed_uncertainty(
+    u_v_t: Any, omega: Any, u_omega: Any, radius: Any, u_radius: Any
+) -> Any:
+    r"""u(v_T) of the contact point's tangential velocity v_T = v_t + ωR (Joseph & Hunt 2004
+    §2) from independent u(v_t), u(ω), u(R) (GUM eq. (10)): √(u(v_t)² + (R u(ω))² +
+    (ω u(R))²); NaN where none is given, a missing one counting as zero otherwise. A spin
+    not measured (ω NaN) contributes nothing.
+
+    Parameters
+    ----------
+    u_v_t : u(v_t) of the centre's tangential velocity [m/s]
+    omega : spin ω [rad/s]
+    u_omega : u(ω) [rad/s]
+    radius : R = d/2 [m]
+    u_radius : u(R) = u(d)/2 [m]
+
+    Examples
+    --------
+    >>> round(float(contact_speed_uncertainty(0.003, 10.0, 0.5, 6.35e-3, 5e-6)), 6)
+    0.004368
+    """
+    parts = (u_v_t, np.asarray(radius, dtype=float) * u_omega,
+             np.nan_to_num(np.asarray(omega, dtype=float)) * u_radius)  # fmt: skip
+    given = np.zeros(np.broadcast(*parts).shape, dtype=bool)
+    total = np.zeros(given.shape)
+    for part in parts:
+        part = np.asarray(part, dtype=float)
+        given |= ~np.isnan(part)
+        total = total + np.nan_to_num(part) ** 2
+    return np.where(given, np.sqrt(total), np.nan)
 
 
 def normal_cdf(z: np.ndarray | float) -> np.ndarray:

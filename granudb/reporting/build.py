@@ -40,6 +40,9 @@ REPORT_COLUMNS = [
     *("added_mass_stokes_number", "shear_strain", "effective_radius_m", "reduced_modulus_pa"),
     *("eta_hat_pa_inv", "effective_mass_kg", "roughness_exceeds_gap", "roughness_regime"),
     *("composite_roughness_m", "film_parameter", "derivation_note", "restitution_ceiling"),
+    # the error bars, where runs state uncertainties (absent otherwise)
+    *("u_effective_incidence", "u_effective_rebound", "u_normal_restitution"),
+    "u_normal_stokes_number",
 ]
 
 #: Scenario inputs granudb assumes when ``report --pair`` is not given them.

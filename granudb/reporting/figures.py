@@ -245,10 +245,11 @@ def dataset_figures(
     ``fitted``: ``walton``, ``branches``, ``restitution`` and ``critical_stokes``."""
     psi_in = frame["effective_incidence"].to_numpy(dtype=float)
     lines = walton_lines(psi_in, labels, fitted["branches"], fitted["walton"])
+    errors = _errors(frame, "effective_incidence", "effective_rebound")
     figures = [
-        _figure("fig-walton", walton_caption(lines),
+        _figure("fig-walton", walton_caption(lines) + (plots.ERROR_BARS if errors else ""),
                 plots.walton_plot(psi_in, frame["effective_rebound"].to_numpy(float), labels,
-                                  lines, colours), len(psi_in)),  # fmt: skip
+                                  lines, colours, errors=errors), len(psi_in)),  # fmt: skip
         _figure("fig-beta", "Rotational restitution β against Ψ_in (figures 7, 10).",
                 plots.against_incidence(psi_in, frame["rotational_restitution"].to_numpy(float),
                                         labels, colours, ylabel="β = −v_T,out / v_T,in  (–)",
@@ -289,7 +290,16 @@ WET_COLUMNS = (
     "normal_restitution",
     "added_mass_stokes_number",
     "restitution_ceiling",
+    "u_normal_stokes_number",
+    "u_normal_restitution",
 )
+
+
+def _errors(frame: Any, x: str, y: str) -> tuple[Any, Any] | None:
+    """(u of ``x``, u of ``y``) by run where the frame has them and any run states one,
+    else None (no bars)."""
+    found = tuple(frame[f"u_{c}"].to_numpy(float) if f"u_{c}" in frame else None for c in (x, y))
+    return found if plots.has_errors(*found) else None
 
 
 def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) -> list[dict]:
@@ -329,9 +339,10 @@ def restitution_figure(
     restitution, critical_stokes = fitted["restitution"], fitted["critical_stokes"]
     st_n = wet["normal_stokes_number"].to_numpy(float)
     curves = predicted_curves(wet, labels, critical_stokes)
+    errors = _errors(wet, "normal_stokes_number", "normal_restitution")
     svg = plots.restitution_with_prediction(
         st_n, wet["normal_restitution"].to_numpy(float), labels, colours, curves,
-        critical_stokes, _restitution_curve(restitution, st_n),
+        critical_stokes, _restitution_curve(restitution, st_n), errors=errors,
     )  # fmt: skip
     caption = (
         "Measured normal restitution against the normal Stokes number St_n = m* v_N,in / "
@@ -344,7 +355,7 @@ def restitution_figure(
             else ""
         )
         + ". The grey line, where drawn, is the threshold fit of these runs; its St_c is "
-        "fitted, not the verdict's St_c."
+        "fitted, not the verdict's St_c." + (plots.ERROR_BARS if errors else "")
     )
     return _figure("fig-restitution", caption, svg, len(st_n))
 

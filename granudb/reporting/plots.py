@@ -79,17 +79,46 @@ def _honest_limits(plot: Plot, values: np.ndarray) -> None:
 
 
 def scatter_groups(
-    plot: Plot, x: np.ndarray, y: np.ndarray, groups: Sequence[str], colours: Mapping[str, str]
+    plot: Plot,
+    x: np.ndarray,
+    y: np.ndarray,
+    groups: Sequence[str],
+    colours: Mapping[str, str],
+    errors: tuple[Any, Any] | None = None,
 ) -> None:
-    """One series per group, thinned to its share, labelled with its count."""
+    """One series per group, thinned to its share, labelled with its count; ``errors``
+    (u of x, u of y by run; None or NaN: none) draws ±1 u bars (``has_errors``)."""
     codes, names = sorted_codes(groups)
     counts = np.bincount(codes, minlength=len(names))
+    nan = np.full(len(x), np.nan)
+    u_x, u_y = (nan if u is None else np.asarray(u, float) for u in (errors or (None, None)))
     for index, name in enumerate(names):
         mask = codes == index
         count = int(counts[index])
-        gx, gy = thin(x[mask], y[mask], limit=share(count, len(codes)))
+        gx, gy, gux, guy = thin(x[mask], y[mask], u_x[mask], u_y[mask],
+                                limit=share(count, len(codes)))  # fmt: skip
+        if errors is not None:
+            plot.errorbars(gx, gy, gux, guy, Style(colours[name], width=0.8))
         plot.points(gx, gy, Style(colours[name], marker="o", size=4.5, alpha=0.8),
                     f"{name} ({shown(count, len(gx))})")  # fmt: skip
+
+
+#: What a figure's caption says of its error bars.
+ERROR_BARS = (
+    " Error bars: ±1 standard uncertainty u of each run, propagated from the uncertainties "
+    "its dataset states for the measured speeds (GUM first order); runs without a stated u "
+    "have none."
+)
+
+
+def has_errors(*uncertainties: Any) -> bool:
+    """Does any run carry a stated uncertainty to draw (a finite u > 0)?"""
+    for u in uncertainties:
+        if u is not None:
+            u = np.asarray(u, float)
+            if (np.isfinite(u) & (u > 0)).any():
+                return True
+    return False
 
 
 def walton_plot(
@@ -99,6 +128,7 @@ def walton_plot(
     lines: Sequence[dict[str, Any]],
     colours: Mapping[str, str],
     figure_id: str = "fig-walton",
+    errors: tuple[Any, Any] | None = None,
 ) -> str:
     """Ψ_out against Ψ_in with the fitted Walton lines (Joseph & Hunt figures 4, 6, 9).
 
@@ -108,7 +138,8 @@ def walton_plot(
     """
     plot = Plot(title="Tangential rebound (Walton model)", xlabel=PSI_IN,
                 ylabel="Ψ_out = v_T,out / v_N,in  (–)")  # fmt: skip
-    scatter_groups(plot, np.asarray(psi_in, float), np.asarray(psi_out, float), groups, colours)
+    scatter_groups(plot, np.asarray(psi_in, float), np.asarray(psi_out, float), groups, colours,
+                   errors)  # fmt: skip
     for line in lines:
         dash = "4.4,1.9" if line["branch"] == "sticking" else None
         plot.line(line["x"], line["y"], Style(colours[line["label"]], dash=dash), line["text"])
@@ -289,6 +320,7 @@ def restitution_with_prediction(
     critical_stokes: float,
     fitted: tuple[np.ndarray, np.ndarray, str] | None = None,
     figure_id: str = "fig-restitution",
+    errors: tuple[Any, Any] | None = None,
 ) -> str:
     """e against St_n with each group's predicted curve in the group's colour (dotted) and
     an optional fitted curve (grey). ``predictions``: dicts with ``label`` (a key of
@@ -296,7 +328,8 @@ def restitution_with_prediction(
     plot = Plot(xlog=True, title="Restitution against Stokes number: measured and predicted",
                 xlabel="normal Stokes number St_n = m* v_N,in / (6πμR*²)  (–)",
                 ylabel="normal restitution e  (–)")  # fmt: skip
-    scatter_groups(plot, np.asarray(stokes, float), np.asarray(restitution, float), groups, colours)
+    scatter_groups(plot, np.asarray(stokes, float), np.asarray(restitution, float), groups, colours,
+                   errors)  # fmt: skip
     for curve in predictions:
         dotted = Style(colours[curve["label"]], width=1.6, dash="1.6,2.6")
         plot.line(curve["st_n"], curve["e"], dotted,

@@ -259,6 +259,12 @@ class Plot:
         if label is not None:
             self.legend.append(("line", style, label))
 
+    def errorbars(self, x: Any, y: Any, u_x: Any, u_y: Any, style: Style) -> None:
+        """±1 standard uncertainty around each point (``u_x``, ``u_y``; NaN or 0: no bar in
+        that direction), one ``<path class="errorbar">``; not used for the limits."""
+        data = tuple(np.asarray(v, float) for v in (x, y, u_x, u_y))
+        self.layers.append(("errorbars", data, style))
+
     def polylines(self, lines: Sequence[tuple[np.ndarray, np.ndarray]], style: Style) -> None:
         """Several lines in one style (a contour), not used for the limits."""
         self.layers.append(("polylines", list(lines), style))
@@ -461,6 +467,8 @@ def _layer(plot: Plot, kind: str, data: Any, style: Style | None, px: Any, py: A
     if kind == "cells":
         return _cells(*data, px, py)
     assert style is not None
+    if kind == "errorbars":
+        return _errorbars(plot, data, style, px, py, box)
     if kind == "points":
         x, y = data
         ok = plot.x.visible(x) & plot.y.visible(y)
@@ -482,6 +490,34 @@ def _layer(plot: Plot, kind: str, data: Any, style: Style | None, px: Any, py: A
     if not d:
         return ""
     return f'<path class="series" d="{d}" {style.attributes()}/>'
+
+
+def _errorbars(plot: Plot, data: Any, style: Style, px: Any, py: Any,
+               box: tuple[float, float, float, float]) -> str:  # fmt: skip
+    """A vertical bar y ± u_y and a horizontal bar x ± u_x through each visible point, one
+    sub-path each; an end below zero on a log axis is drawn to the axis' edge."""
+    x, y, u_x, u_y = data
+    left, top, width, height = box
+    ok = plot.x.visible(x) & plot.y.visible(y)
+    parts = []
+    for axis, values, u, to_px, edge in ((plot.y, y, u_y, py, top + height),
+                                         (plot.x, x, u_x, px, left)):  # fmt: skip
+        bar = ok & np.isfinite(u) & (u > 0)
+        if not bar.any():
+            continue
+        low, high = values[bar] - u[bar], values[bar] + u[bar]
+        low_px = np.where(axis.visible(low), to_px(low), edge)
+        centre_x, centre_y = px(x[bar]), py(y[bar])
+        for a, b, cx, cy in zip(low_px.tolist(), to_px(high).tolist(), centre_x.tolist(),
+                                centre_y.tolist(), strict=True):  # fmt: skip
+            if axis is plot.y:
+                parts.append(f"M{_number(cx)},{_number(a)}V{_number(b)}")
+            else:
+                parts.append(f"M{_number(a)},{_number(cy)}H{_number(b)}")
+    if not parts:
+        return ""
+    return (f'<path class="errorbar" d="{"".join(parts)}" fill="none" stroke="{style.colour}" '
+            f'stroke-width="{style.width:g}" stroke-opacity="0.7"/>')  # fmt: skip
 
 
 def _cells(x_edges: np.ndarray, y_edges: np.ndarray, codes: np.ndarray, colours: list[str],

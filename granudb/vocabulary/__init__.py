@@ -26,9 +26,12 @@ from granudb.vocabulary.terms import (
     COLLISION_REQUIRED,
     COLLISION_TARGET,
     COLLISION_TEXT,
+    COLLISION_UNCERTAIN,
+    COLLISION_UNCERTAINTIES,
     TABLES,
     TERMS,
     Term,
+    plain_uncertainty_header,
 )
 from granudb.vocabulary.uncertainty import (
     PROBABILITY_TERMS,
@@ -47,6 +50,9 @@ __all__ = [
     "COLLISION_REQUIRED",
     "COLLISION_TARGET",
     "COLLISION_TEXT",
+    "COLLISION_UNCERTAIN",
+    "COLLISION_UNCERTAINTIES",
+    "plain_uncertainty_header",
     "FLUID_PROPERTIES",
     "MATERIAL_PROPERTIES",
     "POINT_COLUMNS",

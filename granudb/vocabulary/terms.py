@@ -8,6 +8,7 @@ labels are all generated from here, so they cannot drift apart.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 
 
@@ -40,6 +41,22 @@ UNCERTAINTY_PREFIX = "u_"
 def uncertainty_column(column: str) -> str:
     """The column of ``column``'s standard uncertainty: ``u_youngs_modulus_pa``."""
     return UNCERTAINTY_PREFIX + column
+
+
+#: GUM's notation in a file's header, ``u(v_n_in) [mm/s]``: the same column as
+#: ``u_v_n_in [mm/s]``.
+_UNCERTAINTY_NOTATION = re.compile(r"^\s*u\(\s*([A-Za-z_][A-Za-z0-9_]*)\s*\)")
+
+
+def plain_uncertainty_header(header: str) -> str:
+    """A header written ``u(name) [unit]`` as ``u_name [unit]``; any other unchanged.
+
+    >>> plain_uncertainty_header("u(v_n_in) [mm/s]")
+    'u_v_n_in [mm/s]'
+    >>> plain_uncertainty_header("v_n_in [mm/s]")
+    'v_n_in [mm/s]'
+    """
+    return _UNCERTAINTY_NOTATION.sub(lambda m: UNCERTAINTY_PREFIX + m[1], header, count=1)
 
 
 TERMS: dict[str, Term] = {
@@ -295,7 +312,8 @@ TERMS: dict[str, Term] = {
 
 
 #: The measured columns of a collision, SI, in the order of the content hash and of every
-#: export; the free target sphere's velocities (``COLLISION_TARGET``) come last.
+#: export; the free target sphere's velocities (``COLLISION_TARGET``) come after the
+#: particle's, the stated uncertainties (``COLLISION_UNCERTAINTIES``) last.
 COLLISION_TARGET = [
     "wall_v_n_in_m_s",
     "wall_v_t_in_m_s",
@@ -304,7 +322,8 @@ COLLISION_TARGET = [
     "wall_v_t_out_m_s",
     "wall_omega_out_rad_s",
 ]
-COLLISION_MEASURED = [
+#: The particle's measured columns (and the set-up's), SI, in the order of the hash.
+_PARTICLE_MEASURED = [
     "diameter_m",
     "wall_diameter_m",
     "nominal_angle_rad",
@@ -315,8 +334,20 @@ COLLISION_MEASURED = [
     "v_t_out_m_s",
     "omega_out_rad_s",
     "temperature_c",
-    *COLLISION_TARGET,
 ]
+#: The measured columns that may carry a stated standard uncertainty (issue 27): the
+#: diameter, the particle's velocities and spins, the bath temperature (not a nominal
+#: angle or a second sphere's size). Their ``u_`` columns (``COLLISION_UNCERTAINTIES``:
+#: ``u_v_n_in_m_s`` is u(v_n,in) in m/s) are stored per run, read from a file's
+#: ``u(v_n_in) [mm/s]`` or ``u_v_n_in_m_s`` columns or filled from a dataset default at
+#: import; empty means not stated, never zero.
+COLLISION_UNCERTAIN = [
+    c for c in _PARTICLE_MEASURED if c not in ("wall_diameter_m", "nominal_angle_rad")
+]
+COLLISION_UNCERTAINTIES = [uncertainty_column(c) for c in COLLISION_UNCERTAIN]
+#: Every stored number of a collision: the measurements (the target sphere's last), then
+#: their stated uncertainties.
+COLLISION_MEASURED = [*_PARTICLE_MEASURED, *COLLISION_TARGET, *COLLISION_UNCERTAINTIES]
 #: The text columns of a collision as people and files name them.
 COLLISION_TEXT = ["run", "particle", "wall", "fluid", "notes"]
 #: What every collision row must have (a file's rows, a package's table). Empty spin cells

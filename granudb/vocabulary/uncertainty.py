@@ -18,7 +18,12 @@ from __future__ import annotations
 from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
 from granudb.vocabulary.derived import DERIVED_TERMS
 from granudb.vocabulary.rules import NON_NEGATIVE, RULES
-from granudb.vocabulary.terms import TERMS, Term, uncertainty_column
+from granudb.vocabulary.terms import (
+    COLLISION_UNCERTAIN,
+    TERMS,
+    Term,
+    uncertainty_column,
+)
 
 
 def _uncertainty_term(column: str, term: Term, role: str) -> Term:
@@ -40,8 +45,8 @@ STORED_UNCERTAINTIES: dict[str, str] = {
 }
 
 #: Derived quantities that get a standard uncertainty (the continuous ones a scenario
-#: has; the per-collision parameters e, β, Ψ, μ_f need measured velocities' u and come
-#: later), in presentation order.
+#: has; a measured run's e, β and Ψ get theirs from its speeds': ``MEASURED_DERIVED``),
+#: in presentation order.
 UNCERTAIN_DERIVED = (
     "reduced_modulus_pa",
     "reduced_shear_modulus_pa",
@@ -78,6 +83,15 @@ UNCERTAIN_DERIVED = (
     "friction_coefficient_used",
     "maw_chi",
     "maw_psi_in",
+)
+
+#: A run's parameters whose uncertainty comes from its measured speeds' stated ones
+#: (``granudb.physics.uncertainty.ratio_uncertainty``), listed where a run states any.
+MEASURED_DERIVED = (
+    "normal_restitution",
+    "rotational_restitution",
+    "effective_incidence",
+    "effective_rebound",
 )
 
 #: The probability of each verdict, from the propagated uncertainties
@@ -118,11 +132,23 @@ UNCERTAINTY_TERMS: dict[str, Term] = {
     **PROBABILITY_TERMS,
 }
 
+#: A collision's measured columns and their stated uncertainties' columns
+#: (``granudb.vocabulary.terms.COLLISION_UNCERTAINTIES``), by measured column.
+MEASURED_UNCERTAINTIES: dict[str, str] = {c: uncertainty_column(c) for c in COLLISION_UNCERTAIN}
+
 TERMS.update(
     {
         u: _uncertainty_term(column, TERMS[column], "stored")
-        for column, u in STORED_UNCERTAINTIES.items()
+        for column, u in (*STORED_UNCERTAINTIES.items(), *MEASURED_UNCERTAINTIES.items())
+    }
+)
+TERMS.update(
+    {
+        uncertainty_column(name): _uncertainty_term(name, DERIVED_TERMS[name], "derived")
+        for name in MEASURED_DERIVED
     }
 )
 TERMS.update(UNCERTAINTY_TERMS)  # ``term()`` finds them; derive's own list stays DERIVED_TERMS
-RULES.update({u: NON_NEGATIVE for u in STORED_UNCERTAINTIES.values()})
+RULES.update(
+    {u: NON_NEGATIVE for u in (*STORED_UNCERTAINTIES.values(), *MEASURED_UNCERTAINTIES.values())}
+)

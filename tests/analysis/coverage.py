@@ -11,6 +11,8 @@ from dataclasses import dataclass
 from analysis.synthetic import walton_frame
 from analysis.test_gap_viscosity import sliding_runs
 from analysis.test_restitution_fit import runs as restitution_runs
+from analysis.test_stated_uncertainty_fits import TRUTH as STATED_TRUTH
+from analysis.test_stated_uncertainty_fits import U_REL, measured
 
 from granudb.analysis import fits
 
@@ -61,6 +63,12 @@ def _threshold_runs(n, seed):
 
 def _exponential_runs(n, seed):
     return restitution_runs(0.97, "exponential", 35.0, n=n, seed=seed)
+
+
+def _stated_runs(n, seed):
+    """Runs measured through speeds with a stated relative u (issue 27), which the
+    restitution fit's resamples perturb."""
+    return measured(seed, n=n)
 
 
 _THRESHOLD, _EXPONENTIAL = _restitution("threshold"), _restitution("exponential")
@@ -129,6 +137,20 @@ CASES = [
         "restitution exponential e_dry = 0.97",
         0.97,
         _exponential_runs,
+        _EXPONENTIAL,
+        E_DRY,
+    ),
+    Case(
+        f"restitution exp. k = 35, with stated u ({U_REL:.0%})",
+        STATED_TRUTH["parameter"],
+        _stated_runs,
+        _EXPONENTIAL,
+        PARAMETER,
+    ),
+    Case(
+        f"restitution exp. e_dry = 0.95, stated u ({U_REL:.0%})",
+        STATED_TRUTH["e_dry"],
+        _stated_runs,
         _EXPONENTIAL,
         E_DRY,
     ),

@@ -25,6 +25,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from paper_runs import EXAMPLE
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 #: Runs in a host page around the report, in a same-origin ``srcdoc`` iframe of the width
@@ -215,4 +216,17 @@ def test_paper_pairs_report_in_chromium(cli, paper_db, tmp_path) -> None:
 def test_pair_report_in_chromium(cli, db, tmp_path) -> None:
     html = _report(cli, db, tmp_path / "pair.html", "--pair", "steel", "Zerodur", "--fluid",
                    "glycerol-37", "--diameter", "12.7 mm", "--velocity", "0.3 m/s")  # fmt: skip
+    _check_report(tmp_path, html)
+
+
+@pytest.mark.slow
+def test_report_with_error_bars_in_chromium(cli, db, tmp_path) -> None:
+    """Runs with stated speed uncertainties (issue 27): the bars are drawn in the group's
+    colour and the report still lays out and prints as every report does."""
+    stated = "v_n_in=± 3 %, v_n_out=± 3 %, v_t_in=± 3 %, v_t_out=± 3 %"
+    imported = cli("collisions", "import", str(EXAMPLE), "--dataset", "u",
+                   "--uncertainty", stated, db=db)  # fmt: skip
+    assert imported.exit_code == 0, imported.stderr
+    html = _report(cli, db, tmp_path / "u.html", "--dataset", "u")
+    assert html.read_text("utf-8").count('class="errorbar"') >= 2
     _check_report(tmp_path, html)
