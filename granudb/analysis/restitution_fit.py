@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import intervals
+from granudb.analysis import bayesian, intervals
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.errors import ValidationError
 from granudb.lazy import scipy_optimize
@@ -394,7 +394,14 @@ def _intervals(row: dict, model: str, st: np.ndarray, e: np.ndarray, fixed: bool
     row["interval_reason"] = "; ".join(reasons)
 
 
-def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
+def restitution(
+    frame: Any,
+    model: str = DEFAULT_MODEL,
+    *,
+    method: str = "bootstrap",
+    settings: bayesian.Settings = bayesian.DEFAULT,
+    draws: list | None = None,
+) -> list[dict[str, Any]]:
     """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
     (figure 5).
 
@@ -406,7 +413,10 @@ def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
     (``interval_method``, ``bootstrap_resamples``, ``bootstrap_seed``; NaN with
     ``interval_reason`` below MIN_RUNS_FOR_INTERVAL runs or when degenerate);
     ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
-    ``reason`` (why the fit is empty, else '').
+    ``reason`` (why the fit is empty, else ''); ``fit_method``. ``method`` "bayes": values
+    are posterior medians with 95 % credible intervals (``bayesian.restitution_row``, which
+    adds the prior, likelihood, sampler settings and diagnostics), each group's draws
+    appended to ``draws`` when a list is given.
     """
     if model not in RESTITUTION_MODELS:
         raise ValidationError(
@@ -425,5 +435,16 @@ def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
         rows = groups[key]
         runs = rows[immersed[rows]]
         if runs.size:
-            results.append(_group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]]))
+            row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]])
+            row["fit_method"] = method
+            if method == bayesian.METHOD:
+                form = bayesian.Form(
+                    lambda s, a, q: restitution_curve(model, s, a, q),
+                    PARAMETER_NAMES[model],
+                    E_DRY_MAX,
+                )
+                found = bayesian.restitution_row(row, form, st[runs], e[runs], settings)
+                if draws is not None and found is not None:
+                    draws.append(found)
+            results.append(row)
     return results

@@ -41,11 +41,33 @@ def _fit_command(kind: str, help_text: str, title: str) -> None:
     app.command(kind.replace("_", "-"), help=help_text)(command)
 
 
-_fit_command(
-    "walton",
-    "β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē.",
-    "Walton fits",
-)
+MethodOption = Annotated[
+    str | None,
+    typer.Option(
+        "--method",
+        help="bootstrap (the default): bootstrap intervals; bayes: posterior medians and "
+        "95 % credible intervals (emcee), with priors, sampler settings and convergence.",
+    ),
+]
+DrawsOption = Annotated[
+    str | None,
+    typer.Option("--draws", help="With --method bayes: write the posterior draws to this new CSV."),
+]
+
+
+@app.command()
+@collision_filters
+@wraps("fit_walton")
+def walton(
+    method: MethodOption = None,
+    draws: DrawsOption = None,
+    db: DbOption = None,
+    fmt: FormatOption = Format.table,
+    filters: dict | None = None,
+) -> None:
+    """β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē."""
+    frame = api.fit_walton(db=db, method=method, draws=draws, **(filters or {}))
+    _show(frame, "walton", fmt, "Walton fits")
 
 
 @app.command()
@@ -56,12 +78,14 @@ def restitution(
         str | None,
         typer.Option("--model", help="exponential (the default) or threshold."),
     ] = None,
+    method: MethodOption = None,
+    draws: DrawsOption = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
     filters: dict | None = None,
 ) -> None:
     """e against the normal Stokes number for immersed runs: e_dry and k (or St_c)."""
-    frame = api.fit_restitution(model, db=db, **(filters or {}))
+    frame = api.fit_restitution(model, db=db, method=method, draws=draws, **(filters or {}))
     _show(frame, "restitution", fmt, "Restitution against Stokes number")
 
 
