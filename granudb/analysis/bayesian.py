@@ -180,7 +180,8 @@ def sample(log_posterior, start: np.ndarray, spread: np.ndarray, names, settings
     sampler.run_mcmc(points, settings.steps, progress=False)
     chain = sampler.get_chain(discard=settings.burn_in).transpose(1, 0, 2)
     acceptance = float(np.mean(sampler.acceptance_fraction))
-    tau = np.asarray(sampler.get_autocorr_time(discard=settings.burn_in, quiet=True))
+    tau = np.asarray(sampler.get_autocorr_time(discard=settings.burn_in, tol=0))
+    # tol=0: emcee's own length check (which only logs) is replaced by the one below
     length = settings.steps - settings.burn_in
     problems = []
     if not ACCEPTANCE[0] <= acceptance <= ACCEPTANCE[1]:

@@ -289,10 +289,11 @@ def one_step(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tu
     return (a, a_se), (p, p_se)
 
 
-def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
-                        resamples: int, seed: int) -> dict[str, intervals.Interval]:  # fmt: skip
-    """Studentized bootstrap intervals of e_dry (unless ``fixed``) and the parameter, from
-    ``fit`` = (e_dry, e_dry_se, parameter, parameter_se)."""
+def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
+                   resamples: int, seed: int) -> tuple:  # fmt: skip
+    """The bootstrap's parameter sets ((e_dry, se), (parameter, se)), arrays over resamples,
+    refitted from ``fit`` = (e_dry, e_dry_se, parameter, parameter_se): the sets behind
+    ``bootstrap_intervals`` and the report's band of the fitted curve."""
     n = len(st)
     rng = np.random.default_rng(seed)
     large = n > resampling.RULE_RUNS
@@ -304,9 +305,16 @@ def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, f
             parts.append(one_step(model, st, e, w, (fit[0], fit[2]), fixed))
         else:
             parts.append(refit(model, st, e, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
-    (a, a_se), (p, p_se) = (
+    return tuple(
         tuple(np.concatenate([part[i][j] for part in parts]) for j in range(2)) for i in range(2)
     )
+
+
+def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
+                        resamples: int, seed: int) -> dict[str, intervals.Interval]:  # fmt: skip
+    """Studentized bootstrap intervals of e_dry (unless ``fixed``) and the parameter, from
+    ``fit`` = (e_dry, e_dry_se, parameter, parameter_se)."""
+    (a, a_se), (p, p_se) = bootstrap_sets(model, st, e, fit, fixed, resamples, seed)
     found = {"parameter": intervals.studentized(fit[2], fit[3], p, p_se, bounds=(0.0, math.inf))}
     if not fixed:
         found["e_dry"] = intervals.studentized(fit[0], fit[1], a, a_se, bounds=(0.0, E_DRY_MAX))

@@ -20,8 +20,14 @@ app = typer.Typer(
 )
 
 
+#: A Bayesian fit's table title says where its priors and diagnostics are.
+BAYES_TITLE = " — posterior medians (priors, sampler, diagnostics: --format json or csv)"
+
+
 def _show(frame: Any, kind: str, fmt: Format, title: str) -> None:
     every = list(frame.columns)
+    if "prior" in every:
+        title += BAYES_TITLE
     shown = [c for c in api.FIT_TABLE_COLUMNS[kind] if c in every] if fmt is Format.table else every
     emit(frame.to_dict("records"), shown or every, fmt, title=title)
 

@@ -95,8 +95,9 @@ PUBLISHED_NARROW = ["source_locator", "label", "quantity", "value_as_printed"]
 #: The group a fit's row is for.
 FIT_GROUP = ["dataset", "particle", "wall", "fluid"]
 #: What a table of each fit shows (JSON and CSV show every key the fit returns).
-#: What a table of a Bayesian fit adds (a bootstrap fit's rows have none of these).
-FIT_BAYES = ["converged", "prior"]
+#: What a table of a Bayesian fit adds (a bootstrap fit's rows have none of these; the
+#: priors, likelihood and sampler settings are in every row of JSON and CSV).
+FIT_BAYES = ["converged"]
 FIT_NARROW = {
     "walton": [
         *FIT_GROUP,
