@@ -7,7 +7,9 @@ and replaces the bootstrap interval of each parameter by a posterior credible in
 the two answers differ only in how the uncertainty is stated and can be compared run for
 run. Likelihood: the fit's own model with independent Gaussian scatter, its scale σ fitted
 with the parameters (a log-uniform, scale-invariant prior), or the stated per-run standard
-uncertainties when the caller gives them (``sigma``; σ is then not a parameter). Priors:
+uncertainties when the caller gives them (``sigma``; σ is then not a parameter): the fits
+read them from the runs' ``u_effective_rebound`` (Walton) and ``u_normal_restitution``
+(restitution) columns when every run of the group states one (``stated_u``). Priors:
 uniform on each parameter's physical range (``PRIORS``), stated in every result.
 
 Walton: the sticking model is Ψ_out = −βΨ_in, the sliding one Ψ_out = Ψ_in − μ_f(1+e)B and
@@ -41,6 +43,7 @@ import numpy as np
 from granudb.analysis import walton as core
 from granudb.lazy import emcee
 from granudb.lazy import pandas as pd
+from granudb.vocabulary.terms import uncertainty_column
 
 #: The name of the option, as ``--method`` takes it.
 METHOD = "bayes"
@@ -336,6 +339,8 @@ def restitution(
     return sample(log_posterior, point, spread, names, settings)
 
 
+#: The column of the runs' stated u of Ψ_out that the Walton option reads when present.
+STATED_U_WALTON = uncertainty_column("effective_rebound")
 #: The result key of each sampled parameter (σ is reported as σ, sampled as ln σ).
 RESULT_NAMES = {
     "beta": "rotational_restitution",
@@ -354,6 +359,17 @@ LIKELIHOOD = {
     "e ~ Normal(ē, σ_e)",
     "restitution": "e ~ Normal(e(St_n) of the chosen form, σ) per run, independent",
 }
+
+
+def stated_u(frame: Any, column: str, rows: np.ndarray) -> np.ndarray | None:
+    """The runs' stated standard uncertainty of ``column`` (its ``u_`` column, the
+    vocabulary's naming) at positions ``rows``, when every one of them states one (> 0);
+    else None, and σ is fitted."""
+    name = uncertainty_column(column)
+    if name not in frame:
+        return None
+    u = frame[name].to_numpy(dtype=float)[rows]
+    return u if u.size and bool(np.all(np.isfinite(u) & (u > 0))) else None
 
 
 def _stated(row: dict, kind: str, names: tuple, per_run: bool, settings: Settings) -> None:

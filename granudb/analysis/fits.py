@@ -136,6 +136,7 @@ _NUMBERS = [
 
 def _groups(frame: Any) -> Any:
     runs = [name for name in WALTON_INPUTS if name not in GROUP]  # the key says the group
+    runs.append(bayesian.STATED_U_WALTON)  # when the runs state it (the Bayesian option)
     return group_frames(frame, GROUP, runs, fill={"fluid": "dry"})
 
 
@@ -266,7 +267,9 @@ def walton(
         row = _walton_group(key, group, resamples, seed)
         row["fit_method"] = method
         if method == bayesian.METHOD:
-            found, why = bayesian.walton_row(row, walton_arrays(group), settings)
+            arrays = walton_arrays(group)
+            sigma = bayesian.stated_u(group, "effective_rebound", arrays[5])
+            found, why = bayesian.walton_row(row, arrays, settings, sigma)
             if row["model"] is not None:
                 reason = _reason(row["model"], row["n_sticking"], row["n_sliding"])
                 row["reason"] = "; ".join(p for p in (reason, why) if p)

@@ -451,7 +451,8 @@ def restitution(
                     PARAMETER_NAMES[model],
                     E_DRY_MAX,
                 )
-                found = bayesian.restitution_row(row, form, st[runs], e[runs], settings)
+                sigma = bayesian.stated_u(frame, "normal_restitution", runs)
+                found = bayesian.restitution_row(row, form, st[runs], e[runs], settings, sigma)
                 if draws is not None and found is not None:
                     draws.append(found)
             results.append(row)

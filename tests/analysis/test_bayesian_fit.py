@@ -73,6 +73,20 @@ def test_restitution_posterior_agrees_with_the_bootstrap_and_covers_the_truth(
         assert bayes["fitted_critical_stokes"] == bayes["parameter"]
 
 
+def test_stated_per_run_u_of_e_replaces_the_fitted_scatter() -> None:
+    frame = restitution_runs(0.97, "exponential", 35.0, n=30, seed=4)  # scatter 0.02
+    [fitted] = fits.restitution(frame, "exponential", method="bayes")
+    frame["u_normal_restitution"] = 0.06
+    [stated] = fits.restitution(frame, "exponential", method="bayes")
+    assert "σ given per run" in stated["prior"] and "stated u" in stated["likelihood"]
+    assert math.isnan(stated["sigma"]) and fitted["sigma"] == pytest.approx(0.02, rel=0.35)
+    width = [r["parameter_high"] - r["parameter_low"] for r in (fitted, stated)]
+    assert width[1] > 2 * width[0], width
+    frame.loc[0, "u_normal_restitution"] = np.nan  # one run without: σ is fitted again
+    [partial] = fits.restitution(frame, "exponential", method="bayes")
+    assert partial["sigma"] == fitted["sigma"]
+
+
 def test_a_chain_too_short_to_trust_gives_no_number() -> None:
     frame = restitution_runs(0.97, "exponential", 35.0, n=30, seed=1)
     short = bayesian.Settings(walkers=16, steps=120, burn_in=60)
