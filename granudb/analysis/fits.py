@@ -188,7 +188,9 @@ def bootstrap_plan(n: int, resamples: int | None) -> tuple[int, str]:
     return resampling.resample_count(n), resampling.RESAMPLE_RULE
 
 
-def _walton_group(key: tuple, group: Any, asked: int | None, seed: int) -> dict[str, Any]:
+def _walton_group(
+    key: tuple, group: Any, asked: int | None, seed: int, sets: dict | None = None
+) -> dict[str, Any]:
     x, y, c, e, folded, _, factor = walton_arrays(group)
     n = len(x)
     resamples, rule = bootstrap_plan(n, asked)
@@ -204,6 +206,8 @@ def _walton_group(key: tuple, group: Any, asked: int | None, seed: int) -> dict[
         return row
     fit = core.decide(np.ones((1, n)), x, y, c, e)
     boot = resampling.bootstrap(x, y, c, e, resamples, seed)
+    if sets is not None:  # the report's bands reuse them (granudb.analysis.bands)
+        sets[tuple(key)] = boot
     model = core.MODELS[int(fit.model[0])]
     k = int(fit.split[0])
     bic = dict(zip(core.MODELS, fit.bic[0].tolist(), strict=True))
@@ -255,16 +259,19 @@ def walton(
     method: str = DEFAULT_METHOD,
     settings: bayesian.Settings = bayesian.DEFAULT,
     draws: list | None = None,
+    sets: dict | None = None,
 ) -> list[dict[str, Any]]:
     """β, μ_f and ē per group with model selection and bootstrap intervals (Joseph & Hunt
     figures 4, 6, 9). Keys: ``WALTON_KEYS``. ``resamples`` None follows
     ``walton_bootstrap.RESAMPLE_RULE`` (1000 for groups up to 10,000 runs). ``method``
     "bayes": posterior medians and credible intervals for the model chosen
     (``bayesian.walton_row``, sampler ``settings``), each group's draws appended to
-    ``draws`` when a list is given."""
+    ``draws`` when a list is given. ``sets``: a dict that receives each fitted group's
+    bootstrap parameter sets (a ``walton.Decision``) under its (dataset, particle, wall,
+    fluid), for the bands of its lines (``bands.walton_sets`` makes the same anew)."""
     rows = []
     for key, group in _groups(frame):
-        row = _walton_group(key, group, resamples, seed)
+        row = _walton_group(key, group, resamples, seed, sets)
         row["fit_method"] = method
         if method == bayesian.METHOD:
             arrays = walton_arrays(group)

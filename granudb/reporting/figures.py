@@ -269,9 +269,12 @@ def dataset_figures(
     frame: Any, labels: Sequence[str], colours: Mapping[str, str], fitted: Mapping[str, Any]
 ) -> list[dict[str, Any]]:
     """The Walton, β, μ_f, restitution and shear-strain figures of a set of runs.
-    ``fitted``: ``walton``, ``branches``, ``restitution`` and ``critical_stokes``."""
+    ``fitted``: ``walton``, ``branches``, ``restitution`` and ``critical_stokes``, and
+    optionally ``walton_sets`` (the Walton fits' bootstrap sets, else made anew)."""
     psi_in = frame["effective_incidence"].to_numpy(dtype=float)
-    sets = bands.walton_sets(frame, fitted["walton"])
+    sets = fitted.get("walton_sets")
+    if sets is None:
+        sets = bands.walton_sets(frame, fitted["walton"])
     lines = walton_lines(psi_in, labels, fitted["branches"], fitted["walton"], sets)
     figures = [
         _figure("fig-walton", walton_caption(lines),
