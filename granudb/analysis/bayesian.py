@@ -41,12 +41,26 @@ from typing import Any
 import numpy as np
 
 from granudb.analysis import walton as core
+from granudb.errors import ValidationError
 from granudb.lazy import emcee
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.terms import uncertainty_column
 
 #: The name of the option, as ``--method`` takes it.
 METHOD = "bayes"
+#: How the Walton and restitution fits state their uncertainty: the bootstrap (the
+#: default) or this module's posterior.
+METHODS = ("bootstrap", METHOD)
+
+
+def check_method(method: str) -> None:
+    """Refuse a ``method`` that is not one of ``METHODS`` (one line, by name)."""
+    if method not in METHODS:
+        raise ValidationError(
+            "method", str(method), f"must be one of {', '.join(METHODS)}", parameter=True
+        )
+
+
 INTERVAL_METHOD = "posterior median and 95 % equal-tailed credible interval (emcee draws)"
 LEVEL = 0.95
 #: Mean acceptance fraction outside this range: the chain did not converge.

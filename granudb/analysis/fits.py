@@ -46,7 +46,7 @@ __all__ = [
 
 #: How a fit states its uncertainty: the bootstrap (the default) or the posterior of the
 #: Bayesian option (``granudb.analysis.bayesian``).
-FIT_METHODS = ("bootstrap", bayesian.METHOD)
+FIT_METHODS = bayesian.METHODS
 DEFAULT_METHOD = "bootstrap"
 DEFAULT_RESAMPLES = resampling.DEFAULT_RESAMPLES
 DEFAULT_SEED = 0
@@ -269,6 +269,7 @@ def walton(
     ``draws`` when a list is given. ``sets``: a dict that receives each fitted group's
     bootstrap parameter sets (a ``walton.Decision``) under its (dataset, particle, wall,
     fluid), for the bands of its lines (``bands.walton_sets`` makes the same anew)."""
+    bayesian.check_method(method)
     rows = []
     for key, group in _groups(frame):
         row = _walton_group(key, group, resamples, seed, sets)

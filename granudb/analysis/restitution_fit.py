@@ -430,6 +430,7 @@ def restitution(
         raise ValidationError(
             "model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}", parameter=True
         )
+    bayesian.check_method(method)
     st = frame["normal_stokes_number"].to_numpy(dtype=float)
     e = frame["normal_restitution"].to_numpy(dtype=float)
     finite_e = np.isfinite(e)

@@ -142,3 +142,10 @@ def test_fit_commands_take_the_method_and_write_the_draws(cli, db: str, tmp_path
     with pytest.raises(ValidationError, match="need method bayes"):
         granudb.fit_walton(db=db, draws=tmp_path / "other.csv")
     assert not (tmp_path / "other.csv").exists()
+
+
+def test_an_unknown_method_is_refused_by_name_before_any_fit() -> None:
+    with pytest.raises(ValidationError, match="method: mcmc must be one of bootstrap, bayes"):
+        fits.walton(walton_frame(12), method="mcmc")
+    with pytest.raises(ValidationError, match="must be one of bootstrap, bayes"):
+        fits.restitution(restitution_runs(0.97, "threshold", 10.0, n=12), method="mcmc")
