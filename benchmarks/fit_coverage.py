@@ -7,7 +7,9 @@ defaults (resample rule, seed), and the share of sets whose interval holds the t
 printed with the bound 0.90, the share of sets given a value and an interval, and the
 reason when the interval was refused. An n at which the fit refuses every interval (below
 its stated minimum) is "refused", not a failure. Exit status 1 when any coverage is below
-the bound, or an interval has zero width.
+the bound, or an interval has zero width. The Bayesian option's rows ("Bayes: …", posterior
+credible intervals by emcee) run at most ``coverage.BAYES_SETS`` sets per cell: a posterior
+costs about a second a set.
 
     nice -n 10 python benchmarks/fit_coverage.py [--sets 200] [--sizes 5 10 30 100]
 """
@@ -33,12 +35,13 @@ def main() -> int:
     failed = False
     print(f"coverage of nominal 95 % intervals over {args.sets} synthetic sets; bound ≥ {BOUND}")
     print(f"{'fit':42} {'n':>4} {'coverage':>9} {'value':>6} {'interval':>9}  verdict")
+    print("(rows marked 'Bayes:' are the Bayesian option, at most their case's most_sets sets)")
     for case in CASES:
         if args.only not in case.name:
             continue
         for n in args.sizes:
             start = time.perf_counter()
-            t = tally(case, n, args.sets)
+            t = tally(case, n, min(args.sets, case.most_sets or args.sets))
             took = time.perf_counter() - start
             if t.given == 0:
                 verdict = f"refused ({t.reason or 'no value'})"

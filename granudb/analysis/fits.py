@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import intervals
+from granudb.analysis import bayesian, intervals
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
@@ -32,6 +32,7 @@ from granudb.analysis.restitution_fit import (
 )
 
 __all__ = [
+    "FIT_METHODS",
     "GROUP",
     "RESTITUTION_MODELS",
     "WALTON_COLUMNS",
@@ -43,6 +44,10 @@ __all__ = [
     "walton_arrays",
 ]
 
+#: How a fit states its uncertainty: the bootstrap (the default) or the posterior of the
+#: Bayesian option (``granudb.analysis.bayesian``).
+FIT_METHODS = bayesian.METHODS
+DEFAULT_METHOD = "bootstrap"
 DEFAULT_RESAMPLES = resampling.DEFAULT_RESAMPLES
 DEFAULT_SEED = 0
 CONFIDENCE_LEVEL = 0.95
@@ -75,6 +80,15 @@ WALTON_KEYS = {
     "bootstrap_rule": "how the resample count was chosen (resampling.RESAMPLE_RULE, or "
     "'as asked' when the caller gave one)",
     "reason": "why β or μ_f is absent ('' when both are given)",
+    "fit_method": "'bootstrap' or 'bayes' (FIT_METHODS)",
+    "bayes only: interval_method, prior, likelihood, sigma": "how the posterior was made "
+    "(values are posterior medians, _low/_high its 95 % equal-tailed credible interval, "
+    "_stderr its standard deviation; sigma the scatter of Ψ_out)",
+    "bayes only: sampler, sampler_source, sampler_walkers, _steps, _burn_in, _seed": "the "
+    "sampler's settings",
+    "bayes only: acceptance_fraction, autocorrelation_time(s), converged": "the chain's "
+    "diagnostics (no value unless it converged: bayesian.ACCEPTANCE, "
+    "bayesian.AUTOCORRELATION_MULTIPLE)",
 }
 
 WALTON_COLUMNS = [
@@ -122,6 +136,7 @@ _NUMBERS = [
 
 def _groups(frame: Any) -> Any:
     runs = [name for name in WALTON_INPUTS if name not in GROUP]  # the key says the group
+    runs.append(bayesian.STATED_U_WALTON)  # when the runs state it (the Bayesian option)
     return group_frames(frame, GROUP, runs, fill={"fluid": "dry"})
 
 
@@ -173,7 +188,9 @@ def bootstrap_plan(n: int, resamples: int | None) -> tuple[int, str]:
     return resampling.resample_count(n), resampling.RESAMPLE_RULE
 
 
-def _walton_group(key: tuple, group: Any, asked: int | None, seed: int) -> dict[str, Any]:
+def _walton_group(
+    key: tuple, group: Any, asked: int | None, seed: int, sets: dict | None = None
+) -> dict[str, Any]:
     x, y, c, e, folded, _, factor = walton_arrays(group)
     n = len(x)
     resamples, rule = bootstrap_plan(n, asked)
@@ -189,6 +206,8 @@ def _walton_group(key: tuple, group: Any, asked: int | None, seed: int) -> dict[
         return row
     fit = core.decide(np.ones((1, n)), x, y, c, e)
     boot = resampling.bootstrap(x, y, c, e, resamples, seed)
+    if sets is not None:  # the report's bands reuse them (granudb.analysis.bands)
+        sets[tuple(key)] = boot
     model = core.MODELS[int(fit.model[0])]
     k = int(fit.split[0])
     bic = dict(zip(core.MODELS, fit.bic[0].tolist(), strict=True))
@@ -233,12 +252,39 @@ def _walton_group(key: tuple, group: Any, asked: int | None, seed: int) -> dict[
 
 
 def walton(
-    frame: Any, *, resamples: int | None = None, seed: int = DEFAULT_SEED
+    frame: Any,
+    *,
+    resamples: int | None = None,
+    seed: int = DEFAULT_SEED,
+    method: str = DEFAULT_METHOD,
+    settings: bayesian.Settings = bayesian.DEFAULT,
+    draws: list | None = None,
+    sets: dict | None = None,
 ) -> list[dict[str, Any]]:
     """β, μ_f and ē per group with model selection and bootstrap intervals (Joseph & Hunt
     figures 4, 6, 9). Keys: ``WALTON_KEYS``. ``resamples`` None follows
-    ``walton_bootstrap.RESAMPLE_RULE`` (1000 for groups up to 10,000 runs)."""
-    return [_walton_group(key, group, resamples, seed) for key, group in _groups(frame)]
+    ``walton_bootstrap.RESAMPLE_RULE`` (1000 for groups up to 10,000 runs). ``method``
+    "bayes": posterior medians and credible intervals for the model chosen
+    (``bayesian.walton_row``, sampler ``settings``), each group's draws appended to
+    ``draws`` when a list is given. ``sets``: a dict that receives each fitted group's
+    bootstrap parameter sets (a ``walton.Decision``) under its (dataset, particle, wall,
+    fluid), for the bands of its lines (``bands.walton_sets`` makes the same anew)."""
+    bayesian.check_method(method)
+    rows = []
+    for key, group in _groups(frame):
+        row = _walton_group(key, group, resamples, seed, sets)
+        row["fit_method"] = method
+        if method == bayesian.METHOD:
+            arrays = walton_arrays(group)
+            sigma = bayesian.stated_u(group, "effective_rebound", arrays[5])
+            found, why = bayesian.walton_row(row, arrays, settings, sigma)
+            if row["model"] is not None:
+                reason = _reason(row["model"], row["n_sticking"], row["n_sliding"])
+                row["reason"] = "; ".join(p for p in (reason, why) if p)
+            if draws is not None and found is not None:
+                draws.append(found)
+        rows.append(row)
+    return rows
 
 
 #: What a run is on Walton's plot, as its group's fit decided (the one classification the

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import intervals
+from granudb.analysis import bayesian, intervals
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.errors import ValidationError
 from granudb.lazy import scipy_optimize
@@ -289,13 +289,14 @@ def one_step(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tu
     return (a, a_se), (p, p_se)
 
 
-def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
-                        resamples: int, seed: int,
-                        stated: tuple | None = None) -> dict[str, intervals.Interval]:  # fmt: skip
-    """Studentized bootstrap intervals of e_dry (unless ``fixed``) and the parameter, from
-    ``fit`` = (e_dry, e_dry_se, parameter, parameter_se). ``stated``: the runs' relative
-    standard uncertainties of v_n,in and v_n,out (``resampling.stated_speeds``); each
-    resample then also perturbs every run's measured speeds by them (``perturbed``)."""
+def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
+                   resamples: int, seed: int, stated: tuple | None = None) -> tuple:  # fmt: skip
+    """The bootstrap's parameter sets ((e_dry, se), (parameter, se)), arrays over resamples,
+    refitted from ``fit`` = (e_dry, e_dry_se, parameter, parameter_se): the sets behind
+    ``bootstrap_intervals`` and the report's band of the fitted curve. ``stated``: the
+    runs' relative standard uncertainties of v_n,in and v_n,out
+    (``resampling.stated_speeds``); each resample then also perturbs every run's measured
+    speeds by them (``perturbed``)."""
     n = len(st)
     rng = np.random.default_rng(seed)
     large = n > resampling.RULE_RUNS
@@ -310,9 +311,18 @@ def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, f
             parts.append(one_step(model, st, e, w, (fit[0], fit[2]), fixed))
         else:
             parts.append(refit(model, st, e, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
-    (a, a_se), (p, p_se) = (
+    return tuple(
         tuple(np.concatenate([part[i][j] for part in parts]) for j in range(2)) for i in range(2)
     )
+
+
+def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
+                        resamples: int, seed: int,
+                        stated: tuple | None = None) -> dict[str, intervals.Interval]:  # fmt: skip
+    """Studentized bootstrap intervals of e_dry (unless ``fixed``) and the parameter, from
+    ``fit`` = (e_dry, e_dry_se, parameter, parameter_se), and the runs' ``stated``
+    uncertainties (``bootstrap_sets``)."""
+    (a, a_se), (p, p_se) = bootstrap_sets(model, st, e, fit, fixed, resamples, seed, stated)
     found = {"parameter": intervals.studentized(fit[2], fit[3], p, p_se, bounds=(0.0, math.inf))}
     if not fixed:
         found["e_dry"] = intervals.studentized(fit[0], fit[1], a, a_se, bounds=(0.0, E_DRY_MAX))
@@ -403,7 +413,14 @@ def _intervals(
     row["interval_reason"] = "; ".join(reasons)
 
 
-def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
+def restitution(
+    frame: Any,
+    model: str = DEFAULT_MODEL,
+    *,
+    method: str = "bootstrap",
+    settings: bayesian.Settings = bayesian.DEFAULT,
+    draws: list | None = None,
+) -> list[dict[str, Any]]:
     """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
     (figure 5).
 
@@ -415,14 +432,18 @@ def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
     (``interval_method``, ``bootstrap_resamples``, ``bootstrap_seed``; NaN with
     ``interval_reason`` below MIN_RUNS_FOR_INTERVAL runs or when degenerate);
     ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
-    ``reason`` (why the fit is empty, else ''). Where runs carry stated uncertainties of
-    their normal speeds (``u_v_n_in_m_s``, ``u_v_n_out_m_s``), every resample perturbs
-    them too (``interval_method`` says so; docs/physics.md, "Fit intervals").
+    ``reason`` (why the fit is empty, else ''); ``fit_method``. Where runs carry stated
+    uncertainties of their normal speeds (``u_v_n_in_m_s``, ``u_v_n_out_m_s``), every
+    resample perturbs them too (``interval_method`` says so; docs/physics.md, "Fit
+    intervals"). ``method`` "bayes": values are posterior medians with 95 % credible
+    intervals (``bayesian.restitution_row``, which adds the prior, likelihood, sampler
+    settings and diagnostics), each group's draws appended to ``draws`` when a list is given.
     """
     if model not in RESTITUTION_MODELS:
         raise ValidationError(
             "model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}", parameter=True
         )
+    bayesian.check_method(method)
     st = frame["normal_stokes_number"].to_numpy(dtype=float)
     e = frame["normal_restitution"].to_numpy(dtype=float)
     finite_e = np.isfinite(e)
@@ -440,5 +461,16 @@ def restitution(frame: Any, model: str = DEFAULT_MODEL) -> list[dict[str, Any]]:
             stated = None if speeds is None else tuple(r[runs] for r in speeds)
             stated = stated if stated is not None and any(r.any() for r in stated) else None
             row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]], stated=stated)
+            row["fit_method"] = method
+            if method == bayesian.METHOD:
+                form = bayesian.Form(
+                    lambda s, a, q: restitution_curve(model, s, a, q),
+                    PARAMETER_NAMES[model],
+                    E_DRY_MAX,
+                )
+                sigma = bayesian.stated_u(frame, "normal_restitution", runs)
+                found = bayesian.restitution_row(row, form, st[runs], e[runs], settings, sigma)
+                if draws is not None and found is not None:
+                    draws.append(found)
             results.append(row)
     return results

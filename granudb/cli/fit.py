@@ -20,8 +20,14 @@ app = typer.Typer(
 )
 
 
+#: A Bayesian fit's table title says where its priors and diagnostics are.
+BAYES_TITLE = " — posterior medians (priors, sampler, diagnostics: --format json or csv)"
+
+
 def _show(frame: Any, kind: str, fmt: Format, title: str) -> None:
     every = list(frame.columns)
+    if "prior" in every:
+        title += BAYES_TITLE
     shown = [c for c in api.FIT_TABLE_COLUMNS[kind] if c in every] if fmt is Format.table else every
     emit(frame.to_dict("records"), shown or every, fmt, title=title)
 
@@ -41,11 +47,26 @@ def _fit_command(kind: str, help_text: str, title: str) -> None:
     app.command(kind.replace("_", "-"), help=help_text)(command)
 
 
-_fit_command(
-    "walton",
-    "β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē.",
-    "Walton fits",
+MethodOption = text(
+    "bootstrap (the default): bootstrap intervals; bayes: posterior medians and 95 % "
+    "credible intervals (emcee), with priors, sampler settings and convergence."
 )
+DrawsOption = text("With --method bayes: write the posterior draws to this new CSV.")
+
+
+@app.command()
+@collision_filters
+@wraps("fit_walton")
+def walton(
+    method: MethodOption = None,
+    draws: DrawsOption = None,
+    db: DbOption = None,
+    fmt: FormatOption = Format.table,
+    filters: dict | None = None,
+) -> None:
+    """β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē."""
+    frame = api.fit_walton(db=db, method=method, draws=draws, **(filters or {}))
+    _show(frame, "walton", fmt, "Walton fits")
 
 
 @app.command()
@@ -53,12 +74,14 @@ _fit_command(
 @wraps("fit_restitution")
 def restitution(
     model: text("exponential (the default) or threshold.") = None,
+    method: MethodOption = None,
+    draws: DrawsOption = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
     filters: dict | None = None,
 ) -> None:
     """e against the normal Stokes number for immersed runs: e_dry and k (or St_c)."""
-    frame = api.fit_restitution(model, db=db, **(filters or {}))
+    frame = api.fit_restitution(model, db=db, method=method, draws=draws, **(filters or {}))
     _show(frame, "restitution", fmt, "Restitution against Stokes number")
 
 

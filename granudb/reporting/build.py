@@ -266,7 +266,8 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     report["assumptions"] = _assumptions(frame)
     labels = labels_of(frame)
     palette = colours(labels)
-    walton = fits.walton(frame)
+    walton_sets: dict = {}  # the fits' bootstrap sets, for the bands of their lines
+    walton = fits.walton(frame, sets=walton_sets)
     branches = fits.walton_branches(frame, walton)  # the one classification of each run
     if not pair:
         report["runs"] = tables.run_table(tables.run_frame(frame, branches))
@@ -282,7 +283,7 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     if gap:
         report["tables"].append(tables.gap_table(gap, palette))
     fitted = {"walton": walton, "branches": branches, "restitution": restitution,
-              "critical_stokes": query.critical_stokes}  # fmt: skip
+              "critical_stokes": query.critical_stokes, "walton_sets": walton_sets}  # fmt: skip
     report["figures"] += figures.dataset_figures(frame, labels, palette, fitted)
     if not pair:
         report["figures"] += figures.pair_maps(

@@ -15,7 +15,8 @@ from typing import Any
 import numpy as np
 from sqlalchemy.engine import Connection
 
-from granudb.analysis import fits
+from granudb.analysis import bands, fits
+from granudb.analysis.groups import GROUP
 from granudb.db import catalog_rows, lookup_rows
 from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
@@ -186,13 +187,16 @@ def walton_lines(
     labels: Sequence[str],
     branches: np.ndarray,
     walton: Sequence[Mapping[str, Any]],
+    sets: Mapping[tuple, Any] | None = None,
 ) -> list[dict[str, Any]]:
     """The Walton lines of each group, each over the folded Ψ_in range where its branch
     holds for that group (``branches``, the one classification): the sticking line from 0
     up to the split (a sticking-only group: to its largest Ψ_in), the sliding line from
     the split (a sliding-only group: its smallest sliding Ψ_in) to the largest. A line is
     drawn only where the fit determined its parameter (β; μ_f and ē). Dicts with ``label``
-    (the group), ``branch``, ``x``, ``y`` and the legend ``text``."""
+    (the group), ``branch``, ``x``, ``y`` and the legend ``text``; with ``sets`` (the
+    groups' bootstrap parameter sets, ``bands.walton_sets``) each line whose parameter has
+    an interval gets its 95 % ``band`` (low, high over ``x``), else ``band`` is None."""
     folded = np.abs(np.asarray(psi_in, float))
     names = np.asarray(labels, dtype=object)
     factor = float(gyration_factor())
@@ -206,17 +210,28 @@ def walton_lines(
         split = float(split) if is_number(split) and fit.get("model") == "split" else None
         beta = fit.get("rotational_restitution")
         mu, e = fit.get("sliding_friction"), fit.get("normal_restitution_mean")
+        found = (sets or {}).get(tuple(fit.get(k) for k in GROUP))
         if is_number(beta) and stick.size:
             x = np.linspace(0.0, split if split is not None else float(stick.max()), 50)
             lines.append({"label": label, "branch": "sticking", "x": x, "y": -beta * x,
-                          "text": f"{label}: sticking, β = {beta:.2g}"})  # fmt: skip
+                          "text": f"{label}: sticking, β = {beta:.2g}",
+                          "band": _line_band(found, fit, "sticking", x, factor)})  # fmt: skip
         if is_number(mu) and is_number(e) and slide.size:
             start = split if split is not None else float(slide.min())
             x = np.linspace(start, float(slide.max()), 50)
             lines.append({"label": label, "branch": "sliding", "x": x,
                           "y": x - mu * (1 + e) * factor,
-                          "text": f"{label}: sliding, μ_f = {mu:.2g}"})  # fmt: skip
+                          "text": f"{label}: sliding, μ_f = {mu:.2g}",
+                          "band": _line_band(found, fit, "sliding", x, factor)})  # fmt: skip
     return lines
+
+
+def _line_band(sets: Any, fit: Mapping[str, Any], branch: str, x: np.ndarray, factor: float):
+    """A Walton line's band, or None without sets or without the parameter's interval."""
+    interval = "rotational_restitution" if branch == "sticking" else "sliding_friction"
+    if sets is None or not is_number(fit.get(f"{interval}_low")):
+        return None
+    return bands.walton_band(sets, branch, x, factor)
 
 
 def walton_caption(lines: Sequence[Mapping[str, Any]]) -> str:
@@ -234,7 +249,19 @@ def walton_caption(lines: Sequence[Mapping[str, Any]]) -> str:
         f"{caption}, with the fitted {' and '.join(words[k] for k in kinds)}, each over the "
         f"Ψ_in range of the runs its group's fit counts on that branch ({groups} "
         f"group{'s' if groups != 1 else ''} with a line; a group without one had no β or μ_f "
-        "determined)."
+        "determined)." + band_caption(sum(line.get("band") is not None for line in lines))
+    )
+
+
+def band_caption(count: int) -> str:
+    """What the shaded bands are ('' when none is drawn)."""
+    if not count:
+        return ""
+    return (
+        " Shaded around a line: its 95 % band, the 2.5–97.5 percentiles of the line at each "
+        "abscissa over the fit's bootstrap parameter sets (the resamples of its intervals): "
+        "the uncertainty of the fitted line, not the scatter of single runs (drawn only "
+        "where the fit gives the parameter's interval)."
     )
 
 
@@ -242,9 +269,13 @@ def dataset_figures(
     frame: Any, labels: Sequence[str], colours: Mapping[str, str], fitted: Mapping[str, Any]
 ) -> list[dict[str, Any]]:
     """The Walton, β, μ_f, restitution and shear-strain figures of a set of runs.
-    ``fitted``: ``walton``, ``branches``, ``restitution`` and ``critical_stokes``."""
+    ``fitted``: ``walton``, ``branches``, ``restitution`` and ``critical_stokes``, and
+    optionally ``walton_sets`` (the Walton fits' bootstrap sets, else made anew)."""
     psi_in = frame["effective_incidence"].to_numpy(dtype=float)
-    lines = walton_lines(psi_in, labels, fitted["branches"], fitted["walton"])
+    sets = fitted.get("walton_sets")
+    if sets is None:
+        sets = bands.walton_sets(frame, fitted["walton"])
+    lines = walton_lines(psi_in, labels, fitted["branches"], fitted["walton"], sets)
     errors = _errors(frame, "effective_incidence", "effective_rebound")
     figures = [
         _figure("fig-walton", walton_caption(lines) + (plots.ERROR_BARS if errors else ""),
@@ -269,7 +300,7 @@ def dataset_figures(
     # Only the columns the figure reads: a copy of every column of a million immersed runs
     # was the report's peak memory (about 200 MB more).
     wet = frame.loc[immersed, [c for c in WET_COLUMNS if c in frame]]
-    figures.append(restitution_figure(wet, wet_labels, colours, fitted))
+    figures.append(restitution_figure(wet, wet_labels, colours, fitted, frame))
     strain = frame["shear_strain"].to_numpy(float)[immersed]
     figures.append(
         _figure(
@@ -331,18 +362,27 @@ def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) 
 
 
 def restitution_figure(
-    wet: Any, labels: Sequence[str], colours: Mapping[str, str], fitted: Mapping[str, Any]
+    wet: Any,
+    labels: Sequence[str],
+    colours: Mapping[str, str],
+    fitted: Mapping[str, Any],
+    frame: Any = None,
 ) -> dict[str, Any]:
     """Measured e(St_n) of the immersed runs against the predicted curves (§10), with the
-    threshold fit when there is one (its St_c labelled as fitted); ``fitted`` as in
+    threshold fit when there is one (its St_c labelled as fitted) and, given the whole
+    ``frame`` of runs (the fit's groups), the fit's 95 % band; ``fitted`` as in
     ``dataset_figures``."""
     restitution, critical_stokes = fitted["restitution"], fitted["critical_stokes"]
     st_n = wet["normal_stokes_number"].to_numpy(float)
     curves = predicted_curves(wet, labels, critical_stokes)
     errors = _errors(wet, "normal_stokes_number", "normal_restitution")
+    line = _restitution_curve(restitution, st_n)
+    band = None
+    if line is not None and frame is not None:
+        band = bands.restitution_band(frame, line[3], line[0])
     svg = plots.restitution_with_prediction(
         st_n, wet["normal_restitution"].to_numpy(float), labels, colours, curves,
-        critical_stokes, _restitution_curve(restitution, st_n), errors=errors,
+        critical_stokes, None if line is None else line[:3], band=band, errors=errors,
     )  # fmt: skip
     caption = (
         "Measured normal restitution against the normal Stokes number St_n = m* v_N,in / "
@@ -355,21 +395,24 @@ def restitution_figure(
             else ""
         )
         + ". The grey line, where drawn, is the threshold fit of these runs; its St_c is "
-        "fitted, not the verdict's St_c." + (plots.ERROR_BARS if errors else "")
+        "fitted, not the verdict's St_c."
+        + band_caption(band is not None).replace("a line", "the grey line", 1)
+        + (plots.ERROR_BARS if errors else "")
     )
     return _figure("fig-restitution", caption, svg, len(st_n))
 
 
 def _restitution_curve(
     restitution: Sequence[Mapping[str, Any]], st_n: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, str] | None:
+) -> tuple[np.ndarray, np.ndarray, str, Mapping[str, Any]] | None:
+    """(St_n grid, e, legend text, the fit's row) of the first fitted group's curve."""
     fitted = [r for r in restitution if is_number(r.get("parameter")) and is_number(r.get("e_dry"))]
     if not fitted:
         return None
     r = fitted[0]
     grid = np.geomspace(max(1.0, float(np.nanmin(st_n)) * 0.5), float(np.nanmax(st_n)) * 2, 200)
     curve = fits.restitution_curve("threshold", grid, r["e_dry"], r["parameter"])
-    return grid, curve, f"threshold fit, fitted St_c = {r['parameter']:.2g}"
+    return grid, curve, f"threshold fit, fitted St_c = {r['parameter']:.2g}", r
 
 
 def thinned(count: int) -> str:

@@ -39,6 +39,9 @@ from granudb.reporting.verdicts import ROUGHNESS_WORDS
 
 #: Runs drawn per scatter figure at most; more add bytes, not information, to a scatter plot.
 MAX_POINTS = 2000
+#: Opacity of a fitted curve's 95 % band (``granudb.analysis.bands``): light enough for the
+#: runs and the line to read through it.
+BAND_ALPHA = 0.18
 THIN_SEED = 20040101
 #: A linear y-axis spans at least this fraction of the data's magnitude.
 MIN_RELATIVE_SPAN = 0.25
@@ -134,10 +137,14 @@ def walton_plot(
 
     ``lines``: the lines to draw (``granudb.reporting.figures.walton_lines``), dicts with
     ``label`` (a key of ``colours``), ``branch`` ("sticking" dashed, "sliding" solid),
-    ``x``, ``y`` and the legend ``text``.
+    ``x``, ``y`` and the legend ``text``; a line with a ``band`` (low, high over ``x``)
+    is shaded in its colour behind the runs.
     """
     plot = Plot(title="Tangential rebound (Walton model)", xlabel=PSI_IN,
                 ylabel="Ψ_out = v_T,out / v_N,in  (–)")  # fmt: skip
+    for line in lines:  # bands first: behind the runs and the lines
+        if line.get("band") is not None:
+            plot.band(line["x"], *line["band"], Style(colours[line["label"]], alpha=BAND_ALPHA))
     scatter_groups(plot, np.asarray(psi_in, float), np.asarray(psi_out, float), groups, colours,
                    errors)  # fmt: skip
     for line in lines:
@@ -321,13 +328,17 @@ def restitution_with_prediction(
     fitted: tuple[np.ndarray, np.ndarray, str] | None = None,
     figure_id: str = "fig-restitution",
     errors: tuple[Any, Any] | None = None,
+    band: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> str:
     """e against St_n with each group's predicted curve in the group's colour (dotted) and
-    an optional fitted curve (grey). ``predictions``: dicts with ``label`` (a key of
+    an optional fitted curve (grey) with its ``band`` (low, high over the fitted curve's
+    St_n, shaded grey behind everything). ``predictions``: dicts with ``label`` (a key of
     ``colours``), ``st_n`` and ``e`` arrays (the curve, on the St_n axis)."""
     plot = Plot(xlog=True, title="Restitution against Stokes number: measured and predicted",
                 xlabel="normal Stokes number St_n = m* v_N,in / (6πμR*²)  (–)",
                 ylabel="normal restitution e  (–)")  # fmt: skip
+    if fitted is not None and band is not None:
+        plot.band(fitted[0], *band, Style("#555555", alpha=BAND_ALPHA), "95 % band of the fit")
     scatter_groups(plot, np.asarray(stokes, float), np.asarray(restitution, float), groups, colours,
                    errors)  # fmt: skip
     for curve in predictions:

@@ -265,6 +265,15 @@ class Plot:
         data = tuple(np.asarray(v, float) for v in (x, y, u_x, u_y))
         self.layers.append(("errorbars", data, style))
 
+    def band(self, x: Any, low: Any, high: Any, style: Style, label: str | None = None) -> None:
+        """A shaded region between the curves ``low`` and ``high`` over ``x`` (a curve's
+        uncertainty band), filled in ``style.colour`` at opacity ``style.alpha``; draw it
+        before the line it surrounds so that the line stays on top."""
+        data = tuple(np.asarray(v, float) for v in (x, low, high))
+        self.layers.append(("band", data, style))
+        if label is not None:
+            self.legend.append(("patch", style, label))
+
     def polylines(self, lines: Sequence[tuple[np.ndarray, np.ndarray]], style: Style) -> None:
         """Several lines in one style (a contour), not used for the limits."""
         self.layers.append(("polylines", list(lines), style))
@@ -305,6 +314,9 @@ class Plot:
             elif kind == "cells":
                 xs.append(data[0])
                 ys.append(data[1])
+            elif kind == "band":
+                xs.append(data[0])
+                ys += [data[1], data[2]]
         self.x.fit(xs)
         self.y.fit(ys)
         if self.xlim:
@@ -469,6 +481,8 @@ def _layer(plot: Plot, kind: str, data: Any, style: Style | None, px: Any, py: A
     assert style is not None
     if kind == "errorbars":
         return _errorbars(plot, data, style, px, py, box)
+    if kind == "band":
+        return _band(*data, style, px, py)
     if kind == "points":
         x, y = data
         ok = plot.x.visible(x) & plot.y.visible(y)
@@ -518,6 +532,23 @@ def _errorbars(plot: Plot, data: Any, style: Style, px: Any, py: Any,
         return ""
     return (f'<path class="errorbar" d="{"".join(parts)}" fill="none" stroke="{style.colour}" '
             f'stroke-width="{style.width:g}" stroke-opacity="0.7"/>')  # fmt: skip
+
+
+def _band(x: np.ndarray, low: np.ndarray, high: np.ndarray, style: Style, px: Any,
+          py: Any) -> str:  # fmt: skip
+    """The region between ``low`` and ``high``: one closed path out along ``low`` and back
+    along ``high``, over the points where both are finite (no stroke)."""
+    ok = np.isfinite(x) & np.isfinite(low) & np.isfinite(high)
+    if ok.sum() < 2:
+        return ""
+    xs = px(x[ok])
+    out = [
+        f"{_number(a)},{_number(b)}" for a, b in zip(xs.tolist(), py(low[ok]).tolist(), strict=True)
+    ]
+    back = zip(xs[::-1].tolist(), py(high[ok])[::-1].tolist(), strict=True)
+    out += [f"{_number(a)},{_number(b)}" for a, b in back]
+    return (f'<path class="band" d="M{"L".join(out)}Z" fill="{style.colour}" '
+            f'fill-opacity="{style.alpha:g}" stroke="none"/>')  # fmt: skip
 
 
 def _cells(x_edges: np.ndarray, y_edges: np.ndarray, codes: np.ndarray, colours: list[str],
@@ -571,8 +602,9 @@ def _legend(plot: Plot, left: float, top: float, width: float, columns: int) -> 
         x = left + column * column_width
         mid = y - LEGEND_FONT * 0.35
         if kind == "patch":
+            shade = f' fill-opacity="{style.alpha:g}"' if style.alpha < 1 else ""
             sample = (f'<rect x="{x:.2f}" y="{y - 7:.2f}" width="{SAMPLE:g}" height="7" '
-                      f'fill="{style.colour}"/>')  # fmt: skip
+                      f'fill="{style.colour}"{shade}/>')  # fmt: skip
         elif kind == "line":
             sample = f'<path d="M{x:.2f},{mid:.2f}h{SAMPLE:g}" {style.attributes()}/>'
         else:

@@ -95,6 +95,9 @@ PUBLISHED_NARROW = ["source_locator", "label", "quantity", "value_as_printed"]
 #: The group a fit's row is for.
 FIT_GROUP = ["dataset", "particle", "wall", "fluid"]
 #: What a table of each fit shows (JSON and CSV show every key the fit returns).
+#: What a table of a Bayesian fit adds (a bootstrap fit's rows have none of these; the
+#: priors, likelihood and sampler settings are in every row of JSON and CSV).
+FIT_BAYES = ["converged"]
 FIT_NARROW = {
     "walton": [
         *FIT_GROUP,
@@ -104,6 +107,7 @@ FIT_NARROW = {
         "normal_restitution_mean",
         "n_sticking",
         "n_sliding",
+        *FIT_BAYES,
     ],
     "restitution": [
         *FIT_GROUP,
@@ -113,6 +117,7 @@ FIT_NARROW = {
         "parameter",
         "n_runs",
         "reason",
+        *FIT_BAYES,
     ],
     "gap_viscosity": [
         *FIT_GROUP,

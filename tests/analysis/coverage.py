@@ -29,6 +29,7 @@ class Case:
     make: Callable[[int, int], object]  # (n, seed) → frame
     fit: Callable[[object, int | None], dict]  # (frame, resamples) → the group's row
     keys: tuple[str, str, str]  # value, low, high
+    most_sets: int | None = None  # a slow fit (the Bayesian option) runs at most this many
 
 
 def _walton(frame, resamples):
@@ -36,12 +37,17 @@ def _walton(frame, resamples):
     return row
 
 
-def _restitution(model):
+def _restitution(model, method="bootstrap"):
     def fit(frame, resamples):
-        [row] = fits.restitution(frame, model)
+        [row] = fits.restitution(frame, model, method=method)
         return row
 
     return fit
+
+
+def _walton_bayes(frame, resamples):
+    [row] = fits.walton(frame, resamples=resamples, method="bayes")
+    return row
 
 
 def _gap(frame, resamples):
@@ -72,6 +78,10 @@ def _stated_runs(n, seed):
 
 
 _THRESHOLD, _EXPONENTIAL = _restitution("threshold"), _restitution("exponential")
+_THRESHOLD_BAYES = _restitution("threshold", "bayes")
+_EXPONENTIAL_BAYES = _restitution("exponential", "bayes")
+#: Sets per cell of the Bayesian option's rows (a posterior costs about a second a set).
+BAYES_SETS = 100
 PARAMETER = ("parameter", "parameter_low", "parameter_high")
 E_DRY = ("e_dry", "e_dry_low", "e_dry_high")
 CASES = [
@@ -153,6 +163,46 @@ CASES = [
         _stated_runs,
         _EXPONENTIAL,
         E_DRY,
+    ),
+    Case(
+        "Bayes: Walton β, split data (β₀ = 0.34)",
+        0.34,
+        _split,
+        _walton_bayes,
+        _walton_keys("rotational_restitution"),
+        BAYES_SETS,
+    ),
+    Case(
+        "Bayes: Walton μ_f, split data (μ_f = 0.11)",
+        0.11,
+        _split,
+        _walton_bayes,
+        _walton_keys("sliding_friction"),
+        BAYES_SETS,
+    ),
+    Case(
+        "Bayes: Walton ē, split data (e = 0.97)",
+        0.97,
+        _split,
+        _walton_bayes,
+        ("normal_restitution_mean", "normal_restitution_low", "normal_restitution_high"),
+        BAYES_SETS,
+    ),
+    Case(
+        "Bayes: restitution threshold St_c = 10",
+        10.0,
+        _threshold_runs,
+        _THRESHOLD_BAYES,
+        PARAMETER,
+        BAYES_SETS,
+    ),
+    Case(
+        "Bayes: restitution exponential k = 35",
+        35.0,
+        _exponential_runs,
+        _EXPONENTIAL_BAYES,
+        PARAMETER,
+        BAYES_SETS,
     ),
     Case(
         "gap viscosity μ₀ = 1.6 mPa·s",

@@ -1,0 +1,473 @@
+"""The Bayesian option of the Walton and restitution fits: posterior draws by emcee's
+affine-invariant ensemble sampler (issue 27; docs/physics.md, "Bayesian fits").
+
+Why this shape. The least-squares fits already decide *which* model the runs follow (the
+Walton model by BIC, the restitution form as asked); the Bayesian option keeps that choice
+and replaces the bootstrap interval of each parameter by a posterior credible interval, so
+the two answers differ only in how the uncertainty is stated and can be compared run for
+run. Likelihood: the fit's own model with independent Gaussian scatter, its scale σ fitted
+with the parameters (a log-uniform, scale-invariant prior), or the stated per-run standard
+uncertainties when the caller gives them (``sigma``; σ is then not a parameter): the fits
+read them from the runs' ``u_effective_rebound`` (Walton) and ``u_normal_restitution``
+(restitution) columns when every run of the group states one (``stated_u``). Priors:
+uniform on each parameter's physical range (``PRIORS``), stated in every result.
+
+Walton: the sticking model is Ψ_out = −βΨ_in, the sliding one Ψ_out = Ψ_in − μ_f(1+e)B and
+the split one Walton's max(−βΨ_in, Ψ_in − μ_f(1+e)B) (the folded runs of
+``granudb.analysis.walton``; the transition follows from β and μ_f, so no split point is
+sampled). ē has its own Gaussian scatter (a separate factor of the same posterior).
+Restitution: e = e_dry exp(−k/St_n) or e_dry(1 − St_c/St_n)₊, e_dry held at the dry runs'
+mean when the group has dry runs (as the least-squares fit does).
+
+Sampler: emcee (Foreman-Mackey, Hogg, Lang & Goodman 2013, PASP 125, 306), its ensemble of
+walkers moved by differential-evolution proposals (ter Braak 2006, Stat. Comput. 16, 239)
+mixed with Goodman & Weare's stretch move (2010, Comm. App. Math. Comp. Sci. 5, 65; see
+``MOVES``), walkers started in a small ball around the least-squares fit, every walker
+evaluated at once (``vectorize``).
+Summaries: the posterior median and the 2.5 and 97.5 percentiles of the draws after burn-in
+(an equal-tailed 95 % credible interval). A chain that has not converged gives no number:
+the mean acceptance fraction must lie in ``ACCEPTANCE`` and the chain after burn-in must be
+at least ``AUTOCORRELATION_MULTIPLE`` integrated autocorrelation times long (the length emcee's
+authors advise for a reliable estimate of τ), else every parameter is "not determined:
+chain did not converge (…)".
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from granudb.analysis import walton as core
+from granudb.errors import ValidationError
+from granudb.lazy import emcee
+from granudb.lazy import pandas as pd
+from granudb.vocabulary.terms import uncertainty_column
+
+#: The name of the option, as ``--method`` takes it.
+METHOD = "bayes"
+#: How the Walton and restitution fits state their uncertainty: the bootstrap (the
+#: default) or this module's posterior.
+METHODS = ("bootstrap", METHOD)
+
+
+def check_method(method: str) -> None:
+    """Refuse a ``method`` that is not one of ``METHODS`` (one line, by name)."""
+    if method not in METHODS:
+        raise ValidationError(
+            "method", str(method), f"must be one of {', '.join(METHODS)}", parameter=True
+        )
+
+
+INTERVAL_METHOD = "posterior median and 95 % equal-tailed credible interval (emcee draws)"
+LEVEL = 0.95
+#: Mean acceptance fraction outside this range: the chain did not converge.
+ACCEPTANCE = (0.1, 0.9)
+#: Draws after burn-in per walker must be at least this many autocorrelation times.
+AUTOCORRELATION_MULTIPLE = 50
+#: Runs (per-run σ absent) below which no posterior is given: σ and two line parameters.
+MIN_RUNS = core.MIN_RUNS_FOR_PARAMETER
+#: Shares of the differential-evolution move (ter Braak 2006) and the stretch move
+#: (Goodman & Weare 2010): measured on a split Walton set of 60 runs, the mixture's
+#: autocorrelation time was 11–13 steps against 30–43 for the stretch move alone, at the
+#: same cost per step.
+MOVES = (0.8, 0.2)
+SAMPLER_NAME = (
+    "emcee ensemble sampler: 80 % differential-evolution moves (ter Braak 2006), "
+    "20 % affine-invariant stretch moves (Goodman & Weare 2010)"
+)
+SOURCE = (
+    "Foreman-Mackey, Hogg, Lang & Goodman (2013) PASP 125, 306; Goodman & Weare (2010) "
+    "Comm. App. Math. Comp. Sci. 5, 65; ter Braak (2006) Stat. Comput. 16, 239"
+)
+#: Each parameter's prior, as every result states it.
+PRIORS = {
+    "rotational_restitution": "β uniform on [−1, 1] (Walton's range)",
+    "sliding_friction": "μ_f uniform on [0, ∞)",
+    "normal_restitution": "ē uniform on (0, 1.05] (the import's limit on measured e), "
+    "its scatter σ_e log-uniform",
+    "e_dry": "e_dry uniform on (0, 1]",
+    "k": "k uniform on [0, 100 max St_n]",
+    "fitted_critical_stokes": "St_c uniform on [0, 100 max St_n]",
+    "sigma": "σ log-uniform on (0, ∞) (scale-invariant; absent when per-run σ is given)",
+}
+#: Upper end of the restitution parameter's prior, in multiples of the largest St_n.
+PARAMETER_PRIOR_SPAN = 100.0
+E_MAX = 1.05
+
+
+@dataclass(frozen=True)
+class Settings:
+    """The sampler's settings, stated in every result."""
+
+    walkers: int = 32
+    steps: int = 1500
+    burn_in: int = 500
+    seed: int = 0
+
+    def describe(self) -> dict[str, Any]:
+        return {
+            "sampler": SAMPLER_NAME,
+            "sampler_source": SOURCE,
+            "sampler_walkers": self.walkers,
+            "sampler_steps": self.steps,
+            "sampler_burn_in": self.burn_in,
+            "sampler_seed": self.seed,
+        }
+
+
+DEFAULT = Settings()
+
+
+@dataclass(frozen=True)
+class Posterior:
+    """Draws after burn-in, shape (walkers, draws, parameters), and the diagnostics."""
+
+    names: tuple[str, ...]
+    chain: np.ndarray
+    acceptance: float
+    autocorrelation: np.ndarray  # τ per parameter, in steps
+    reason: str  # "" when the chain converged, else "not determined: ..."
+
+    def summary(self, name: str) -> tuple[float, float, float]:
+        """(median, low, high) of ``name``; NaN when the chain did not converge."""
+        if self.reason:
+            return math.nan, math.nan, math.nan
+        values = self.chain[..., self.names.index(name)].ravel()
+        tail = 50.0 * (1.0 - LEVEL)
+        low, median, high = np.percentile(values, [tail, 50.0, 100.0 - tail])
+        return float(median), float(low), float(high)
+
+    def spread(self, name: str) -> float:
+        """The posterior standard deviation of ``name`` (NaN when not converged)."""
+        if self.reason:
+            return math.nan
+        return float(np.std(self.chain[..., self.names.index(name)]))
+
+    def diagnostics(self) -> dict[str, Any]:
+        tau = self.autocorrelation
+        return {
+            "acceptance_fraction": self.acceptance,
+            "autocorrelation_time": float(np.max(tau)) if tau.size else math.nan,
+            "autocorrelation_times": ", ".join(
+                f"{n} {t:.3g}" for n, t in zip(self.names, tau, strict=True)
+            ),
+            "converged": not self.reason,
+        }
+
+    def draws(self, key: dict[str, Any]) -> Any:
+        """The draws as a long frame: ``key`` columns, chain (walker), draw (step after
+        burn-in), one column per parameter."""
+        walkers, steps, _ = self.chain.shape
+        columns = {
+            "chain": np.repeat(np.arange(walkers), steps),
+            "draw": np.tile(np.arange(steps), walkers),
+        }
+        for i, name in enumerate(self.names):
+            values = self.chain[..., i].ravel()
+            if name == "log_sigma":
+                values = np.exp(values)
+            columns[RESULT_NAMES.get(name, name)] = values
+        frame = pd.DataFrame(columns)
+        for position, (name, value) in enumerate(key.items()):
+            frame.insert(position, name, value)
+        return frame
+
+
+def sample(log_posterior, start: np.ndarray, spread: np.ndarray, names, settings: Settings):
+    """Run the ensemble from a ball of ``spread`` around ``start`` (each walker's start
+    drawn until the posterior is finite there) and judge convergence."""
+    rng = np.random.default_rng(settings.seed)
+    ndim = len(start)
+    walkers = max(settings.walkers, 2 * ndim + 2)
+    points = np.empty((walkers, ndim))
+    for i in range(walkers):
+        for _ in range(100):
+            trial = start + spread * rng.standard_normal(ndim)
+            if np.isfinite(log_posterior(trial[None, :])[0]):
+                break
+        else:
+            trial = start
+        points[i] = trial
+    moves = [(emcee.moves.DEMove(), MOVES[0]), (emcee.moves.StretchMove(), MOVES[1])]
+    sampler = emcee.EnsembleSampler(walkers, ndim, log_posterior, moves=moves, vectorize=True)
+    sampler.random_state = np.random.RandomState(settings.seed).get_state()
+    sampler.run_mcmc(points, settings.steps, progress=False)
+    chain = sampler.get_chain(discard=settings.burn_in).transpose(1, 0, 2)
+    acceptance = float(np.mean(sampler.acceptance_fraction))
+    tau = np.asarray(sampler.get_autocorr_time(discard=settings.burn_in, tol=0))
+    # tol=0: emcee's own length check (which only logs) is replaced by the one below
+    length = settings.steps - settings.burn_in
+    problems = []
+    if not ACCEPTANCE[0] <= acceptance <= ACCEPTANCE[1]:
+        problems.append(
+            f"acceptance fraction {acceptance:.2f} outside {ACCEPTANCE[0]}–{ACCEPTANCE[1]}"
+        )
+    if not (np.all(np.isfinite(tau)) and length >= AUTOCORRELATION_MULTIPLE * np.max(tau)):
+        problems.append(
+            f"{length} draws per walker < {AUTOCORRELATION_MULTIPLE} × autocorrelation time "
+            f"{np.max(tau):.3g}"
+        )
+    reason = f"not determined: chain did not converge ({'; '.join(problems)})" if problems else ""
+    return Posterior(tuple(names), chain, acceptance, tau, reason)
+
+
+def _gaussian(residual: np.ndarray, log_sigma: np.ndarray | None, sigma: np.ndarray | None):
+    """Σ log N(residual | 0, σ) over runs (the last axis), up to a constant."""
+    if sigma is not None:
+        return -0.5 * np.sum((residual / sigma) ** 2, axis=-1)
+    n = residual.shape[-1]
+    return -0.5 * np.sum(residual**2, axis=-1) * np.exp(-2 * log_sigma) - n * log_sigma
+
+
+def _log_scale(residual: np.ndarray, parameters: int) -> float:
+    """ln of the least-squares scatter, the walkers' start for ln σ."""
+    dof = max(residual.size - parameters, 1)
+    return math.log(max(math.sqrt(float(residual @ residual) / dof), 1e-12))
+
+
+def walton(
+    x: np.ndarray,
+    y: np.ndarray,
+    c: np.ndarray,
+    e: np.ndarray,
+    model: str,
+    start: tuple[float, float],
+    *,
+    sigma: np.ndarray | None = None,
+    settings: Settings = DEFAULT,
+) -> Posterior:
+    """The posterior of Walton's model ``model`` ("sticking", "sliding", "split") on folded
+    runs (``x`` = Ψ_in, ``y`` = Ψ_out, ``c`` = (1+e)B, ``e``) and of ē; ``start`` = the
+    least-squares (β, μ_f) (NaN where the model has no such line); ``sigma`` the per-run
+    standard uncertainty of Ψ_out (None: σ is fitted). ē: ``with_mean``."""
+    has_beta, has_mu = model != "sliding", model != "sticking"
+    beta0 = start[0] if math.isfinite(start[0]) else 0.0
+    mu0 = start[1] if math.isfinite(start[1]) else 0.0
+
+    def line(beta, mu):
+        stick, slide = -beta[:, None] * x, x - mu[:, None] * c
+        if model == "sticking":
+            return stick
+        return slide if model == "sliding" else np.maximum(stick, slide)
+
+    names = [n for n, has in (("beta", has_beta), ("mu_f", has_mu)) if has]
+    names += [] if sigma is not None else ["log_sigma"]
+    at = {n: i for i, n in enumerate(names)}
+
+    def log_posterior(p: np.ndarray) -> np.ndarray:
+        m = len(p)
+        beta = p[:, at["beta"]] if has_beta else np.zeros(m)
+        mu = p[:, at["mu_f"]] if has_mu else np.zeros(m)
+        inside = (beta >= -1) & (beta <= 1) & (mu >= 0)
+        log_sigma = p[:, at["log_sigma"]] if sigma is None else None
+        value = _gaussian(y - line(beta, mu), log_sigma, sigma)
+        return np.where(inside & np.isfinite(value), value, -np.inf)
+
+    fitted = y - line(np.array([beta0]), np.array([mu0]))[0]
+    first = {"beta": beta0, "mu_f": mu0, "log_sigma": _log_scale(fitted, len(names) - 1)}
+    point = np.array([first[n] for n in names])
+    spread = np.array([1e-3 if n.startswith("log") else 1e-4 for n in names])
+    posterior = sample(log_posterior, point, spread, names, settings)
+    return with_mean(posterior, e, settings.seed)
+
+
+def with_mean(posterior: Posterior, e: np.ndarray, seed: int) -> Posterior:
+    """``posterior`` with ē's draws appended: its exact marginal posterior under a flat
+    prior on ē and a log-uniform one on its scatter (Student t with n − 1 degrees of
+    freedom about the mean e, scale s/√n), truncated to (0, E_MAX], drawn independently
+    (τ = 1) in the chain's shape."""
+    walkers, steps, _ = posterior.chain.shape
+    n = len(e)
+    rng = np.random.default_rng(seed)
+    scale = float(np.std(e, ddof=1)) / math.sqrt(n) if n > 1 else math.nan
+    draws = np.full(walkers * steps, math.nan)
+    missing = np.arange(draws.size)
+    for _ in range(100):  # truncation by rejection (rarely needed: ē is far inside)
+        trial = float(np.mean(e)) + scale * rng.standard_t(max(n - 1, 1), missing.size)
+        keep = (trial > 0) & (trial <= E_MAX)
+        draws[missing[keep]] = trial[keep]
+        missing = missing[~keep]
+        if not missing.size:
+            break
+    chain = np.concatenate([posterior.chain, draws.reshape(walkers, steps, 1)], axis=2)
+    return Posterior(
+        (*posterior.names, "e_mean"),
+        chain,
+        posterior.acceptance,
+        np.append(posterior.autocorrelation, 1.0),
+        posterior.reason,
+    )
+
+
+@dataclass(frozen=True)
+class Form:
+    """A restitution form: ``curve(st, e_dry, parameter)`` (broadcasting), the parameter's
+    name, and the upper end of e_dry's prior."""
+
+    curve: Any
+    parameter: str
+    e_dry_max: float
+
+
+def restitution(
+    form: Form,
+    st: np.ndarray,
+    e: np.ndarray,
+    start: tuple[float, float],
+    fixed: bool,
+    *,
+    sigma: np.ndarray | None = None,
+    settings: Settings = DEFAULT,
+) -> Posterior:
+    """The posterior of the restitution ``form`` over immersed runs (St_n, e); ``start`` =
+    the least-squares (e_dry, parameter); e_dry held at ``start[0]`` when ``fixed``;
+    ``sigma`` the per-run standard uncertainty of e (None: σ is fitted)."""
+    parameter = form.parameter
+    names = (
+        ([] if fixed else ["e_dry"]) + [parameter] + ([] if sigma is not None else ["log_sigma"])
+    )
+    at = {n: i for i, n in enumerate(names)}
+    top = PARAMETER_PRIOR_SPAN * float(np.max(st))
+
+    def log_posterior(p: np.ndarray) -> np.ndarray:
+        a = np.full(len(p), start[0]) if fixed else p[:, at["e_dry"]]
+        q = p[:, at[parameter]]
+        inside = (a > 0) & (a <= form.e_dry_max) & (q >= 0) & (q <= top)
+        curve = form.curve(st[None, :], a[:, None], q[:, None])
+        log_sigma = p[:, at["log_sigma"]] if sigma is None else None
+        value = _gaussian(e - curve, log_sigma, sigma)
+        return np.where(inside & np.isfinite(value), value, -np.inf)
+
+    fitted = e - form.curve(st, start[0], start[1])
+    first = {
+        "e_dry": start[0],
+        parameter: start[1],
+        "log_sigma": _log_scale(fitted, 1 if fixed else 2),
+    }
+    point = np.array([first[n] for n in names])
+    scale = {"e_dry": 1e-4, parameter: 1e-3 * max(start[1], float(np.min(st)) * 1e-2)}
+    spread = np.array([scale.get(n, 1e-3) for n in names])
+    return sample(log_posterior, point, spread, names, settings)
+
+
+#: The column of the runs' stated u of Ψ_out that the Walton option reads when present.
+STATED_U_WALTON = uncertainty_column("effective_rebound")
+#: The result key of each sampled parameter (σ is reported as σ, sampled as ln σ).
+RESULT_NAMES = {
+    "beta": "rotational_restitution",
+    "mu_f": "sliding_friction",
+    "e_mean": "normal_restitution_mean",
+    "log_sigma": "sigma",
+}
+#: The Walton row's keys of each parameter's median, interval and spread.
+_WALTON_KEYS = {
+    "beta": ("rotational_restitution", "rotational_restitution"),
+    "mu_f": ("sliding_friction", "sliding_friction"),
+    "e_mean": ("normal_restitution_mean", "normal_restitution"),
+}
+LIKELIHOOD = {
+    "walton": "Ψ_out ~ Normal(the chosen model's line at Ψ_in, σ) per run, independent; "
+    "e ~ Normal(ē, σ_e)",
+    "restitution": "e ~ Normal(e(St_n) of the chosen form, σ) per run, independent",
+}
+
+
+def stated_u(frame: Any, column: str, rows: np.ndarray) -> np.ndarray | None:
+    """The runs' stated standard uncertainty of ``column`` (its ``u_`` column, the
+    vocabulary's naming) at positions ``rows``, when every one of them states one (> 0);
+    else None, and σ is fitted."""
+    name = uncertainty_column(column)
+    if name not in frame:
+        return None
+    u = frame[name].to_numpy(dtype=float)[rows]
+    return u if u.size and bool(np.all(np.isfinite(u) & (u > 0))) else None
+
+
+def _stated(row: dict, kind: str, names: tuple, per_run: bool, settings: Settings) -> None:
+    said = [PRIORS[RESULT_NAMES.get(n, n)] if n != "e_mean" else PRIORS["normal_restitution"]
+            for n in names if n != "log_sigma"]  # fmt: skip
+    said.append("σ given per run (not fitted)" if per_run else PRIORS["sigma"])
+    likelihood = LIKELIHOOD[kind]
+    if per_run:
+        likelihood = likelihood.replace(", σ)", ", the run's stated u)", 1)
+    row.update(fit_method=METHOD, interval_method=INTERVAL_METHOD, prior="; ".join(said))
+    row.update(likelihood=likelihood, **settings.describe())
+
+
+def _no_chain(row: dict) -> None:
+    row.update(acceptance_fraction=math.nan, autocorrelation_time=math.nan)
+    row.update(autocorrelation_times="", converged=False)
+
+
+def walton_row(
+    row: dict, arrays: tuple, settings: Settings = DEFAULT, sigma: np.ndarray | None = None
+) -> tuple[Any, str]:
+    """Replace a Walton row's values and intervals by the posterior's (median, 95 %
+    credible interval, posterior standard deviation as ``_stderr``) for the model the row
+    chose; parameters the least-squares fit did not determine stay NaN. ``arrays``: the
+    group's ``walton_arrays``; ``sigma``: per-run u of Ψ_out in the same (sorted) order.
+    Returns (draws frame or None, reason: '' or why there is no posterior)."""
+    x, y, c, e = arrays[:4]
+    model = row.get("model")
+    if model is None:
+        _stated(row, "walton", (), sigma is not None, settings)
+        _no_chain(row)
+        return None, ""
+    start = (row["rotational_restitution"], row["sliding_friction"])
+    posterior = walton(x, y, c, e, model, start, sigma=sigma, settings=settings)
+    _stated(row, "walton", posterior.names, sigma is not None, settings)
+    row.update(posterior.diagnostics())
+    for name, (value_key, prefix) in _WALTON_KEYS.items():
+        if name not in posterior.names or not math.isfinite(row[value_key]):
+            continue  # a line of < 3 runs: no value whatever the method
+        median, low, high = posterior.summary(name)
+        row.update({value_key: median, f"{prefix}_low": low, f"{prefix}_high": high})
+        if f"{prefix}_stderr" in row:
+            row[f"{prefix}_stderr"] = posterior.spread(name)
+    row["sigma"] = posterior.summary("log_sigma")[0] if sigma is None else math.nan
+    row["sigma"] = math.exp(row["sigma"]) if math.isfinite(row["sigma"]) else math.nan
+    key = {k: row[k] for k in ("dataset", "particle", "wall", "fluid")}
+    return posterior.draws(key), posterior.reason
+
+
+def restitution_row(
+    row: dict,
+    form: Form,
+    st: np.ndarray,
+    e: np.ndarray,
+    settings: Settings = DEFAULT,
+    sigma: np.ndarray | None = None,
+) -> Any:
+    """Replace a restitution row's e_dry and parameter (and intervals, standard errors) by
+    the posterior's; ``sigma``: per-run u of e. Returns the draws frame (None when the
+    least-squares fit gave nothing to start from); a chain that did not converge leaves
+    NaN and says why in ``interval_reason``."""
+    fixed = row["n_dry_runs"] > 0
+    parameter = form.parameter
+    names = (
+        (() if fixed else ("e_dry",)) + (parameter,) + (() if sigma is not None else ("log_sigma",))
+    )
+    _stated(row, "restitution", names, sigma is not None, settings)
+    if row["reason"]:
+        _no_chain(row)
+        return None
+    posterior = restitution(
+        form, st, e, (row["e_dry"], row["parameter"]), fixed, sigma=sigma, settings=settings
+    )
+    row.update(posterior.diagnostics())
+    for name, key in (("e_dry", "e_dry"), (parameter, "parameter")):
+        if name not in posterior.names:
+            continue
+        median, low, high = posterior.summary(name)
+        row.update({key: median, f"{key}_low": low, f"{key}_high": high})
+        row[f"{key}_stderr"] = posterior.spread(name)
+    if "fitted_critical_stokes" in row:
+        row["fitted_critical_stokes"] = row["parameter"]
+    log_sigma = posterior.summary("log_sigma")[0] if sigma is None else math.nan
+    row["sigma"] = math.exp(log_sigma) if math.isfinite(log_sigma) else math.nan
+    row["interval_reason"] = posterior.reason
+    key = {k: row[k] for k in ("dataset", "particle", "wall", "model")}
+    return posterior.draws(key)
