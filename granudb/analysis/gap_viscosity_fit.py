@@ -102,15 +102,21 @@ def _bootstrap(arrays: tuple, g: np.ndarray, smooth: np.ndarray, resamples: int,
     n = len(x)
     measured = (x - y) / c
     smooth = smooth & np.isfinite(g) & np.isfinite(measured)
-    series = np.stack([measured * g, g * g, measured * measured], axis=1)
+    # Σ w μ_f g, Σ w g², Σ w μ_f², Σ w over the smooth runs: a resample's sums over its
+    # sliding runs [k, n) are its counts times these, no (resamples × runs) temporaries
+    series = np.stack([measured * g, g * g, measured * measured, np.ones(n)], axis=1)
     series[~smooth] = 0.0
-    later = np.arange(n)
+    everywhere = bool(smooth.all())
     q_all, se_all = [], []
     for counts, decision in resampling.batches(x, y, c, e, resamples, seed):
-        w = counts[:, :n] * (later >= decision.split[:, None]) * smooth
-        sums = w @ series
-        drawn = np.count_nonzero(w, axis=1)
-        runs = w.sum(axis=1)
+        w = counts[:, :n]
+        sums = w @ series  # every run: right where the resample has no sticking line
+        drawn = np.empty(len(w), dtype=np.int64)
+        for row, k in enumerate(decision.split.tolist()):
+            if k:
+                sums[row] = w[row, k:] @ series[k:]
+            drawn[row] = np.count_nonzero(w[row, k:] if everywhere else w[row, k:] * smooth[k:])
+        runs = sums[:, 3]
         with np.errstate(invalid="ignore", divide="ignore"):
             q = sums[:, 0] / sums[:, 1]
             residual = sums[:, 2] - q * sums[:, 0]

@@ -264,16 +264,19 @@ def refit(
     return (a[:, 0], a_se), (p[:, 0], p_se)
 
 
-def one_step(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple, fixed: bool):
+def one_step(
+    model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple, fixed: bool,
+    series: np.ndarray | None = None,
+):  # fmt: skip
     """``refit`` by one Gauss–Newton step from ``start`` with the Jacobian of the fit (the
     one-step bootstrap of large groups: the fit's residuals and Jacobian are shared by all
-    resamples, so each costs a few weighted sums)."""
-    u = 1.0 / np.asarray(st, dtype=float)
-    a0, p0 = (np.asarray(float(v)) for v in start)
-    f, ja, jp = _curve(model, u, a0, p0)
-    r = e - f
-    sums = w @ np.stack([ja * r, jp * r, ja * ja, ja * jp, jp * jp, r * r], axis=1)
-    ga, gp, aa, ap, pp, rr = sums.T
+    resamples, so each costs a few weighted sums). ``series``: ``one_step_series`` of the
+    same arguments, computed once for every batch of resamples."""
+    if series is None:
+        series = one_step_series(model, st, e, start)
+    a0, p0 = (float(v) for v in start)
+    sums = w @ series
+    ga, gp, aa, ap, pp, rr, count = sums.T
     with np.errstate(invalid="ignore", divide="ignore"):
         if fixed:
             da, dp, det = np.zeros(len(w)), gp / pp, pp
@@ -282,11 +285,21 @@ def one_step(model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tu
             da, dp = (pp * ga - ap * gp) / det, (aa * gp - ap * ga) / det
         a = np.clip(a0 + da, 0.0, E_DRY_MAX)
         p = np.maximum(p0 + dp, 0.0)
-        dof = w.sum(axis=1) - (1 if fixed else 2)
+        dof = count - (1 if fixed else 2)
         scale = np.where(dof > 0, np.maximum(rr - da * ga - dp * gp, 0.0) / dof, np.nan)
         a_se = np.full(len(w), np.nan) if fixed else np.sqrt(scale * pp / det)
         p_se = np.sqrt(scale / pp) if fixed else np.sqrt(scale * aa / det)
     return (a, a_se), (p, p_se)
+
+
+def one_step_series(model: str, st: np.ndarray, e: np.ndarray, start: tuple) -> np.ndarray:
+    """Per run (n, 7): J_a r, J_p r, J_a², J_a J_p, J_p², r², 1 at ``start`` (the fit): a
+    resample's sums for ``one_step`` are its counts times these."""
+    u = 1.0 / np.asarray(st, dtype=float)
+    a0, p0 = (np.asarray(float(v)) for v in start)
+    f, ja, jp = _curve(model, u, a0, p0)
+    r = e - f
+    return np.stack([ja * r, jp * r, ja * ja, ja * jp, jp * jp, r * r, np.ones_like(r)], axis=1)
 
 
 def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
@@ -302,13 +315,15 @@ def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed:
     large = n > resampling.RULE_RUNS
     batch = max(1, resampling.BATCH_CELLS // (n if large else 8 * n))
     parts = []
+    series = one_step_series(model, st, e, (fit[0], fit[2])) if large else None
+    weights = np.zeros((min(batch, resamples), n))  # reused by every batch
     for start in range(0, resamples, batch):
-        w = resampling.draw_counts(rng, min(batch, resamples - start), n, n)
+        w = resampling.draw_counts(rng, min(batch, resamples - start), n, n, weights)
         if stated is not None:
             st_b, e_b = resampling.perturbed(rng, len(w), st, e, stated)
             parts.append(refit(model, st_b, e_b, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
         elif large:
-            parts.append(one_step(model, st, e, w, (fit[0], fit[2]), fixed))
+            parts.append(one_step(model, st, e, w, (fit[0], fit[2]), fixed, series))
         else:
             parts.append(refit(model, st, e, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
     return tuple(

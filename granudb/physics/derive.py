@@ -344,7 +344,8 @@ def _uncertainty_inputs(uncertainties: Mapping[str, Numeric] | None) -> dict[str
                 key, "", f"is not an input uncertainty (u_ + one of {', '.join(UNCERTAIN_INPUTS)})"
             )
         array = np.asarray(value, dtype=float)
-        _check(key, array, np.isnan(array) | (array >= 0), "must be ≥ 0 (NaN: not given)")
+        if (array < 0).any():  # one pass (NaN, "not given", is not < 0); the message below
+            _check(key, array, np.isnan(array) | (array >= 0), "must be ≥ 0 (NaN: not given)")
         out[_INPUTS[name]] = array
     return out
 

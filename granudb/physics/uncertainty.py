@@ -28,6 +28,14 @@ parameters e, β, Ψ_in and Ψ_out of a measured run are ratios of measured spee
 is ``ratio_uncertainty``'s (with ``contact_speed_uncertainty``), not a sensitivity here;
 μ_f of (2.9) gets none yet.
 
+How it is summed (``propagate``): each quantity's Σ (s_k u_k)² is formed once, a constant
+s_k² times the u_k² computed once per block (a zero s_k, like R*'s in p_max, adds
+nothing); a quantity whose sensitivities are a factor times a sum of others' with no
+source in common (St = m*/R*² · V/μ, Re, Λ = x₁/σ, (5.9)'s A, e's prediction from
+St_am, ζ) takes Σ coefficient² × their variances instead, which is the same sum
+regrouped. tests/physics/test_uncertainty.py checks every column against the plain sum,
+source by source, to 1e-12.
+
 The first-order result is checked against Monte Carlo propagation (JCGM 101:2008) in
 tests/physics/test_uncertainty.py: within 10 % for input uncertainties up to 5 %; at
 30 % the curvature makes them part: u(St) of a 30 % viscosity (St ∝ 1/μ) is more than
@@ -86,12 +94,21 @@ LIKELY, UNLIKELY = 0.9, 0.1
 
 def _lin(*terms: tuple[Any, Sens]) -> Sens:
     """Σ coefficient × sensitivities (the log of a product of powers)."""
+    given = [(coefficient, sens) for coefficient, sens in terms if sens]
+    if len(given) == 1 and type(given[0][0]) is int and given[0][0] == 1:
+        return given[0][1]  # the same sensitivities: their norm is computed once
     out: Sens = {}
-    for coefficient, sens in terms:
+    for coefficient, sens in given:
+        unit = type(coefficient) is int and coefficient in (1, -1)
         for source, value in sens.items():
-            scaled = value if type(coefficient) is int and coefficient == 1 else coefficient * value
             held = out.get(source)
-            out[source] = scaled if held is None else held + scaled
+            if unit and held is not None:  # one pass: add or subtract, no product first
+                out[source] = held + value if coefficient == 1 else held - value
+            elif unit and coefficient == 1:
+                out[source] = value
+            else:
+                product = coefficient * value
+                out[source] = product if held is None else held + product
     return out
 
 
@@ -111,8 +128,13 @@ def scaled_sources(x: Arrays, u: Arrays) -> Arrays:
         given = u.get(source)
         if given is None:
             continue
-        value = np.nan_to_num(np.asarray(given, dtype=float), nan=0.0)
-        if not value.any():
+        value = np.asarray(given, dtype=float)
+        total = value.sum()  # u ≥ 0 (``derive`` checks): 0 is none given, NaN some not given
+        if total != total:
+            value = np.nan_to_num(value, nan=0.0)
+            if not value.any():
+                continue
+        elif total == 0:
             continue
         with np.errstate(divide="ignore", invalid="ignore"):
             out[source] = value / np.abs(x[source]) if relative else value
@@ -143,26 +165,40 @@ def relative_uncertainty(
 def _norm(sens: Sens, scaled: Arrays, squares: Arrays | None = None) -> np.ndarray | float:
     """√(Σ (s_k u_k)²) over the given sources (after ``_merged``); ``squares``, the
     u_k² if already computed, save a multiplication for each constant s_k."""
+    total = _variance(sens, scaled, squares)
+    return 0.0 if total is None else np.sqrt(total)
+
+
+def _variance(sens: Sens, scaled: Arrays, squares: Arrays | None = None) -> Any:
+    """Σ (s_k u_k)² (``_norm`` squared; None without a given source). The result may be
+    one of ``squares`` itself (a single source of unit weight): read it, never write it."""
     total: Any = None
+    owned = False  # total is a fresh array of this call's, summed into in place
     for source, value in sens.items():
         given = scaled.get(source)
         if given is None:
             continue
         if squares is not None and not isinstance(value, np.ndarray):
-            term = (value * value) * squares[source]
+            weight = value * value
+            if weight == 0:  # a sensitivity that cancels (e.g. R* in p_max) adds nothing
+                continue
+            term = squares[source] if weight == 1 else weight * squares[source]
+            fresh = weight != 1
         else:
             term = value * given
             if isinstance(term, np.ndarray):
                 np.multiply(term, term, out=term)
             else:
                 term = term * term
+            fresh = True
         if total is None:
-            total = term
-        elif isinstance(total, np.ndarray) and total.shape == np.shape(term):
+            total, owned = term, fresh and isinstance(term, np.ndarray)
+        elif owned and total.shape == np.shape(term):
             total += term
         else:
             total = total + term
-    return 0.0 if total is None else np.sqrt(total)
+            owned = isinstance(total, np.ndarray)
+    return total
 
 
 def _merged(sens: Sens, scaled: Arrays, correlated: Any, one_speed: Any, speed_factor: Any) -> Sens:
@@ -175,16 +211,23 @@ def _merged(sens: Sens, scaled: Arrays, correlated: Any, one_speed: Any, speed_f
     pairs = [(first, second, correlated, 1.0) for first, second in _PARTNERS.items()]
     pairs.append(("vn", "vt", one_speed, speed_factor))
     for first, second, flag, factor in pairs:
-        if second not in out or flag is None or not np.any(flag):
+        if second not in out or flag is None or (flag is not True and not np.any(flag)):
             continue
         moved = out[second] * factor
-        if np.all(flag):
+        if flag is True or np.all(flag):
             out[first] = out.get(first, 0.0) + moved
             del out[second]
         else:
             out[first] = out.get(first, 0.0) + np.where(flag, moved, 0.0)
             out[second] = np.where(flag, 0.0, out[second])
     return out
+
+
+def _flag(flag: Any) -> Any:
+    """A correlation flag as None (no row), True (every row) or the array (some rows)."""
+    if flag is None or not np.any(flag):
+        return None
+    return True if np.all(flag) else flag
 
 
 def _indicator(condition: np.ndarray) -> np.ndarray:
@@ -208,6 +251,8 @@ def sensitivities(
     with np.errstate(divide="ignore", invalid="ignore"):
         # v_n's u is scaled by v_N (relative), v_t's is absolute: one speed's ratio
         speed_factor = x["vt"] * p["v_n"] / x["vn"]
+
+    correlated, one_speed = _flag(correlated), _flag(one_speed)  # tested once, not per base
 
     def base(sens: Sens) -> Sens:
         return _merged(sens, scaled, correlated, one_speed, speed_factor)
@@ -263,8 +308,14 @@ def sensitivities(
         "impact_speed_m_s": s_v,
         "normal_speed_m_s": s_vn,
     }
-    s["reynolds_number"] = _lin((1, rho_f), (1, s_r), (1, s_v), (-1, mu))
-    s["stokes_number"] = _lin((1, s_m), (1, s_v), (-1, mu), (-2, s_r))
+    # Quantities whose u comes from others': Q's sensitivities are factor × Σ coefficient
+    # × parts; where the parts have no source in common (checked in ``propagate``) the
+    # variance is Σ coefficient² × the parts' variances, computed once for all.
+    sums: dict[str, tuple[Any, tuple[tuple[Any, Sens], ...]]] = {}
+    sums["reynolds_number"] = (None, ((1, rho_f), (1, s_r), (1, s_v), (-1, mu)))
+    inertia = _lin((1, s_m), (-2, s_r))  # m*/R*²
+    sums["stokes_number"] = (None, ((1, inertia), (1, s_v), (-1, mu)))
+    sums["normal_stokes_number"] = (None, ((1, inertia), (1, s_vn), (-1, mu)))
     s["normal_stokes_number"] = _lin((1, s_m), (1, s_vn), (-1, mu), (-2, s_r))
     s["added_mass_stokes_number"] = _lin(
         (1, s["normal_stokes_number"]), (k_am, rho_f), (-k_am, rho1)
@@ -301,32 +352,33 @@ def sensitivities(
             "eta_hat_pa_inv": c,
             "piezoviscous_length_m": _lin((0.5, c), (0.5, mu), (0.5, s_vn), (0.5, s_r)),
             "composite_roughness_m": s_sigma,
-            "film_parameter": _lin((1, x1), (-1, s_sigma)),
         }
     )
+    sums["film_parameter"] = (None, ((1, x1), (-1, s_sigma)))
     with np.errstate(divide="ignore", invalid="ignore"):
         recovery = 35.0 / f["st_am"]  # d ln e_pred / d ln St_am of e_dry exp(−35/St_am)
-    s["predicted_restitution"] = _scale(recovery, s["added_mass_stokes_number"])
+    sums["predicted_restitution"] = (recovery, ((1, s["added_mass_stokes_number"]),))
     film = _lin(
         (2 / 7, s_r), (5 / 7, mu), (5 / 7, s_u), (5 / 7, c), (-1 / 21, load),
         (1 / 21, s_e), (2 / 21, s_r)
     )  # fmt: skip
     slope = lubrication.friction_integral_log_slope(f["eta_hat"] * h["p_max"], lub["integral"])
     integral = _scale(slope, _lin((1, c), (1, pressure)))
+    sums["friction_integral"] = (slope, ((1, c), (1, pressure)))
     friction = _lin((1, mu), (1, s_u), (2, radius), (1, integral), (-1, load), (-1, film))
     stiffness = _lin((1, g_sens), (-1, e_sources))
     s.update(
         {
             "tangential_speed_m_s": s_u,
             "traction_film_m": film,
-            "friction_integral": integral,
             "lubricated_friction": friction,
             "shear_strain": _lin((2 / 7, mu), (2 / 7, s_u), (-2 / 7, s_e), (-2 / 7, s_r)),
             "maw_chi": stiffness,
         }
     )
     angle_factor = v_n * tangential / (v_n**2 + tangential**2)  # dζ = that × (dln U − dln v_N)
-    s["incidence_angle_rad"] = _scale(angle_factor, _lin((1, s_u), (-1, s_vn)))
+    sums["incidence_angle_rad"] = (angle_factor, ((1, s_u), (-1, s_vn)))
+    s["_sums"] = sums  # not a column: the quantities above
     s["_yield_ratio"] = _lin((1, pressure), (-1, s_y))  # not a column: P(yield)'s ratio
     s["_e_star_sources"] = e_sources  # not a column: E*'s own sources, for ``propagate``
     return s
@@ -364,19 +416,34 @@ def propagate(
     if "vn" in scaled:
         scaled["vn"] = scaled["vn"] / p["v_n"]  # relative to the approach speed v_N > 0
     sens = sensitivities(x, (p, h, f, lub), scaled, correlated, one_speed)
+    sums = sens.pop("_sums")
     squares = {source: value * value for source, value in scaled.items()}
-    norms: dict[int, Any] = {}  # quantities with the same sensitivities (x₁, h_m) once
-    for value in sens.values():
-        if id(value) not in norms:
-            norms[id(value)] = _norm(value, scaled, squares)
-    relative = {name: norms[id(value)] for name, value in sens.items()}
+    variances: dict[int, Any] = {}  # each set of sensitivities once (x₁ and h_m share one)
+    norms: dict[int, Any] = {}
+
+    def variance(value: Sens) -> Any:
+        if id(value) not in variances:
+            variances[id(value)] = _variance(value, scaled, squares)
+        return variances[id(value)]
+
+    relative: dict[str, Any] = {}
+    for name, value in sens.items():
+        if name not in sums and (name in columns or name == "_yield_ratio"):
+            if id(value) not in norms:
+                total = variance(value)
+                norms[id(value)] = 0.0 if total is None else np.sqrt(total)
+            relative[name] = norms[id(value)]
+    for name, (factor, parts) in sums.items():
+        relative[name] = _sum_norm(factor, parts, scaled, variance)
     lubricated = (tan["mu_used"] == lub["mu_lub"]) & np.isfinite(lub["mu_lub"])
     relative["friction_coefficient_used"] = np.where(
         lubricated, relative["lubricated_friction"], 0.0
     )
-    friction = expand_e_star(
-        _scale(lubricated.astype(float), sens["lubricated_friction"]), sens["_e_star_sources"]
-    )
+    if lubricated.all():
+        friction = sens["lubricated_friction"]
+    else:
+        friction = _scale(lubricated.astype(float), sens["lubricated_friction"])
+    friction = expand_e_star(friction, sens["_e_star_sources"])
     relative["maw_psi_in"] = _norm(
         _lin((1, sens["maw_chi"]), (1, sens["tangential_speed_m_s"]),
              (-1, sens["normal_speed_m_s"]), (-1, friction)),
@@ -473,6 +540,33 @@ def contact_speed_uncertainty(
     return np.where(given, np.sqrt(total), np.nan)
 
 
+def _sum_norm(factor: Any, parts: tuple, scaled: Arrays, variance: Any) -> Any:
+    """u(Q)/|Q| of sensitivities factor × Σ coefficient × part (``sensitivities``' sums):
+    from the parts' variances where no two parts share a given source, else from the
+    combined sensitivities; ``variance`` gives (and caches) a part's."""
+    keys = [scaled.keys() & part.keys() for _, part in parts]
+    if sum(map(len, keys)) == len(set().union(*keys)):  # no source in two parts
+        total: Any = None
+        owned = False  # total is this call's own array (the parts' are cached: read only)
+        for coefficient, part in parts:
+            term = variance(part)
+            if term is None:  # no given source in this part
+                continue
+            weight = coefficient * coefficient
+            if total is None:
+                total, owned = (term, False) if weight == 1 else (weight * term, True)
+            elif owned and isinstance(total, np.ndarray) and total.shape == np.shape(term):
+                total += term if weight == 1 else weight * term
+            else:
+                total, owned = total + (term if weight == 1 else weight * term), True
+    else:
+        total = variance(_lin(*parts))
+    if total is None:  # no given source: no uncertainty, whatever the factor
+        return 0.0
+    norm = np.sqrt(total)
+    return norm if factor is None else norm * np.abs(factor)
+
+
 def normal_cdf(z: np.ndarray | float) -> np.ndarray:
     """Φ(z), the standard normal distribution function, vectorized; ±inf give 1 and 0.
 
@@ -482,14 +576,25 @@ def normal_cdf(z: np.ndarray | float) -> np.ndarray:
     [0.1587, 0.5, 0.975]
     """
     z = np.asarray(z, dtype=float)
-    t_arg = np.abs(z) / np.sqrt(2.0)
-    t = 1.0 / (1.0 + 0.3275911 * t_arg)
-    poly = t * (
-        0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429)))
-    )
+    if z.ndim == 0:
+        return normal_cdf(z.reshape(1)).reshape(())
+    t_arg = np.abs(z)
+    t_arg *= 1.0 / np.sqrt(2.0)
+    t = 0.3275911 * t_arg
+    t += 1.0
+    np.divide(1.0, t, out=t)
+    poly = 1.061405429 * t
+    for coefficient in (-1.453152027, 1.421413741, -0.284496736, 0.254829592):
+        poly += coefficient
+        poly *= t
+    np.multiply(t_arg, t_arg, out=t_arg)
+    np.negative(t_arg, out=t_arg)
     with np.errstate(over="ignore", under="ignore"):
-        erf = 1.0 - poly * np.exp(-t_arg * t_arg)
-    return np.where(np.isnan(z), np.nan, 0.5 * (1.0 + np.sign(z) * erf))
+        np.exp(t_arg, out=t_arg)
+    poly *= t_arg
+    poly *= 0.5  # Φ(−|z|) = erfc(|z|/√2)/2
+    # z > 0: 1 − Φ(−z); NaN stays NaN (the polynomial of NaN is NaN)
+    return np.where(z > 0, 1.0 - poly, poly)
 
 
 def exceedance(ratio: Any, u_relative: Any) -> np.ndarray:
