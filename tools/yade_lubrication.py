@@ -31,7 +31,6 @@ from __future__ import annotations
 import json
 import math
 import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
@@ -114,8 +113,8 @@ def cases() -> list[dict[str, object]]:
     return out
 
 
-def main() -> None:
-    todo = cases()
+def measure(todo: list[dict[str, object]]) -> list[float]:
+    """Run every case in one Yade process; e of each, in order."""
     with tempfile.TemporaryDirectory(prefix="granudb-lubrication-") as tmp:
         (Path(tmp) / "cases.json").write_text(json.dumps(todo))
         script = Path(tmp) / "run.py"
@@ -126,7 +125,13 @@ def main() -> None:
     lines = proc.stdout.splitlines()
     found = [float(ln.split()[1]) for ln in lines if ln.startswith("GRANUDB_LUB")]
     if len(found) != len(todo):
-        sys.exit(f"yade printed {len(found)} of {len(todo)} results: {proc.stderr[-500:]}")
+        raise RuntimeError(f"yade printed {len(found)} of {len(todo)}: {proc.stderr[-500:]}")
+    return found
+
+
+def main() -> None:
+    todo = cases()
+    found = measure(todo)
     print(f"{'material':8} {'fluid':12} {'target':6} {'St_am':>6} {'V m/s':>7} {'e Yade':>7} "
           f"{'e(St)':>6} {'gap':>7}")  # fmt: skip
     for c, e in zip(todo, found, strict=True):

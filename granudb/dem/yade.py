@@ -22,6 +22,10 @@ Checked in the installed yade (``Ip2_FrictMat_FrictMat_MindlinPhys.__doc__`` and
   MindlinPhys uses R/2 for a wall contact: k_n is 1/√2 of Hertz's and the contact lasts
   2^{1/5} ≈ 1.15 times longer. e and μ_f do not depend on it; the fragment says so.
 - Rolling friction is not exported: MindlinPhys has no rolling-friction coefficient.
+- Yade's lubrication law (``Ip2_FrictMat_FrictMat_LubricationPhys`` with
+  ``Law2_ScGeom_ImplicitLubricationPhys``) is not exported: measured against granudb's
+  e(St) it misses by up to −0.17 and +0.34 (``LUBRICATION_MEASURED``); a wet fragment
+  says so.
 """
 
 from __future__ import annotations
@@ -29,7 +33,7 @@ from __future__ import annotations
 import math
 
 from granudb.dem import damping, deck
-from granudb.dem.spec import DemModel, PairParameters
+from granudb.dem.spec import TOLERANCES, DemModel, PairParameters
 
 CODE = "Yade"
 VERSION = "2023.02a, Debian package yade"
@@ -39,6 +43,44 @@ VERSION = "2023.02a, Debian package yade"
 SLIDING_ANGLE_DEG = 60.0
 #: Where the fragment says what the effective μ_f becomes away from that angle.
 STATED_ANGLES_DEG = (45.0, 80.0)
+
+#: Yade's lubrication law measured against granudb's e(St) = 0.97 exp(−35/St_am)
+#: (tools/yade_lubrication.py; glass and steel, 12.7 mm, in 37 % and 78 % glycerol; the
+#: lowest and highest e of the four): St_am → (e against a wall, e between two spheres,
+#: e(St)). The wall is a fixed sphere of 1000 R with η scaled to the sphere–plane force.
+LUBRICATION_MEASURED = {
+    20: ((0.001, 0.006), (0.473, 0.505), 0.169),
+    50: ((0.572, 0.589), (0.789, 0.802), 0.482),
+    200: ((0.893, 0.900), (0.947, 0.951), 0.814),
+    700: ((0.969, 0.972), (0.985, 0.986), 0.923),
+    2000: ((0.990, 0.991), (0.995, 0.995), 0.953),
+}
+
+
+def lubrication_note() -> str:
+    """Why a wet fragment holds e constant instead of Yade's lubrication law, with the
+    measured gap per Stokes number (``LUBRICATION_MEASURED``)."""
+
+    def span(low_high: tuple[float, float]) -> str:
+        low, high = low_high
+        return f"{low:.3f}" if low == high else f"{low:.3f}-{high:.3f}"
+
+    rows = "; ".join(
+        f"St_am {st}: {span(wall)} (wall), {span(sphere)} (sphere) for e(St) {law:.3f}"
+        for st, (wall, sphere, law) in LUBRICATION_MEASURED.items()
+    )
+    return (
+        "Yade's lubrication law (Ip2_FrictMat_FrictMat_LubricationPhys with "
+        "Law2_ScGeom_ImplicitLubricationPhys: viscosity eta, roughness eps = sigma/(R1+R2) "
+        "from the materials, keps 1000, film from R/10) is NOT exported: it does not "
+        f"follow e(St) within {TOLERANCES['restitution_law']:g}. Measured e (glass and steel "
+        f"in 37 % and 78 % glycerol, tools/yade_lubrication.py): {rows}. It has no dry "
+        "dissipation (e tends to 1, not e_dry); its Reynolds film between sigma and R/10 "
+        "takes 2 ln(R/(10 sigma))/St (St = rho_p 2RV/(9 eta)) of the speed against a wall, "
+        "about 0.6 of the 35/St_am the curve takes; at St_am 20 the sphere stays on the "
+        "wall. So e is held constant here (the range it holds for is stated)."
+    )
+
 
 #: Why Ψ_out at 30° may miss Walton's relation with a measured β (``dem verify``).
 REBOUND_LIMIT = deck.rebound_limit(CODE, "MindlinPhys's from the materials' E and nu")
@@ -98,6 +140,8 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             "Yade's wall geometry gives a wall contact the sphere's radius (R* = R/2): the "
             "contact is softer than Hertz's by 1/sqrt(2); e and mu_f are unaffected."
         )
+    if any(p.wet is not None for p in model.pairs):
+        out += deck.comment(lubrication_note())
     if any(p.rolling_friction is not None for p in model.pairs):
         out += deck.comment("rolling friction not exported: MindlinPhys has no rolling coefficient")
     out += ["import math", "granudb_material = {}"]
