@@ -41,6 +41,10 @@ VERSION = "2023.02a, Debian package yade"
 #: The impact angle (from the normal) at which μ_in gives the target μ_f on the sliding
 #: branch: the oblique angle ``dem verify`` checks it at.
 SLIDING_ANGLE_DEG = 60.0
+#: How far below μ_f the effective μ_f at that angle may stay when no input up to
+#: ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it, before the export refuses (a third
+#: of ``dem verify``'s tolerance on μ_f).
+FRICTION_SHORTFALL = TOLERANCES["friction"] / 3.0
 #: Where the fragment says what the effective μ_f becomes away from that angle.
 STATED_ANGLES_DEG = (45.0, 80.0)
 
@@ -102,27 +106,45 @@ def betan(pair: PairParameters, clamp: bool) -> deck.Limited:
     return deck.Limited(damping.yade_betan(limited.value), limited.note)
 
 
-def friction_input(model: DemModel, pair: PairParameters, betan: float) -> tuple[float, str]:
-    """μ_in for the pair's ``frictAngle`` and the sentence saying why (module docstring):
+def friction_input(
+    model: DemModel, pair: PairParameters, betan: float, clamp: bool = False
+) -> tuple[float, str]:
+    """μ_in for the pair's ``frictAngle`` and the sentences saying why (module docstring):
     the input whose effective μ_f at ``SLIDING_ANGLE_DEG`` is the pair's μ_f, with
-    Yade's damping C = √6 β_n and stiffness ratio k_s/k_n = 8 G*/((4/3) E*)."""
+    Yade's damping C = √6 β_n and stiffness ratio k_s/k_n = 8 G*/((4/3) E*). Where no
+    input up to ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it (e below about 0.1),
+    refused, or with ``clamp`` written at that limit and said so."""
     mu = pair.friction.value
     scales = model.contact(pair)
     c = round(math.sqrt(6.0) * betan, 12)
     ratio = round(scales.mindlin_stiffness / scales.hertz_stiffness, 12)
+    angles = (SLIDING_ANGLE_DEG, *STATED_ANGLES_DEG)
     psi = round(math.tan(math.radians(SLIDING_ANGLE_DEG)), 12)
     mu_in = damping.friction_for_sliding(round(mu, 12), c, ratio, psi)
-    psis = [math.tan(math.radians(a)) for a in STATED_ANGLES_DEG]
-    others = damping.sliding_friction(mu_in, c, ratio, psis, step=2e-3)
+    psis = [math.tan(math.radians(a)) for a in angles]
+    effective = [float(m) for m in damping.sliding_friction(mu_in, c, ratio, psis, step=2e-3)]
+    limited = deck.check(
+        CODE,
+        f"friction {deck.pair_label(pair)}",
+        mu,
+        effective[0] >= mu * (1.0 - FRICTION_SHORTFALL),
+        f"MindlinPhys sticks so long at first touch (damping C = {c:.3g}) that no mu_f input "
+        f"up to {damping.FRICTION_INPUT_LIMIT:g} times it slides with it at "
+        f"{SLIDING_ANGLE_DEG:g} deg (at most {effective[0]:.4g})",
+        effective[0],
+        clamp,
+    )
     stated = " and ".join(
-        f"{float(m):.4g} at {a:g} deg" for a, m in zip(STATED_ANGLES_DEG, others, strict=True)
+        f"{m:.4g} at {a:g} deg" for a, m in zip(STATED_ANGLES_DEG, effective[1:], strict=True)
     )
-    return mu_in, (
+    note = (
         f"{deck.pair_label(pair)}: mu_f input {deck.num(mu_in)} so that the effective "
-        f"mu_f on the sliding branch at {SLIDING_ANGLE_DEG:g} deg is {deck.num(mu)}: Yade's "
-        "contact sticks at first touch while its damped normal force jumps "
-        f"(granudb.dem.damping.sliding_friction); the effective mu_f is {stated}"
+        f"mu_f on the sliding branch at {SLIDING_ANGLE_DEG:g} deg is "
+        f"{deck.num(limited.value)}: Yade's contact sticks at first touch while its damped "
+        f"normal force jumps (granudb.dem.damping.sliding_friction); the effective mu_f is "
+        f"{stated}"
     )
+    return mu_in, note + (f". {limited.note}" if limited.note else "")
 
 
 def write(model: DemModel, *, clamp: bool = False) -> str:
@@ -168,7 +190,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             notes.append(note)
         beta_rows += [line for n in notes[:1] + notes[2:] for line in deck.comment(n, "    # ")]
         beta_rows.append(f"    ({ids}, {deck.num(beta.value)}),")
-        mu_in, mu_note = friction_input(model, pair, beta.value)
+        mu_in, mu_note = friction_input(model, pair, beta.value, clamp)
         friction_rows += deck.comment(notes[1], "    # ") + deck.comment(mu_note, "    # ")
         friction_rows.append(f"    ({ids}, math.atan({deck.num(mu_in)})),")
         shear_rows += deck.comment(
