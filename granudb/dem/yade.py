@@ -14,7 +14,7 @@ Checked in the installed yade (``Ip2_FrictMat_FrictMat_MindlinPhys.__doc__`` and
   incremental Mindlin spring sticks at first touch, while the damped normal force jumps
   (C δ^{1/4} δ̇) and the spring builds as ∫k_s du, so the friction impulse falls short of
   μ_in times the normal one — by 4.1 % on glass in 78 % glycerol at 60° (μ_f 0.15, e 0.27),
-  0.01 % dry. μ_in is the input whose effective μ_f on the sliding branch at
+  below 0.01 % dry. μ_in is the input whose effective μ_f on the sliding branch at
   ``SLIDING_ANGLE_DEG`` is μ_f (``damping.friction_for_sliding``, which reproduces Yade's
   0.1433 for that case to 0.1 %); the deficit shrinks as the impact grows more oblique, so
   the fragment states the effective μ_f at 45° and 80° too.
@@ -112,7 +112,7 @@ def friction_input(
     """μ_in for the pair's ``frictAngle`` and the sentences saying why (module docstring):
     the input whose effective μ_f at ``SLIDING_ANGLE_DEG`` is the pair's μ_f, with
     Yade's damping C = √6 β_n and stiffness ratio k_s/k_n = 8 G*/((4/3) E*). Where no
-    input up to ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it (e below about 0.1),
+    input up to ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it (e of a few percent),
     refused, or with ``clamp`` written at that limit and said so."""
     mu = pair.friction.value
     scales = model.contact(pair)
