@@ -249,3 +249,62 @@ def stiffness_ratio_for_rebound(rebound: float, damping: float, mindlin_ratio: f
         low, high = grid[k], grid[k + 1]
     values = stick_rebound(np.array([low, high]), damping) - rebound
     return float(low - values[0] * (high - low) / (values[1] - values[0]))
+
+
+def sliding_friction(
+    friction: Any, damping: float, stiffness_ratio: float, psi_in: Any, *, step: float = 1e-3
+) -> Any:
+    """The effective μ_f = (Ψ_in − Ψ_out)/((1 + e)·3.5) of an oblique impact on the clamped
+    law (1) with an incremental Mindlin spring capped at ``friction`` times the normal force
+    (Yade's ``Law2_ScGeom_MindlinPhys_Mindlin`` with ``betas`` 0): in the units of (1),
+
+        Ḟ_t = −ρ √δ w  with |F_t| ≤ μ_f F_n,   ẇ = 3.5 F_t,   w(0) = Ψ_in .
+
+    Below the input μ_f because the contact first sticks: the damped normal force jumps
+    at first touch (C δ^{1/4} δ̇) while the spring builds as ∫√δ w dt, so for a moment
+    |F_t| < μ_f F_n. ``friction`` and ``psi_in`` may be arrays (broadcast together; the
+    normal motion depends on neither).
+    """
+    mu = np.asarray(friction, dtype=float)
+
+    def accel(x: float, v: float) -> float:
+        xp = max(x, 0.0)
+        return min(-(xp**1.5) - damping * xp**0.25 * v, 0.0)
+
+    x, v, h, t = 0.0, 1.0, step, 0.0
+    force = np.zeros(np.broadcast(mu, psi_in).shape)
+    w, impulse = force + psi_in, 0.0
+    while t < 200.0:
+        k1x, k1v = v, accel(x, v)
+        k2x, k2v = v + 0.5 * h * k1v, accel(x + 0.5 * h * k1x, v + 0.5 * h * k1v)
+        k3x, k3v = v + 0.5 * h * k2v, accel(x + 0.5 * h * k2x, v + 0.5 * h * k2v)
+        k4x, k4v = v + h * k3v, accel(x + h * k3x, v + h * k3v)
+        x += h / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x)
+        v += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v)
+        t += h
+        if x <= 0.0:  # the end of contact
+            break
+        normal = -accel(x, v)
+        cap = mu * normal
+        force = np.clip(force - stiffness_ratio * math.sqrt(x) * w * h, -cap, cap)
+        w = w + CONTACT_POINT_FACTOR * force * h
+        impulse += normal * h
+    return (psi_in - w) / (CONTACT_POINT_FACTOR * impulse)
+
+
+#: The largest μ_f input :func:`friction_for_sliding` writes, as a multiple of the target.
+FRICTION_INPUT_LIMIT = 1.3
+
+
+@lru_cache(maxsize=256)
+def friction_for_sliding(
+    friction: float, damping: float, stiffness_ratio: float, psi_in: float
+) -> float:
+    """The μ_f input whose effective μ_f (:func:`sliding_friction`) at ``psi_in`` is
+    ``friction``: the effective μ_f grows monotonically with the input, so it is
+    interpolated on a grid of inputs from ``friction`` to ``FRICTION_INPUT_LIMIT`` times
+    it; where even the top of the grid falls short, the top (the caller checks what it
+    gives)."""
+    grid = friction * np.linspace(1.0, FRICTION_INPUT_LIMIT, 16)
+    achieved = sliding_friction(grid, damping, stiffness_ratio, psi_in, step=2e-3)
+    return float(np.interp(friction, achieved, grid))

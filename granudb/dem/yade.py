@@ -9,12 +9,23 @@ Checked in the installed yade (``Ip2_FrictMat_FrictMat_MindlinPhys.__doc__`` and
   Yade adds the tangential dashpot outside the Coulomb cap while a contact sticks, and
   with a wet pair's β_n that force exceeded μ_f F_n (μ_f +155 % on glass in 78 %
   glycerol at 60°).
-- Friction is a per-pair ``frictAngle`` MatchMaker (tan φ = μ_f); without it Yade takes
-  the smaller of the two materials' angles (a mixing rule).
+- Friction is a per-pair ``frictAngle`` MatchMaker (tan φ = μ_in); without it Yade takes
+  the smaller of the two materials' angles (a mixing rule). μ_in is not μ_f: Yade's
+  incremental Mindlin spring sticks at first touch, while the damped normal force jumps
+  (C δ^{1/4} δ̇) and the spring builds as ∫k_s du, so the friction impulse falls short of
+  μ_in times the normal one — by 4.1 % on glass in 78 % glycerol at 60° (μ_f 0.15, e 0.27),
+  below 0.01 % dry. μ_in is the input whose effective μ_f on the sliding branch at
+  ``SLIDING_ANGLE_DEG`` is μ_f (``damping.friction_for_sliding``, which reproduces Yade's
+  0.1433 for that case to 0.1 %); the deficit shrinks as the impact grows more oblique, so
+  the fragment states the effective μ_f at 45° and 80° too.
 - ``Ig2_Wall_Sphere_ScGeom`` gives the wall the sphere's radius (refR1 = refR2 = R), so
   MindlinPhys uses R/2 for a wall contact: k_n is 1/√2 of Hertz's and the contact lasts
   2^{1/5} ≈ 1.15 times longer. e and μ_f do not depend on it; the fragment says so.
 - Rolling friction is not exported: MindlinPhys has no rolling-friction coefficient.
+- Yade's lubrication law (``Ip2_FrictMat_FrictMat_LubricationPhys`` with
+  ``Law2_ScGeom_ImplicitLubricationPhys``) is not exported: measured against granudb's
+  e(St) it misses by up to −0.17 and +0.34 (``LUBRICATION_MEASURED``); a wet fragment
+  says so.
 """
 
 from __future__ import annotations
@@ -22,10 +33,58 @@ from __future__ import annotations
 import math
 
 from granudb.dem import damping, deck
-from granudb.dem.spec import DemModel, PairParameters
+from granudb.dem.spec import TOLERANCES, DemModel, PairParameters
 
 CODE = "Yade"
 VERSION = "2023.02a, Debian package yade"
+
+#: The impact angle (from the normal) at which μ_in gives the target μ_f on the sliding
+#: branch: the oblique angle ``dem verify`` checks it at.
+SLIDING_ANGLE_DEG = 60.0
+#: How far below μ_f the effective μ_f at that angle may stay when no input up to
+#: ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it, before the export refuses (a third
+#: of ``dem verify``'s tolerance on μ_f).
+FRICTION_SHORTFALL = TOLERANCES["friction"] / 3.0
+#: Where the fragment says what the effective μ_f becomes away from that angle.
+STATED_ANGLES_DEG = (45.0, 80.0)
+
+#: Yade's lubrication law measured against granudb's e(St) = 0.97 exp(−35/St_am)
+#: (tools/yade_lubrication.py; glass and steel, 12.7 mm, in 37 % and 78 % glycerol; the
+#: lowest and highest e of the four): St_am → (e against a wall, e between two spheres,
+#: e(St)). The wall is a fixed sphere of 1000 R with η scaled to the sphere–plane force.
+LUBRICATION_MEASURED = {
+    20: ((0.001, 0.006), (0.473, 0.505), 0.169),
+    50: ((0.572, 0.589), (0.789, 0.802), 0.482),
+    200: ((0.893, 0.900), (0.947, 0.951), 0.814),
+    700: ((0.969, 0.972), (0.985, 0.986), 0.923),
+    2000: ((0.990, 0.991), (0.995, 0.995), 0.953),
+}
+
+
+def lubrication_note() -> str:
+    """Why a wet fragment holds e constant instead of Yade's lubrication law, with the
+    measured gap per Stokes number (``LUBRICATION_MEASURED``)."""
+
+    def span(low_high: tuple[float, float]) -> str:
+        low, high = low_high
+        return f"{low:.3f}" if low == high else f"{low:.3f}-{high:.3f}"
+
+    rows = "; ".join(
+        f"St_am {st}: {span(wall)} (wall), {span(sphere)} (sphere) for e(St) {law:.3f}"
+        for st, (wall, sphere, law) in LUBRICATION_MEASURED.items()
+    )
+    return (
+        "Yade's lubrication law (Ip2_FrictMat_FrictMat_LubricationPhys with "
+        "Law2_ScGeom_ImplicitLubricationPhys: viscosity eta, roughness eps = sigma/(R1+R2) "
+        "from the materials, keps 1000, film from R/10) is NOT exported: it does not "
+        f"follow e(St) within {TOLERANCES['restitution_law']:g}. Measured e (glass and steel "
+        f"in 37 % and 78 % glycerol, tools/yade_lubrication.py): {rows}. It has no dry "
+        "dissipation (e tends to 1, not e_dry); its Reynolds film between sigma and R/10 "
+        "takes 2 ln(R/(10 sigma))/St (St = rho_p 2RV/(9 eta)) of the speed against a wall, "
+        "about 0.6 of the 35/St_am the curve takes; at St_am 20 the sphere stays on the "
+        "wall. So e is held constant here (the range it holds for is stated)."
+    )
+
 
 #: Why Ψ_out at 30° may miss Walton's relation with a measured β (``dem verify``).
 REBOUND_LIMIT = deck.rebound_limit(CODE, "MindlinPhys's from the materials' E and nu")
@@ -47,6 +106,47 @@ def betan(pair: PairParameters, clamp: bool) -> deck.Limited:
     return deck.Limited(damping.yade_betan(limited.value), limited.note)
 
 
+def friction_input(
+    model: DemModel, pair: PairParameters, betan: float, clamp: bool = False
+) -> tuple[float, str]:
+    """μ_in for the pair's ``frictAngle`` and the sentences saying why (module docstring):
+    the input whose effective μ_f at ``SLIDING_ANGLE_DEG`` is the pair's μ_f, with
+    Yade's damping C = √6 β_n and stiffness ratio k_s/k_n = 8 G*/((4/3) E*). Where no
+    input up to ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it (e of a few percent),
+    refused, or with ``clamp`` written at that limit and said so."""
+    mu = pair.friction.value
+    scales = model.contact(pair)
+    c = round(math.sqrt(6.0) * betan, 12)
+    ratio = round(scales.mindlin_stiffness / scales.hertz_stiffness, 12)
+    angles = (SLIDING_ANGLE_DEG, *STATED_ANGLES_DEG)
+    psi = round(math.tan(math.radians(SLIDING_ANGLE_DEG)), 12)
+    mu_in = damping.friction_for_sliding(round(mu, 12), c, ratio, psi)
+    psis = [math.tan(math.radians(a)) for a in angles]
+    effective = [float(m) for m in damping.sliding_friction(mu_in, c, ratio, psis, step=2e-3)]
+    limited = deck.check(
+        CODE,
+        f"friction {deck.pair_label(pair)}",
+        mu,
+        effective[0] >= mu * (1.0 - FRICTION_SHORTFALL),
+        f"MindlinPhys sticks so long at first touch (damping C = {c:.3g}) that no mu_f input "
+        f"up to {damping.FRICTION_INPUT_LIMIT:g} times it slides with it at "
+        f"{SLIDING_ANGLE_DEG:g} deg (at most {effective[0]:.4g})",
+        effective[0],
+        clamp,
+    )
+    stated = " and ".join(
+        f"{m:.4g} at {a:g} deg" for a, m in zip(STATED_ANGLES_DEG, effective[1:], strict=True)
+    )
+    note = (
+        f"{deck.pair_label(pair)}: mu_f input {deck.num(mu_in)} so that the effective "
+        f"mu_f on the sliding branch at {SLIDING_ANGLE_DEG:g} deg is "
+        f"{deck.num(limited.value)}: Yade's contact sticks at first touch while its damped "
+        f"normal force jumps (granudb.dem.damping.sliding_friction); the effective mu_f is "
+        f"{stated}"
+    )
+    return mu_in, note + (f". {limited.note}" if limited.note else "")
+
+
 def write(model: DemModel, *, clamp: bool = False) -> str:
     """Python to ``exec`` in a Yade script before building bodies and engines."""
     deck.check_poisson(CODE, model, -1.0, clamp)
@@ -62,6 +162,8 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             "Yade's wall geometry gives a wall contact the sphere's radius (R* = R/2): the "
             "contact is softer than Hertz's by 1/sqrt(2); e and mu_f are unaffected."
         )
+    if any(p.wet is not None for p in model.pairs):
+        out += deck.comment(lubrication_note())
     if any(p.rolling_friction is not None for p in model.pairs):
         out += deck.comment("rolling friction not exported: MindlinPhys has no rolling coefficient")
     out += ["import math", "granudb_material = {}"]
@@ -88,8 +190,9 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             notes.append(note)
         beta_rows += [line for n in notes[:1] + notes[2:] for line in deck.comment(n, "    # ")]
         beta_rows.append(f"    ({ids}, {deck.num(beta.value)}),")
-        friction_rows += deck.comment(notes[1], "    # ")
-        friction_rows.append(f"    ({ids}, math.atan({deck.num(pair.friction.value)})),")
+        mu_in, mu_note = friction_input(model, pair, beta.value, clamp)
+        friction_rows += deck.comment(notes[1], "    # ") + deck.comment(mu_note, "    # ")
+        friction_rows.append(f"    ({ids}, math.atan({deck.num(mu_in)})),")
         shear_rows += deck.comment(
             f"{deck.pair_label(pair)}: no tangential damping (its dashpot acts outside the "
             "Coulomb cap while the contact sticks)",

@@ -60,3 +60,39 @@ def test_stiffness_for_a_measured_beta(beta: float, e: float) -> None:
     ratio = damping.stiffness_ratio_for_rebound(beta, c, mindlin)
     assert 0.0 < ratio < mindlin
     assert float(damping.stick_rebound(ratio, c, step=1e-3)) == pytest.approx(beta, abs=2e-3)
+
+
+def test_sliding_friction_falls_short_where_the_damped_contact_sticks() -> None:
+    """Properties the incremental, capped spring must have: an undamped, stiff contact
+    slides from first touch (Walton's μ_f comes back); heavy damping makes it stick at
+    first and lose friction impulse, less so the more oblique the impact."""
+    sqrt3 = 3**0.5
+    stiff = float(damping.sliding_friction(0.15, 1e-6, 1e6, sqrt3, step=2e-3))
+    assert stiff == pytest.approx(0.15, rel=2e-3)
+    dry = float(damping.sliding_friction(0.15, damping.clamped_hertz_damping(0.97), 1.3, sqrt3))
+    assert dry == pytest.approx(0.15, rel=5e-4)
+    c = damping.clamped_hertz_damping(0.274)
+    wet = damping.sliding_friction(0.15, c, 1.3, [1.0, sqrt3, 5.67])
+    assert 0.13 < wet[0] < wet[1] < wet[2] < 0.15
+    # a finer step agrees
+    fine = float(damping.sliding_friction(0.15, c, 1.3, sqrt3, step=5e-4))
+    assert float(wet[1]) == pytest.approx(fine, rel=2e-3)
+
+
+@pytest.mark.parametrize(("mu", "e"), [(0.15, 0.274), (0.11, 0.5), (0.106, 0.97)])
+def test_friction_input_gives_the_target_on_the_sliding_branch(mu: float, e: float) -> None:
+    c = damping.clamped_hertz_damping(e)
+    mu_in = damping.friction_for_sliding(mu, c, 1.3, 3**0.5)
+    assert mu_in >= mu
+    back = float(damping.sliding_friction(mu_in, c, 1.3, 3**0.5, step=1e-3))
+    assert back == pytest.approx(mu, rel=2e-3)
+
+
+def test_friction_input_stops_at_its_limit() -> None:
+    """A contact that sticks too long (a soft spring, heavy damping, a near-normal impact)
+    cannot be given the target by any input up to the limit: the limit is returned, and
+    what it gives falls short (the writer checks it)."""
+    c = damping.clamped_hertz_damping(0.2)
+    mu_in = damping.friction_for_sliding(0.5, c, 0.05, 0.3)
+    assert mu_in == pytest.approx(0.5 * damping.FRICTION_INPUT_LIMIT)
+    assert float(damping.sliding_friction(mu_in, c, 0.05, 0.3)) < 0.5

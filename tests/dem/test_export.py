@@ -145,3 +145,14 @@ def test_lammps_takes_a_measured_beta_liggghts_and_yade_say_they_cannot() -> Non
     for writer in (liggghts, yade):
         assert "beta NOT reproduced (glass/zerodur 0.39" in writer.write(dry_model())
     assert "beta NOT reproduced" not in liggghts.write(wet_model("glycerol78"))
+
+
+def test_yade_refuses_a_friction_its_damped_contact_cannot_slide_with() -> None:
+    """Glass in 78 % glycerol at 0.12 m/s (e ≈ 0.03): Yade's contact sticks so long at
+    first touch that no μ_f input up to 1.3 times the target gives it at 60°; refused in
+    one line, or written at that limit with --clamp and said so."""
+    model = wet_model("glycerol78", speed=0.12)
+    with pytest.raises(ValidationError, match="sticks so long at first touch.*--clamp"):
+        yade.write(model)
+    text = yade.write(model, clamp=True)
+    assert "CLAMPED from 0.106 to" in text
