@@ -13,8 +13,6 @@ string with its unit (``"190 GPa"``), with its standard uncertainty if known
 
 from __future__ import annotations
 
-import difflib
-import inspect
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -25,7 +23,6 @@ from granudb.api.catalog import entry
 from granudb.api.consent import Confirm, agreed, unchanged
 from granudb.api.database import opened
 from granudb.db import catalog_changes
-from granudb.errors import ValidationError
 from granudb.io.seed import POINT_NUMERIC, read_table
 from granudb.reporting.format import display
 from granudb.vocabulary import FLUIDS, MATERIALS, Catalogue
@@ -87,33 +84,14 @@ def _required(catalogue: Catalogue, given: dict[str, Any]) -> None:
 def _given(catalogue: Catalogue, values: dict[str, Any]) -> dict[str, Any]:
     """``values`` (a public function's ``**values``) if each is one of the catalogue's
     parameters, else ``ValidationError`` with the nearest name."""
-    for parameter, value in values.items():
-        if parameter not in catalogue.parameters:
-            near = difflib.get_close_matches(parameter, catalogue.parameters, n=1)
-            rule = f"is not a value of a {catalogue.kind}" + (
-                f"; did you mean {near[0]}?" if near else ""
-            )
-            raise ValidationError(parameter, repr(value)[:60], rule, parameter=True)
-    return values
+    return inputs.known_options(values, catalogue.parameters, f"a value of a {catalogue.kind}")
 
 
 def _takes(catalogue: Catalogue) -> Callable[[F], F]:
-    """The decorated function's ``**values`` are the catalogue's parameters: its signature
-    (``help()``, ``inspect``, editors that ask at run time) shows each as a keyword
-    argument defaulting to ``None``, generated from the specification as the command
-    line's options are."""
-
-    def decorate(function: F) -> F:
-        signature = inspect.signature(function)
-        name, *rest = (p for p in signature.parameters.values() if p.kind is not p.VAR_KEYWORD)
-        values = [
-            inspect.Parameter(parameter, inspect.Parameter.KEYWORD_ONLY, default=None)
-            for parameter in catalogue.parameters
-        ]
-        function.__signature__ = signature.replace(parameters=[name, *values, *rest])  # type: ignore[attr-defined]
-        return function
-
-    return decorate
+    """The decorated function's ``**values`` are the catalogue's parameters, shown in its
+    signature as keywords defaulting to ``None``, generated from the specification as the
+    command line's options are."""
+    return inputs.shows_keywords(dict.fromkeys(catalogue.parameters))
 
 
 def _add(catalogue: Catalogue, name: str, source: str | None, db: Any, given: dict) -> dict:

@@ -251,9 +251,7 @@ MODEL_OPTIONS = {
 def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **options: Any) -> Any:
     """The ``granudb.dem.DemModel`` for these particle and wall materials, ``options``
     being ``MODEL_OPTIONS`` (diameter, velocity, fluid, values, dataset, parameter_set)."""
-    for name in options:
-        if name not in MODEL_OPTIONS:
-            raise ValidationError(name, options[name], "is not a DEM model option", parameter=True)
+    inputs.known_options(options, MODEL_OPTIONS, "a DEM model option")
     diameter, velocity, fluid, values, dataset, parameter_set = (
         {**MODEL_OPTIONS, **options}[k] for k in MODEL_OPTIONS
     )
@@ -347,23 +345,21 @@ def _particle_pairs(particles: list[Any], on_wall: dict[str, Any]) -> list[Any]:
     return pairs
 
 
+@inputs.shows_keywords(MODEL_OPTIONS)
 def dem_export(
     code: str,
     particles: list[str],
     walls: list[str],
     *,
-    diameter: Any = None,
-    velocity: Any = None,
-    fluid: str | None = None,
-    values: str = "published",
-    dataset: str | None = None,
-    parameter_set: str = "central",
     clamp: bool = False,
     output: str | Path | None = None,
     db: Any = None,
+    **options: Any,
 ) -> str:
     """The input fragment for ``code`` (liggghts, lammps, yade or mercurydpm) for these
     particle and wall materials in ``fluid``, every number commented with its source.
+    ``options`` are ``MODEL_OPTIONS``: ``diameter`` and ``velocity`` (required), ``fluid``,
+    ``values``, ``dataset`` and ``parameter_set``.
 
     ``values`` says where e, μ_f and Walton's β come from: "published" (the paper's fits
     where the database has them), "dataset" (``dataset``'s Walton fit) or "predicted" (no
@@ -395,16 +391,13 @@ def dem_export(
         raise ValidationError(
             "output", str(target), "exists already (choose a new file)", parameter=True
         )
-    model = dem_model(
-        particles, walls, diameter=diameter, velocity=velocity, fluid=fluid, values=values,
-        dataset=dataset, parameter_set=parameter_set, db=db,
-    )  # fmt: skip
-    text = writer.write(model, clamp=clamp)
+    text = writer.write(dem_model(particles, walls, db=db, **options), clamp=clamp)
     if target is not None:
         write_text(target, text, field="output")
     return text
 
 
+@inputs.shows_keywords(MODEL_OPTIONS)
 def dem_verify(
     particles: list[str],
     walls: list[str],
@@ -412,12 +405,7 @@ def dem_verify(
     codes: tuple[str, ...] | None = None,
     clamp: bool = False,
     db: Any = None,
-    diameter: Any = None,
-    velocity: Any = None,
-    fluid: str | None = None,
-    values: str = "published",
-    dataset: str | None = None,
-    parameter_set: str = "central",
+    **options: Any,
 ) -> list[Record]:
     """Run the exported parameters in every installed code (LIGGGHTS, LAMMPS, Yade) on
     normal wall impacts at 0.1, 0.3 and 0.5 m/s, oblique ones at 30° and 60° and head-on
@@ -437,10 +425,7 @@ def dem_verify(
     >>> granudb.api.verify_passed(records), sorted({r.verdict for r in records})
     (True, ['pass', 'stated limit'])
     """
-    model = dem_model(
-        particles, walls, diameter=diameter, velocity=velocity, fluid=fluid, values=values,
-        dataset=dataset, parameter_set=parameter_set, db=db,
-    )  # fmt: skip
+    model = dem_model(particles, walls, db=db, **options)
     chosen = tuple(inputs.choice(c, VERIFY_CODES, "code") for c in codes or VERIFY_CODES)
     return verify(model, codes=chosen, clamp=clamp)
 

@@ -7,15 +7,53 @@ option (``--diameter``).
 
 from __future__ import annotations
 
+import difflib
+import inspect
 import math
 import numbers
+from collections.abc import Callable, Iterable, Mapping
 from decimal import Decimal
-from typing import Any
+from typing import Any, TypeVar
 
 from granudb.errors import MissingInput, ValidationError
 from granudb.io.units import parse_quantity, parse_uncertain_quantity
 from granudb.vocabulary import check_value, unit_of_column
 from granudb.vocabulary.text import MAX_NAME, check_name
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def shows_keywords(defaults: Mapping[str, Any]) -> Callable[[F], F]:
+    """The decorated function takes these keywords as ``**options``; its signature
+    (``help()``, ``inspect``, editors that ask at run time) shows each as a keyword argument
+    with its default, after the positional parameters, so one list (a catalogue's
+    specification, the DEM model's options) defines them for Python and the command line."""
+
+    def decorate(function: F) -> F:
+        signature = inspect.signature(function)
+        own = [p for p in signature.parameters.values() if p.kind is not p.VAR_KEYWORD]
+        positional = [p for p in own if p.kind is not p.KEYWORD_ONLY]
+        shown = [
+            inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default)
+            for name, default in defaults.items()
+        ]
+        keywords = [p for p in own if p.kind is p.KEYWORD_ONLY]
+        function.__signature__ = signature.replace(parameters=[*positional, *shown, *keywords])  # type: ignore[attr-defined]
+        return function
+
+    return decorate
+
+
+def known_options(given: Mapping[str, Any], allowed: Iterable[str], what: str) -> dict:
+    """``given`` (a public function's ``**options``) if each is one of ``allowed``, else
+    ``ValidationError`` naming it, ``what`` it is not, and the nearest name."""
+    allowed = list(allowed)
+    for name, value in given.items():
+        if name not in allowed:
+            near = difflib.get_close_matches(name, allowed, n=1)
+            rule = f"is not {what}" + (f"; did you mean {near[0]}?" if near else "")
+            raise ValidationError(name, repr(value)[:60], rule, parameter=True)
+    return dict(given)
 
 
 def _as_parameter(exc: ValidationError, parameter: str) -> ValidationError:

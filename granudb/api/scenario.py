@@ -15,21 +15,17 @@ from granudb.reporting.verdicts import verdicts
 __all__ = ["pair", "qualified_value"]
 
 
-def pair(
-    particle: str,
-    wall: str,
-    *,
-    diameter: Any = None,
-    velocity: Any = None,
-    angle: Any = None,
-    fluid: str | None = None,
-    temperature: Any = None,
-    viscosity: Any = None,
-    wall_diameter: Any = None,
-    target: str | None = None,
-    critical_stokes: Any = None,
-    db: Any = None,
-) -> dict[str, Any]:
+#: The options of one collision scenario (``pair``), written once for Python and the
+#: command line; ``diameter`` and ``velocity`` are required, the others' defaults are
+#: ``pair``'s.
+SCENARIO_OPTIONS = dict.fromkeys(
+    ("diameter", "velocity", "angle", "fluid", "temperature", "viscosity", "wall_diameter",
+     "target", "critical_stokes")
+)  # fmt: skip
+
+
+@inputs.shows_keywords(SCENARIO_OPTIONS)
+def pair(particle: str, wall: str, *, db: Any = None, **scenario: Any) -> dict[str, Any]:
     """Properties, every derived quantity and the verdicts for one collision (SI).
 
     Quantities are SI numbers or strings with units (``"12.7 mm"``, ``"0.3 m/s"``,
@@ -56,6 +52,12 @@ def pair(
     >>> round(result["reduced_modulus_pa"] / 1e9, 2)
     65.64
     """
+    given = {
+        **SCENARIO_OPTIONS,
+        **inputs.known_options(scenario, SCENARIO_OPTIONS, "an option of pair"),
+    }
+    (diameter, velocity, angle, fluid, temperature, viscosity, wall_diameter, target,
+     critical_stokes) = (given[k] for k in SCENARIO_OPTIONS)  # fmt: skip
     particle = inputs.text(particle, "particle")
     wall = inputs.text(wall, "wall")
     if fluid is not None:

@@ -12,7 +12,16 @@ from typing import Any
 import typer
 
 from granudb import api
-from granudb.cli.options import DbOption, Format, FormatOption, collision_filters, text, wraps
+from granudb.cli.options import (
+    DbOption,
+    Format,
+    FormatOption,
+    collision_filters,
+    keyword_option,
+    option_group,
+    text,
+    wraps,
+)
 from granudb.cli.output import emit
 
 app = typer.Typer(
@@ -32,59 +41,52 @@ def _show(frame: Any, kind: str, fmt: Format, title: str) -> None:
     emit(frame.to_dict("records"), shown or every, fmt, title=title)
 
 
-def _fit_command(kind: str, help_text: str, title: str) -> None:
-    """``granudb fit <kind>``: a fit with no options of its own (``granudb.fit_<kind>``
-    with the collision filters), shown by ``_show``."""
+def _fit_command(kind: str, help_text: str, title: str, *options: Any) -> None:
+    """``granudb fit <kind>``: ``granudb.fit_<kind>`` with the collision filters and the
+    fit's own ``options`` (keyword options, see ``option_group``), shown by ``_show``."""
     function = f"fit_{kind}"
 
     @collision_filters
+    @option_group("given", list(options))
     @wraps(function)
     def command(
-        db: DbOption = None, fmt: FormatOption = Format.table, filters: dict | None = None
+        db: DbOption = None,
+        fmt: FormatOption = Format.table,
+        filters: dict | None = None,
+        given: dict | None = None,
     ) -> None:
-        _show(getattr(api, function)(db=db, **(filters or {})), kind, fmt, title)
+        _show(getattr(api, function)(db=db, **given or {}, **filters or {}), kind, fmt, title)
 
     app.command(kind.replace("_", "-"), help=help_text)(command)
 
 
-MethodOption = text(
-    "bootstrap (the default): bootstrap intervals; bayes: posterior medians and 95 % "
-    "credible intervals (emcee), with priors, sampler settings and convergence."
+#: The Bayesian option of the Walton and restitution fits.
+BAYES_OPTIONS = (
+    keyword_option(
+        "method",
+        text(
+            "bootstrap (the default): bootstrap intervals; bayes: posterior medians and 95 % "
+            "credible intervals (emcee), with priors, sampler settings and convergence."
+        ),
+    ),
+    keyword_option(
+        "draws", text("With --method bayes: write the posterior draws to this new CSV.")
+    ),
 )
-DrawsOption = text("With --method bayes: write the posterior draws to this new CSV.")
 
-
-@app.command()
-@collision_filters
-@wraps("fit_walton")
-def walton(
-    method: MethodOption = None,
-    draws: DrawsOption = None,
-    db: DbOption = None,
-    fmt: FormatOption = Format.table,
-    filters: dict | None = None,
-) -> None:
-    """β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē."""
-    frame = api.fit_walton(db=db, method=method, draws=draws, **(filters or {}))
-    _show(frame, "walton", fmt, "Walton fits")
-
-
-@app.command()
-@collision_filters
-@wraps("fit_restitution")
-def restitution(
-    model: text("exponential (the default) or threshold.") = None,
-    method: MethodOption = None,
-    draws: DrawsOption = None,
-    db: DbOption = None,
-    fmt: FormatOption = Format.table,
-    filters: dict | None = None,
-) -> None:
-    """e against the normal Stokes number for immersed runs: e_dry and k (or St_c)."""
-    frame = api.fit_restitution(model, db=db, method=method, draws=draws, **(filters or {}))
-    _show(frame, "restitution", fmt, "Restitution against Stokes number")
-
-
+_fit_command(
+    "walton",
+    "β (sticking runs) and μ_f (sliding runs) per dataset × pair × fluid, with ē.",
+    "Walton fits",
+    *BAYES_OPTIONS,
+)
+_fit_command(
+    "restitution",
+    "e against the normal Stokes number for immersed runs: e_dry and k (or St_c).",
+    "Restitution against Stokes number",
+    keyword_option("model", text("exponential (the default) or threshold.")),
+    *BAYES_OPTIONS,
+)
 _fit_command(
     "gap_viscosity",
     "Gap viscosity μ₀ fitting (5.8) to sliding runs, and the gap temperature.",

@@ -83,28 +83,55 @@ def _filter_parameter(name: str) -> inspect.Parameter:
         annotation: Any = Annotated[bool | None, info]
     else:
         annotation = Annotated[str | None, typer.Option(option_name(name), help=FILTER_HELP[name])]
+    return keyword_option(name, annotation)
+
+
+def keyword_option(name: str, annotation: Any) -> inspect.Parameter:
+    """An optional keyword option ``name`` (``None`` when not given) for ``option_group``."""
     return inspect.Parameter(
         name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation
     )
 
 
-def collision_filters(command: Callable[..., None]) -> Callable[..., None]:
-    """Give ``command`` the collision filter options; they reach it as one keyword
-    ``filters`` holding the ones given (so each is written once, here, for every command
-    that selects runs)."""
-    signature = inspect.signature(command, eval_str=True)
-    own = [p for p in signature.parameters.values() if p.name != "filters"]
-    taken = {p.name for p in own}
-    added = [_filter_parameter(n) for n in api.COLLISION_FILTERS if n not in taken]
+def option_group(
+    keyword: str, parameters: list[inspect.Parameter]
+) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """Give a command the options ``parameters``, written once for every command that
+    takes them; they reach it as one keyword ``keyword``, a dict of the ones given (the
+    API applies its defaults to the others, the same for Python and the command line)."""
 
-    @functools.wraps(command)
-    def with_filters(**given: Any) -> None:
-        filters = {p.name: given.pop(p.name) for p in added}
-        command(**given, filters={k: v for k, v in filters.items() if v is not None})
+    def decorate(command: Callable[..., None]) -> Callable[..., None]:
+        signature = inspect.signature(command, eval_str=True)
+        own = [p for p in signature.parameters.values() if p.name != keyword]
+        taken = {p.name for p in own}
+        added = [p for p in parameters if p.name not in taken]
 
-    with_filters.__signature__ = signature.replace(parameters=[*own, *added])  # type: ignore[attr-defined]
-    with_filters.__annotations__ = {}
-    return with_filters
+        @functools.wraps(command)
+        def grouped(**given: Any) -> None:
+            group = {p.name: given.pop(p.name) for p in added}
+            command(**given, **{keyword: {k: v for k, v in group.items() if v is not None}})
+
+        grouped.__signature__ = signature.replace(parameters=[*own, *added])  # type: ignore[attr-defined]
+        grouped.__annotations__ = {}
+        return grouped
+
+    return decorate
+
+
+def text_options(
+    keyword: str, helps: dict[str, Any]
+) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """``option_group`` of the options ``helps`` names, each text (``text``) with its help,
+    or of the annotation given in place of a help (a flag, a renamed option)."""
+    return option_group(
+        keyword,
+        [keyword_option(n, text(h) if isinstance(h, str) else h) for n, h in helps.items()],
+    )
+
+
+#: The collision filter options: a command that selects runs gets them all, as the one
+#: keyword ``filters``.
+collision_filters = option_group("filters", [_filter_parameter(n) for n in api.COLLISION_FILTERS])
 
 
 def wraps(function: str) -> Callable[[Callable[..., None]], Callable[..., None]]:

@@ -13,55 +13,48 @@ from typing import Annotated, Any
 import typer
 
 from granudb import api
-from granudb.cli.options import CriticalStokes, DbOption, Format, FormatOption, text, wraps
+from granudb.cli.options import (
+    CriticalStokes,
+    DbOption,
+    Format,
+    FormatOption,
+    text_options,
+    wraps,
+)
 from granudb.cli.output import console, emit, to_json
 from granudb.lazy import rich_table, rich_text
 
 Particle = Annotated[str, typer.Argument(help="Particle material, e.g. steel.")]
 Wall = Annotated[str, typer.Argument(help="Wall (or second particle) material, e.g. Zerodur.")]
-Diameter = text('Particle diameter, "12.7 mm" (required).')
-Velocity = text('Impact speed V of the centre, "0.3 m/s" (required).')
-Fluid = text("Fluid; omit (or 'dry') for a dry collision.")
-Angle = text('Incidence angle from the normal, "30 deg" (default 0°).')
-Temperature = text('Fluid temperature, "20 degC" (default: the fluid\'s reference).')
-Viscosity = text('Override the fluid viscosity, "0.8 cP" (what-if).')
-WallDiameter = text(
-    "Diameter of a second sphere, free and at rest unless --target fixed (default: a flat wall)."
+#: ``granudb.api.scenario.SCENARIO_OPTIONS`` as options, each with its help.
+scenario_options = text_options(
+    "scenario",
+    {
+        "diameter": 'Particle diameter, "12.7 mm" (required).',
+        "velocity": 'Impact speed V of the centre, "0.3 m/s" (required).',
+        "fluid": "Fluid; omit (or 'dry') for a dry collision.",
+        "angle": 'Incidence angle from the normal, "30 deg" (default 0°).',
+        "temperature": 'Fluid temperature, "20 degC" (default: the fluid\'s reference).',
+        "viscosity": 'Override the fluid viscosity, "0.8 cP" (what-if).',
+        "wall_diameter": "Diameter of a second sphere, free and at rest unless --target fixed "
+        "(default: a flat wall).",
+        "target": "wall, fixed or free (a second sphere's default).",
+        "critical_stokes": CriticalStokes,
+    },
 )
-Target = text("wall, fixed or free (a second sphere's default).")
 
 
+@scenario_options
 @wraps("pair")
 def pair(
     particle: Particle,
     wall: Wall,
-    diameter: Diameter = None,
-    velocity: Velocity = None,
-    fluid: Fluid = None,
-    angle: Angle = None,
-    temperature: Temperature = None,
-    viscosity: Viscosity = None,
-    wall_diameter: WallDiameter = None,
-    target: Target = None,
-    critical_stokes: CriticalStokes = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
+    scenario: dict | None = None,
 ) -> None:
     """Properties, every derived quantity and the regime verdicts for one collision."""
-    document = api.pair(
-        particle,
-        wall,
-        diameter=diameter,
-        velocity=velocity,
-        angle=angle,
-        fluid=fluid,
-        temperature=temperature,
-        viscosity=viscosity,
-        wall_diameter=wall_diameter,
-        target=target,
-        critical_stokes=critical_stokes,
-        db=db,
-    )
+    document = api.pair(particle, wall, db=db, **scenario or {})
     if fmt is Format.json:
         sys.stdout.write(to_json(document) + "\n")
     elif fmt is Format.csv:
