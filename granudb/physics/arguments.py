@@ -176,6 +176,8 @@ def parameters(function: F | None = None, /, **special: str) -> F | Callable[[F]
         names = list(inspect.signature(function).parameters)
         section = parameters_section(names, special)
         lines = inspect.cleandoc(function.__doc__ or "").splitlines()
+        if "Parameters" in lines:
+            raise ValueError(f"{function.__name__}: its Parameters section is generated here")
         at = next(
             (
                 index
