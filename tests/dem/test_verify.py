@@ -161,6 +161,6 @@ def test_yade_slides_with_the_immersed_friction(monkeypatch, tmp_path: Path) -> 
     good = dem_verify.verify(model, todo, codes=["yade"], workdir=tmp_path)
     assert good[0].regime == "gross_slip" and abs(good[0].friction_rel_error) < 0.01, good
     assert dem_verify.passed(good)
-    monkeypatch.setattr(yade, "friction_input", lambda m, p, b: (p.friction.value, "plain"))
+    monkeypatch.setattr(yade, "friction_input", lambda m, p, *_: (p.friction.value, "plain"))
     plain = dem_verify.verify(model, todo, codes=["yade"], workdir=tmp_path)
     assert -0.06 < plain[0].friction_rel_error < -0.03 and plain[0].verdict == "fail", plain
