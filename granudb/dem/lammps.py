@@ -92,20 +92,35 @@ def tangential_stiffness(model: DemModel, pair: PairParameters) -> tuple[float, 
     )
 
 
+#: ``tangential mindlin``: a total spring F_t = −k_t a u, u cut back at the Coulomb cap
+#: μ_f |F_n| (pair_granular.cpp); corrected where the loss exceeds 0.1 %.
+FRICTION_LAW = deck.FrictionLaw("tangential mindlin", incremental=False, correct_above=1e-3)
+
+
 def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
-    """The granular model arguments of one pair and the comment lines explaining them."""
+    """The granular model arguments of one pair and the comment lines explaining them; the
+    μ_f written is ``deck.friction_input`` with LAMMPS's damping α(e_in) and this k_t."""
     scales = model.contact(pair)
     e_in = tsuji_input(pair, clamp)
     k_t, k_t_note = tangential_stiffness(model, pair)
+    mu_in, mu_note = deck.friction_input(
+        CODE,
+        FRICTION_LAW,
+        pair,
+        damping.tsuji_alpha(e_in.value),
+        k_t / scales.hertz_stiffness,
+        clamp,
+    )
     args = (
         f"hertz {deck.num(scales.hertz_stiffness)} {deck.num(e_in.value)} "
         f"tangential mindlin {deck.num(k_t)} 0.0 "
-        f"{deck.num(pair.friction.value)} "
+        f"{deck.num(mu_in)} "
         "damping tsuji limit_damping"
     )
     notes = [
         f"{deck.pair_label(pair)}: e = {deck.describe(pair.restitution)}",
         f"  mu_f = {deck.describe(pair.friction)}",
+        *([f"  {mu_note}"] if mu_note else []),
         f"  k_n = 4/3 E* = {deck.num(scales.hertz_stiffness)} Pa (E* = "
         f"{deck.num(scales.reduced_modulus_pa)} Pa, granudb docs/physics.md section 13)",
         f"  {k_t_note}",

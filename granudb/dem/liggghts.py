@@ -50,6 +50,28 @@ def pair_style(model: DemModel) -> str:
 #: ``pair_style gran``, after the wall's geometry in ``fix wall/gran``.
 SETTINGS = "tangential_damping off limitForce on"
 
+#: ``tangential history``: a total spring F_t = −8 G* a u, u cut back at the Coulomb cap
+#: μ_f |F_n| (src/tangential_model_history.h); corrected where the loss exceeds 0.1 %.
+FRICTION_LAW = deck.FrictionLaw("tangential history", incremental=False, correct_above=1e-3)
+
+
+def friction_input(
+    model: DemModel, pair: PairParameters, restitution_in: float, clamp: bool
+) -> deck.Limited:
+    """The coefficientFriction to write (``deck.friction_input``): LIGGGHTS's damping C is
+    ``damping.hertz_damping`` of the coefficientRestitution written, k_t/k_n is Mindlin's
+    8 G*/((4/3) E*)."""
+    scales = model.contact(pair)
+    mu_in, note = deck.friction_input(
+        CODE,
+        FRICTION_LAW,
+        pair,
+        damping.hertz_damping(restitution_in),
+        scales.mindlin_stiffness / scales.hertz_stiffness,
+        clamp,
+    )
+    return deck.Limited(mu_in, note)
+
 
 def restitution_input(pair: PairParameters, clamp: bool) -> deck.Limited:
     """The coefficientRestitution to write (``damping.liggghts_hertz_input`` of the target),
@@ -96,7 +118,9 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
     )
     out += _per_type(model, "poissonsRatio", poisson)
     out += _matrix(model, "coefficientRestitution", restitution, "restitution")
-    friction = {p.key: deck.Limited(p.friction.value) for p in model.pairs}
+    friction = {
+        p.key: friction_input(model, p, restitution[p.key].value, clamp) for p in model.pairs
+    }
     out += _matrix(model, "coefficientFriction", friction, "friction")
     if any(p.rolling_friction is not None for p in model.pairs):
         rolling = {
