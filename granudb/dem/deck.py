@@ -10,6 +10,13 @@ from dataclasses import dataclass
 from granudb.dem import damping
 from granudb.dem.spec import TOLERANCES, DemModel, PairParameters, ParticleType, Value
 from granudb.errors import ValidationError
+from granudb.physics.impact import (
+    GROSS_SLIP,
+    maw_chi,
+    maw_psi,
+    stiffness_ratio,
+    tangential_regime,
+)
 
 
 def num(x: float) -> str:
@@ -198,22 +205,40 @@ class FrictionLaw:
     correct_above: float = 0.0
 
 
+def slides_throughout(model: DemModel, pair: PairParameters, angle_deg: float) -> bool:
+    """Whether an impact at ``angle_deg`` from the normal is on Walton's sliding branch for
+    the pair's μ_f (Maw's regime, as ``dem verify`` classifies its runs)."""
+    scales = model.contact(pair)
+    ratio = stiffness_ratio(scales.reduced_shear_modulus_pa, scales.reduced_modulus_pa)
+    psi = maw_psi(ratio, math.tan(math.radians(angle_deg)), pair.friction.value, 1.0)
+    return int(tangential_regime(psi, maw_chi(ratio))) == GROSS_SLIP
+
+
 def friction_input(
     code: str,
     law: FrictionLaw,
+    model: DemModel,
     pair: PairParameters,
     damping_c: float,
-    stiffness_ratio: float,
+    spring_ratio: float,
     clamp: bool = False,
 ) -> tuple[float, str | None]:
     """μ_f input for ``pair`` and the sentence saying why: the input whose effective μ_f
     on the sliding branch at ``SLIDING_ANGLE_DEG`` is the pair's μ_f, on the clamped law
-    with damping C = ``damping_c`` and k_t/k_n = ``stiffness_ratio``
+    with damping C = ``damping_c`` and k_t/k_n = ``spring_ratio``
     (``damping.friction_for_sliding``). The plain μ_f (no sentence) where its loss is at
-    most ``law.correct_above``; where no input up to ``damping.FRICTION_INPUT_LIMIT`` times
-    μ_f reaches it, refused, or with ``clamp`` written at that limit and said so."""
+    most ``law.correct_above`` (and, with a sentence, where that impact does not slide
+    throughout, so μ_f does not decide it); where no input up to
+    ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it, refused, or with ``clamp``
+    written at that limit and said so."""
     mu = pair.friction.value
-    c, ratio = round(damping_c, 12), round(stiffness_ratio, 12)
+    if not slides_throughout(model, pair, SLIDING_ANGLE_DEG):
+        return mu, (
+            f"{pair_label(pair)}: mu_f written as it is: an impact at {SLIDING_ANGLE_DEG:g} deg "
+            "does not slide throughout with this mu_f (Maw's regime), so the loss of friction "
+            "at first touch is not corrected"
+        )
+    c, ratio = round(damping_c, 12), round(spring_ratio, 12)
     psis = [math.tan(math.radians(a)) for a in (SLIDING_ANGLE_DEG, *STATED_ANGLES_DEG)]
     if law.correct_above > 0.0:
         plain = damping.sliding_friction(

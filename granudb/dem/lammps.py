@@ -106,6 +106,7 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
     mu_in, mu_note = deck.friction_input(
         CODE,
         FRICTION_LAW,
+        model,
         pair,
         damping.tsuji_alpha(e_in.value),
         k_t / scales.hertz_stiffness,

@@ -65,6 +65,7 @@ def friction_input(
     mu_in, note = deck.friction_input(
         CODE,
         FRICTION_LAW,
+        model,
         pair,
         damping.hertz_damping(restitution_in),
         scales.mindlin_stiffness / scales.hertz_stiffness,

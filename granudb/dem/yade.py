@@ -108,7 +108,7 @@ def friction_input(
     scales = model.contact(pair)
     ratio = scales.mindlin_stiffness / scales.hertz_stiffness
     mu_in, note = deck.friction_input(
-        CODE, FRICTION_LAW, pair, math.sqrt(6.0) * betan, ratio, clamp
+        CODE, FRICTION_LAW, model, pair, math.sqrt(6.0) * betan, ratio, clamp
     )
     return mu_in, note or ""
 

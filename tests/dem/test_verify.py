@@ -167,6 +167,6 @@ def test_the_codes_slide_with_the_immersed_friction(
     good = dem_verify.verify(model, todo, codes=[code], workdir=tmp_path)
     assert good[0].regime == "gross_slip" and abs(good[0].friction_rel_error) < 0.01, good
     assert dem_verify.passed(good)
-    monkeypatch.setattr(deck, "friction_input", lambda *a, **k: (a[2].friction.value, None))
+    monkeypatch.setattr(deck, "friction_input", lambda *a, **k: (a[3].friction.value, None))
     plain = dem_verify.verify(model, todo, codes=[code], workdir=tmp_path)
     assert plain_low < plain[0].friction_rel_error < plain_high, plain
