@@ -16,6 +16,11 @@ src/GRANULAR/pair_granular.cpp and fix_wall_gran.cpp of that release):
   adds friction the measured μ_f never had. The tangential damping ratio x_γ,t is 0: with
   a wet pair's normal damping, the tangential dashpot (x_γ,t times it) decided Ψ_out
   instead of μ_f (−29 % on glass in 78 % glycerol at 60°).
+- μ_f: with a wet pair's damping the normal force jumps at first touch while the
+  ``mindlin`` spring (total: F_t = −k_t a u) builds up, so the contact sticks for a moment
+  and slides with less than μ_f (−3.0 % at 60° for glass in 78 % glycerol). Where that
+  loss exceeds 0.1 % the μ_f written is the input that gives μ_f at 60° with this k_t
+  (``deck.friction_input``; measured +0.12 %), and the comment states 45° and 80°.
 - Unset pairs are mixed (geometric means, E* formula): every particle pair is written.
 - Walls are not atom types: each (particle type, wall) pair is a ``fix wall/gran granular``
   on a group of that type, with the wall's geometry from a string variable the user sets.
