@@ -97,22 +97,38 @@ def hertz_damping(restitution: float) -> float:
     return math.sqrt(5.0) * linear_damping_ratio(restitution)
 
 
+#: The most damping :func:`clamped_hertz_damping` searches: e of the clamped law (1) at this
+#: C is below 1e-4, far under any code's floor (Yade's 0.01 is reached at C ≈ 12).
+CLAMPED_DAMPING_MAX = 100.0
+
+
 @lru_cache(maxsize=256)
 def clamped_hertz_damping(restitution: float) -> float:
     """C of law (1) with the force clamped at zero (every export clamps it), by Brent's
-    method on the integration: the clamp only removes attraction, so C lies between the
-    unclamped C and 3 times it plus 1."""
+    method on the integration: the clamp only removes attraction, so C is at least the
+    unclamped C; the upper end of the bracket starts at 3 times it plus 1 and doubles
+    (up to ``CLAMPED_DAMPING_MAX``) until it gives less than ``restitution`` (e ≤ 0.02
+    needs more than the first guess)."""
     if restitution >= 1.0:
         return 0.0
+    if not restitution > 0.0:
+        raise ValidationError("restitution", f"{restitution:.4g}", "must be > 0 (and <= 1)")
+
+    def miss(c: float) -> float:
+        return hertz_restitution(c, clamp_attraction=True, step=2e-3) - restitution
+
     low = hertz_damping(restitution)
-    return float(
-        scipy_optimize.brentq(
-            lambda c: hertz_restitution(c, clamp_attraction=True, step=2e-3) - restitution,
-            low,
-            3.0 * low + 1.0,
-            xtol=1e-12,
-        )
-    )
+    high = 3.0 * low + 1.0
+    while miss(high) > 0.0:
+        if high >= CLAMPED_DAMPING_MAX:
+            raise ValidationError(
+                "restitution",
+                f"{restitution:.4g}",
+                f"the clamped Hertz law needs damping C > {CLAMPED_DAMPING_MAX:g} for it "
+                "(granudb.dem.damping)",
+            )
+        low, high = high, min(2.0 * high, CLAMPED_DAMPING_MAX)
+    return float(scipy_optimize.brentq(miss, low, high, xtol=1e-12))
 
 
 def liggghts_floor(input_floor: float) -> float:
@@ -252,7 +268,13 @@ def stiffness_ratio_for_rebound(rebound: float, damping: float, mindlin_ratio: f
 
 
 def sliding_friction(
-    friction: Any, damping: float, stiffness_ratio: float, psi_in: Any, *, step: float = 1e-3
+    friction: Any,
+    damping: float,
+    stiffness_ratio: float,
+    psi_in: Any,
+    *,
+    step: float = 1e-3,
+    incremental: bool = True,
 ) -> Any:
     """The effective μ_f = (Ψ_in − Ψ_out)/((1 + e)·3.5) of an oblique impact on the clamped
     law (1) with an incremental Mindlin spring capped at ``friction`` times the normal force
@@ -264,6 +286,10 @@ def sliding_friction(
     at first touch (C δ^{1/4} δ̇) while the spring builds as ∫√δ w dt, so for a moment
     |F_t| < μ_f F_n. ``friction`` and ``psi_in`` may be arrays (broadcast together; the
     normal motion depends on neither).
+
+    With ``incremental`` false the spring is the total one of LIGGGHTS ``tangential
+    history`` and LAMMPS ``tangential mindlin``: F_t = −ρ √δ u with u = ∫w dt, and where
+    the cap is reached u is cut back to |F_t|/(ρ √δ).
     """
     mu = np.asarray(friction, dtype=float)
 
@@ -274,6 +300,7 @@ def sliding_friction(
     x, v, h, t = 0.0, 1.0, step, 0.0
     force = np.zeros(np.broadcast(mu, psi_in).shape)
     w, impulse = force + psi_in, 0.0
+    shift = np.zeros_like(force)  # the total spring's u
     while t < 200.0:
         k1x, k1v = v, accel(x, v)
         k2x, k2v = v + 0.5 * h * k1v, accel(x + 0.5 * h * k1x, v + 0.5 * h * k1v)
@@ -286,7 +313,12 @@ def sliding_friction(
             break
         normal = -accel(x, v)
         cap = mu * normal
-        force = np.clip(force - stiffness_ratio * math.sqrt(x) * w * h, -cap, cap)
+        if incremental:
+            force = np.clip(force - stiffness_ratio * math.sqrt(x) * w * h, -cap, cap)
+        else:
+            shift = shift + w * h
+            force = np.clip(-stiffness_ratio * math.sqrt(x) * shift, -cap, cap)
+            shift = -force / (stiffness_ratio * math.sqrt(x))
         w = w + CONTACT_POINT_FACTOR * force * h
         impulse += normal * h
     return (psi_in - w) / (CONTACT_POINT_FACTOR * impulse)
@@ -298,13 +330,20 @@ FRICTION_INPUT_LIMIT = 1.3
 
 @lru_cache(maxsize=256)
 def friction_for_sliding(
-    friction: float, damping: float, stiffness_ratio: float, psi_in: float
+    friction: float,
+    damping: float,
+    stiffness_ratio: float,
+    psi_in: float,
+    *,
+    incremental: bool = True,
 ) -> float:
     """The μ_f input whose effective μ_f (:func:`sliding_friction`) at ``psi_in`` is
     ``friction``: the effective μ_f grows monotonically with the input, so it is
     interpolated on a grid of inputs from ``friction`` to ``FRICTION_INPUT_LIMIT`` times
     it; where even the top of the grid falls short, the top (the caller checks what it
-    gives)."""
+    gives). ``incremental`` as in :func:`sliding_friction`."""
     grid = friction * np.linspace(1.0, FRICTION_INPUT_LIMIT, 16)
-    achieved = sliding_friction(grid, damping, stiffness_ratio, psi_in, step=2e-3)
+    achieved = sliding_friction(
+        grid, damping, stiffness_ratio, psi_in, step=2e-3, incremental=incremental
+    )
     return float(np.interp(friction, achieved, grid))

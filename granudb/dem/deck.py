@@ -7,8 +7,16 @@ import textwrap
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from granudb.dem import damping
 from granudb.dem.spec import TOLERANCES, DemModel, PairParameters, ParticleType, Value
 from granudb.errors import ValidationError
+from granudb.physics.impact import (
+    GROSS_SLIP,
+    maw_chi,
+    maw_psi,
+    stiffness_ratio,
+    tangential_regime,
+)
 
 
 def num(x: float) -> str:
@@ -173,3 +181,98 @@ def rebound_lines(model: DemModel, limit: str) -> list[str]:
         return []
     said = ", ".join(f"{pair_label(p)} {describe(p.rotational_restitution)}" for p in pairs)
     return comment(f"beta NOT reproduced ({said}): {limit}")
+
+
+#: The impact angle (from the normal) at which a μ_f input gives the target μ_f on the
+#: sliding branch: the oblique angle ``dem verify`` checks it at.
+SLIDING_ANGLE_DEG = 60.0
+#: Where a deck says what the effective μ_f becomes away from that angle.
+STATED_ANGLES_DEG = (45.0, 80.0)
+#: How far below μ_f the effective μ_f at that angle may stay when no input up to
+#: ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it, before the export refuses (a third
+#: of ``dem verify``'s tolerance on μ_f).
+FRICTION_SHORTFALL = TOLERANCES["friction"] / 3.0
+
+
+@dataclass
+class FrictionLaw:
+    """How a code's tangential spring builds up (``damping.sliding_friction``): its name
+    for the deck, whether it is incremental (Yade) or total (LIGGGHTS, LAMMPS), and the
+    loss at ``SLIDING_ANGLE_DEG`` below which the plain μ_f is written (0: always corrected)."""
+
+    name: str
+    incremental: bool
+    correct_above: float = 0.0
+
+
+def slides_throughout(model: DemModel, pair: PairParameters, angle_deg: float) -> bool:
+    """Whether an impact at ``angle_deg`` from the normal is on Walton's sliding branch for
+    the pair's μ_f (Maw's regime, as ``dem verify`` classifies its runs)."""
+    scales = model.contact(pair)
+    ratio = stiffness_ratio(scales.reduced_shear_modulus_pa, scales.reduced_modulus_pa)
+    psi = maw_psi(ratio, math.tan(math.radians(angle_deg)), pair.friction.value, 1.0)
+    return int(tangential_regime(psi, maw_chi(ratio))) == GROSS_SLIP
+
+
+def friction_input(
+    code: str,
+    law: FrictionLaw,
+    model: DemModel,
+    pair: PairParameters,
+    damping_c: float,
+    spring_ratio: float,
+    clamp: bool = False,
+) -> tuple[float, str | None]:
+    """μ_f input for ``pair`` and the sentence saying why: the input whose effective μ_f
+    on the sliding branch at ``SLIDING_ANGLE_DEG`` is the pair's μ_f, on the clamped law
+    with damping C = ``damping_c`` and k_t/k_n = ``spring_ratio``
+    (``damping.friction_for_sliding``). The plain μ_f (no sentence) where its loss is at
+    most ``law.correct_above`` (and, with a sentence, where that impact does not slide
+    throughout, so μ_f does not decide it); where no input up to
+    ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it, refused, or with ``clamp``
+    written at that limit and said so."""
+    mu = pair.friction.value
+    if not slides_throughout(model, pair, SLIDING_ANGLE_DEG):
+        return mu, (
+            f"{pair_label(pair)}: mu_f written as it is: an impact at {SLIDING_ANGLE_DEG:g} deg "
+            "does not slide throughout with this mu_f (Maw's regime), so the loss of friction "
+            "at first touch is not corrected"
+        )
+    c, ratio = round(damping_c, 12), round(spring_ratio, 12)
+    psis = [math.tan(math.radians(a)) for a in (SLIDING_ANGLE_DEG, *STATED_ANGLES_DEG)]
+    if law.correct_above > 0.0:
+        plain = damping.sliding_friction(
+            mu, c, ratio, psis[0], step=2e-3, incremental=law.incremental
+        )
+        if abs(float(plain) / mu - 1.0) <= law.correct_above:
+            return mu, None
+    mu_in = damping.friction_for_sliding(
+        round(mu, 12), c, ratio, round(psis[0], 12), incremental=law.incremental
+    )
+    effective = [
+        float(m)
+        for m in damping.sliding_friction(
+            mu_in, c, ratio, psis, step=2e-3, incremental=law.incremental
+        )
+    ]
+    limited = check(
+        code,
+        f"friction {pair_label(pair)}",
+        mu,
+        effective[0] >= mu * (1.0 - FRICTION_SHORTFALL),
+        f"{law.name} sticks so long at first touch (damping C = {c:.3g}) that no mu_f input "
+        f"up to {damping.FRICTION_INPUT_LIMIT:g} times it slides with it at "
+        f"{SLIDING_ANGLE_DEG:g} deg (at most {effective[0]:.4g})",
+        effective[0],
+        clamp,
+    )
+    stated = " and ".join(
+        f"{m:.4g} at {a:g} deg" for a, m in zip(STATED_ANGLES_DEG, effective[1:], strict=True)
+    )
+    note = (
+        f"{pair_label(pair)}: mu_f input {num(mu_in)} so that the effective mu_f on the "
+        f"sliding branch at {SLIDING_ANGLE_DEG:g} deg is {num(limited.value)}: {code}'s "
+        f"contact sticks at first touch while its damped normal force jumps "
+        f"(granudb.dem.damping.sliding_friction); the effective mu_f is {stated}"
+    )
+    return mu_in, note + (f". {limited.note}" if limited.note else "")

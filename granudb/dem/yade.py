@@ -15,7 +15,7 @@ Checked in the installed yade (``Ip2_FrictMat_FrictMat_MindlinPhys.__doc__`` and
   (C δ^{1/4} δ̇) and the spring builds as ∫k_s du, so the friction impulse falls short of
   μ_in times the normal one — by 4.1 % on glass in 78 % glycerol at 60° (μ_f 0.15, e 0.27),
   below 0.01 % dry. μ_in is the input whose effective μ_f on the sliding branch at
-  ``SLIDING_ANGLE_DEG`` is μ_f (``damping.friction_for_sliding``, which reproduces Yade's
+  ``deck.SLIDING_ANGLE_DEG`` is μ_f (``damping.friction_for_sliding``, which reproduces Yade's
   0.1433 for that case to 0.1 %); the deficit shrinks as the impact grows more oblique, so
   the fragment states the effective μ_f at 45° and 80° too.
 - ``Ig2_Wall_Sphere_ScGeom`` gives the wall the sphere's radius (refR1 = refR2 = R), so
@@ -38,15 +38,8 @@ from granudb.dem.spec import TOLERANCES, DemModel, PairParameters
 CODE = "Yade"
 VERSION = "2023.02a, Debian package yade"
 
-#: The impact angle (from the normal) at which μ_in gives the target μ_f on the sliding
-#: branch: the oblique angle ``dem verify`` checks it at.
-SLIDING_ANGLE_DEG = 60.0
-#: How far below μ_f the effective μ_f at that angle may stay when no input up to
-#: ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it, before the export refuses (a third
-#: of ``dem verify``'s tolerance on μ_f).
-FRICTION_SHORTFALL = TOLERANCES["friction"] / 3.0
-#: Where the fragment says what the effective μ_f becomes away from that angle.
-STATED_ANGLES_DEG = (45.0, 80.0)
+#: Yade's tangential spring: incremental (dF_t = −k_t a du), always corrected.
+FRICTION_LAW = deck.FrictionLaw("MindlinPhys", incremental=True)
 
 #: Yade's lubrication law measured against granudb's e(St) = 0.97 exp(−35/St_am)
 #: (tools/yade_lubrication.py; glass and steel, 12.7 mm, in 37 % and 78 % glycerol; the
@@ -109,42 +102,15 @@ def betan(pair: PairParameters, clamp: bool) -> deck.Limited:
 def friction_input(
     model: DemModel, pair: PairParameters, betan: float, clamp: bool = False
 ) -> tuple[float, str]:
-    """μ_in for the pair's ``frictAngle`` and the sentences saying why (module docstring):
-    the input whose effective μ_f at ``SLIDING_ANGLE_DEG`` is the pair's μ_f, with
-    Yade's damping C = √6 β_n and stiffness ratio k_s/k_n = 8 G*/((4/3) E*). Where no
-    input up to ``damping.FRICTION_INPUT_LIMIT`` times μ_f reaches it (e of a few percent),
-    refused, or with ``clamp`` written at that limit and said so."""
-    mu = pair.friction.value
+    """μ_in for the pair's ``frictAngle`` and the sentences saying why (module docstring,
+    ``deck.friction_input``), with Yade's damping C = √6 β_n and stiffness ratio
+    k_s/k_n = 8 G*/((4/3) E*)."""
     scales = model.contact(pair)
-    c = round(math.sqrt(6.0) * betan, 12)
-    ratio = round(scales.mindlin_stiffness / scales.hertz_stiffness, 12)
-    angles = (SLIDING_ANGLE_DEG, *STATED_ANGLES_DEG)
-    psi = round(math.tan(math.radians(SLIDING_ANGLE_DEG)), 12)
-    mu_in = damping.friction_for_sliding(round(mu, 12), c, ratio, psi)
-    psis = [math.tan(math.radians(a)) for a in angles]
-    effective = [float(m) for m in damping.sliding_friction(mu_in, c, ratio, psis, step=2e-3)]
-    limited = deck.check(
-        CODE,
-        f"friction {deck.pair_label(pair)}",
-        mu,
-        effective[0] >= mu * (1.0 - FRICTION_SHORTFALL),
-        f"MindlinPhys sticks so long at first touch (damping C = {c:.3g}) that no mu_f input "
-        f"up to {damping.FRICTION_INPUT_LIMIT:g} times it slides with it at "
-        f"{SLIDING_ANGLE_DEG:g} deg (at most {effective[0]:.4g})",
-        effective[0],
-        clamp,
+    ratio = scales.mindlin_stiffness / scales.hertz_stiffness
+    mu_in, note = deck.friction_input(
+        CODE, FRICTION_LAW, model, pair, math.sqrt(6.0) * betan, ratio, clamp
     )
-    stated = " and ".join(
-        f"{m:.4g} at {a:g} deg" for a, m in zip(STATED_ANGLES_DEG, effective[1:], strict=True)
-    )
-    note = (
-        f"{deck.pair_label(pair)}: mu_f input {deck.num(mu_in)} so that the effective "
-        f"mu_f on the sliding branch at {SLIDING_ANGLE_DEG:g} deg is "
-        f"{deck.num(limited.value)}: Yade's contact sticks at first touch while its damped "
-        f"normal force jumps (granudb.dem.damping.sliding_friction); the effective mu_f is "
-        f"{stated}"
-    )
-    return mu_in, note + (f". {limited.note}" if limited.note else "")
+    return mu_in, note or ""
 
 
 def write(model: DemModel, *, clamp: bool = False) -> str:

@@ -202,3 +202,26 @@ def test_the_published_beta_of_the_pair_and_fluid_is_exported(db: str, fluid, sa
                               diameter="12.7 mm", velocity="0.3 m/s", db=db)  # fmt: skip
     flat = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
     assert said in flat
+
+
+def test_yade_clamps_a_tiny_restitution_to_its_floor(cli, db: str) -> None:
+    """A stored dry e of 0.005 for a putty-like sphere on Zerodur is below Yade's floor
+    0.01. Without --clamp one line names the rule; with it the deck is written at 0.01
+    (whose clamped damping needs C ≈ 11, past the first bracket of the root search) and
+    says so."""
+    added = cli("materials", "add", "putty", "--density", "2500 kg/m^3", "--youngs-modulus",
+                "70 GPa", "--poisson-ratio", "0.2", "--roughness", "10 nm", db=db)  # fmt: skip
+    assert added.exit_code == 0, added.stderr
+    stored = cli(
+        "pairs", "add", "putty", "Zerodur", "--dry-restitution", "0.005", "--dry-friction",
+        "0.11", "--notes", "a nearly dead impact, for the test", db=db,
+    )  # fmt: skip
+    assert stored.exit_code == 0, stored.stderr
+    args = ["dem", "export", "--code", "yade", "--particle", "putty", "--wall", "Zerodur"]
+    args += [*SCENARIO, "--values", "predicted"]
+    refused = cli(*args, db=db)
+    assert refused.exit_code == 1
+    assert refused.stderr.count("\n") == 1 and "e < 0.01" in refused.stderr, refused.stderr
+    out = cli(*args, "--clamp", db=db)
+    assert out.exit_code == 0, out.stderr
+    assert "CLAMPED from 0.005 to 0.01: Yade" in out.stdout

@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from granudb.dem import damping
+from granudb.errors import ValidationError
 
 
 @pytest.mark.parametrize("e", [0.97, 0.8, 0.5, 0.2, 0.06])
@@ -96,3 +97,36 @@ def test_friction_input_stops_at_its_limit() -> None:
     mu_in = damping.friction_for_sliding(0.5, c, 0.05, 0.3)
     assert mu_in == pytest.approx(0.5 * damping.FRICTION_INPUT_LIMIT)
     assert float(damping.sliding_friction(mu_in, c, 0.05, 0.3)) < 0.5
+
+
+@pytest.mark.parametrize("e", [0.02, 0.01, 0.005])
+def test_clamped_damping_reaches_tiny_restitution(e: float) -> None:
+    """Below e = 0.02 the clamped law needs more than 3 times the unclamped C plus 1 (the
+    first bracket); the search extends it, and the C found gives e back."""
+    c = damping.clamped_hertz_damping(e)
+    assert c > 3.0 * damping.hertz_damping(e) + 1.0
+    assert damping.hertz_restitution(c, clamp_attraction=True, step=1e-3) == pytest.approx(
+        e, abs=2e-4
+    )
+
+
+def test_clamped_damping_refuses_no_rebound() -> None:
+    with pytest.raises(ValidationError, match="must be > 0"):
+        damping.clamped_hertz_damping(0.0)
+
+
+def test_a_total_spring_loses_less_friction_than_an_incremental_one() -> None:
+    """LIGGGHTS's and LAMMPS's total spring F_t = −ρ√δ u: undamped and stiff it slides
+    from first touch (μ_f back); with heavy damping it loses friction impulse, less than
+    Yade's incremental spring (its force follows √δ as the overlap grows), and the input
+    from ``friction_for_sliding`` gives the target back on that law."""
+    sqrt3 = 3**0.5
+    stiff = float(damping.sliding_friction(0.15, 1e-6, 1e6, sqrt3, step=2e-3, incremental=False))
+    assert stiff == pytest.approx(0.15, rel=2e-3)
+    c = damping.clamped_hertz_damping(0.274)
+    total = float(damping.sliding_friction(0.15, c, 1.3, sqrt3, incremental=False))
+    incremental = float(damping.sliding_friction(0.15, c, 1.3, sqrt3))
+    assert incremental < total < 0.15
+    mu_in = damping.friction_for_sliding(0.15, c, 1.3, sqrt3, incremental=False)
+    back = damping.sliding_friction(mu_in, c, 1.3, sqrt3, step=1e-3, incremental=False)
+    assert float(back) == pytest.approx(0.15, rel=2e-3)

@@ -66,6 +66,26 @@ def test_liggghts_soft_particles_below_its_floor() -> None:
     ]
     text = liggghts.write(DemModel([soft, ZERODUR], pairs, 1.0))
     assert "soft_particles yes" in text
+    # μ_f 0.5 does not slide throughout at 60°: nothing to correct, and the deck says so
+    assert text.replace("\n# ", " ").count("does not slide throughout with this mu_f") == 2
+
+
+@pytest.mark.parametrize(
+    ("writer", "written"),
+    [
+        (liggghts, "coefficientFriction peratomtypepair 3 &\n    0.106 "),
+        (lammps, "0.0 0.106 damping"),
+    ],
+)
+def test_dry_friction_is_written_as_measured(writer, written: str) -> None:
+    """A dry pair (e 0.97) loses under 0.1 % of its friction at first touch: LIGGGHTS and
+    LAMMPS get μ_f as measured; a wet pair in 78 % glycerol gets a larger input, with
+    what it gives at 45° and 80° (Yade corrects every pair: its spring is incremental)."""
+    dry = writer.write(dry_model())
+    assert "mu_f input" not in dry
+    assert " 0.106 " in dry or "0.106\n" in dry or " 0.106" in dry
+    wet = writer.write(wet_model("glycerol78"))
+    assert "mu_f input" in wet and "at 45 deg and" in wet
 
 
 def test_rolling_friction_switches_models() -> None:
