@@ -99,7 +99,7 @@ def _same(a: dict, b: dict) -> bool:
     )
 
 
-def _sliding_measured(seed: int, *, n: int = 40, stated: bool = True) -> pd.DataFrame:
+def sliding_measured(seed: int, *, n: int = 40, stated: bool = True) -> pd.DataFrame:
     """Gap-viscosity runs (1.6 mPa·s) whose four speeds carry 2 % relative noise, that u
     stated per run when ``stated``."""
     runs = sliding_runs(1.6e-3, n=n, seed=seed)
@@ -128,8 +128,8 @@ def test_walton_intervals_widen_with_stated_speed_uncertainties() -> None:
 
 def test_gap_viscosity_interval_widens_with_stated_speed_uncertainties() -> None:
     for seed in range(2):
-        [with_u] = fits.gap_viscosity(_sliding_measured(seed), {})
-        [without] = fits.gap_viscosity(_sliding_measured(seed, stated=False), {})
+        [with_u] = fits.gap_viscosity(sliding_measured(seed), {})
+        [without] = fits.gap_viscosity(sliding_measured(seed, stated=False), {})
         assert with_u["gap_viscosity_pa_s"] == without["gap_viscosity_pa_s"]
         wide = with_u["gap_viscosity_high_pa_s"] - with_u["gap_viscosity_low_pa_s"]
         narrow = without["gap_viscosity_high_pa_s"] - without["gap_viscosity_low_pa_s"]
@@ -143,7 +143,7 @@ def test_walton_and_gap_fits_without_a_stated_u_are_unchanged() -> None:
     [empty] = fits.walton(walton_runs.assign(**unstated))
     [plain] = fits.walton(walton_runs)
     assert _same(empty, plain)
-    gap_runs = _sliding_measured(4, stated=False)
+    gap_runs = sliding_measured(4, stated=False)
     [empty] = fits.gap_viscosity(gap_runs.assign(**unstated), {})
     [plain] = fits.gap_viscosity(gap_runs, {})
     assert _same(empty, plain)
@@ -166,7 +166,7 @@ def test_walton_intervals_with_stated_u_cover_the_truth(walton_stated_fits, name
 def test_gap_viscosity_interval_with_stated_u_covers_the_truth() -> None:
     trials, covered = 60, 0
     for seed in range(trials):
-        [fit] = fits.gap_viscosity(_sliding_measured(300 + seed, n=30), {})
+        [fit] = fits.gap_viscosity(sliding_measured(300 + seed, n=30), {})
         covered += fit["gap_viscosity_low_pa_s"] <= 1.6e-3 <= fit["gap_viscosity_high_pa_s"]
     assert covered / trials >= 0.90, covered
 
