@@ -5,12 +5,15 @@ intervals still cover the truth on synthetic runs measured with that noise."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import pytest
 from analysis.synthetic import walton_measured, with_stated_u
 from analysis.test_gap_viscosity import sliding_runs
 
+import granudb
 from granudb.analysis import bands, fits
 from granudb.analysis import walton_bootstrap as resampling
 
@@ -182,3 +185,13 @@ def test_the_bands_redraw_the_same_perturbed_sets_as_the_intervals() -> None:
     unstated = walton_measured(WALTON_N, stated=False, seed=7)
     plain = bands.walton_sets(unstated, fits.walton(unstated, resamples=200))[key]
     assert np.nanstd(again.beta) > 1.05 * np.nanstd(plain.beta)
+
+
+def test_stored_runs_stated_u_reaches_the_walton_and_gap_fits(opened) -> None:
+    example = Path(__file__).resolve().parents[2] / "examples" / "collisions_example.csv"
+    granudb.import_collisions(example, dataset="plain", db=opened)
+    stated = "v_n_in=± 2 %, v_n_out=± 2 %, v_t_in=± 2 %"
+    granudb.import_collisions(example, dataset="u", uncertainty=stated, db=opened)
+    for fitted in (granudb.fit_walton(db=opened), granudb.fit_gap_viscosity(db=opened)):
+        perturbed = fitted["interval_method"].str.contains("perturbed by their stated u")
+        assert (perturbed == (fitted["dataset"] == "u")).all()
