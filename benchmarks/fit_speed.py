@@ -12,6 +12,10 @@ Times, on N synthetic runs of known truth (default 100,000, one group; the gener
   that the first resamples agree exactly.
 - the gap-viscosity fit (least squares of (5.8) and its bootstrap) and the restitution
   fit (threshold form) on N runs.
+- the Walton and gap-viscosity fits on the same runs measured through noisy speeds, with
+  and without the noise stated per run (issue 27): the perturbed bootstrap re-sorts every
+  resample and re-decides it by ``walton.decide``, so it is slower; the same-run ratio
+  is printed (not part of the bound: runs without a stated u take the fast path).
 
 Prints runs × resamples per second, the same-run ratios, and PASS/FAIL for the bound
 that keeps a report on 100,000 runs under issue 17's 2 s: all three fits, with the rule,
@@ -32,9 +36,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
-from analysis.synthetic import walton_frame  # noqa: E402
+from analysis.synthetic import walton_frame, walton_measured  # noqa: E402
 from analysis.test_gap_viscosity import sliding_runs  # noqa: E402
 from analysis.test_restitution_fit import runs as restitution_runs  # noqa: E402
+from analysis.test_stated_uncertainty_fits import sliding_measured  # noqa: E402
 
 from granudb.analysis import fits  # noqa: E402
 from granudb.analysis import walton as core  # noqa: E402
@@ -122,6 +127,26 @@ def main() -> None:
     total = walton_s + gap_s + rest_s
     verdict = "PASS" if total <= BOUND_S else "FAIL"
     print(f"{verdict}: all fits with the rule {total:.2f} s; bound <= {BOUND_S} s")
+    stated_cost(n)
+
+
+def stated_cost(n: int) -> None:
+    """The same runs with and without their speeds' u stated: the perturbed bootstrap's
+    same-run ratio (issue 27)."""
+    for name, fit, make in (
+        ("Walton", fits.walton, lambda s: walton_measured(n, stated=s, seed=1)),
+        (
+            "gap viscosity",
+            lambda f: fits.gap_viscosity(f, {}),
+            lambda s: sliding_measured(3, n=n, stated=s),
+        ),
+    ):
+        [plain], plain_s = timed(fit, make(False))
+        [given], given_s = timed(fit, make(True))
+        print(
+            f"{name}, {n:,} runs, speeds' u stated: {given_s:.2f} s against {plain_s:.2f} s "
+            f"without ({given['bootstrap_resamples']} resamples); ratio {given_s / plain_s:.1f}×"
+        )
 
 
 if __name__ == "__main__":

@@ -51,17 +51,19 @@ def curve_band(values: np.ndarray, level: float = LEVEL) -> tuple[np.ndarray, np
 def walton_sets(frame: Any, walton: list[Mapping[str, Any]]) -> dict[tuple, core.Decision]:
     """Each fitted group's bootstrap parameter sets, keyed by its (dataset, particle, wall,
     fluid) as the fit's row names it: the resamples of its intervals (same count and seed,
-    so the same draws)."""
+    so the same draws, the runs' stated u perturbing them alike)."""
     rows = {tuple(r[k] for k in GROUP): r for r in walton if r.get("model")}
-    runs = [name for name in WALTON_INPUTS if name not in GROUP]
+    runs = [name for name in WALTON_INPUTS if name not in GROUP] + resampling.STATED_COLUMNS
     found = {}
     for key, group in group_frames(frame, GROUP, runs, fill={"fluid": "dry"}):
         row = rows.get(tuple(key))
         if row is None:
             continue
-        x, y, c, e = walton_arrays(group)[:4]
+        arrays = walton_arrays(group)
+        x, y, c, e = arrays[:4]
+        stated = resampling.stated_inputs(group, arrays)
         found[tuple(key)] = resampling.bootstrap(
-            x, y, c, e, int(row["bootstrap_resamples"]), int(row["bootstrap_seed"])
+            x, y, c, e, int(row["bootstrap_resamples"]), int(row["bootstrap_seed"]), stated
         )
     return found
 

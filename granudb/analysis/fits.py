@@ -81,7 +81,9 @@ WALTON_KEYS = {
     "'as asked' when the caller gave one)",
     "reason": "why β or μ_f is absent ('' when both are given)",
     "fit_method": "'bootstrap' or 'bayes' (FIT_METHODS)",
-    "bayes only: interval_method, prior, likelihood, sigma": "how the posterior was made "
+    "interval_method": "how the intervals were made (the bootstrap's says whether the runs' "
+    "stated speed uncertainties were used: resampling.STATED_WALTON_METHOD)",
+    "bayes only: prior, likelihood, sigma": "how the posterior was made "
     "(values are posterior medians, _low/_high its 95 % equal-tailed credible interval, "
     "_stderr its standard deviation; sigma the scatter of Ψ_out)",
     "bayes only: sampler, sampler_source, sampler_walkers, _steps, _burn_in, _seed": "the "
@@ -137,6 +139,7 @@ _NUMBERS = [
 def _groups(frame: Any) -> Any:
     runs = [name for name in WALTON_INPUTS if name not in GROUP]  # the key says the group
     runs.append(bayesian.STATED_U_WALTON)  # when the runs state it (the Bayesian option)
+    runs += [name for name in resampling.STATED_COLUMNS if name not in runs]  # the bootstrap's
     return group_frames(frame, GROUP, runs, fill={"fluid": "dry"})
 
 
@@ -191,12 +194,17 @@ def bootstrap_plan(n: int, resamples: int | None) -> tuple[int, str]:
 def _walton_group(
     key: tuple, group: Any, asked: int | None, seed: int, sets: dict | None = None
 ) -> dict[str, Any]:
-    x, y, c, e, folded, _, factor = walton_arrays(group)
+    arrays = walton_arrays(group)
+    x, y, c, e, folded, _, factor = arrays
     n = len(x)
+    stated = resampling.stated_inputs(group, arrays)
     resamples, rule = bootstrap_plan(n, asked)
     row: dict[str, Any] = {**dict(zip(GROUP, key, strict=True)), "n_runs": n, "n_folded": folded}
     row.update(confidence_level=CONFIDENCE_LEVEL, bootstrap_resamples=resamples)
     row["bootstrap_rule"] = rule
+    row["interval_method"] = intervals.METHOD + (
+        resampling.STATED_WALTON_METHOD if stated is not None else ""
+    )
     row.update(bootstrap_seed=seed, walton_factor=float(np.mean(factor)) if n else math.nan)
     row.update(dict.fromkeys(_NUMBERS, math.nan), model=None, model_reason="")
     row.update(n_sticking=0, n_sliding=0)
@@ -205,7 +213,7 @@ def _walton_group(
         row["reason"] = f"{n} runs: a Walton fit needs at least {core.MIN_RUNS_FOR_PARAMETER}"
         return row
     fit = core.decide(np.ones((1, n)), x, y, c, e)
-    boot = resampling.bootstrap(x, y, c, e, resamples, seed)
+    boot = resampling.bootstrap(x, y, c, e, resamples, seed, stated)
     if sets is not None:  # the report's bands reuse them (granudb.analysis.bands)
         sets[tuple(key)] = boot
     model = core.MODELS[int(fit.model[0])]

@@ -59,22 +59,37 @@ _MODEL_INPUTS = ["effective_radius_m", "reduced_modulus_pa", "eta_hat_pa_inv", "
                  "tangential_speed_m_s", "effective_mass_kg", "particle_density_kg_m3"]  # fmt: skip
 
 
-def model_friction(group: Any, viscosity: float) -> np.ndarray:
-    """(5.8) for each run of ``group`` at gap viscosity ``viscosity`` [Pa·s]."""
+def model_inputs(group: Any) -> dict[str, np.ndarray]:
+    """Each run's inputs of (5.8): R*, E*, η̂, v_N, U = |v_T,in| and m*."""
     radius = group["effective_radius_m"].to_numpy(dtype=float)
-    e_star = group["reduced_modulus_pa"].to_numpy(dtype=float)
-    eta_hat = group["eta_hat_pa_inv"].to_numpy(dtype=float)
-    vn = group["normal_speed_m_s"].to_numpy(dtype=float)  # relative: a moving target's too
-    u = np.abs(group["tangential_speed_m_s"].to_numpy(dtype=float))
     if "effective_mass_kg" in group:
         mass = group["effective_mass_kg"].to_numpy(dtype=float)
     else:  # a sphere on a flat wall: R* = R
         mass = contact.sphere_mass(group["particle_density_kg_m3"].to_numpy(float), 2 * radius)
-    load = contact.peak_impact_force(mass, vn, e_star, radius)
+    return {
+        "radius": radius,
+        "e_star": group["reduced_modulus_pa"].to_numpy(dtype=float),
+        "eta_hat": group["eta_hat_pa_inv"].to_numpy(dtype=float),
+        "vn": group["normal_speed_m_s"].to_numpy(dtype=float),  # relative: a moving target's too
+        "u": np.abs(group["tangential_speed_m_s"].to_numpy(dtype=float)),
+        "mass": mass,
+    }
+
+
+def friction_of(inputs: dict[str, np.ndarray], viscosity: float) -> np.ndarray:
+    """(5.8) at gap viscosity ``viscosity`` [Pa·s] for ``model_inputs`` (any shape)."""
+    radius, e_star, eta_hat = inputs["radius"], inputs["e_star"], inputs["eta_hat"]
+    u = inputs["u"]
+    load = contact.peak_impact_force(inputs["mass"], inputs["vn"], e_star, radius)
     a = contact.max_contact_radius(radius, load, e_star)
     p_max = contact.max_pressure(load, a)
     film = lubrication.traction_film_thickness(radius, viscosity, u, eta_hat, load, e_star)
     return np.asarray(lubrication.lubricated_friction(viscosity, u, load, film, a, eta_hat, p_max))
+
+
+def model_friction(group: Any, viscosity: float) -> np.ndarray:
+    """(5.8) for each run of ``group`` at gap viscosity ``viscosity`` [Pa·s]."""
+    return friction_of(model_inputs(group), viscosity)
 
 
 def _least_squares(measured: np.ndarray, group: Any) -> tuple[float, np.ndarray | None]:
@@ -123,6 +138,36 @@ def _bootstrap(arrays: tuple, g: np.ndarray, smooth: np.ndarray, resamples: int,
         q = np.where(drawn >= core.MIN_RUNS_FOR_PARAMETER, q, np.nan)
         q_all.append(q)
         se_all.append(core.standard_error(residual, runs, sums[:, 1]))
+    return np.concatenate(q_all), np.concatenate(se_all)
+
+
+def _bootstrap_stated(arrays: tuple, inputs: dict, smooth: np.ndarray, stated: tuple,
+                      resamples: int, seed: int):  # fmt: skip
+    """``_bootstrap`` with every run's measured speeds perturbed by their stated u in each
+    resample (``walton_bootstrap.perturbed_batches``): the sliding runs re-decided on the
+    perturbed, re-sorted runs, their μ_f (2.9) from the perturbed Ψ_in, Ψ_out and e, and g
+    of (5.8) from the perturbed v_N,in and sliding speed U = |Ψ_in| v_N,in (2.5)."""
+    x, y, c, e = arrays
+    n = len(x)
+    q_all, se_all = [], []
+    b, u = stated
+    for runs, decision in resampling.perturbed_batches(x, y, b, e, u, resamples, seed):
+        at = {name: value[runs.order] for name, value in inputs.items()}
+        at["vn"] = at["vn"] * runs.f
+        at["u"] = runs.x * at["vn"]
+        g = friction_of(at, 1.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            measured = (runs.x - runs.y) / runs.c
+        ok = smooth[runs.order] & np.isfinite(g) & np.isfinite(measured)
+        w = np.where(ok & (np.arange(n) >= decision.split[:, None]), runs.w, 0.0)
+        g, measured = np.where(ok, g, 0.0), np.where(ok, measured, 0.0)
+        sums = [np.einsum("ij,ij->i", w, v) for v in (measured * g, g * g, measured**2)]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            q = sums[0] / sums[1]
+            residual = sums[2] - q * sums[0]
+        drawn = np.count_nonzero(w, axis=1)
+        q_all.append(np.where(drawn >= core.MIN_RUNS_FOR_PARAMETER, q, np.nan))
+        se_all.append(core.standard_error(residual, w.sum(axis=1), sums[1]))
     return np.concatenate(q_all), np.concatenate(se_all)
 
 
@@ -177,6 +222,9 @@ def _fit_group(key: tuple, group: Any, model: Any, asked: int | None, seed: int)
     row.update(gap_temperature_low_c=nan, gap_temperature_high_c=nan, n_runs=0)
     row.update(confidence_level=LEVEL, bootstrap_seed=seed, interval_reason="")
     row["interval_method"] = intervals.METHOD + ", the sliding runs re-decided in each"
+    stated = resampling.stated_inputs(group, walton_arrays(group))
+    if stated is not None:
+        row["interval_method"] += resampling.STATED_WALTON_METHOD
     ambient = group["viscosity_pa_s"].to_numpy(float)
     ambient = ambient[np.isfinite(ambient)]  # rows without a fluid state have none
     row["ambient_viscosity_pa_s"] = float(np.mean(ambient)) if ambient.size else nan
@@ -197,8 +245,13 @@ def _fit_group(key: tuple, group: Any, model: Any, asked: int | None, seed: int)
     interval_reason = intervals.too_few(len(measured), MIN_RUNS_FOR_INTERVAL)
     if g is not None and not interval_reason:
         x, y, c, e, order, smooth = everything
-        g_all = model_friction(group.iloc[order], 1.0)
-        q_boot, se_boot = _bootstrap((x, y, c, e), g_all, smooth, resamples, seed)
+        if stated is None:
+            g_all = model_friction(group.iloc[order], 1.0)
+            q_boot, se_boot = _bootstrap((x, y, c, e), g_all, smooth, resamples, seed)
+        else:
+            inputs = model_inputs(group.iloc[order])
+            q_boot, se_boot = _bootstrap_stated((x, y, c, e), inputs, smooth, stated,
+                                                resamples, seed)  # fmt: skip
         q = viscosity ** (2 / 7)
         residual = float(np.sum((measured - q * g) ** 2))
         se = float(core.standard_error(residual, len(g), float(g @ g)))
@@ -236,7 +289,13 @@ def gap_viscosity(
     if "normal_speed_m_s" not in frame:  # a table of wall impacts only: the particle's own
         frame = frame.assign(normal_speed_m_s=frame["v_n_in_m_s"])
     inputs = dict.fromkeys(
-        [*WALTON_INPUTS, *_MODEL_INPUTS, "viscosity_pa_s", "roughness_exceeds_gap"]
+        [
+            *WALTON_INPUTS,
+            *_MODEL_INPUTS,
+            "viscosity_pa_s",
+            "roughness_exceeds_gap",
+            *resampling.STATED_COLUMNS,
+        ]  # fmt: skip
     )
     return [  # dry runs (no fluid) are in no group
         _fit_group(key, group, fluids.get(key[3]), resamples, seed)

@@ -124,11 +124,18 @@ def _prefix(weights: np.ndarray, values: np.ndarray) -> np.ndarray:
     return out
 
 
+def _dot(w: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Σ_j w_ij v_j, or Σ_j w_ij v_ij when ``values`` has a row per resample."""
+    return w @ values if values.ndim == 1 else np.einsum("ij,ij->i", w, values)
+
+
 def decide(weights: np.ndarray, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray):
     """Choose the model, the split and the parameters for each row of ``weights``.
 
-    ``x`` (sorted ascending), ``y``, ``c`` = (1+e)B and ``e`` are per run; ``weights`` (m, n)
-    counts how often each run is drawn (ones for the fit itself).
+    ``x`` (sorted ascending), ``y``, ``c`` = (1+e)B and ``e`` are per run, shape (n,), or
+    per resample and run, shape (m, n), each row sorted by its own x (the bootstrap with
+    the runs' stated uncertainties, ``walton_bootstrap.perturbed_batches``); ``weights``
+    (m, n) counts how often each run is drawn (ones for the fit itself).
     """
     w = np.asarray(weights, dtype=float)
     m, n = w.shape
@@ -168,11 +175,11 @@ def decide(weights: np.ndarray, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: 
     n_slide = distinct[:, -1] - n_stick
     beta = beta_all[rows, k_chosen]
     friction = friction_all[rows, k_chosen]
-    restitution = (w @ e) / runs
+    restitution = _dot(w, e) / runs
     beta_se = standard_error(stick[rows, k_chosen], count[rows, k_chosen], sxx[rows, k_chosen])
     slid = runs - count[rows, k_chosen]
     friction_se = standard_error(slide[rows, k_chosen], slid, tcc[rows, k_chosen])
-    spread = np.maximum((w @ (e * e)) - runs * restitution**2, 0.0)
+    spread = np.maximum(_dot(w, e * e) - runs * restitution**2, 0.0)
     restitution_se = standard_error(spread, runs, runs)
     lines_ = (beta, beta_se, friction, friction_se)
     return decision(model, k_chosen, bic, lines_, (n_stick, n_slide), (restitution, restitution_se))

@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 
 from granudb.analysis import walton as core
+from granudb.vocabulary.terms import uncertainty_column
 
 #: Resamples of the Walton and gap-viscosity bootstraps for groups up to RULE_RUNS runs.
 DEFAULT_RESAMPLES = 1000
@@ -103,6 +104,101 @@ def perturbed(
     f_in = np.maximum(1.0 + r_in * z[0], 0.01)
     f_out = np.maximum(1.0 + r_out * z[1], 0.01)
     return st * f_in, e * f_out / f_in
+
+
+#: The per-run quantities of a Walton fit that are ratios of measured speeds over v_N,in
+#: (Joseph & Hunt 2004 (2.5), (2.8)): e, Ψ_in, Ψ_out.
+RATIOS = ("normal_restitution", "effective_incidence", "effective_rebound")
+#: The columns ``stated_walton`` reads: v_N,in (the relative normal speed where the frame
+#: has it, else v_n,in), its stated u, and the runs' listed u(e), u(Ψ_in), u(Ψ_out).
+STATED_COLUMNS = ["normal_speed_m_s", "v_n_in_m_s", "u_v_n_in_m_s",
+                  *(uncertainty_column(q) for q in RATIOS)]  # fmt: skip
+#: What the Walton and gap-viscosity fits' interval method adds when runs state u.
+STATED_WALTON_METHOD = (
+    ", each run's measured speeds (v_N,in, v_n,out, v_T,in, v_T,out) perturbed by their "
+    "stated u (normal) and e, Ψ_in, Ψ_out recomputed, runs re-sorted per resample"
+)
+
+
+def stated_walton(group: Any, order: np.ndarray) -> np.ndarray | None:
+    """(4, n) for the group's runs at ``order`` (as ``walton_arrays`` sorts them): r =
+    u(v_N,in)/v_N,in, then for e, Ψ_in and Ψ_out the standard uncertainty their numerator
+    speed gives them over v_N,in, √(u(q)² − (q r)²): the listed u(q) (``ratio_uncertainty``
+    of the speeds', spin and diameter included in v_T's) with v_N,in's share taken out, as
+    v_N,in is one speed shared by all three. 0 where nothing is stated; None when no run
+    states any."""
+    if not any(name in group for name in STATED_COLUMNS[2:]):
+        return None
+
+    def column(name: str) -> np.ndarray:
+        if name not in group:
+            return np.full(len(order), np.nan)
+        return group[name].to_numpy(dtype=float)[order]
+
+    speed = column("normal_speed_m_s" if "normal_speed_m_s" in group else "v_n_in_m_s")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = column("u_v_n_in_m_s") / np.abs(speed)
+        parts = [r] + [
+            np.sqrt(np.maximum(column(uncertainty_column(q)) ** 2 - (column(q) * r) ** 2, 0.0))
+            for q in RATIOS
+        ]
+    stated = np.stack([np.where(np.isfinite(p), p, 0.0) for p in parts])
+    return stated if stated.any() else None
+
+
+def stated_inputs(group: Any, arrays: tuple) -> tuple[np.ndarray, np.ndarray] | None:
+    """``bootstrap``'s ``stated`` for a group's runs, given their ``walton_arrays``: (the
+    runs' Walton factor B, ``stated_walton``), or None when no run states a u."""
+    order, factor = arrays[5], arrays[6]
+    stated = stated_walton(group, order)
+    return None if stated is None else (factor[order], stated)
+
+
+def perturbed_runs(
+    rng: np.random.Generator, m: int, x: np.ndarray, y: np.ndarray, e: np.ndarray, stated
+) -> tuple[np.ndarray, ...]:
+    """(Ψ_in, Ψ_out, e, f) of ``m`` resamples, shape (m, n), with every run's measured
+    speeds drawn again from their stated u (``stated_walton``), normal and independent:
+    v_N,in → v_N,in f with f = 1 + r z₀ (kept above 0.01: a speed never turns round), and
+    each numerator speed moved by its own u, so q → (q + u_q z)/f for q = e, Ψ_in, Ψ_out:
+    the three share the one v_N,in, as they do in the measurement. ``x``, ``y`` are folded
+    (Ψ_in ≥ 0); a run whose perturbed Ψ_in turns negative is folded again (v_T,in changed
+    sign). e stays ≥ 1 % of its value."""
+    r, u_e, u_in, u_out = stated
+    z = rng.standard_normal((4, m, len(x)))
+    f = np.maximum(1.0 + r * z[0], 0.01)
+    x_b, y_b = (x + u_in * z[1]) / f, (y + u_out * z[2]) / f
+    e_b = np.maximum(e + u_e * z[3], 0.01 * e) / f
+    sign = np.where(x_b < 0, -1.0, 1.0)
+    return sign * x_b, sign * y_b, e_b, f
+
+
+class Perturbed:
+    """One batch of perturbed resamples, each row sorted by its own Ψ_in: ``w`` the draw
+    counts, ``x``, ``y``, ``c``, ``e``, ``f`` (v_N,in's factor) and ``order`` (the
+    original run of each column), all (m, n)."""
+
+    def __init__(self, counts, runs: tuple, factor: np.ndarray, b: np.ndarray) -> None:
+        self.order = np.argsort(runs[0], axis=1, kind="stable")
+        take = lambda a: np.take_along_axis(a, self.order, axis=1)  # noqa: E731
+        self.w, self.x, self.y, self.e, self.f = (take(a) for a in (counts, *runs, factor))
+        self.c = (1.0 + self.e) * b[self.order]
+
+
+def perturbed_batches(x, y, b, e, stated: np.ndarray, resamples: int, seed: int):
+    """Yield (Perturbed, decision) per batch: the Walton bootstrap with the runs' stated
+    uncertainties (``b`` the runs' Walton factor B). Each resample draws its runs, perturbs
+    their speeds (``perturbed_runs``), re-sorts them and re-decides model and split
+    (``walton.decide`` on the rows' own order: the block search needs one order for all)."""
+    n = len(x)
+    rng = np.random.default_rng(seed)
+    batch = max(1, BATCH_CELLS // (16 * n))  # decide holds about 16 (m, n) arrays
+    for start in range(0, resamples, batch):
+        m = min(batch, resamples - start)
+        counts = draw_counts(rng, m, n, n)
+        x_b, y_b, e_b, f = perturbed_runs(rng, m, x, y, e, stated)
+        runs = Perturbed(counts, (x_b, y_b, e_b), f, b)
+        yield runs, core.decide(runs.w, runs.x, runs.y, runs.c, runs.e)
 
 
 def resample_count(n: int) -> int:
@@ -314,12 +410,24 @@ def batches(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resample
 
 
 def bootstrap(
-    x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resamples: int, seed: int
+    x: np.ndarray,
+    y: np.ndarray,
+    c: np.ndarray,
+    e: np.ndarray,
+    resamples: int,
+    seed: int,
+    stated: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> core.Decision:
     """``resamples`` bootstrap fits over runs (each re-decides model and split), in batches.
+    ``stated``: (the runs' Walton factor B, ``stated_walton``), and each resample also
+    perturbs every run's measured speeds by their stated u (``perturbed_batches``).
 
     Deterministic for a given (data, resamples, seed).
     """
-    parts = [decision for _, decision in batches(x, y, c, e, resamples, seed)]
+    if stated is None:
+        parts = [decision for _, decision in batches(x, y, c, e, resamples, seed)]
+    else:
+        found = perturbed_batches(x, y, stated[0], e, stated[1], resamples, seed)
+        parts = [decision for _, decision in found]
     fields = core.Decision.__dataclass_fields__
     return core.Decision(*(np.concatenate([getattr(p, f) for p in parts]) for f in fields))

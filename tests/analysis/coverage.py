@@ -8,11 +8,11 @@ import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
-from analysis.synthetic import walton_frame
+from analysis.synthetic import walton_frame, walton_measured
 from analysis.test_gap_viscosity import sliding_runs
 from analysis.test_restitution_fit import runs as restitution_runs
 from analysis.test_stated_uncertainty_fits import TRUTH as STATED_TRUTH
-from analysis.test_stated_uncertainty_fits import U_REL, measured
+from analysis.test_stated_uncertainty_fits import U_REL, measured, sliding_measured
 
 from granudb.analysis import fits
 
@@ -75,6 +75,16 @@ def _stated_runs(n, seed):
     """Runs measured through speeds with a stated relative u (issue 27), which the
     restitution fit's resamples perturb."""
     return measured(seed, n=n)
+
+
+def _walton_stated(n, seed):
+    """Split runs measured through speeds with 4 mm/s noise, that u stated (issue 27)."""
+    return walton_measured(n, seed=seed)
+
+
+def _gap_stated(n, seed):
+    """Gap-viscosity runs with 2 % speed noise, that u stated (issue 27)."""
+    return sliding_measured(seed, n=n)
 
 
 _THRESHOLD, _EXPONENTIAL = _restitution("threshold"), _restitution("exponential")
@@ -165,6 +175,27 @@ CASES = [
         E_DRY,
     ),
     Case(
+        "Walton β, split, stated u (4 mm/s)",
+        0.34,
+        _walton_stated,
+        _walton,
+        _walton_keys("rotational_restitution"),
+    ),
+    Case(
+        "Walton μ_f, split, stated u (4 mm/s)",
+        0.11,
+        _walton_stated,
+        _walton,
+        _walton_keys("sliding_friction"),
+    ),
+    Case(
+        "Walton ē, split, stated u (4 mm/s)",
+        0.97,
+        _walton_stated,
+        _walton,
+        ("normal_restitution_mean", "normal_restitution_low", "normal_restitution_high"),
+    ),
+    Case(
         "Bayes: Walton β, split data (β₀ = 0.34)",
         0.34,
         _split,
@@ -208,6 +239,13 @@ CASES = [
         "gap viscosity μ₀ = 1.6 mPa·s",
         1.6e-3,
         lambda n, s: sliding_runs(1.6e-3, n=n, seed=s),
+        _gap,
+        ("gap_viscosity_pa_s", "gap_viscosity_low_pa_s", "gap_viscosity_high_pa_s"),
+    ),
+    Case(
+        "stated u (2 %): gap viscosity μ₀",
+        1.6e-3,
+        _gap_stated,
         _gap,
         ("gap_viscosity_pa_s", "gap_viscosity_low_pa_s", "gap_viscosity_high_pa_s"),
     ),

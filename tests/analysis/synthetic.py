@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from granudb.physics.uncertainty import ratio_uncertainty
+
 RADIUS = 6.35e-3  # 12.7 mm spheres
 WALTON_FACTOR = 3.5  # 1 + 1/K², a solid sphere on a wall
 
@@ -54,3 +56,38 @@ def walton_frame(
     if walton_factor is not None:
         frame["walton_factor"] = walton_factor
     return frame
+
+
+def with_stated_u(frame: pd.DataFrame, u_in, u_out, u_t_in, u_t_out) -> pd.DataFrame:
+    """``frame`` with each run's stated u of v_n,in, v_n,out, v_T,in, v_T,out [m/s] and the
+    u(e), u(Ψ_in), u(Ψ_out) a listing derives from them (``ratio_uncertainty``, as
+    ``granudb.analysis.collisions`` does)."""
+    vn, e = frame["v_n_in_m_s"], frame["normal_restitution"]
+    out = frame.assign(
+        v_n_out_m_s=e * vn, u_v_n_in_m_s=u_in, u_v_n_out_m_s=u_out, u_v_t_in_m_s=u_t_in
+    )
+    out["u_v_t_out_m_s"] = u_t_out
+    out["u_normal_restitution"] = ratio_uncertainty(e, vn, u_out, u_in)
+    out["u_effective_incidence"] = ratio_uncertainty(frame["effective_incidence"], vn, u_t_in, u_in)
+    out["u_effective_rebound"] = ratio_uncertainty(frame["effective_rebound"], vn, u_t_out, u_in)
+    return out
+
+
+def walton_measured(n: int, *, u: float = 0.004, stated: bool = True, seed: int = 0):
+    """``walton_frame``'s split runs (β = 0.34, μ_f = 0.11, ē = 0.97) measured through
+    speeds: v_n,in, v_n,out, v_T,in and v_T,out each with Gaussian noise of ``u`` [m/s]
+    (1–4 % of v_n,in), and, with ``stated``, that u stated for every run."""
+    true = walton_frame(n, seed=seed)
+    rng = np.random.default_rng(10_000 + seed)
+    vn = true["v_n_in_m_s"].to_numpy()
+    speeds = [vn, true["normal_restitution"] * vn, true["effective_incidence"] * vn,
+              true["effective_rebound"] * vn]  # fmt: skip
+    vn_m, out_m, t_in, t_out = (v + u * rng.standard_normal(n) for v in speeds)
+    frame = true.assign(
+        v_n_in_m_s=vn_m,
+        tangential_speed_m_s=t_in,
+        effective_incidence=t_in / vn_m,
+        effective_rebound=t_out / vn_m,
+        normal_restitution=out_m / vn_m,
+    )
+    return with_stated_u(frame, u, u, u, u) if stated else frame
