@@ -40,6 +40,7 @@ NAMES: dict[str, str] = {
     "fluid": "catalog",
     "sources": "catalog",
     "source": "catalog",
+    "source_history": "catalog",
     "add_material": "catalog_changes",
     "update_material": "catalog_changes",
     "remove_material": "catalog_changes",

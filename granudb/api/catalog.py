@@ -141,6 +141,30 @@ def sources(db: Any = None, *, as_frame: bool = True) -> Any:
     )
 
 
+def source_history(key: str, *, db: Any = None) -> list[dict[str, Any]]:
+    """The source ``key`` as it is and as it was before each change, newest first: each
+    record its values with ``revision`` ("current" or its number), ``kept_at`` (when it
+    changed) and ``reason`` (why). A released dataset reads a source as it was when
+    released, so its package's sources never change.
+
+    Examples
+    --------
+    >>> import granudb
+    >>> [r["revision"] for r in granudb.source_history("joseph-hunt-2004", db=db)]
+    ['current']
+    """
+    key = inputs.text(key, "key")
+    with opened(db) as database, database.reading() as connection:
+        current = catalog_rows.source_record(catalog_rows.get_source_row(connection, key))
+        kept = catalog_rows.source_revision_rows(connection, key)
+    records = [{"revision": "current", "kept_at": None, "reason": None, **current}]
+    for number, row in enumerate(kept, start=1):
+        values = {c: row[c] for c in current}
+        records.append({"revision": str(number), "kept_at": row["kept_at"],
+                        "reason": row["reason"], **values})  # fmt: skip
+    return [records[0], *reversed(records[1:])]
+
+
 def _listing(rows: Any, record: Any, columns: list[str], db: Any, as_frame: bool) -> Any:
     """Every row ``rows(connection)`` reads, as ``record(row)``: a DataFrame of ``columns``
     or the list of records."""

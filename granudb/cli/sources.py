@@ -1,4 +1,4 @@
-"""``granudb sources list|show``: where every published number comes from."""
+"""``granudb sources list|show|history``: where every published number comes from."""
 
 from __future__ import annotations
 
@@ -44,3 +44,17 @@ def show(
         emit_one({**record, **cited}, fmt, title=f"Source {key}")
         if published:
             emit(published, api.PUBLISHED_NARROW, fmt, title="Published values")
+
+
+@app.command()
+@wraps("source_history")
+def history(
+    key: Annotated[str, typer.Argument(help="Source key, e.g. joseph-hunt-2004.")],
+    db: DbOption = None,
+    fmt: FormatOption = Format.table,
+) -> None:
+    """Show a source as it is and as it was before each change (when and why)."""
+    records = api.source_history(key, db=db)
+    columns = ["revision", "kept_at", "reason", *api.SOURCE_NARROW]
+    emit(records, columns if fmt is Format.table else list(records[0]), fmt,
+         title=f"Source {key}: history")  # fmt: skip

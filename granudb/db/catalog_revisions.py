@@ -17,7 +17,15 @@ from typing import Any
 from sqlalchemy import func, or_, select, update
 from sqlalchemy.orm import Session
 
-from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, utcnow
+from granudb.db.models import (
+    Collision,
+    Dataset,
+    Fluid,
+    FluidPoint,
+    Material,
+    SourceRevision,
+    utcnow,
+)
 
 #: Separates a revision's name key from its number: a control character, which no name
 #: may contain, so no lookup by name ever finds a revision.
@@ -101,3 +109,15 @@ def revisions(session: Session, kind: str, row_id: int) -> list[Any]:
     return list(
         session.scalars(select(model).where(model.revision_of == row_id).order_by(model.id))
     )
+
+
+def keep_source_revision(
+    session: Session, source_id: int, before: dict[str, Any], reason: str
+) -> SourceRevision:
+    """Keep a source's values ``before`` one change (its ``source_record``), with the time
+    and ``reason``: a release reads its sources as they were when it was released
+    (``catalog_rows.sources_as_of``), and ``sources history`` lists the changes."""
+    revision = SourceRevision(source_id=source_id, **before, kept_at=utcnow(), reason=reason)
+    session.add(revision)
+    session.flush()
+    return revision

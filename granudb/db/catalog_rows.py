@@ -138,6 +138,7 @@ TYPED = {
     "created_at": DateTime(timezone=True),
     "updated_at": DateTime(timezone=True),
     "released_at": DateTime(timezone=True),
+    "kept_at": DateTime(timezone=True),
 }
 
 
@@ -156,8 +157,11 @@ PAIR_VALUES = lightweight_table(
     ["id", "particle_id", "wall_id", "created_at",
      *(c for c in _stored(PairValueRow) if c not in ("particle", "wall"))],
 )  # fmt: skip
+SOURCE_REVISIONS = lightweight_table(
+    "source_revisions", ["id", "source_id", *SOURCE_COLUMNS, "kept_at", "reason"]
+)
 #: Every lightweight table above, for the test that holds them to the models.
-TABLES = (SOURCES, MATERIALS, FLUIDS, FLUID_POINTS, PAIR_VALUES)
+TABLES = (SOURCES, MATERIALS, FLUIDS, FLUID_POINTS, PAIR_VALUES, SOURCE_REVISIONS)
 
 
 def _sources(connection: Connection) -> dict[int, SourceRow]:
@@ -179,6 +183,31 @@ def _build(record: type, row: Any, sources: dict[int, SourceRow], **extra: Any) 
 def source_rows(connection: Connection) -> list[SourceRow]:
     """Every source, by key."""
     return list(_sources(connection).values())
+
+
+def source_revision_rows(connection: Connection, key: str | None = None) -> list[Any]:
+    """The kept revisions (of source ``key``, or all), oldest first: each the source's
+    values before one change, with ``source_id``, ``kept_at`` and ``reason``."""
+    query = select(*SOURCE_REVISIONS.c).order_by(SOURCE_REVISIONS.c.kept_at, SOURCE_REVISIONS.c.id)
+    if key is not None:
+        query = query.where(SOURCE_REVISIONS.c.source_id == source_id(connection, key))
+    return list(connection.execute(query).mappings())
+
+
+def sources_as_of(connection: Connection, when: Any) -> dict[str, SourceRow]:
+    """Every source by key as it was at ``when`` (a release's ``released_at``; None:
+    today): the first revision kept after ``when`` holds the values it had then, else
+    the live row does."""
+    live = {row.key: row for row in source_rows(connection)}
+    if when is None:
+        return live
+    keys = {i: row.key for i, row in _sources(connection).items()}
+    earlier: dict[str, SourceRow] = {}
+    for revision in source_revision_rows(connection):
+        key = keys[revision["source_id"]]
+        if revision["kept_at"] > when and key not in earlier:
+            earlier[key] = SourceRow(*(revision[c] for c in SOURCE_COLUMNS))
+    return {**live, **{k: v for k, v in earlier.items() if k in live}}
 
 
 def material_rows(connection: Connection, name: str | None = None) -> list[MaterialRow]:

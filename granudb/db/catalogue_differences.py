@@ -130,6 +130,34 @@ def _compare_pairs(first: dict[tuple, dict], second: dict[tuple, dict]) -> list[
     return found
 
 
+def _cited(connection: Connection, used: dict[str, dict[int, int]], fluids: dict) -> set:
+    """The keys of the sources the rows a dataset reads cite (with a fluid's points')."""
+    keys: set[str | None] = set()
+    for kind, rows in used.items():
+        for row_id in rows.values():
+            record = _entry(connection, kind, row_id, fluids)
+            keys |= {record.get(c) for c in ("source", "density_source",
+                                              "pressure_viscosity_source")}  # fmt: skip
+            keys |= {p["source"] for p in record.get("points_by_temperature", {}).values()}
+    return keys - {None}
+
+
+def _compare_sources(
+    connection: Connection, first_id: int, second_id: int | None, cited: set[str]
+) -> list[dict[str, Any]]:
+    """Sources as dataset ``first_id`` reads them (a release: as they were when released)
+    against dataset ``second_id``'s (None: today's), field by field; a source's changes
+    are revisions (``granudb.db.catalog_revisions.keep_source_revision``)."""
+    one = catalog_rows.sources_as_of(connection, catalog_rows.released_at(connection, first_id))
+    when = None if second_id is None else catalog_rows.released_at(connection, second_id)
+    other = catalog_rows.sources_as_of(connection, when)
+    found = []
+    for key in sorted(one.keys() & other.keys() & cited):
+        a, b = catalog_rows.source_record(one[key]), catalog_rows.source_record(other[key])
+        found += [_record("source", key, f, a[f], b[f]) for f in a if not same_value(a[f], b[f])]
+    return found
+
+
 def pinned_changes(connection: Connection, dataset_id: int) -> list[dict[str, Any]]:
     """Where the catalogue values dataset ``dataset_id`` reads (a release's pinned
     revisions and pair values) differ from today's catalogue: ``first`` is what the
@@ -157,6 +185,7 @@ def pinned_changes(connection: Connection, dataset_id: int) -> list[dict[str, An
                 select(clause.c.updated_at).where(clause.c.id == pinned)
             ).scalar()
             changes += [{**c, "revision": number, "kept_at": kept} for c in found]
+    changes += _compare_sources(connection, dataset_id, None, _cited(connection, used, fluids))
     pairs = run_pairs(connection, dataset_id)
     changes += _compare_pairs(
         _pairs(connection, dataset_id, pairs), _pairs(connection, None, pairs)
@@ -169,7 +198,7 @@ def catalogue_diff(connection: Connection, first_id: int, second_id: int) -> lis
     (with their points) and pairs both use: ``first`` is dataset ``first_id``'s value,
     ``second`` dataset ``second_id``'s (a release's pinned revision, a draft's live row)."""
     one, other = used_rows(connection, first_id), used_rows(connection, second_id)
-    fluids = catalog_rows.fluid_rows_by_id(connection) if one["fluid"] else {}
+    fluids = catalog_rows.fluid_rows_by_id(connection) if one["fluid"] or other["fluid"] else {}
     changes = []
     for kind in one:
         for live in sorted(one[kind].keys() & other[kind].keys()):
@@ -178,6 +207,8 @@ def catalogue_diff(connection: Connection, first_id: int, second_id: int) -> lis
                 changes += _compare(
                     kind, _entry(connection, kind, a, fluids), _entry(connection, kind, b, fluids)
                 )
+    cited = _cited(connection, one, fluids) & _cited(connection, other, fluids)
+    changes += _compare_sources(connection, first_id, second_id, cited)
     pairs = run_pairs(connection, first_id) & run_pairs(connection, second_id)
     return changes + _compare_pairs(
         _pairs(connection, first_id, pairs), _pairs(connection, second_id, pairs)

@@ -213,6 +213,14 @@ def downgrade(
 #: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
 #: rows that lose something, what happens to them). Checked constraints are not data.
 _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
+    "0009": [
+        (
+            "source_revisions",
+            "citation",
+            "1 = 1",
+            "dropped (the sources' history; released datasets then read today's sources)",
+        ),
+    ],  # fmt: skip
     "0008": [
         ("collisions", c, f"{c} IS NOT NULL", "dropped (the stated standard uncertainty)")
         for c in COLLISION_UNCERTAINTIES

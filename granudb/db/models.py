@@ -56,6 +56,7 @@ __all__ = [
     "PublishedValue",
     "SeedRecord",
     "Source",
+    "SourceRevision",
     "name_key",
     "utcnow",
 ]
@@ -93,6 +94,27 @@ class Source(Base):
         CheckConstraint("length(key) > 0", name="key_not_empty"),
         CheckConstraint("year IS NULL OR (year >= 1600 AND year <= 3000)", name="year_range"),
     )
+
+
+class SourceRevision(Base):
+    """A source's values before one change (a re-seed that changed its citation, DOI, …),
+    with when and why it changed. A released dataset reads each source as it was when the
+    dataset was released: the first revision kept after that, or the live row when none
+    (``granudb.db.catalog_revisions.sources_as_of``)."""
+
+    __tablename__ = "source_revisions"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    source_id: Mapped[int] = mapped_column(ForeignKey("sources.id", ondelete="CASCADE"))
+    key: Mapped[str] = mapped_column(String(100))
+    citation: Mapped[str] = mapped_column(Text)
+    doi: Mapped[str | None] = mapped_column(String(200))
+    url: Mapped[str | None] = mapped_column(String(500))
+    year: Mapped[int | None] = mapped_column(Integer)
+    kind: Mapped[str] = mapped_column(String(40))
+    notes: Mapped[str | None] = mapped_column(Text)
+    kept_at: Mapped[datetime] = mapped_column(DateTime(timezone=True), default=utcnow)
+    reason: Mapped[str] = mapped_column(Text)
 
 
 class Material(Timestamped, Base):

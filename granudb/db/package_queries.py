@@ -15,7 +15,7 @@ from typing import Any
 from sqlalchemy import inspect, select
 from sqlalchemy.orm import Session
 
-from granudb.db import datasets
+from granudb.db import catalog_rows, datasets
 from granudb.db.content_hash import content_hash
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
 from granudb.vocabulary.listings import DATASET_DESCRIPTION
@@ -93,6 +93,10 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
         source_ids |= {fluid.source_id, fluid.density_source_id, fluid.pressure_viscosity_source_id}
     source_ids |= {p.source_id for p in points}
     sources = _sources(session, source_ids)
+    # a release reads its sources as they were when released (granudb.db.catalog_rows)
+    connection = session.connection()
+    when = catalog_rows.released_at(connection, dataset.id)
+    as_released = catalog_rows.sources_as_of(connection, when)
     keys = {s.id: s.key for s in sources}
     names = {m.id: m.name for m in materials}
     fluid_names = {f.id: f.name for f in fluids}
@@ -127,6 +131,8 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
             ),
             key=lambda r: (r["fluid"], r["temperature_c"]),
         ),
-        "sources": [_values(s) for s in sources],
+        "sources": [
+            {**_values(s), **catalog_rows.source_record(as_released[s.key])} for s in sources
+        ],  # fmt: skip
     }
     return ExportData(dataset_metadata(dataset), content_hash(session, dataset), tables)

@@ -20,7 +20,8 @@ from typing import Any
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from granudb.db.catalog_revisions import keep_for_releases
+from granudb.db.catalog_revisions import keep_for_releases, keep_source_revision
+from granudb.db.catalog_rows import source_record
 from granudb.db.models import (
     Fluid,
     FluidPoint,
@@ -90,9 +91,14 @@ def apply_seed(session: Session, data: Any, *, overwrite_edits: bool = False) ->
     for entry in data.sources:
         values = {k: entry.get(k) for k in ("citation", "doi", "url", "year", "notes")}
         values["kind"] = entry.get("kind", "publication")
-        changes.append(
-            upsert(session, Source, {"key": entry["key"]}, values, f"source {entry['key']}")[1]
-        )
+        existing = session.scalars(select(Source).filter_by(key=entry["key"])).one_or_none()
+        before = None if existing is None else source_record(existing)
+        change = upsert(session, Source, {"key": entry["key"]}, values, f"source {entry['key']}")[1]
+        if before is not None and change.action == "updated":
+            keep_source_revision(
+                session, existing.id, before, "db seed: the seed's sources changed"
+            )
+        changes.append(change)
 
     for row in (dict(r) for r in data.materials):
         name = row.pop("name")
