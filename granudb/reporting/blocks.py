@@ -8,6 +8,7 @@ number in JSON or CSV output.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -158,9 +159,12 @@ def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, A
     return rows
 
 
-def pair_flag(derived: dict[str, Any], immersed: bool) -> dict[str, Any]:
-    """The prominent flag of a scenario: σ against Davis's band of the gap, with Λ."""
-    verdict = roughness_verdict(derived, immersed)
+def pair_flag(
+    derived: dict[str, Any], immersed: bool, materials: Sequence[Mapping[str, Any]] = ()
+) -> dict[str, Any]:
+    """The prominent flag of a scenario: σ against Davis's band of the gap, with Λ
+    (``materials``, the particle and wall records, name a roughness not stated)."""
+    verdict = roughness_verdict(derived, immersed, materials)
     headlines = {
         "Roughness exceeds the gap: asperity contact": (
             "Roughness exceeds the EHD gap (σ > x₁/3): asperity contact, dry-like friction expected"
