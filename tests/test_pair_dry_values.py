@@ -260,6 +260,11 @@ def test_a_roughness_not_stated_leaves_the_wet_roughness_verdict_undetermined(
     assert verdict["raised"]
     # not a film: Maw's regime takes the friction where asperities touch (the dry μ here)
     assert wet["friction_coefficient_used"] == 0.092
+    # a fluid with a pressure coefficient: (5.8) is not used either, and the text says why
+    glycerol = granudb.pair("alumina", ANVIL, fluid="glycerol-45", **KHARAZ, db=opened)
+    assert glycerol["friction_coefficient_used"] == 0.092
+    friction = _verdict(glycerol, "lubricated_friction_state")["text"]
+    assert "the roughness is not stated (no film is assumed), so μ = 0.092" in friction
     # with uncertainties, P(σ > h_m) is not a number either
     uncertain = granudb.pair(
         "alumina", ANVIL, fluid="water", diameter="5 mm", velocity="3.9 m/s ± 3 %", db=opened

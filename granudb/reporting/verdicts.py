@@ -305,7 +305,14 @@ def friction_verdict(
         f"{limits.LIMITING_SHEAR_SLOPE:g}, Bair & Winer 1979) = {cap:g}"
     )
     name = "Lubricated friction (5.8)"
-    asperities = derived.get("roughness_regime") == "asperity_contact"
+    regime = derived.get("roughness_regime")
+    # a roughness not stated shows no film, so the touching value is used (§4, §18)
+    asperities = regime in ("asperity_contact", "not_stated")
+    why = (
+        "the roughness is not stated (no film is assumed)"
+        if regime == "not_stated"
+        else "asperities touch here"
+    )
     if state == "dry" or not immersed:
         return Verdict(
             "lubricated_friction_state",
@@ -322,7 +329,7 @@ def friction_verdict(
             "Hunt §5), so neither a borrowed C nor the piezoviscous film (5.6) applies. "
             f"Decided: μ_f is only bounded, μ_f ≤ {bound}, and that bound is used for Maw's "
             "regime only where it already settles it."
-            + (f" Asperities touch here, so {touching} is used." if asperities else ""),
+            + (f" {why.capitalize()}, so {touching} is used." if asperities else ""),
             raised=True,
         )
     if state == "above_limit":
@@ -333,18 +340,14 @@ def friction_verdict(
             f"{bound}; a film cannot carry more shear than its limiting shear stress, so "
             "this is not a prediction. "
             + (
-                f"Asperities touch here, so {touching} is used for Maw's regime."
+                f"{why.capitalize()}, so {touching} is used for Maw's regime."
                 if asperities
                 else f"Maw's regime uses the cap μ_f = {cap:g} (a film at its limiting shear)."
             ),
             raised=True,
         )
     if state == "in_range":
-        use = (
-            f"not used: asperities touch, so {touching} is used."
-            if asperities
-            else "used for Maw's regime."
-        )
+        use = f"not used: {why}, so {touching} is used." if asperities else "used for Maw's regime."
         return Verdict(
             "lubricated_friction_state",
             name,
@@ -364,6 +367,8 @@ def _friction_basis(derived: Mapping[str, Any]) -> str:
     regime, state = derived.get("roughness_regime"), derived.get("lubricated_friction_state")
     if regime == "asperity_contact" and state != "dry":
         return "the pair's with asperities touching in a liquid"
+    if regime == "not_stated" and state != "dry":
+        return "the pair's with asperities touching (roughness not stated: no film assumed)"
     if regime in ("dry", "asperity_contact") or state == "dry":
         return "the dry value"
     if state == "in_range":
