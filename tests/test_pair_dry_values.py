@@ -279,6 +279,7 @@ def test_a_roughness_not_stated_leaves_the_wet_roughness_verdict_undetermined(
     )  # fmt: skip
     assert shown.exit_code == 0, shown.stderr
     assert "not determined: roughness of alumina" in " ".join(shown.stdout.split())
+    assert "│ RMS roughness   │ not stated" in shown.stdout  # the materials table, too
     # one material with a roughness: the verdict names only the other
     granudb.add_material(
         "polished alumina", density="4000 kg/m^3", youngs_modulus="380 GPa",
