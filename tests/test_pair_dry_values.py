@@ -10,6 +10,7 @@ import json
 import math
 from pathlib import Path
 
+import pandas as pd
 import pytest
 from sqlalchemy import select
 
@@ -17,6 +18,7 @@ import granudb
 from granudb.db.models import PublishedValue
 from granudb.errors import ConflictError, ValidationError
 from granudb.physics.limits import HERTZ_STRAIN_LIMIT, thornton_restitution
+from granudb.reporting.blocks import dataset_flag
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
 SPHERE = {"diameter": "12.7 mm", "velocity": "0.3 m/s"}
@@ -296,3 +298,20 @@ def test_a_roughness_not_stated_leaves_the_wet_roughness_verdict_undetermined(
     stated = granudb.pair("polished alumina", "polished glass", fluid="water", **KHARAZ, db=opened)
     assert stated["roughness_regime"] in ("film", "uncertain", "asperity_contact")
     assert not _verdict(stated, "roughness_regime")["text"].startswith("not determined")
+
+
+def test_a_dataset_flag_counts_runs_whose_roughness_is_not_stated_apart() -> None:
+    """A set of runs: one whose roughness is not stated is neither film nor contact."""
+    frame = pd.DataFrame(
+        {
+            "fluid": ["water", "water", None],
+            "roughness_regime": ["not_stated", "film", "dry"],
+            "composite_roughness_m": [math.nan, 20e-9, math.nan],
+            "film_parameter": [math.nan, 5.0, math.nan],
+        }
+    )
+    flag = dataset_flag(frame)
+    assert flag["raised"]
+    assert flag["headline"] == "Roughness not stated in 1 immersed runs: regime not determined"
+    assert "1 in film" in flag["detail"] and "1 not determined" in flag["detail"]
+    assert "σ from 20 nm to 20 nm" in flag["detail"]
