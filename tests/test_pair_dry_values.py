@@ -315,3 +315,10 @@ def test_a_dataset_flag_counts_runs_whose_roughness_is_not_stated_apart() -> Non
     assert flag["headline"] == "Roughness not stated in 1 immersed runs: regime not determined"
     assert "1 in film" in flag["detail"] and "1 not determined" in flag["detail"]
     assert "σ from 20 nm to 20 nm" in flag["detail"]
+
+
+@pytest.mark.parametrize("code", ["liggghts", "lammps", "yade", "mercurydpm"])
+def test_the_dem_export_of_kharaz_needs_no_roughness(opened, code: str) -> None:
+    """The DEM fragment takes E, ν, e and μ (no σ): Kharaz's pair exports with 0.092."""
+    text = granudb.dem_export(code, ["alumina"], [ANVIL], **KHARAZ, db=opened)
+    assert "0.092" in text and "yade-chung-ooi-test4" in text
