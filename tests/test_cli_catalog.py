@@ -14,6 +14,9 @@ import pytest
 
 from granudb.io.seed import read_seed
 
+#: The seeded materials as listings sort them (case-insensitively).
+SEEDED_NAMES = sorted((m["name"] for m in read_seed().materials), key=str.casefold)
+
 
 def test_first_use_in_an_empty_data_directory_prints_the_seed_materials_in_si(
     tmp_path: Path,
@@ -55,8 +58,9 @@ def test_json_output_is_a_plain_array_with_unit_suffixed_names(cli, db: str) -> 
 def test_csv_output_has_the_same_names(cli, db: str) -> None:
     text = cli("materials", "list", "--format", "csv", db=db).stdout
     rows = list(csv.DictReader(io.StringIO(text)))
-    assert [r["name"] for r in rows] == ["Delrin", "glass", "steel", "steel bead", "Zerodur"]
-    assert float(rows[2]["youngs_modulus_pa"]) == 1.9e11
+    assert [r["name"] for r in rows] == SEEDED_NAMES
+    steel = next(r for r in rows if r["name"] == "steel")
+    assert float(steel["youngs_modulus_pa"]) == 1.9e11
 
 
 def test_table_output_shows_units_a_person_reads(cli, db: str) -> None:
@@ -101,7 +105,7 @@ def test_add_show_update_remove_a_material(cli, db: str) -> None:
     assert cli("materials", "remove", "PTFE", "--yes", db=db).exit_code == 0
     gone = cli("materials", "show", "PTFE", db=db)
     assert gone.exit_code == 1
-    assert "known: Delrin, glass, steel, steel bead, Zerodur" in gone.stderr
+    assert f"known: {', '.join(SEEDED_NAMES)})" in gone.stderr
 
 
 def test_add_update_remove_a_fluid(cli, db: str) -> None:

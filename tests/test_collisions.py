@@ -146,7 +146,7 @@ BAD = [
     ),
     (
         [_with(particle="unobtainium")],
-        "row 2: particle: 'unobtainium' is not in the database (known: Delrin",
+        "row 2: particle: 'unobtainium' is not in the database (known: alumina, Delrin",
     ),
     ([_with(fluid="mercury")], "row 2: fluid: 'mercury' is not in the database"),
     ([_with(v_t_in="nan")], "row 2: v_t_in [mm/s]: 'nan' is not a number"),

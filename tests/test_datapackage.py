@@ -241,3 +241,46 @@ def test_diff_between_versions(cli, db: str, tmp_path: Path) -> None:
     assert sum(1 for c in out if c["change"] == "removed") == 6
     listed = json.loads(cli("dataset", "list", "--format", "json", db=db).stdout)
     assert {(d["name"], d["version"], d["runs"]) for d in listed} == {("d", "1", 12), ("d", "2", 7)}
+
+
+def test_a_roughness_not_stated_travels_empty_and_older_schemas_still_import(
+    cli, db: str, new_db: str, tmp_path: Path
+) -> None:
+    """Kharaz's seeded materials have no roughness (issue 23): the package's schema does
+    not require one, the upstream validator accepts the empty cells, an import keeps them
+    empty (never 0), and a package whose schema still requires the roughness (an older
+    granudb's) imports the same."""
+    # a name the other database does not seed, so the import itself stores the material
+    renamed = cli("materials", "update", "alumina", "--rename", "alumina (lab)", db=db)
+    assert renamed.exit_code == 0, renamed.stderr
+    runs = tmp_path / "kharaz.csv"
+    header = EXAMPLE.read_text("utf-8").splitlines()[0]
+    runs.write_text(
+        f"{header}\nk1,alumina (lab),soda-lime glass (Kharaz anvil),,5,0,3900,0,0,3800,0,0,,\n",
+        "utf-8",
+    )
+    imported = cli("collisions", "import", str(runs), "--dataset", "kharaz", db=db)
+    assert imported.exit_code == 0, imported.stderr
+    out = tmp_path / "pkg"
+    assert cli("dataset", "export", "kharaz", "--output", str(out), db=db).exit_code == 0
+    descriptor = json.loads((out / "datapackage.json").read_text("utf-8"))
+    materials = next(r for r in descriptor["resources"] if r["name"] == "materials")
+    roughness = next(f for f in materials["schema"]["fields"] if f["name"] == "roughness_rms_m")
+    assert not roughness.get("constraints", {}).get("required")
+    density = next(f for f in materials["schema"]["fields"] if f["name"] == "density_kg_m3")
+    assert density["constraints"]["required"] is True  # still required: the spec's rule
+    tool = shutil.which("frictionless") or str(Path(sys.executable).parent / "frictionless")
+    check = subprocess.run(
+        [tool, "validate", "datapackage.json"], cwd=out, capture_output=True, text=True,
+        timeout=300,
+    )  # fmt: skip
+    assert check.returncode == 0, check.stdout[-3000:]
+    # an older granudb's schema: the roughness required
+    roughness.setdefault("constraints", {})["required"] = True
+    (out / "datapackage.json").write_text(json.dumps(descriptor), "utf-8")
+    result = cli("dataset", "import", str(out), db=new_db)
+    assert result.exit_code == 0, result.stderr
+    shown = cli("materials", "show", "alumina (lab)", "--format", "json", db=new_db)
+    assert shown.exit_code == 0, shown.stderr
+    material = json.loads(shown.stdout)
+    assert material["roughness_rms_m"] is None and material["density_kg_m3"] == 4000

@@ -7,11 +7,13 @@ import json
 
 import pytest
 from sqlalchemy import func, select, text
+from sqlalchemy.exc import IntegrityError
 from support import engine_for
 
 from granudb.api.database import connect as open_database
 from granudb.db import migration
 from granudb.db.models import Base, Material
+from granudb.errors import ConfirmationNeeded
 from granudb.io.seed import read_seed
 
 #: The materials the shipped seed adds to a new database.
@@ -203,3 +205,45 @@ def test_a_database_at_the_first_revision_is_migrated_forward_with_its_data(
     )
     assert runs[0]["nominal_angle_rad"] == 0.5  # the stored angle keeps its value
     assert runs[0]["omega_out_rad_s"] == -2
+
+
+def test_0010_makes_the_roughness_optional_and_its_downgrade_names_the_loss(db: str) -> None:
+    """0010 keeps every material (and its roughness); a roughness not stated (the seeded
+    Kharaz materials, issue 23) survives until a downgrade, which names what it does
+    with it and is refused without consent; the way back up keeps every row."""
+    database = open_database(db)
+
+    def roughness() -> dict[str, float | None]:
+        with database.engine.connect() as connection:
+            rows = connection.execute(text("SELECT name, roughness_rms_m FROM materials"))
+            return dict(rows.fetchall())
+
+    seeded = roughness()
+    unstated = sorted(name for name, sigma in seeded.items() if sigma is None)
+    assert unstated == ["alumina", "soda-lime glass (Kharaz anvil)"]
+    assert seeded["glass"] == pytest.approx(0.1305e-6)
+    losses = migration.plan_downgrade(database, "0009")
+    assert losses == [
+        "materials.roughness_rms_m: 2 values not stated, become 0.0 (the older schema "
+        "needs a number; an upgrade keeps the 0)"
+    ]
+    with pytest.raises(ConfirmationNeeded):
+        migration.downgrade(database, "0009")
+    assert roughness() == seeded  # refused: nothing changed
+    assert migration.downgrade(database, "0009", accepted=losses)[1] == "0009"
+    down = roughness()
+    assert set(down) == set(seeded) and all(down[n] == 0.0 for n in unstated)
+    assert {n: s for n, s in down.items() if n not in unstated} == {
+        n: s for n, s in seeded.items() if n not in unstated
+    }
+    with pytest.raises(IntegrityError), database.engine.begin() as connection:
+        # the older schema holds no "not stated"
+        connection.execute(text("UPDATE materials SET roughness_rms_m = NULL"))
+    migration.upgrade(database)
+    assert roughness() == down  # every row kept on the way up
+    with database.engine.begin() as connection:  # and the column takes "not stated" again
+        connection.execute(
+            text("UPDATE materials SET roughness_rms_m = NULL WHERE name = 'alumina'")
+        )
+    assert roughness()["alumina"] is None
+    database.dispose()

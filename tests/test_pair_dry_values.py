@@ -10,6 +10,7 @@ import json
 import math
 from pathlib import Path
 
+import pandas as pd
 import pytest
 from sqlalchemy import select
 
@@ -17,6 +18,7 @@ import granudb
 from granudb.db.models import PublishedValue
 from granudb.errors import ConflictError, ValidationError
 from granudb.physics.limits import HERTZ_STRAIN_LIMIT, thornton_restitution
+from granudb.reporting.blocks import dataset_flag
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
 SPHERE = {"diameter": "12.7 mm", "velocity": "0.3 m/s"}
@@ -213,44 +215,110 @@ def test_immersed_glass_uses_the_friction_measured_in_a_liquid(opened) -> None:
     assert steel["immersed_friction_source"].startswith("the dry value (no immersed value")
 
 
-def test_alumina_on_soda_lime_glass_uses_kharaz_friction_once_the_pair_is_stored(
-    opened,
+ANVIL = "soda-lime glass (Kharaz anvil)"
+KHARAZ = {"diameter": "5 mm", "velocity": "3.9 m/s"}
+
+
+def test_alumina_on_soda_lime_glass_uses_kharaz_values_from_the_pair_table(
+    opened, cli, db: str
 ) -> None:
-    """Kharaz et al. (2001) ship as published values (no readable source states the
-    roughness a material needs, docs/physics.md §18); with the materials added (the
-    roughness is the user's) and the pair stored from those values, pair uses μ = 0.092."""
+    """Kharaz et al. (2001) as seeded (issue 23): the pair's dry μ and e are the published
+    values read in the secondary source, taken from the pair table, in Python and the CLI."""
     with opened.session() as session:
         shipped = {
-            (v.label.split(" (")[0], v.quantity): (v.value, v.source.key)
+            v.quantity: (v.value, v.source.key)
             for v in session.scalars(select(PublishedValue))
-            if "Kharaz" in v.label
+            if v.label.startswith("dry alumina on soda-lime glass")
         }
-    friction, source = shipped[("dry alumina on soda-lime glass", "sliding_friction")]
-    for name, label in (
-        ("alumina", "alumina sphere"),
-        ("soda-lime glass", "soda-lime glass anvil"),
-    ):
-        granudb.add_material(
-            name,
-            # the anvil's density and both roughnesses are the user's: no source states them
-            density=shipped.get((label, "density_kg_m3"), ("2500 kg/m^3",))[0],
-            youngs_modulus=f"{shipped[(label, 'youngs_modulus_pa')][0] / 1e9:g} GPa",
-            poisson_ratio=shipped[(label, "poisson_ratio")][0],
-            roughness="0.1 um",
-            db=opened,
-        )
-    granudb.add_pair_value(
-        "alumina",
-        "soda-lime glass",
-        dry_friction=friction,
-        source=source,
-        source_locator="Test4.py, material aluminium_oxide",
-        db=opened,
-    )
-    document = granudb.pair(
-        "alumina", "soda-lime glass", diameter="5 mm", velocity="3.9 m/s", db=opened
-    )
+    document = granudb.pair("alumina", ANVIL, **KHARAZ, db=opened)
     values = document["dry_values"]
-    assert values["dry_friction"] == 0.092
-    assert values["dry_friction_basis"] == "pair"
-    assert "yade-chung-ooi-test4" in values["dry_friction_source"]
+    assert values["dry_friction"] == shipped["sliding_friction"][0] == 0.092
+    assert values["dry_restitution"] == shipped["normal_restitution_mean"][0] == 0.98
+    assert values["dry_friction_basis"] == values["dry_restitution_basis"] == "pair"
+    assert shipped["sliding_friction"][1] in values["dry_friction_source"]
+    assert "not read" in values["dry_friction_source"]
+    assert document["predicted_restitution"] == 0.98  # dry, below yield: e_dry
+    assert document["friction_coefficient_used"] == 0.092
+    # dry: σ is not needed, and the roughness verdict is the dry one
+    assert "dry contact" in _verdict(document, "roughness_regime")["text"]
+    shown = cli("pair", "alumina", ANVIL, "--diameter", "5 mm", "--velocity", "3.9 m/s", db=db)
+    assert shown.exit_code == 0, shown.stderr
+    assert "e_dry = 0.98" in shown.stdout and "μ_dry = 0.092" in shown.stdout
+
+
+def test_a_roughness_not_stated_leaves_the_wet_roughness_verdict_undetermined(
+    opened, cli, db: str
+) -> None:
+    """In a liquid, σ-dependent quantities are NaN and the verdict names the materials
+    whose roughness is not stated; with a stated roughness the same pair gets a verdict."""
+    wet = granudb.pair("alumina", ANVIL, fluid="water", **KHARAZ, db=opened)
+    for column in ("composite_roughness_m", "film_parameter"):
+        assert wet[column] is None or math.isnan(wet[column])
+    assert wet["roughness_regime"] == "not_stated"
+    verdict = _verdict(wet, "roughness_regime")
+    assert verdict["text"].startswith(
+        f"not determined: roughness of alumina and {ANVIL} not stated"
+    )
+    assert verdict["raised"]
+    # not a film: Maw's regime takes the friction where asperities touch (the dry μ here)
+    assert wet["friction_coefficient_used"] == 0.092
+    # a fluid with a pressure coefficient: (5.8) is not used either, and the text says why
+    glycerol = granudb.pair("alumina", ANVIL, fluid="glycerol-45", **KHARAZ, db=opened)
+    assert glycerol["friction_coefficient_used"] == 0.092
+    friction = _verdict(glycerol, "lubricated_friction_state")["text"]
+    assert "the roughness is not stated (no film is assumed), so μ = 0.092" in friction
+    # with uncertainties, P(σ > h_m) is not a number either
+    uncertain = granudb.pair(
+        "alumina", ANVIL, fluid="water", diameter="5 mm", velocity="3.9 m/s ± 3 %", db=opened
+    )
+    assert uncertain["u_normal_stokes_number"] > 0  # the uncertainty was propagated
+    probability = uncertain["probability_asperity_contact"]
+    assert probability is None or math.isnan(probability)
+    assert "P(σ > h_m)" not in _verdict(uncertain, "roughness_regime")["text"]
+    shown = cli(
+        "pair", "alumina", ANVIL, "--fluid", "water", "--diameter", "5 mm",
+        "--velocity", "3.9 m/s", db=db,
+    )  # fmt: skip
+    assert shown.exit_code == 0, shown.stderr
+    assert "not determined: roughness of alumina" in " ".join(shown.stdout.split())
+    assert "│ RMS roughness   │ not stated" in shown.stdout  # the materials table, too
+    # one material with a roughness: the verdict names only the other
+    granudb.add_material(
+        "polished alumina", density="4000 kg/m^3", youngs_modulus="380 GPa",
+        poisson_ratio=0.23, roughness="10 nm", db=opened,
+    )  # fmt: skip
+    one = granudb.pair("polished alumina", ANVIL, fluid="water", **KHARAZ, db=opened)
+    assert _verdict(one, "roughness_regime")["text"].startswith(
+        f"not determined: roughness of {ANVIL} not stated"
+    )
+    granudb.add_material(
+        "polished glass", density="2500 kg/m^3", youngs_modulus="70 GPa",
+        poisson_ratio=0.25, roughness="10 nm", db=opened,
+    )  # fmt: skip
+    stated = granudb.pair("polished alumina", "polished glass", fluid="water", **KHARAZ, db=opened)
+    assert stated["roughness_regime"] in ("film", "uncertain", "asperity_contact")
+    assert not _verdict(stated, "roughness_regime")["text"].startswith("not determined")
+
+
+def test_a_dataset_flag_counts_runs_whose_roughness_is_not_stated_apart() -> None:
+    """A set of runs: one whose roughness is not stated is neither film nor contact."""
+    frame = pd.DataFrame(
+        {
+            "fluid": ["water", "water", None],
+            "roughness_regime": ["not_stated", "film", "dry"],
+            "composite_roughness_m": [math.nan, 20e-9, math.nan],
+            "film_parameter": [math.nan, 5.0, math.nan],
+        }
+    )
+    flag = dataset_flag(frame)
+    assert flag["raised"]
+    assert flag["headline"] == "Roughness not stated in 1 immersed runs: regime not determined"
+    assert "1 in film" in flag["detail"] and "1 not determined" in flag["detail"]
+    assert "σ from 20 nm to 20 nm" in flag["detail"]
+
+
+@pytest.mark.parametrize("code", ["liggghts", "lammps", "yade", "mercurydpm"])
+def test_the_dem_export_of_kharaz_needs_no_roughness(opened, code: str) -> None:
+    """The DEM fragment takes E, ν, e and μ (no σ): Kharaz's pair exports with 0.092."""
+    text = granudb.dem_export(code, ["alumina"], [ANVIL], **KHARAZ, db=opened)
+    assert "0.092" in text and "yade-chung-ooi-test4" in text

@@ -42,7 +42,10 @@ def material_inputs(prefix: str, material: Material | MaterialRow) -> dict[str, 
         f"{prefix}_density_kg_m3": material.density_kg_m3,
         f"{prefix}_youngs_modulus_pa": material.youngs_modulus_pa,
         f"{prefix}_poisson_ratio": material.poisson_ratio,
-        f"{prefix}_roughness_rms_m": material.roughness_rms_m,
+        # not stated: NaN, so every σ-dependent quantity is NaN (docs/physics.md §18)
+        f"{prefix}_roughness_rms_m": (
+            np.nan if material.roughness_rms_m is None else material.roughness_rms_m
+        ),
         f"{prefix}_shear_modulus_pa": (
             np.nan if material.shear_modulus_pa is None else material.shear_modulus_pa
         ),

@@ -48,7 +48,7 @@ class MaterialRow:
     density_kg_m3: float
     youngs_modulus_pa: float
     poisson_ratio: float
-    roughness_rms_m: float
+    roughness_rms_m: float | None  # None: not stated
     correlation_length_m: float | None
     shear_modulus_pa: float | None
     yield_stress_pa: float | None

@@ -213,6 +213,14 @@ def downgrade(
 #: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
 #: rows that lose something, what happens to them). Checked constraints are not data.
 _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
+    "0010": [
+        (
+            "materials",
+            "roughness_rms_m",
+            "roughness_rms_m IS NULL",
+            "not stated, become 0.0 (the older schema needs a number; an upgrade keeps the 0)",
+        )
+    ],
     "0009": [
         (
             "source_revisions",

@@ -129,7 +129,8 @@ class Material(Timestamped, Base):
     density_kg_m3: Mapped[float] = mapped_column(Float)
     youngs_modulus_pa: Mapped[float] = mapped_column(Float)
     poisson_ratio: Mapped[float] = mapped_column(Float)
-    roughness_rms_m: Mapped[float] = mapped_column(Float)
+    #: RMS surface roughness σ; empty: no source states it (σ-dependent outputs say so).
+    roughness_rms_m: Mapped[float | None] = mapped_column(Float)
     correlation_length_m: Mapped[float | None] = mapped_column(Float)
     shear_modulus_pa: Mapped[float | None] = mapped_column(Float)
     #: Yield stress Y in tension (Johnson 1985 §11.4: yield starts at p_max = 1.6 Y);
@@ -164,7 +165,7 @@ class Material(Timestamped, Base):
         CheckConstraint("density_kg_m3 > 0", name="density_positive"),
         CheckConstraint("youngs_modulus_pa > 0", name="youngs_modulus_positive"),
         CheckConstraint("poisson_ratio > -1 AND poisson_ratio < 0.5", name="poisson_ratio_range"),
-        CheckConstraint("roughness_rms_m >= 0", name="roughness_non_negative"),
+        CheckConstraint("roughness_rms_m >= 0", name="roughness_non_negative"),  # NULL passes
         _positive_if_given("correlation_length_m", "correlation_length_positive"),
         _positive_if_given("shear_modulus_pa", "shear_modulus_positive"),
         _positive_if_given("yield_stress_pa", "yield_stress_positive"),

@@ -35,7 +35,8 @@ IN_RANGE, ABOVE_LIMIT, NO_PRESSURE_COEFFICIENT, DRY = 0, 1, 2, 3
 
 #: Davis et al. (1986) give the EHD gap of a normal approach as h_m = x₁/4 … x₁/3.
 GAP_BAND = (0.25, 1.0 / 3.0)
-ROUGHNESS_REGIMES = ("film", "uncertain", "asperity_contact", "dry")
+#: "not_stated": a liquid, but a material's roughness σ is not stated (NaN): not decided.
+ROUGHNESS_REGIMES = ("film", "uncertain", "asperity_contact", "dry", "not_stated")
 
 
 @parameters(particle_density="particle density ρ_p [kg/m³] (a sphere on a flat wall)")
@@ -239,21 +240,26 @@ def roughness_regime(roughness: Numeric, elastic_length: Numeric) -> np.ndarray:
     code into ``ROUGHNESS_REGIMES``.
 
     ``"asperity_contact"`` σ > x₁/3 (above the largest gap), ``"uncertain"``
-    x₁/4 < σ ≤ x₁/3, ``"film"`` σ ≤ x₁/4; ``"dry"`` where x₁ is NaN (no liquid).
-    ``roughness`` σ [m], ``elastic_length`` x₁ [m].
+    x₁/4 < σ ≤ x₁/3, ``"film"`` σ ≤ x₁/4; ``"dry"`` where x₁ is NaN (no liquid);
+    ``"not_stated"`` where σ is NaN in a liquid (a roughness no source states: neither
+    film nor contact is decided). ``roughness`` σ [m], ``elastic_length`` x₁ [m].
 
     Examples
     --------
-    >>> code = roughness_regime(np.array([10e-9, 30e-9, 40e-9, 1e-9]),
-    ...                         np.array([100e-9, 100e-9, 100e-9, np.nan]))
+    >>> code = roughness_regime(np.array([10e-9, 30e-9, 40e-9, 1e-9, np.nan]),
+    ...                         np.array([100e-9, 100e-9, 100e-9, np.nan, 100e-9]))
     >>> names(ROUGHNESS_REGIMES, code).tolist()
-    ['film', 'uncertain', 'asperity_contact', 'dry']
+    ['film', 'uncertain', 'asperity_contact', 'dry', 'not_stated']
     """
     sigma = as_float(roughness)
     x1 = as_float(elastic_length)
     low, high = GAP_BAND
     code = np.where(
-        np.isnan(x1), 3, np.where(sigma > high * x1, 2, np.where(sigma > low * x1, 1, 0))
+        np.isnan(x1),
+        3,
+        np.where(
+            np.isnan(sigma), 4, np.where(sigma > high * x1, 2, np.where(sigma > low * x1, 1, 0))
+        ),
     )
     return code
 

@@ -174,7 +174,9 @@ def tangential(
     # asperities touching in a liquid: the pair's immersed value where one is known
     touching = np.where(f["immersed"] & np.isfinite(immersed_friction), immersed_friction, dry)
     cap = limits.friction_cap(*caps)
-    film = f["immersed"] & ~f["rough"]
+    # A film only where σ is known to lie below h_m: a roughness not stated (σ NaN)
+    # decides nothing, and the touching value is used (docs/physics.md §18).
+    film = f["immersed"] & ~f["rough"] & ~np.isnan(f["sigma"])
     state = lub["state"]
     # No tangential motion: nothing slips, and (5.8) gives 0; Maw's ψ_in = 0 with the dry
     # value, as before issue 13 (a 0/0 here would read as gross slip).

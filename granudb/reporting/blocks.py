@@ -8,6 +8,7 @@ number in JSON or CSV output.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -158,9 +159,12 @@ def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, A
     return rows
 
 
-def pair_flag(derived: dict[str, Any], immersed: bool) -> dict[str, Any]:
-    """The prominent flag of a scenario: σ against Davis's band of the gap, with Λ."""
-    verdict = roughness_verdict(derived, immersed)
+def pair_flag(
+    derived: dict[str, Any], immersed: bool, materials: Sequence[Mapping[str, Any]] = ()
+) -> dict[str, Any]:
+    """The prominent flag of a scenario: σ against Davis's band of the gap, with Λ
+    (``materials``, the particle and wall records, name a roughness not stated)."""
+    verdict = roughness_verdict(derived, immersed, materials)
     headlines = {
         "Roughness exceeds the gap: asperity contact": (
             "Roughness exceeds the EHD gap (σ > x₁/3): asperity contact, dry-like friction expected"
@@ -190,28 +194,40 @@ def dataset_flag(frame: Any) -> dict[str, Any]:
     regimes = _regimes(frame)[wet]
     rough = int(np.sum(regimes == "asperity_contact"))
     unsure = int(np.sum(regimes == "uncertain"))
-    raised = bool(rough or unsure)
+    unstated = int(np.sum(regimes == "not_stated"))  # a material's roughness not stated
+    raised = bool(rough or unsure or unstated)
     # Only the two columns read below (a copy of every column of a million runs was a
     # report's largest transient memory).
     immersed = frame.loc[wet, ["composite_roughness_m", "film_parameter"]]
     if immersed.empty:
         detail = "All runs are dry."
     else:
-        sigma = immersed["composite_roughness_m"]
+        sigma = immersed["composite_roughness_m"].astype(float)
         film = immersed["film_parameter"].to_numpy(float)
+        span = (
+            f"σ from {engineering(float(sigma.min()), 'm', 3)} to "
+            f"{engineering(float(sigma.max()), 'm', 3)}"
+            if sigma.notna().any()
+            else "σ not known"
+        )
         median = f"{float(np.nanmedian(film)):.2g}" if np.isfinite(film).any() else "not computed"
         detail = (
             f"Of {len(immersed)} immersed runs, {rough} are in asperity contact "
             f"(σ > x₁/3, Λ < 1), {unsure} uncertain (x₁/4 < σ ≤ x₁/3, 1 ≤ Λ < 4/3) and "
-            f"{len(immersed) - rough - unsure} in film (σ ≤ x₁/4, Λ ≥ 4/3), with "
-            f"{GAP_DEFINITION} and Davis et al.'s band h_m = x₁/4 … x₁/3; median Λ = h_m/σ = "
-            f"{median}, σ from {engineering(float(sigma.min()), 'm', 3)} to "
-            f"{engineering(float(sigma.max()), 'm', 3)}. "
+            f"{len(immersed) - rough - unsure - unstated} in film (σ ≤ x₁/4, Λ ≥ 4/3)"
+            + (
+                f"; {unstated} not determined (a material's roughness is not stated)"
+                if unstated
+                else ""
+            )
+            + f", with {GAP_DEFINITION} and Davis et al.'s band h_m = x₁/4 … x₁/3; median "
+            f"Λ = h_m/σ = {median}, {span}. "
             + (
                 "Asperities touch through the film in the runs in asperity contact: expect "
                 "dry-like friction there; in the uncertain runs they may."
-                if raised
-                else "The film separates the surfaces in every immersed run."
+                if rough or unsure
+                else "The film separates the surfaces in every immersed run whose roughness "
+                "is stated."
             )
         )
     if rough:
@@ -220,6 +236,8 @@ def dataset_flag(frame: Any) -> dict[str, Any]:
         )
     elif unsure:
         headline = f"Roughness within the uncertainty of the EHD gap in {unsure} runs: uncertain"
+    elif unstated:
+        headline = f"Roughness not stated in {unstated} immersed runs: regime not determined"
     else:
         headline = "Roughness within the EHD gap: film"
     return {"id": "roughness-flag", "raised": raised, "headline": headline, "detail": detail}

@@ -156,7 +156,9 @@ def _pair_sections(
 ) -> None:
     """The scenario's flag, verdicts, properties, derived quantities and regime map."""
     immersed = result.fluid_state is not None
-    report["flags"].append(blocks.pair_flag(result.derived, immersed))
+    report["flags"].append(
+        blocks.pair_flag(result.derived, immersed, (result.particle, result.wall))
+    )
     report["verdicts"] = [
         {"name": v.name, "text": v.text, "raised": v.raised}
         for v in verdicts(

@@ -43,8 +43,12 @@ def _regime_grid(materials: tuple[dict, dict], *scenario: float) -> dict[str, An
     velocity = np.geomspace(1e-3, 3.0, 120)
     viscosity = np.geomspace(lowest_viscosity, 1.0, 100)
     v_grid, mu_grid = np.meshgrid(velocity, viscosity)
-    inputs = {f"particle_{k}": particle[k] for k in _MATERIAL_KEYS}
-    inputs.update({f"wall_{k}": wall[k] for k in _MATERIAL_KEYS})
+    # a roughness not stated is NaN: the map then shades it "not determined"
+    inputs = {
+        f"{side}_{k}": np.nan if record[k] is None else record[k]
+        for side, record in (("particle", particle), ("wall", wall))
+        for k in _MATERIAL_KEYS
+    }
     out = derive(
         **inputs,
         diameter_m=diameter_m,

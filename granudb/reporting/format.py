@@ -37,11 +37,19 @@ def engineering(value: float, unit: str, digits: int = 4) -> str:
     return f"{text} {_PREFIXES[exponent]}{unit}".strip()
 
 
+#: Columns whose empty value has a meaning a bare "—" would hide (docs/physics.md §4).
+EMPTY_WORDS = {"roughness_rms_m": "not stated"}
+
+
 def display(value: Any, column: str, digits: int = 4) -> str:
     """How a table shows the SI ``value`` of ``column`` to a person (``digits``
-    significant digits; a narrow terminal table uses 3)."""
-    if value is None:
-        return "—"
+    significant digits; a narrow terminal table uses 3).
+
+    >>> display(None, "roughness_rms_m"), display(None, "yield_stress_pa")
+    ('not stated', '—')
+    """
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return EMPTY_WORDS.get(column, "—")
     if isinstance(value, bool):
         return "yes" if value else "no"
     if hasattr(value, "item") and not isinstance(value, str):
@@ -49,7 +57,7 @@ def display(value: Any, column: str, digits: int = 4) -> str:
     if not isinstance(value, int | float):
         return str(value)
     if isinstance(value, float) and math.isnan(value):
-        return "—"
+        return EMPTY_WORDS.get(column, "—")
     unit = unit_of_column(column)
     shown = unit.display
     g = f".{digits}g"

@@ -245,6 +245,7 @@ REGIME_COLOURS = {
     f"rebound, {ROUGHNESS_WORDS['asperity_contact']}": "#fdd9b5",
     f"rebound, {ROUGHNESS_WORDS['uncertain']}": "#f3ecb0",
     f"rebound, {ROUGHNESS_WORDS['film']}": "#cfe3f2",
+    f"rebound, {ROUGHNESS_WORDS['not_stated']}": "#ffffff",
 }
 
 

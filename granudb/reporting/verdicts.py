@@ -26,6 +26,7 @@ ROUGHNESS_WORDS = {
     "uncertain": "uncertain (x₁/4 < σ ≤ x₁/3, 1 ≤ Λ < 4/3)",
     "film": "film (σ ≤ x₁/4, Λ ≥ 4/3)",
     "dry": "dry (no liquid)",
+    "not_stated": "not determined (a material's roughness is not stated)",
 }
 PREDICTION_FORM = (
     f"e = e_dry exp(−{flow.LEGENDRE_BETA:g}/St) (Legendre, Zenit, Daniel & Guiraud 2006), "
@@ -94,7 +95,7 @@ def verdicts(
     said = [
         rebound_verdict(derived, critical_stokes, immersed, dry),
         restitution_verdict(derived, critical_stokes, immersed, dry),
-        roughness_verdict(derived, immersed),
+        roughness_verdict(derived, immersed, materials),
         friction_verdict(derived, immersed, fluid_name, dry),
         tangential_verdict(derived),
         quasi_static_verdict(derived),
@@ -218,8 +219,20 @@ def restitution_verdict(
     return Verdict("predicted_restitution", name, text, raised=plastic)
 
 
-def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verdict:
-    """σ against Davis's band of the gap, h_m = x₁/4 … x₁/3, with Λ (docs/physics.md §4, §12)."""
+def unstated_roughness(materials: Sequence[Mapping[str, Any]]) -> list[str]:
+    """The names of the materials (particle, wall records) whose roughness is not stated."""
+    names = [m.get("name") for m in materials if m.get("roughness_rms_m") is None]
+    return list(dict.fromkeys(str(n) for n in names if n))
+
+
+def roughness_verdict(
+    derived: Mapping[str, Any],
+    immersed: bool = True,
+    materials: Sequence[Mapping[str, Any]] = (),
+) -> Verdict:
+    """σ against Davis's band of the gap, h_m = x₁/4 … x₁/3, with Λ (docs/physics.md §4, §12);
+    "not determined" where a material's roughness is not stated (``materials``: the
+    particle and wall records, which name it; §18)."""
     regime = str(derived.get("roughness_regime") or "")
     sigma, x1, film = (
         derived.get(k) for k in ("composite_roughness_m", "elastic_length_m", "film_parameter")
@@ -229,6 +242,18 @@ def roughness_verdict(derived: Mapping[str, Any], immersed: bool = True) -> Verd
             "roughness_regime",
             "Roughness against gap",
             "no fluid film: a dry contact, asperities touch (friction dry).",
+        )
+    unstated = unstated_roughness(materials)
+    if regime == "not_stated" or unstated or not is_number(sigma):
+        whose = " and ".join(unstated) or "a material"
+        return Verdict(
+            "roughness_regime",
+            "Roughness against gap",
+            f"not determined: roughness of {whose} not stated. The EHD gap is h_m = "
+            f"x₁/4 … x₁/3 = {in_words(x1 / 4, 'm')} … {in_words(x1 / 3, 'm')} (Davis et al. "
+            "1986); without σ neither a film nor asperity contact follows, so granudb "
+            "does not assume a film: Maw's regime uses the friction where asperities touch.",
+            raised=True,
         )
     if regime not in ROUGHNESS_WORDS:  # an older frame without the three-state column
         regime = "asperity_contact" if derived.get("roughness_exceeds_gap") else "film"
@@ -280,7 +305,14 @@ def friction_verdict(
         f"{limits.LIMITING_SHEAR_SLOPE:g}, Bair & Winer 1979) = {cap:g}"
     )
     name = "Lubricated friction (5.8)"
-    asperities = derived.get("roughness_regime") == "asperity_contact"
+    regime = derived.get("roughness_regime")
+    # a roughness not stated shows no film, so the touching value is used (§4, §18)
+    asperities = regime in ("asperity_contact", "not_stated")
+    why = (
+        "the roughness is not stated (no film is assumed)"
+        if regime == "not_stated"
+        else "asperities touch here"
+    )
     if state == "dry" or not immersed:
         return Verdict(
             "lubricated_friction_state",
@@ -297,7 +329,7 @@ def friction_verdict(
             "Hunt §5), so neither a borrowed C nor the piezoviscous film (5.6) applies. "
             f"Decided: μ_f is only bounded, μ_f ≤ {bound}, and that bound is used for Maw's "
             "regime only where it already settles it."
-            + (f" Asperities touch here, so {touching} is used." if asperities else ""),
+            + (f" {why.capitalize()}, so {touching} is used." if asperities else ""),
             raised=True,
         )
     if state == "above_limit":
@@ -308,18 +340,14 @@ def friction_verdict(
             f"{bound}; a film cannot carry more shear than its limiting shear stress, so "
             "this is not a prediction. "
             + (
-                f"Asperities touch here, so {touching} is used for Maw's regime."
+                f"{why.capitalize()}, so {touching} is used for Maw's regime."
                 if asperities
                 else f"Maw's regime uses the cap μ_f = {cap:g} (a film at its limiting shear)."
             ),
             raised=True,
         )
     if state == "in_range":
-        use = (
-            f"not used: asperities touch, so {touching} is used."
-            if asperities
-            else "used for Maw's regime."
-        )
+        use = f"not used: {why}, so {touching} is used." if asperities else "used for Maw's regime."
         return Verdict(
             "lubricated_friction_state",
             name,
@@ -339,6 +367,8 @@ def _friction_basis(derived: Mapping[str, Any]) -> str:
     regime, state = derived.get("roughness_regime"), derived.get("lubricated_friction_state")
     if regime == "asperity_contact" and state != "dry":
         return "the pair's with asperities touching in a liquid"
+    if regime == "not_stated" and state != "dry":
+        return "the pair's with asperities touching (roughness not stated: no film assumed)"
     if regime in ("dry", "asperity_contact") or state == "dry":
         return "the dry value"
     if state == "in_range":

@@ -110,7 +110,8 @@ MATERIALS = Catalogue(
         "yield_stress_pa",
         *DRY_VALUE_PROPERTIES,
     ),
-    required=("density_kg_m3", "youngs_modulus_pa", "poisson_ratio", "roughness_rms_m"),
+    # the roughness is optional: empty means "not stated" (docs/physics.md §18), never 0
+    required=("density_kg_m3", "youngs_modulus_pa", "poisson_ratio"),
     narrow=(
         "name",
         "density_kg_m3",

@@ -134,7 +134,8 @@ DERIVED_TERMS: dict[str, Term] = {
         "Roughness regime",
         None,
         "σ vs h_m",
-        "asperity_contact (σ > x₁/3) / uncertain (x₁/4 < σ ≤ x₁/3) / film (σ ≤ x₁/4) / dry",
+        "asperity_contact (σ > x₁/3) / uncertain (x₁/4 < σ ≤ x₁/3) / film (σ ≤ x₁/4) / dry / "
+        "not_stated (a material's roughness is not stated)",
     ),
     "rebound_expected": _derived("Rebound expected", None, "rebound", "St_n > St_c (dry: always)"),
     "predicted_restitution": _derived(
