@@ -24,7 +24,7 @@ def pair_values(db: Any = None, *, as_frame: bool = True) -> Any:
     --------
     >>> import granudb
     >>> rows = granudb.pair_values(db=db, as_frame=False)
-    >>> [(r["particle"], r["wall"], r["dry_friction"]) for r in rows][:1]
+    >>> [(r["particle"], r["wall"], r["dry_friction"]) for r in rows if r["particle"] == "glass"]
     [('glass', 'Zerodur', 0.106)]
     """
     with opened(db) as database, database.reading() as connection:

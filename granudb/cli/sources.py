@@ -24,13 +24,12 @@ def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     emit(records, columns, fmt, title="Sources")
 
 
+SourceKey = Annotated[str, typer.Argument(help="Source key, e.g. joseph-hunt-2004.")]
+
+
 @app.command()
 @wraps("source")
-def show(
-    key: Annotated[str, typer.Argument(help="Source key, e.g. joseph-hunt-2004.")],
-    db: DbOption = None,
-    fmt: FormatOption = Format.table,
-) -> None:
+def show(key: SourceKey, db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """Show a source, what cites it, and the published values it holds."""
     record = api.source(key, db=db)
     usage = record.pop("cited_by")
@@ -48,11 +47,7 @@ def show(
 
 @app.command()
 @wraps("source_history")
-def history(
-    key: Annotated[str, typer.Argument(help="Source key, e.g. joseph-hunt-2004.")],
-    db: DbOption = None,
-    fmt: FormatOption = Format.table,
-) -> None:
+def history(key: SourceKey, db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """Show a source as it is and as it was before each change (when and why)."""
     records = api.source_history(key, db=db)
     columns = ["revision", "kept_at", "reason", *api.SOURCE_NARROW]
