@@ -199,3 +199,83 @@ def test_help_does_not_import_heavy_libraries() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip().splitlines()[-1] == "HEAVY="
+
+
+#: The conditions of a material's values as a source might state them (issue 27).
+CONDITIONS = 'E by ultrasonic pulse-echo at 20 °C; σ from SEM images, "ring" method'
+
+
+def test_conditions_of_the_values_are_stored_shown_and_listed(cli, db: str) -> None:
+    """A material's and a fluid's conditions (temperature, method): added, shown, listed
+    (JSON and CSV carry the same text), updated, and in ``pair``'s materials table and
+    document; a control character or a line break is refused in one line, nothing
+    changed."""
+    added = cli(
+        "materials", "add", "PEEK", "--density", "1.3 g/cm^3", "--youngs-modulus", "3.6 GPa",
+        "--poisson-ratio", "0.38", "--conditions", CONDITIONS, db=db,
+    )  # fmt: skip
+    assert added.exit_code == 0, added.stderr
+    shown = json.loads(cli("materials", "show", "PEEK", "--format", "json", db=db).stdout)
+    assert shown["conditions"] == CONDITIONS
+    listed = json.loads(cli("materials", "list", "--format", "json", db=db).stdout)
+    assert {m["name"]: m["conditions"] for m in listed}["PEEK"] == CONDITIONS
+    assert {m["conditions"] for m in listed if m["name"] != "PEEK"} == {None}
+    rows = csv.DictReader(io.StringIO(cli("materials", "list", "--format", "csv", db=db).stdout))
+    assert {r["name"]: r["conditions"] for r in rows}["PEEK"] == CONDITIONS
+    table = cli("materials", "show", "PEEK", db=db).stdout
+    assert "pulse-echo" in table
+
+    pair = cli("pair", "PEEK", "glass", "--diameter", "5 mm", "--velocity", "0.3 m/s", db=db)
+    assert pair.exit_code == 0, pair.stderr
+    assert "conditions" in pair.stdout and "pulse-echo" in pair.stdout
+    plain = cli("pair", "steel", "glass", "--diameter", "5 mm", "--velocity", "0.3 m/s", db=db)
+    assert "conditions" not in plain.stdout  # neither side states any: no row
+    document = json.loads(
+        cli("pair", "PEEK", "glass", "--diameter", "5 mm", "--velocity", "0.3 m/s",
+            "--format", "json", db=db).stdout
+    )  # fmt: skip
+    assert (document["particle"]["conditions"], document["wall"]["conditions"]) == (
+        CONDITIONS,
+        None,
+    )
+
+    later = "E by nanoindentation at 23 °C"
+    updated = cli("materials", "update", "peek", "--conditions", later, db=db)
+    assert updated.exit_code == 0, updated.stderr
+    assert f"conditions {CONDITIONS!r} → {later!r}" in updated.stdout
+    for bad in ("at 20 °C\x07", "line one\nline two"):
+        refused = cli("materials", "update", "PEEK", "--conditions", bad, db=db)
+        assert refused.exit_code != 0
+        assert len(refused.stderr.strip().splitlines()) == 1, refused.stderr
+        assert "conditions" in refused.stderr and "Traceback" not in refused.stderr
+    shown = json.loads(cli("materials", "show", "PEEK", "--format", "json", db=db).stdout)
+    assert shown["conditions"] == later  # unchanged by the refused updates
+
+    fluid = cli(
+        "fluids", "add", "PDMS", "--reference-viscosity", "0.0096 Pa*s",
+        "--reference-density", "960 kg/m^3", "--conditions", "rotational rheometer at 25 °C",
+        db=db,
+    )  # fmt: skip
+    assert fluid.exit_code == 0, fluid.stderr
+    shown = json.loads(cli("fluids", "show", "PDMS", "--format", "json", db=db).stdout)
+    assert shown["conditions"] == "rotational rheometer at 25 °C"
+    assert cli("fluids", "update", "PDMS", "--conditions", "\x1b[31m", db=db).exit_code != 0
+
+
+def test_conditions_from_python_and_the_report_block(opened) -> None:
+    """The Python keywords are the options' names; the report's materials table shows
+    the conditions as a row of their own, only where they are stated."""
+    import granudb
+    from granudb.reporting.blocks import material_block
+
+    added = granudb.add_material(
+        "PEEK", density="1.3 g/cm^3", youngs_modulus="3.6 GPa", poisson_ratio=0.38,
+        conditions=CONDITIONS, db=opened,
+    )  # fmt: skip
+    assert added["conditions"] == CONDITIONS
+    rows = material_block("Particle", added)["rows"]
+    assert [r["value"] for r in rows if r["name"] == "conditions"] == [CONDITIONS]
+    steel = granudb.material("steel", db=opened)
+    assert "conditions" not in [r["name"] for r in material_block("Wall", steel)["rows"]]
+    with pytest.raises(granudb.ValidationError, match="conditions"):
+        granudb.update_material("PEEK", conditions="a\tb", db=opened)

@@ -247,3 +247,39 @@ def test_0010_makes_the_roughness_optional_and_its_downgrade_names_the_loss(db: 
         )
     assert roughness()["alumina"] is None
     database.dispose()
+
+
+def test_0011_adds_the_conditions_and_its_downgrade_names_the_loss(db: str) -> None:
+    """0011 gives materials and fluids an empty ``conditions`` (every row kept); a
+    downgrade names the conditions it drops, table by table, and is refused without
+    consent; the way back up keeps every row, the conditions then empty."""
+    import granudb
+
+    database = open_database(db)
+    granudb.update_material("glass", conditions="σ from SEM images", db=database)
+    granudb.update_fluid("water", conditions="at 20 °C", db=database)
+
+    def rows(table: str) -> dict[str, tuple]:
+        with database.engine.connect() as connection:
+            found = connection.execute(text(f"SELECT * FROM {table}")).mappings().all()
+            return {
+                r["name"]: tuple(v for k, v in r.items() if k not in ("conditions", "updated_at"))
+                for r in found
+            }
+
+    before = {table: rows(table) for table in ("materials", "fluids")}
+    losses = migration.plan_downgrade(database, "0010")
+    assert losses == [
+        "materials.conditions: 1 values dropped (the values' conditions)",
+        "fluids.conditions: 1 values dropped (the values' conditions)",
+    ]
+    with pytest.raises(ConfirmationNeeded):
+        migration.downgrade(database, "0010")
+    assert granudb.material("glass", db=database)["conditions"] == "σ from SEM images"
+    assert migration.downgrade(database, "0010", accepted=losses)[1] == "0010"
+    assert {table: rows(table) for table in before} == before  # only the column went
+    migration.upgrade(database)
+    assert {table: rows(table) for table in before} == before
+    assert granudb.material("glass", db=database)["conditions"] is None
+    assert granudb.fluid("water", db=database)["conditions"] is None
+    database.dispose()

@@ -196,13 +196,14 @@ def test_fluid_points_carry_their_uncertainty_into_the_viscosity(opened) -> None
     assert st_n == pytest.approx(relative, rel=1e-9)
 
 
-@pytest.mark.parametrize("dropped", [("u_",), ("u_", "dry_", "brittleness")])
+@pytest.mark.parametrize("dropped", [("u_",), ("u_", "dry_", "brittleness"), ("conditions",)])
 def test_a_package_from_before_the_uncertainties_still_imports(
     cli, db: str, new_db: str, tmp_path: Path, dropped: tuple[str, ...]
 ) -> None:
     """A package whose materials, fluids and points lack the u columns, or also the dry
-    values, their origin and brittleness (the previous release's packages), is read with
-    them empty; a package of today carries them and round-trips them."""
+    values, their origin and brittleness (earlier releases' packages), or only the
+    conditions (the previous release's), is read with them empty; a package of today
+    carries them and round-trips them."""
     assert cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db).exit_code == 0
     out = tmp_path / "old"
     assert cli("dataset", "export", "example", "--output", str(out), db=db).exit_code == 0

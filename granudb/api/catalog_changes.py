@@ -26,7 +26,8 @@ from granudb.db import catalog_changes
 from granudb.io.seed import POINT_NUMERIC, read_table
 from granudb.reporting.format import display
 from granudb.vocabulary import FLUIDS, MATERIALS, Catalogue
-from granudb.vocabulary.text import check_text
+from granudb.vocabulary.catalogue import ONE_LINE_TEXTS
+from granudb.vocabulary.text import check_name, check_text
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -70,6 +71,9 @@ def _values(catalogue: Catalogue, given: dict[str, Any]) -> dict[str, Any]:
             values[column], values[catalogue.uncertainties[column]] = inputs.uncertain_quantity(
                 value, column, parameter
             )
+        elif column in ONE_LINE_TEXTS:  # conditions: one line
+            limit = ONE_LINE_TEXTS[column]
+            values[column] = check_name(parameter, inputs.text(value, parameter), max_length=limit)
         else:
             values[column] = check_text(parameter, inputs.text(value, parameter))
     return values

@@ -102,6 +102,12 @@ def print_pair(document: dict[str, Any]) -> None:
             api.display_uncertain(wall[column], wall.get(f"u_{column}"), column),
         )
     props.add_row("source", Text(_cite(particle)), Text(_cite(wall)))
+    if particle.get("conditions") or wall.get("conditions"):  # as the source gives them
+        props.add_row(
+            "conditions",
+            Text(particle.get("conditions") or "—"),
+            Text(wall.get("conditions") or "—"),
+        )
     out.print(props)
     dry = document["dry_values"]
     values = Table(title="Dry values of the pair", title_justify="left")

@@ -63,6 +63,7 @@ class MaterialRow:
     dry_friction: float | None
     dry_provenance: str | None
     brittleness: str | None
+    conditions: str | None
     u_dry_restitution: float | None
     u_dry_friction: float | None
     source_locator: str | None
@@ -111,6 +112,7 @@ class FluidRow:
     u_reference_viscosity_pa_s: float | None
     u_reference_temperature_c: float | None
     u_pressure_viscosity_pa_inv: float | None
+    conditions: str | None
     source_locator: str | None
     density_locator: str | None
     pressure_viscosity_locator: str | None

@@ -150,6 +150,8 @@ class Material(Timestamped, Base):
     dry_friction: Mapped[float | None] = mapped_column(Float)
     dry_provenance: Mapped[str | None] = mapped_column(Text)
     brittleness: Mapped[str | None] = mapped_column(String(20))
+    #: The conditions of the values where the source gives them (temperature, method).
+    conditions: Mapped[str | None] = mapped_column(Text)
     u_dry_restitution: Mapped[float | None] = mapped_column(Float)
     u_dry_friction: Mapped[float | None] = mapped_column(Float)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
@@ -205,6 +207,8 @@ class Fluid(Timestamped, Base):
     u_reference_viscosity_pa_s: Mapped[float | None] = mapped_column(Float)
     u_reference_temperature_c: Mapped[float | None] = mapped_column(Float)
     u_pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
+    #: The conditions of the values where the source gives them (temperature, method).
+    conditions: Mapped[str | None] = mapped_column(Text)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     density_source_id: Mapped[int | None] = mapped_column(

@@ -48,7 +48,7 @@ from granudb.io.package_schema import (
 from granudb.io.tables import TINY_RULE, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
-from granudb.vocabulary.catalogue import MATERIALS
+from granudb.vocabulary.catalogue import MATERIALS, ONE_LINE_TEXTS
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import check_name, check_text, name_key
 
@@ -77,6 +77,7 @@ NAME_COLUMNS = {
     "source": 100,
     "density_source": 100,
     "pressure_viscosity_source": 100,
+    **ONE_LINE_TEXTS,  # a material's or fluid's conditions: one line
 }
 TEXT_LENGTHS = {
     "doi": 200,

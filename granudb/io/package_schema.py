@@ -31,7 +31,7 @@ from granudb.vocabulary.rules import RULES
 
 #: Text columns of a package's tables (names, keys, citations); sources and locators too.
 _TEXT = {"key", "citation", "doi", "url", "kind", "notes", "name", "description", "run"}
-_TEXT |= {"particle", "wall", "fluid", *MATERIALS.texts}
+_TEXT |= {"particle", "wall", "fluid", *MATERIALS.texts, *FLUIDS.texts}
 
 
 def _fields(columns: list[str], required: list[str]) -> list[tuple[str, str, bool]]:
@@ -83,14 +83,15 @@ RESOURCES: dict[str, list[tuple[str, str, bool]]] = {
 }
 
 #: Columns a resource's file may lack, read as empty: those added after granudb's first
-#: packages (issue 27's uncertainties; issue 23's dry values, their origin and brittleness).
+#: packages (issue 27's uncertainties and conditions; issue 23's dry values, their origin
+#: and brittleness).
 OPTIONAL_COLUMNS: dict[str, list[str]] = {
     "materials": [
         *DRY_VALUE_PROPERTIES,
         *MATERIALS.texts,
         *MATERIALS.uncertainties.values(),
     ],
-    "fluids": list(FLUIDS.uncertainties.values()),
+    "fluids": [*FLUIDS.texts, *FLUIDS.uncertainties.values()],
     "fluid_points": list(POINT_UNCERTAINTIES),
     "collisions": list(COLLISION_UNCERTAINTIES),
 }

@@ -49,7 +49,14 @@ def material_block(role: str, record: dict[str, Any]) -> dict[str, Any]:
         if column == "shear_modulus_pa" and record.get("shear_modulus_derived"):
             note = "derived: G = E / (2(1 + ν))"
         rows.append(_row(_title(column), display(record.get(column), column), note, column))
-    return {"heading": f"{role}: {record['name']}", "rows": rows}
+    return {"heading": f"{role}: {record['name']}", "rows": rows + _conditions(record, source)}
+
+
+def _conditions(record: dict[str, Any], source: str) -> list[dict[str, Any]]:
+    """The conditions of an entry's values (temperature, method) as its source gives
+    them: one row, or none when not stated."""
+    text = record.get("conditions")
+    return [_row(_title("conditions"), text, source, "conditions")] if text else []
 
 
 def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, Any]:
@@ -100,7 +107,7 @@ def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, A
             source,
         ),
     ]
-    return {"heading": f"Fluid: {record['name']}", "rows": rows}
+    return {"heading": f"Fluid: {record['name']}", "rows": rows + _conditions(record, source)}
 
 
 def unit_label(name: str) -> str:

@@ -95,7 +95,17 @@ def parameter_of(column: str) -> str:
 DRY_VALUE_PROPERTIES = ("dry_restitution", "dry_friction")
 #: Brittle solids crack (Hertzian cone cracks) instead of yielding; stored, never guessed.
 BRITTLENESS = ("brittle", "ductile")
-MATERIAL_TEXTS: dict[str, tuple[str, ...]] = {"dry_provenance": (), "brittleness": BRITTLENESS}
+#: The conditions of an entry's values where its source gives them (temperature, method):
+#: free text, one line (issue 27), for materials and fluids alike.
+CONDITIONS: dict[str, tuple[str, ...]] = {"conditions": ()}
+#: Text fields kept to one line (a name's rules: no line break, tab or surrounding
+#: spaces), with their longest length; every door checks them so.
+ONE_LINE_TEXTS: dict[str, int] = {"conditions": 1000}
+MATERIAL_TEXTS: dict[str, tuple[str, ...]] = {
+    "dry_provenance": (),
+    "brittleness": BRITTLENESS,
+    **CONDITIONS,
+}
 
 MATERIALS = Catalogue(
     kind="material",
@@ -149,6 +159,7 @@ FLUIDS = Catalogue(
     defaults={"reference_temperature_c": 20.0},
     trailing=("density_source", "pressure_viscosity_source", "points"),
     reserved={"dry": "is reserved: 'dry' means no fluid"},
+    texts=CONDITIONS,
 )
 
 #: A fluid's measured point: viscosity (and density) at a temperature.

@@ -215,6 +215,14 @@ TERMS: dict[str, Term] = {
         option="--dry-source",
         example="Joseph & Hunt 2004 §3",
     ),
+    "conditions": Term(
+        "Conditions",
+        None,
+        "The conditions of the values where the source gives them (temperature, method), "
+        "one line; empty where not stated.",
+        option="--conditions",
+        example="E by ultrasonic pulse-echo at 20 °C; σ from SEM images",
+    ),
     "brittleness": Term(
         "Brittleness",
         None,
