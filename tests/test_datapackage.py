@@ -38,6 +38,18 @@ def exported(cli, db: str, tmp_path: Path) -> Path:
     return out
 
 
+def upstream_validates(folder: Path) -> str:
+    """The upstream validator (frictionless) accepts the package in ``folder``; its
+    report."""
+    tool = shutil.which("frictionless") or str(Path(sys.executable).parent / "frictionless")
+    check = subprocess.run(
+        [tool, "validate", "datapackage.json"], cwd=folder, capture_output=True, text=True,
+        timeout=300,
+    )  # fmt: skip
+    assert check.returncode == 0, check.stdout[-3000:]
+    return check.stdout
+
+
 def test_export_is_a_valid_data_package(exported: Path) -> None:
     descriptor = json.loads((exported / "datapackage.json").read_text("utf-8"))
     assert descriptor["name"] == "example" and descriptor["version"] == "1.0.0"
@@ -54,16 +66,7 @@ def test_export_is_a_valid_data_package(exported: Path) -> None:
     assert (exported / "README.md").read_text("utf-8").startswith("# Example runs")
     assert 'cff-version: "1.2.0"' in (exported / "CITATION.cff").read_text("utf-8")
     # the upstream validator agrees
-    tool = shutil.which("frictionless") or str(Path(sys.executable).parent / "frictionless")
-    check = subprocess.run(
-        [tool, "validate", "datapackage.json"],
-        cwd=exported,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert check.returncode == 0, check.stdout[-3000:]
-    assert "INVALID" not in check.stdout
+    assert "INVALID" not in upstream_validates(exported)
 
 
 def test_round_trip_keeps_the_content_hash(
@@ -269,12 +272,7 @@ def test_a_roughness_not_stated_travels_empty_and_older_schemas_still_import(
     assert not roughness.get("constraints", {}).get("required")
     density = next(f for f in materials["schema"]["fields"] if f["name"] == "density_kg_m3")
     assert density["constraints"]["required"] is True  # still required: the spec's rule
-    tool = shutil.which("frictionless") or str(Path(sys.executable).parent / "frictionless")
-    check = subprocess.run(
-        [tool, "validate", "datapackage.json"], cwd=out, capture_output=True, text=True,
-        timeout=300,
-    )  # fmt: skip
-    assert check.returncode == 0, check.stdout[-3000:]
+    upstream_validates(out)
     # an older granudb's schema: the roughness required
     roughness.setdefault("constraints", {})["required"] = True
     (out / "datapackage.json").write_text(json.dumps(descriptor), "utf-8")
@@ -309,12 +307,7 @@ def test_conditions_round_trip_through_a_package_byte_for_byte(
             field = next(f for f in resource["schema"]["fields"] if f["name"] == "conditions")
             assert field["type"] == "string"
             assert not field.get("constraints", {}).get("required")
-    tool = shutil.which("frictionless") or str(Path(sys.executable).parent / "frictionless")
-    check = subprocess.run(
-        [tool, "validate", "datapackage.json"], cwd=first, capture_output=True, text=True,
-        timeout=300,
-    )  # fmt: skip
-    assert check.returncode == 0, check.stdout[-3000:]
+    upstream_validates(first)
     imported = cli("dataset", "import", str(first), db=new_db)
     assert imported.exit_code == 0, imported.stderr
     shown = json.loads(cli("fluids", "show", "glycerol-37", "--format", "json", db=new_db).stdout)
