@@ -15,7 +15,7 @@ from typing import Any
 from granudb.io.tables import convert_frame, map_headers
 from granudb.lazy import pandas as pd
 from granudb.resources import shipped_dir
-from granudb.vocabulary import FLUID_PROPERTIES, MATERIAL_PROPERTIES, MATERIALS
+from granudb.vocabulary import FLUID_PROPERTIES, FLUIDS, MATERIAL_PROPERTIES, MATERIALS
 from granudb.vocabulary.rules import check_record
 
 MATERIAL_NUMERIC = list(MATERIAL_PROPERTIES)
@@ -30,6 +30,7 @@ FLUID_TEXT = [
     "density_locator",
     "pressure_viscosity_source",
     "pressure_viscosity_locator",
+    *FLUIDS.texts,
 ]
 POINT_NUMERIC = ["temperature_c", "viscosity_pa_s", "density_kg_m3"]
 POINT_TEXT = ["fluid", "source", "source_locator"]

@@ -73,6 +73,12 @@ def _rows(db: str, sql: str) -> list[tuple]:
 
 
 SEED = read_seed()
+#: 0011 drops the conditions a seeded material or fluid states (none today).
+CONDITION_LOSSES = [
+    f"{table}.conditions: {n} values dropped (the values' conditions)"
+    for table, entries in (("materials", SEED.materials), ("fluids", SEED.fluids))
+    if (n := sum(e.get("conditions") is not None for e in entries))
+]
 #: 0010 gives a roughness not stated (the seeded Kharaz materials) the older schema's 0.0.
 UNSTATED = sum(m.get("roughness_rms_m") is None for m in SEED.materials)
 ROUGHNESS_LOSSES = [
@@ -119,7 +125,8 @@ def test_downgrade_to_every_revision_and_back_keeps_every_row_or_asks(db: str, t
     else:
         order = ["0003", "0002", "0001"]
         expected = (
-            ROUGHNESS_LOSSES
+            CONDITION_LOSSES
+            + ROUGHNESS_LOSSES
             + DRY_LOSSES
             + [line for r in order[: order.index(target) + 1] for line in EXPECTED_LOSSES[r]]
         )
@@ -148,6 +155,8 @@ def test_downgrade_to_every_revision_and_back_keeps_every_row_or_asks(db: str, t
 def test_downgrade_that_loses_nothing_runs_without_asking(db: str) -> None:
     execute(db, "DELETE FROM pair_values")
     execute(db, "DELETE FROM materials WHERE roughness_rms_m IS NULL")  # 0010's loss
+    execute(db, "UPDATE materials SET conditions = NULL")  # 0011's
+    execute(db, "UPDATE fluids SET conditions = NULL")
     execute(
         db,
         "UPDATE materials SET dry_restitution = NULL, dry_friction = NULL, "
