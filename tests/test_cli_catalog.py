@@ -279,3 +279,15 @@ def test_conditions_from_python_and_the_report_block(opened) -> None:
     assert "conditions" not in [r["name"] for r in material_block("Wall", steel)["rows"]]
     with pytest.raises(granudb.ValidationError, match="conditions"):
         granudb.update_material("PEEK", conditions="a\tb", db=opened)
+
+
+def test_a_release_keeps_the_conditions_it_was_released_with(cli, db: str) -> None:
+    """Stating steel's conditions after a release is a change like any other: the
+    history keeps steel as released (no conditions) beside the live one."""
+    example = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
+    assert cli("collisions", "import", str(example), "--dataset", "example", db=db).exit_code == 0
+    assert cli("dataset", "release", "example", db=db).exit_code == 0
+    changed = cli("materials", "update", "steel", "--conditions", CONDITIONS, db=db)
+    assert changed.exit_code == 0, changed.stderr
+    history = json.loads(cli("materials", "history", "steel", "--format", "json", db=db).stdout)
+    assert [r["conditions"] for r in history] == [CONDITIONS, None]
