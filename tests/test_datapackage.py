@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import json
 import shutil
 import subprocess
@@ -306,7 +307,7 @@ def test_conditions_round_trip_through_a_package_byte_for_byte(
         if resource["name"] in ("materials", "fluids"):
             field = next(f for f in resource["schema"]["fields"] if f["name"] == "conditions")
             assert field["type"] == "string"
-            assert not field.get("constraints", {}).get("required")
+            assert field["constraints"] == {"maxLength": 1000}  # optional, one line
     upstream_validates(first)
     imported = cli("dataset", "import", str(first), db=new_db)
     assert imported.exit_code == 0, imported.stderr
@@ -318,3 +319,32 @@ def test_conditions_round_trip_through_a_package_byte_for_byte(
         written = (first / "data" / f"{name}.csv").read_bytes()
         assert CONDITIONS.replace('"', '""').encode("utf-8") in written
         assert written == (second / "data" / f"{name}.csv").read_bytes()
+
+
+def test_a_line_break_in_conditions_refuses_the_package_in_one_line(
+    cli, db: str, new_db: str, tmp_path: Path
+) -> None:
+    """Conditions are one line in a package as on the command line: a tab in one is
+    refused, naming the table, the column and the rule, and nothing is imported."""
+    assert cli("collisions", "import", str(EXAMPLE), "--dataset", "example", db=db).exit_code == 0
+    for where in (db, new_db):
+        assert (
+            cli("materials", "update", "steel", "--conditions", "at 20 °C", db=where).exit_code == 0
+        )
+    out = tmp_path / "pkg"
+    assert cli("dataset", "export", "example", "--output", str(out), db=db).exit_code == 0
+    descriptor = json.loads((out / "datapackage.json").read_text("utf-8"))
+    resource = next(r for r in descriptor["resources"] if r["name"] == "materials")
+    path = out / resource["path"]
+    payload = path.read_bytes().replace("at 20 °C".encode(), "at\t20 °C".encode())
+    path.write_bytes(payload)
+    resource["bytes"] = len(payload)
+    resource["hash"] = "sha256:" + hashlib.sha256(payload).hexdigest()
+    (out / "datapackage.json").write_text(json.dumps(descriptor), "utf-8")
+    before = dump_hash(new_db)
+    refused = cli("dataset", "import", str(out), db=new_db)
+    assert refused.exit_code != 0
+    assert "materials.conditions" in refused.stderr and "U+0009" in refused.stderr
+    assert "Traceback" not in refused.stderr
+    assert dump_hash(new_db) == before
+    assert len(refused.stderr.strip().splitlines()) == 1, refused.stderr

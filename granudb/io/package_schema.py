@@ -26,7 +26,7 @@ from granudb.vocabulary import (
     Catalogue,
     term,
 )
-from granudb.vocabulary.catalogue import DRY_VALUE_PROPERTIES
+from granudb.vocabulary.catalogue import DRY_VALUE_PROPERTIES, ONE_LINE_TEXTS
 from granudb.vocabulary.rules import RULES
 
 #: Text columns of a package's tables (names, keys, citations); sources and locators too.
@@ -128,7 +128,7 @@ DESCRIPTIONS = {
     "collisions": "One measured impact per row (sign convention in README.md).",
 }
 
-MAX_TEXT = {"run": 200, "name": 200, "notes": 10_000, "description": 10_000}
+MAX_TEXT = {"run": 200, "name": 200, "notes": 10_000, "description": 10_000, **ONE_LINE_TEXTS}
 
 
 def field_schema(name: str, kind: str, required: bool) -> dict[str, Any]:
