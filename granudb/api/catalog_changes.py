@@ -140,7 +140,8 @@ def add_material(
     ``correlation_length``, ``shear_modulus``, ``yield_stress``, ``dry_restitution``,
     ``dry_friction`` (each an SI number or a string with its unit, optionally with its
     standard uncertainty, "190 GPa ± 5 %"), ``dry_source``, ``brittleness``,
-    ``description`` and ``source_locator`` (text). A shear modulus not given is derived,
+    ``description``, ``source_locator`` and ``conditions`` (text; the conditions of the
+    values as the source gives them, one line). A shear modulus not given is derived,
     G = E / (2(1 + ν)); with a ``yield_stress`` (in tension) yield starts at 1.6 Y.
     ``dry_restitution`` and ``dry_friction`` are the material's own dry values, cited by
     ``dry_source`` (the pair's prediction uses them, docs/physics.md §18); ``brittleness``
@@ -200,8 +201,8 @@ def add_fluid(
     """Add a fluid; returns it as ``fluid`` does. ``values``: ``reference_viscosity`` and
     ``reference_density`` (required), at ``reference_temperature`` (default 20 °C),
     ``pressure_viscosity`` (Barus; needed for the lubricated friction (5.8)),
-    ``glycerol_fraction`` (each an SI number or a string with its unit), ``description``
-    and ``source_locator`` (text).
+    ``glycerol_fraction`` (each an SI number or a string with its unit), ``description``,
+    ``source_locator`` and ``conditions`` (text; the conditions, one line).
 
     Examples
     --------
