@@ -13,21 +13,20 @@ import math
 from typing import Any
 
 from granudb.io.units import check_unit_expression, registry
-from granudb.vocabulary import (
-    COLLISION_MEASURED,
-    COLLISION_REQUIRED,
-    COLLISION_UNCERTAINTIES,
+from granudb.vocabulary.catalogue import (
+    DRY_VALUE_PROPERTIES,
     FLUIDS,
     MATERIALS,
+    ONE_LINE_TEXTS,
     POINT_COLUMNS,
     POINT_UNCERTAINTIES,
     SOURCE_COLUMNS,
     SOURCE_REQUIRED,
     Catalogue,
-    term,
 )
-from granudb.vocabulary.catalogue import DRY_VALUE_PROPERTIES, ONE_LINE_TEXTS
+from granudb.vocabulary.derived import term
 from granudb.vocabulary.rules import RULES
+from granudb.vocabulary.terms import COLLISION_MEASURED, COLLISION_REQUIRED, COLLISION_UNCERTAINTIES
 
 #: Text columns of a package's tables (names, keys, citations); sources and locators too.
 _TEXT = {"key", "citation", "doi", "url", "kind", "notes", "name", "description", "run"}
