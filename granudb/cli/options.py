@@ -129,9 +129,12 @@ def text_options(
     )
 
 
-#: The collision filter options: a command that selects runs gets them all, as the one
-#: keyword ``filters``.
-collision_filters = option_group("filters", [_filter_parameter(n) for n in api.COLLISION_FILTERS])
+def collision_filters(command: Callable[..., None]) -> Callable[..., None]:
+    """Give a command that selects runs every collision filter option, as the one keyword
+    ``filters``. Built when a command module uses it, so ``granudb --help`` does not load
+    the filters' vocabulary."""
+    parameters = [_filter_parameter(n) for n in api.COLLISION_FILTERS]
+    return option_group("filters", parameters)(command)
 
 
 def wraps(function: str) -> Callable[[Callable[..., None]], Callable[..., None]]:

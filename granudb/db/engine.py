@@ -91,14 +91,18 @@ def make_engine(url: str) -> Engine:
     return engine
 
 
-def _check_sqlite_location(path: Path, is_default: bool) -> None:
+def _check_sqlite_location(path: Path) -> None:
+    """Refuse a folder or a missing folder named by the user; create the default's folder.
+
+    The default path (platformdirs) is only worked out when the folder is missing, so a
+    command given ``--db`` never imports platformdirs."""
     folder = path.parent
     if path.is_dir():
         raise DatabaseAccessError(f"database: {path} is a folder, not a database file")
     if folder.exists() and not folder.is_dir():
         raise DatabaseAccessError(f"database: {folder} is not a folder (choose another --db)")
     if not folder.exists():
-        if is_default:
+        if path == default_database_path():
             folder.mkdir(parents=True, exist_ok=True)
         else:
             raise DatabaseAccessError(
@@ -252,7 +256,7 @@ def open_database(
     resolved = resolve_database_url(url)
     path = _sqlite_file(resolved)
     if path is not None:
-        _check_sqlite_location(path, is_default=path == default_database_path())
+        _check_sqlite_location(path)
         recognise_sqlite(path)
     engine = make_engine(resolved)
     database = Database(resolved, engine)
