@@ -25,6 +25,10 @@ class ValidationError(GranudbError):
         row: int | None = None,
         parameter: bool = False,
     ) -> None:
+        if field.startswith("--") and field[2:].replace("-", "").isalnum():
+            # Named as the command line spells it (``--output``): kept as the Python
+            # parameter (``output``), so each caller reads the name it used.
+            field, parameter = field[2:].replace("-", "_"), True
         self.field = field
         self.value = value
         self.rule = rule

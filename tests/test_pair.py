@@ -219,7 +219,7 @@ def test_table_output_speaks_in_words_and_units(cli, db: str) -> None:
         (["--fluid", "mercury"], "fluid: 'mercury' is not in the database"),
         (
             ["--fluid", "water", "--temperature", "80 degC"],
-            "--temperature: 80 is outside the temperature range 10 to 60",
+            "--temperature: 80 °C is outside the temperature range 10 to 60 °C",
         ),
         (["--viscosity", "1 cP"], "--viscosity: 1 cP needs a fluid"),
     ],

@@ -194,3 +194,35 @@ def test_a_catalogue_value_the_specification_lacks_is_refused_by_name(tmp_path) 
         assert "PTFE" not in set(granudb.materials(db=db)["name"])
     finally:
         db.dispose()
+
+
+def test_a_refusal_names_the_parameter_in_python_and_the_option_on_the_command_line(
+    tmp_path,
+) -> None:
+    """Refusals raised below the API with the option's spelling (``--output``) and those
+    of the physics kernels (a temperature outside a fluid's data) read as the parameter a
+    Python caller typed, and as the option on the command line: one error, two spellings."""
+    db = granudb.connect(tmp_path / "g.sqlite")
+    existing = tmp_path / "taken.html"
+    existing.write_text("mine")
+    try:
+        hot = _refusal(
+            lambda: granudb.pair(
+                "steel", "Zerodur", diameter="12.7 mm", velocity="0.3 m/s", fluid="water",
+                temperature="80 degC", db=db,
+            )
+        )  # fmt: skip
+        assert hot.startswith("temperature: 80 °C is outside the temperature range 10 to 60 °C")
+        taken = _refusal(lambda: granudb.report(output=existing, db=db))
+        assert taken.startswith(f"output: {existing} exists"), taken
+        csv = tmp_path / "runs.csv"
+        csv.write_text("run\n")
+        split = _refusal(lambda: granudb.import_collisions(csv, dataset="d", delimiter="|", db=db))
+        assert split.startswith("delimiter: '|' must be"), split
+    finally:
+        db.dispose()
+    assert existing.read_text() == "mine"
+    with pytest.raises(ValidationError) as caught:
+        raise ValidationError("--output", "x.html", "exists")
+    assert str(caught.value) == "output: x.html exists"
+    assert caught.value.as_option() == "--output: x.html exists"

@@ -86,7 +86,7 @@ def fluid_state(
                 parameter=True,
             )
         temperature = temperature_c
-        with physics_refusal("--temperature"):
+        with physics_refusal("temperature"):
             viscosity = float(model.viscosity(temperature_c))
             if _has_density(model):
                 density = float(model.density(temperature_c))
@@ -228,7 +228,7 @@ def state_uncertainty(
             )
         low = max(state.temperature_c - _DT, model.low_c)
         high = min(state.temperature_c + _DT, model.high_c)
-        with physics_refusal("--temperature"):
+        with physics_refusal("temperature"):
             slope = float(model.viscosity(high) - model.viscosity(low)) / (high - low)
         parts += [abs(slope) * u for u in temperatures]
     density = _relative(fluid, "reference_density_kg_m3", state.density_kg_m3)

@@ -15,8 +15,11 @@ from granudb.physics.numeric import PhysicsInputError
 
 @contextmanager
 def physics_refusal(field: str | None = None) -> Iterator[None]:
-    """Re-raise a ``PhysicsInputError`` as ``ValidationError`` naming ``field``."""
+    """Re-raise a ``PhysicsInputError`` as ``ValidationError`` naming ``field`` (a parameter
+    of the caller, shown as its option on the command line) or the kernel's own field."""
     try:
         yield
     except PhysicsInputError as exc:
-        raise ValidationError(field or exc.field, exc.value, exc.rule, row=exc.row) from None
+        raise ValidationError(
+            field or exc.field, exc.value, exc.rule, row=exc.row, parameter=field is not None
+        ) from None

@@ -571,7 +571,7 @@ def import_package(
     whatever the row count. Returns a ``PackageImport``; its ``declared_hash`` is the
     package's content hash."""
     if as_name is not None:
-        check_name("--as", as_name)
+        check_name("as_name", as_name)
     with package_root(path) as root:
         validated = validate_root(root, keep_collisions=False)
         if validated.problems:

@@ -133,14 +133,19 @@ def glycerol_water_density(mass_fraction: Numeric, temperature_c: Numeric) -> Nu
     return ideal * (1.0 + kappa * np.sin(cm**1.31 * np.pi) ** 0.81)
 
 
-def _check_range(name: str, values: np.ndarray, low: float, high: float, what: str) -> None:
+#: What each checked argument is, and its unit, for the refusal.
+_RANGES = {"temperature_c": ("temperature", "°C"), "viscosity_pa_s": ("viscosity", "Pa·s")}
+
+
+def _check_range(name: str, values: np.ndarray, low: float, high: float) -> None:
+    what, unit = _RANGES[name]
     finite = values[np.isfinite(values)]
     bad = finite[(finite < low - 1e-9) | (finite > high + 1e-9)]
     if bad.size:
         raise ViscosityRangeError(
             name,
-            f"{float(bad[0]):g}",
-            f"is outside the {what} range {low:g} to {high:g} of the fluid model "
+            f"{float(bad[0]):g} {unit}",
+            f"is outside the {what} range {low:g} to {high:g} {unit} of the fluid model "
             "(granudb does not extrapolate)",
         )
 
@@ -155,12 +160,12 @@ class GlycerolWater:
 
     def viscosity(self, temperature_c: Numeric) -> Numeric:
         t = as_float(temperature_c)
-        _check_range("temperature_c", np.atleast_1d(t), self.low_c, self.high_c, "temperature")
+        _check_range("temperature_c", np.atleast_1d(t), self.low_c, self.high_c)
         return glycerol_water_viscosity(self.mass_fraction, t)
 
     def density(self, temperature_c: Numeric) -> Numeric:
         t = as_float(temperature_c)
-        _check_range("temperature_c", np.atleast_1d(t), self.low_c, self.high_c, "temperature")
+        _check_range("temperature_c", np.atleast_1d(t), self.low_c, self.high_c)
         return glycerol_water_density(self.mass_fraction, t)
 
     def temperature_for_viscosity(self, viscosity: Numeric) -> Numeric:
@@ -168,7 +173,7 @@ class GlycerolWater:
         viscosity falls monotonically with temperature)."""
         mu = as_float(viscosity)
         hot, cold = self.viscosity(self.high_c), self.viscosity(self.low_c)
-        _check_range("viscosity_pa_s", np.atleast_1d(mu), float(hot), float(cold), "viscosity")
+        _check_range("viscosity_pa_s", np.atleast_1d(mu), float(hot), float(cold))
         low = np.full(mu.shape, self.low_c)
         high = np.full(mu.shape, self.high_c)
         for _ in range(60):  # 100 °C / 2^60: far below any measurement's resolution
@@ -227,7 +232,7 @@ class TabulatedViscosity:
 
     def viscosity(self, temperature_c: Numeric) -> Numeric:
         t = as_float(temperature_c)
-        _check_range("temperature_c", np.atleast_1d(t), self.low_c, self.high_c, "temperature")
+        _check_range("temperature_c", np.atleast_1d(t), self.low_c, self.high_c)
         x = 1.0 / (t + KELVIN)
         # np.interp needs increasing x: 1/T decreases with T, so interpolate reversed.
         return np.exp(np.interp(x, self._x[::-1], self._y[::-1]))
@@ -236,14 +241,14 @@ class TabulatedViscosity:
         if self.density_kg_m3 is None:
             raise ViscosityRangeError("density_kg_m3", "(none)", "is not in the fluid's points")
         t = as_float(temperature_c)
-        _check_range("temperature_c", np.atleast_1d(t), self.low_c, self.high_c, "temperature")
+        _check_range("temperature_c", np.atleast_1d(t), self.low_c, self.high_c)
         return np.interp(t, self.temperature_c, self.density_kg_m3)
 
     def temperature_for_viscosity(self, viscosity: Numeric) -> Numeric:
         """The temperature [°C] at which the fluid has ``viscosity`` [Pa·s]."""
         mu = as_float(viscosity)
         low, high = float(self.viscosity_pa_s.min()), float(self.viscosity_pa_s.max())
-        _check_range("viscosity_pa_s", np.atleast_1d(mu), low, high, "viscosity")
+        _check_range("viscosity_pa_s", np.atleast_1d(mu), low, high)
         # ln μ is monotonic in 1/T between points when the data are (viscosity falls with T).
         y = np.log(mu)
         order = np.argsort(self._y)
@@ -311,7 +316,7 @@ class ReferencedViscosity:
         mu = as_float(viscosity)
         low = float(self.viscosity(self.high_c))
         high = float(self.viscosity(self.low_c))
-        _check_range("viscosity_pa_s", np.atleast_1d(mu), low, high, "viscosity")
+        _check_range("viscosity_pa_s", np.atleast_1d(mu), low, high)
         return self.model.temperature_for_viscosity(
             np.clip(
                 mu / self.scale,

@@ -284,7 +284,7 @@ def test_referenced_viscosity_refuses_with_the_callers_number() -> None:
     assert float(model.temperature_for_viscosity(top)) == pytest.approx(10.0)
     with pytest.raises(viscosity.ViscosityRangeError) as info:
         model.temperature_for_viscosity(0.02)
-    assert info.value.value == "0.02" and f"{top:g}" in str(info.value)
+    assert info.value.value == "0.02 Pa·s" and f"{top:g}" in str(info.value)
 
 
 @pytest.mark.parametrize("fluid", [GLYCEROL_37, WATER, {}])
