@@ -16,9 +16,11 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
+from granudb.db.bulk_insert import CollisionBlock, NameColumn
 from granudb.db.catalog_rows import source_record
 from granudb.db.collision_store import FirstProblem, FluidRanges, insert_collisions
 from granudb.db.content_hash import content_hash, update_content_hash
@@ -287,9 +289,7 @@ def store_package(
         stored = _stored_names(session, fluids)
         for block in [blocks] if hasattr(blocks, "columns") else blocks:
             frame = block.copy()
-            # the package's fluid names as stored (matched in another case, or renamed)
-            ranges.check(frame.assign(fluid=frame["fluid"].map(stored)), content.dataset,
-                         problems)  # fmt: skip
+            ranges.check(_temperatures(frame, stored), content.dataset, problems)
             if problems:
                 continue  # checked to the end, nothing more written
             frame["particle_id"] = frame.pop("particle").map(materials)
@@ -304,6 +304,24 @@ def store_package(
             _check_declared(session, dataset, result.content_hash, declared_hash,
                             (materials, fluids))  # fmt: skip
         return result
+
+
+def _temperatures(frame: Any, stored: dict[str, str]) -> CollisionBlock:
+    """What ``FluidRanges.check`` reads of a block of the package's runs: their fluids
+    under the stored names (matched in another case, or renamed) and temperatures, the
+    names coded at numpy speed (a package may hold millions of runs)."""
+    codes, names = frame["fluid"].map(stored).factorize()  # no fluid: code -1
+    nobody = NameColumn(np.full(len(frame), -1), [])
+    return CollisionBlock(
+        first_row=int(frame.attrs.get("first_row", 2)),
+        headers={},
+        runs=frame["run"].tolist(),
+        particle=nobody,
+        wall=nobody,
+        fluid=NameColumn(codes, list(names)),
+        values={"temperature_c": frame["temperature_c"].to_numpy(float, na_value=np.nan)},
+        notes=None,
+    )
 
 
 def _stored_names(session: Session, fluids: dict[str, int]) -> dict[str, str]:
