@@ -27,11 +27,16 @@ def _temperature(package: Path, run: str, celsius: str) -> None:
         if cells[0] == run:
             cells[column] = celsius
             lines[number] = ",".join(cells) + "\n"
-    data = "".join(lines).encode()
-    path.write_bytes(data)
+    _write(package, "collisions", "".join(lines))
+
+
+def _write(package: Path, resource: str, text: str) -> None:
+    """Write a resource's file, its declared size and hash fixed."""
+    data = text.encode()
+    (package / "data" / f"{resource}.csv").write_bytes(data)
     descriptor = json.loads((package / "datapackage.json").read_text("utf-8"))
     descriptor.pop("granudb:content_hash", None)
-    entry = next(r for r in descriptor["resources"] if r["name"] == "collisions")
+    entry = next(r for r in descriptor["resources"] if r["name"] == resource)
     entry["bytes"], entry["hash"] = len(data), "sha256:" + hashlib.sha256(data).hexdigest()
     (package / "datapackage.json").write_text(json.dumps(descriptor), encoding="utf-8")
 
@@ -88,3 +93,21 @@ def test_a_run_inside_the_range_is_imported(cli, db: str, package: Path) -> None
     result = cli("dataset", "import", str(package), "--as", "other", db=db)
     assert result.exit_code == 0, result.stderr
     assert granudb.dataset("other", db=db)["runs"] == 12
+
+
+def test_a_renamed_fluid_is_checked_against_its_own_points(cli, db: str, package: Path) -> None:
+    """A package fluid that conflicts with the stored one comes in renamed, with the
+    package's points: its runs are checked against those, under its new name."""
+    fluids = (package / "data" / "fluids.csv").read_text("utf-8")
+    _write(package, "fluids", fluids.replace("(glass sphere experiments", "(edited", 1))
+    points = (package / "data" / "fluid_points.csv").read_text("utf-8").splitlines(True)
+    kept = [p for p in points if not p.startswith("glycerol-45,") or float(p.split(",")[1]) < 45]
+    assert len(kept) < len(points)
+    _write(package, "fluid_points", "".join(kept))
+    _temperature(package, "glass-g45-2", "50.0")  # inside the stored data, not the package's
+    before = dump_hash(db)
+    result = cli("dataset", "import", str(package), "--as", "other", "--rename-conflicts", db=db)
+    assert result.exit_code == 1, result.stdout
+    assert "50 °C is outside fluid glycerol-45 (" in result.stderr
+    assert "'s viscosity data (10–40 °C)" in result.stderr
+    assert dump_hash(db) == before
