@@ -16,7 +16,7 @@ from granudb.api import inputs
 from granudb.api.catalog import source
 from granudb.api.catalog_changes import Update
 from granudb.api.database import opened
-from granudb.db import sources as source_changes
+from granudb.db import source_changes
 from granudb.errors import ValidationError
 from granudb.vocabulary.catalogue import SOURCE_FIELDS
 
