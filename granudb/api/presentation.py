@@ -15,6 +15,7 @@ from granudb.vocabulary.catalogue import (
     PAIR_VALUE_COLUMNS,
     POINT_COLUMNS,
     SOURCE_COLUMNS,
+    SOURCE_FIELDS,
     SOURCE_NARROW,
     parameter_of,
 )
@@ -48,6 +49,7 @@ __all__ = [
     "POINT_COLUMNS",
     "PUBLISHED_NARROW",
     "SOURCE_COLUMNS",
+    "SOURCE_FIELDS",
     "SOURCE_NARROW",
     "derived_terms",
     "display",

@@ -16,6 +16,7 @@ that both paths give the same records for the same database.
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass, fields
 from typing import Any
 
@@ -301,9 +302,11 @@ def source_id(connection: Connection, key: str) -> int:
     """The id of the source ``key``; an error listing the known keys if none."""
     found = connection.execute(select(SOURCES.c.id).where(SOURCES.c.key == key)).scalar()
     if found is None:
-        keys = connection.execute(select(SOURCES.c.key).order_by(SOURCES.c.key)).scalars()
+        keys = list(connection.execute(select(SOURCES.c.key).order_by(SOURCES.c.key)).scalars())
+        near = difflib.get_close_matches(key, keys, n=1)
         known = ", ".join(keys) or "none yet"
-        raise NotFoundError(f"source: {key!r} is not in the database (known: {known})")
+        hint = f"; did you mean {near[0]!r}?" if near else f" (known: {known})"
+        raise NotFoundError(f"source: {key!r} is not in the database{hint}")
     return int(found)
 
 

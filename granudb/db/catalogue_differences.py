@@ -12,6 +12,12 @@ takes the records from here. Each record: ``kind`` ("material", "fluid", "fluid 
 "pair"), ``name``, ``field`` (a stored column name, whose suffix says the unit),
 ``temperature_c`` (a fluid point's; else None), ``first`` and ``second`` (the two values,
 SI; None: absent), and for a pinned revision its ``revision`` number and ``kept_at``.
+
+Sources are read the same way: a release cites each source as it was when released
+(``sources_read``, the one place every output that prints a release's citations takes
+them from: reports, ``dataset show``, packages), a draft today's. A source record of
+``pinned_changes`` names the revision the release cites (``revision``, numbered as
+``sources history`` numbers them) and today's (``now_revision``).
 """
 
 from __future__ import annotations
@@ -130,9 +136,46 @@ def _compare_pairs(first: dict[tuple, dict], second: dict[tuple, dict]) -> list[
     return found
 
 
-def _cited(connection: Connection, used: dict[str, dict[int, int]], fluids: dict) -> set:
-    """The keys of the sources the rows a dataset reads cite (with a fluid's points')."""
-    keys: set[str | None] = set()
+def sources_read(connection: Connection, dataset_id: int | None) -> dict[str, Any]:
+    """Every source by key as dataset ``dataset_id`` cites it: a release, as it was when
+    released (the revision kept after that, else the live row); a draft or no dataset,
+    as it is today (``catalog_rows.SourceRow``s)."""
+    return catalog_rows.sources_as_of(connection, catalog_rows.released_at(connection, dataset_id))
+
+
+def _revision_numbers(connection: Connection, when: Any) -> dict[str, tuple[int, int]]:
+    """{key: (the revision of the source read at ``when``, today's revision)} for each
+    source with kept revisions, numbered as ``sources history`` numbers them: 1 is the
+    oldest text, today's is one more than the revisions kept."""
+    keys = {row["id"]: row["key"] for row in connection.execute(
+        select(catalog_rows.SOURCES.c.id, catalog_rows.SOURCES.c.key)).mappings()}  # fmt: skip
+    kept: dict[str, list[Any]] = {}
+    for revision in catalog_rows.source_revision_rows(connection):
+        kept.setdefault(keys[revision["source_id"]], []).append(revision["kept_at"])
+    numbers = {}
+    for key, times in kept.items():
+        later = [n for n, at in enumerate(times, start=1) if when is not None and at > when]
+        numbers[key] = (later[0] if later else len(times) + 1, len(times) + 1)
+    return numbers
+
+
+def dataset_source(connection: Connection, dataset_id: int | None) -> str | None:
+    """The key of the source dataset ``dataset_id`` itself cites (None: none, or no
+    dataset)."""
+    if dataset_id is None:
+        return None
+    own = catalog_rows.lightweight_table("datasets", ["id", "source_id"])
+    sources = catalog_rows.SOURCES
+    query = select(sources.c.key).join(own, own.c.source_id == sources.c.id)
+    return connection.execute(query.where(own.c.id == dataset_id)).scalar_one_or_none()
+
+
+def _cited(
+    connection: Connection, used: dict[str, dict[int, int]], fluids: dict, dataset_id: int
+) -> set:
+    """The keys of the sources a dataset cites: its own and those of the rows it reads
+    (with a fluid's points')."""
+    keys: set[str | None] = {dataset_source(connection, dataset_id)}
     for kind, rows in used.items():
         for row_id in rows.values():
             record = _entry(connection, kind, row_id, fluids)
@@ -148,13 +191,17 @@ def _compare_sources(
     """Sources as dataset ``first_id`` reads them (a release: as they were when released)
     against dataset ``second_id``'s (None: today's), field by field; a source's changes
     are revisions (``granudb.db.catalog_revisions.keep_source_revision``)."""
-    one = catalog_rows.sources_as_of(connection, catalog_rows.released_at(connection, first_id))
-    when = None if second_id is None else catalog_rows.released_at(connection, second_id)
-    other = catalog_rows.sources_as_of(connection, when)
+    one, other = sources_read(connection, first_id), sources_read(connection, second_id)
+    numbers = _revision_numbers(connection, catalog_rows.released_at(connection, first_id))
     found = []
     for key in sorted(one.keys() & other.keys() & cited):
         a, b = catalog_rows.source_record(one[key]), catalog_rows.source_record(other[key])
-        found += [_record("source", key, f, a[f], b[f]) for f in a if not same_value(a[f], b[f])]
+        cites, today = numbers.get(key, (None, None))
+        found += [
+            {**_record("source", key, f, a[f], b[f]), "revision": cites, "now_revision": today}
+            for f in a
+            if not same_value(a[f], b[f])
+        ]
     return found
 
 
@@ -185,7 +232,8 @@ def pinned_changes(connection: Connection, dataset_id: int) -> list[dict[str, An
                 select(clause.c.updated_at).where(clause.c.id == pinned)
             ).scalar()
             changes += [{**c, "revision": number, "kept_at": kept} for c in found]
-    changes += _compare_sources(connection, dataset_id, None, _cited(connection, used, fluids))
+    cited = _cited(connection, used, fluids, dataset_id)
+    changes += _compare_sources(connection, dataset_id, None, cited)
     pairs = run_pairs(connection, dataset_id)
     changes += _compare_pairs(
         _pairs(connection, dataset_id, pairs), _pairs(connection, None, pairs)
@@ -207,7 +255,7 @@ def catalogue_diff(connection: Connection, first_id: int, second_id: int) -> lis
                 changes += _compare(
                     kind, _entry(connection, kind, a, fluids), _entry(connection, kind, b, fluids)
                 )
-    cited = _cited(connection, one, fluids) & _cited(connection, other, fluids)
+    cited = _cited(connection, one, fluids, first_id) & _cited(connection, other, fluids, second_id)
     changes += _compare_sources(connection, first_id, second_id, cited)
     pairs = run_pairs(connection, first_id) & run_pairs(connection, second_id)
     return changes + _compare_pairs(

@@ -8,6 +8,7 @@ from typing import Any
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session, aliased
 
+from granudb.db.catalogue_differences import sources_read
 from granudb.db.models import Collision, Dataset, Fluid, Material
 from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
 from granudb.vocabulary.listings import DATASET_DESCRIPTION
@@ -56,7 +57,12 @@ def dataset_record(session: Session, dataset: Dataset) -> dict[str, Any]:
         "authors": json.loads(dataset.authors) if dataset.authors else [],
         "keywords": json.loads(dataset.keywords) if dataset.keywords else [],
         "source": dataset.source.key if dataset.source else None,
-        "citation": dataset.source.citation if dataset.source else None,
+        # a release cites its source as it was when released
+        "citation": (
+            sources_read(session.connection(), dataset.id)[dataset.source.key].citation
+            if dataset.source
+            else None
+        ),
         "content_hash": dataset.content_hash,
         "runs": runs,
         "created_at": dataset.created_at,

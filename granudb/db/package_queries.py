@@ -16,6 +16,7 @@ from sqlalchemy import inspect, select
 from sqlalchemy.orm import Session
 
 from granudb.db import catalog_rows, datasets
+from granudb.db.catalogue_differences import sources_read
 from granudb.db.content_hash import content_hash
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
 from granudb.vocabulary.listings import DATASET_DESCRIPTION
@@ -93,10 +94,8 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
         source_ids |= {fluid.source_id, fluid.density_source_id, fluid.pressure_viscosity_source_id}
     source_ids |= {p.source_id for p in points}
     sources = _sources(session, source_ids)
-    # a release reads its sources as they were when released (granudb.db.catalog_rows)
-    connection = session.connection()
-    when = catalog_rows.released_at(connection, dataset.id)
-    as_released = catalog_rows.sources_as_of(connection, when)
+    # a release cites its sources as they were when released (the one place: sources_read)
+    as_released = sources_read(session.connection(), dataset.id)
     keys = {s.id: s.key for s in sources}
     names = {m.id: m.name for m in materials}
     fluid_names = {f.id: f.name for f in fluids}

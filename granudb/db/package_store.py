@@ -16,11 +16,13 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
+from granudb.db.bulk_insert import CollisionBlock, NameColumn
 from granudb.db.catalog_rows import source_record
-from granudb.db.collision_store import insert_collisions
+from granudb.db.collision_store import FirstProblem, FluidRanges, insert_collisions
 from granudb.db.content_hash import content_hash, update_content_hash
 from granudb.db.datasets import check_dataset_name, check_version
 from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
@@ -247,11 +249,18 @@ def store_package(
     *,
     rename_conflicts: bool = False,
     declared_hash: str | None = None,
+    problems: Any = None,
 ) -> PackageImport:
     """Merge and insert ``content`` in one write transaction; all or nothing. Its
     collisions are a frame or an iterable of frames (blocks, inserted one at a time, so
     memory is bounded by a block). With ``declared_hash``, the stored rows under the
-    package's own names must give it (``HashMismatch`` otherwise, nothing stored)."""
+    package's own names must give it (``HashMismatch`` otherwise, nothing stored).
+
+    A run whose temperature its fluid's data does not cover is refused by the rule of
+    the CSV import (``collision_store.FluidRanges``, one rule for both doors): every
+    such row goes to ``problems`` (``granudb.io.tables.Problems``; without one the first
+    is refused at once) and nothing is stored."""
+    problems = problems if problems is not None else FirstProblem()
     with database.session(write=True) as session:
         if session.scalars(
             select(Dataset).filter_by(name=content.dataset, version=content.version)
@@ -276,12 +285,18 @@ def store_package(
         session.flush()
         blocks = content.tables["collisions"]
         rows = 0
+        ranges = FluidRanges(session)
+        stored = _stored_names(session, fluids)
         for block in [blocks] if hasattr(blocks, "columns") else blocks:
             frame = block.copy()
+            ranges.check(_temperatures(frame, stored), content.dataset, problems)
+            if problems:
+                continue  # checked to the end, nothing more written
             frame["particle_id"] = frame.pop("particle").map(materials)
             frame["wall_id"] = frame.pop("wall").map(materials)
             frame["fluid_id"] = frame.pop("fluid").map(fluids)
             rows += insert_collisions(session, dataset.id, frame)
+        problems.raise_any()  # rolls the transaction back
         result = merger.result
         result.dataset, result.version = content.dataset, content.version
         result.rows, result.content_hash = rows, update_content_hash(session, dataset)
@@ -289,6 +304,31 @@ def store_package(
             _check_declared(session, dataset, result.content_hash, declared_hash,
                             (materials, fluids))  # fmt: skip
         return result
+
+
+def _temperatures(frame: Any, stored: dict[str, str]) -> CollisionBlock:
+    """What ``FluidRanges.check`` reads of a block of the package's runs: their fluids
+    under the stored names (matched in another case, or renamed) and temperatures, the
+    names coded at numpy speed (a package may hold millions of runs)."""
+    codes, names = frame["fluid"].map(stored).factorize()  # no fluid: code -1
+    nobody = NameColumn(np.full(len(frame), -1), [])
+    return CollisionBlock(
+        first_row=int(frame.attrs.get("first_row", 2)),
+        headers={},
+        runs=frame["run"].tolist(),
+        particle=nobody,
+        wall=nobody,
+        fluid=NameColumn(codes, list(names)),
+        values={"temperature_c": frame["temperature_c"].to_numpy(float, na_value=np.nan)},
+        notes=None,
+    )
+
+
+def _stored_names(session: Session, fluids: dict[str, int]) -> dict[str, str]:
+    """{the package's fluid name: the stored fluid's name} of ``fluids`` (ids by name)."""
+    query = select(Fluid.id, Fluid.name).where(Fluid.id.in_(sorted(set(fluids.values()))))
+    names = dict(session.execute(query).all())
+    return {name: names[i] for name, i in fluids.items()}
 
 
 def _check_declared(

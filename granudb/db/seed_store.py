@@ -94,10 +94,11 @@ def apply_seed(session: Session, data: Any, *, overwrite_edits: bool = False) ->
         existing = session.scalars(select(Source).filter_by(key=entry["key"])).one_or_none()
         before = None if existing is None else source_record(existing)
         change = upsert(session, Source, {"key": entry["key"]}, values, f"source {entry['key']}")[1]
-        if before is not None and change.action == "updated":
-            keep_source_revision(
-                session, existing.id, before, "db seed: the seed's sources changed"
-            )
+        if before is not None and change.action in ("updated", "reverted"):
+            reason = {"updated": "db seed: the seed's sources changed",
+                      "reverted": "db seed --overwrite-edits: a user's edit reverted to the "
+                                  "seed"}[change.action]  # fmt: skip
+            keep_source_revision(session, existing.id, before, reason)
         changes.append(change)
 
     for row in (dict(r) for r in data.materials):

@@ -4,6 +4,7 @@ Every stored number that came from a publication points to a source plus the tab
 figure it was printed in; ``published_records`` lists the numbers as printed. The rows
 themselves are read by ``granudb.db.catalog_rows`` (sources) and
 ``granudb.db.lookup_rows`` (published values), the one read path of those tables.
+Changes are ``granudb.db.source_changes`` (the ORM stays off this read path).
 """
 
 from __future__ import annotations

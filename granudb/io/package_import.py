@@ -45,7 +45,7 @@ from granudb.io.package_schema import (
     check_schema,
     columns,
 )
-from granudb.io.tables import TINY_RULE, underflows
+from granudb.io.tables import TINY_RULE, Problems, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.catalogue import MATERIALS, ONE_LINE_TEXTS
@@ -285,6 +285,7 @@ def stored_blocks(name: str, path: Path) -> Iterator[Any]:
         for frame in reader:
             frame, absent = _known_columns(name, frame)
             block = _check_block(name, frame, rows + 2, found, bad)
+            block.attrs["first_row"] = rows + 2  # the CSV line a problem names
             rows += len(frame)
             yield block.drop(columns=absent)
 
@@ -581,7 +582,11 @@ def import_package(
         content.tables["collisions"] = stored_blocks("collisions", validated.files["collisions"])
         try:
             result = store_package(
-                database, content, rename_conflicts=rename_conflicts, declared_hash=declared
+                database,
+                content,
+                rename_conflicts=rename_conflicts,
+                declared_hash=declared,
+                problems=Problems(validated.files["collisions"].name),
             )
         except MergeConflict as exc:
             hint = (

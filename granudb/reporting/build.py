@@ -24,6 +24,7 @@ from granudb.analysis.fluid_state import fluid_model
 from granudb.analysis.pair import derive_pair
 from granudb.db import catalog_rows, lookup_rows
 from granudb.db import catalog_rows as catalog
+from granudb.db.catalogue_differences import dataset_source, sources_read
 from granudb.reporting import blocks, figures, references, tables
 from granudb.reporting.groups import colours, fluid_names, labels_of
 from granudb.reporting.pinned import pinned_notes
@@ -245,7 +246,8 @@ def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict
         blocks_out.append(blocks.fluid_block(record))
         keys |= {record.get("source"), record.get("density_source"),
                  record.get("pressure_viscosity_source")}  # fmt: skip
-    known = {source.key: source.citation for source in catalog.source_rows(connection)}
+    keys.add(dataset_source(connection, pinned))  # the runs' own source
+    known = sources_read(connection, pinned)  # a release cites its sources as released
     citations = {key: known[key] for key in sorted(k for k in keys if k)}
     return blocks_out, citations
 

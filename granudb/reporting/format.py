@@ -269,8 +269,22 @@ def pinned_line(change: dict[str, Any]) -> str:
     ...   "temperature_c": None, "first": 1.9e11, "second": 1e11, "revision": 1,
     ...   "kept_at": None})
     'steel youngs_modulus_pa: release pins 190 GPa (revision 1), catalogue now 100 GPa'
+
+    A source's text is cited, not pinned: the line names the revision the release cites
+    and today's, as ``sources history`` numbers them.
+
+    >>> pinned_line({"kind": "source", "name": "cheng-2008", "field": "doi",
+    ...   "temperature_c": None, "first": "10.1021/x", "second": None,
+    ...   "revision": 1, "now_revision": 2, "kept_at": None})
+    "source cheng-2008 doi: release cites revision 1, '10.1021/x'; revision 2 now reads (none)"
     """
     field, revision, kept = change["field"], change.get("revision"), change.get("kept_at")
+    if change["kind"] == "source":
+        return (
+            f"source {_catalogue_entry(change)}: release cites revision {revision}, "
+            f"{_catalogue_value(change['first'], field)}; revision {change.get('now_revision')} "
+            f"now reads {_catalogue_value(change['second'], field)}"
+        )
     # a pair's values have no revision: the release reads those stored before it
     when = "" if kept is None else f", kept {kept:%Y-%m-%d %H:%M} UTC"
     which = "" if revision is None else f" (revision {revision}{when})"

@@ -199,23 +199,37 @@ def _strings(value: Any) -> Iterable[str]:
             yield from _strings(item)
 
 
-def references(report: dict[str, Any], citations: dict[str, str]) -> list[dict[str, str | None]]:
+def references(report: dict[str, Any], citations: dict[str, Any]) -> list[dict[str, str | None]]:
     """The works the report cites, once each, in a stable order, each ``{"text", "url"}``
     (the DOI's link, which the HTML and the Markdown show as links).
 
-    ``citations`` maps database source keys to their stored citation text; a key granudb
-    knows (``joseph-hunt-2004``) is listed with the curated entry, not a second time.
+    ``citations`` maps database source keys to their stored citation: its text, or a
+    source row (``citation`` and ``doi``) as the report reads it (a release: as
+    released). A stored source is listed with its stored text, so a user's correction
+    (``sources update``) shows; a key granudb knows (``joseph-hunt-2004``) keeps its
+    place and, without a stored DOI, the curated DOI; a work the text cites that is not
+    stored is listed with the curated entry.
     """
     text = "\n".join(_strings(report))
     listed: list[dict[str, str | None]] = []
     known = {work.key for work in WORKS}
     for work in WORKS:
-        if work.key in citations or any(c in text for c in work.cited_as):
+        if work.key in citations:
+            listed.append(_stored(work.key, citations[work.key], work.doi))
+        elif any(c in text for c in work.cited_as):
             listed.append(work.entry())
     for key, citation in sorted(citations.items()):
         if key not in known:
-            listed.append({"text": f"[{key}] {citation}", "url": None})
+            stored = _stored(key, citation, None)
+            listed.append({**stored, "text": f"[{key}] {stored['text']}"})
     return listed
+
+
+def _stored(key: str, citation: Any, doi: str | None) -> dict[str, str | None]:
+    """A stored source as a reference: its text, and its DOI's link (else ``doi``)."""
+    text = citation if isinstance(citation, str) else citation.citation
+    doi = (None if isinstance(citation, str) else citation.doi) or doi
+    return Work(key, (), text, doi).entry()
 
 
 CITATION = re.compile(r"([A-Z][\w–-]+(?:,? (?:[A-Z][\w–-]+|&))*(?: et al\.)?) \((\d{4})\)")

@@ -15,10 +15,14 @@ A property's Python parameter and command-line option come from its term: the op
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
+from typing import Any
+from urllib.parse import urlsplit
 
 from granudb.errors import ValidationError
 from granudb.vocabulary.terms import TERMS, uncertainty_column
+from granudb.vocabulary.text import check_name, check_text
 
 #: Text fields every catalogue entry has besides its properties.
 TEXT_FIELDS = ("description", "source_locator")
@@ -169,8 +173,65 @@ POINT_UNCERTAINTIES = [uncertainty_column("viscosity_pa_s"), uncertainty_column(
 #: The columns of a source, and those every source has.
 SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
 SOURCE_REQUIRED = ["key", "citation", "kind"]
+#: The fields a user sets (``sources add|update`` options, ``add_source`` keywords): all
+#: but the key, which names the source.
+SOURCE_FIELDS = [c for c in SOURCE_COLUMNS if c != "key"]
 #: What a table of sources shows.
 SOURCE_NARROW = ["key", "year", "kind", "citation", "doi"]
+#: The longest text each column of a source holds (``granudb.db.models.Source``).
+SOURCE_LENGTHS = {"key": 100, "doi": 200, "url": 500, "kind": 40}
+#: The years a source may carry (the table's check constraint).
+SOURCE_YEARS = (1600, 3000)
+#: A DOI: "10.", the registrant's number, "/", a suffix without spaces (DOI Handbook §2.2;
+#: stored without "https://doi.org/", which the reports add).
+_DOI = re.compile(r"10\.[0-9]{4,9}(?:\.[0-9]+)*/\S+")
+
+
+def check_source(values: dict[str, Any]) -> None:
+    """The rules of a source's fields, for each field in ``values`` (a field set to
+    None is absent, except the citation, which every source has): the key and kind are
+    names, the citation and notes free text, the DOI ``10.NNNN/suffix``, the URL an
+    ``http(s)://`` address with a host, the year a whole number in 1600–3000.
+
+    >>> check_source({"doi": "10.1017/S002211200400919X", "url": "https://doi.org"})
+    >>> check_source({"doi": "https://doi.org/10.1017/S0022"})
+    Traceback (most recent call last):
+    ...
+    granudb.errors.ValidationError: doi: 'https://doi.org/10.1017/S0022' must look like \
+10.NNNN/suffix (the DOI itself, without https://doi.org/ or doi:)
+    """
+    for column in ("key", "kind"):
+        if column in values:
+            check_name(column, values[column], max_length=SOURCE_LENGTHS[column])
+    if "citation" in values:
+        citation = values["citation"]
+        if not isinstance(citation, str) or not citation.strip():
+            raise ValidationError("citation", repr(citation), "must not be empty")
+        check_text("citation", citation)
+    check_text("notes", values.get("notes"))
+    doi = values.get("doi")
+    if doi is not None:
+        check_name("doi", doi, max_length=SOURCE_LENGTHS["doi"])
+        if not _DOI.fullmatch(doi):
+            raise ValidationError(
+                "doi", repr(doi[:60]), "must look like 10.NNNN/suffix (the DOI itself, "
+                "without https://doi.org/ or doi:)",
+            )  # fmt: skip
+    url = values.get("url")
+    if url is not None:
+        check_name("url", url, max_length=SOURCE_LENGTHS["url"])
+        parts = urlsplit(url)
+        if parts.scheme not in ("http", "https") or not parts.hostname or " " in url:
+            raise ValidationError(
+                "url", repr(url[:60]), "must be an http:// or https:// address with a host"
+            )
+    year = values.get("year")
+    low, high = SOURCE_YEARS
+    if year is not None and (
+        isinstance(year, bool) or not isinstance(year, int) or not low <= year <= high
+    ):
+        raise ValidationError("year", repr(year), f"must be a whole year from {low} to {high}")
+
 
 #: The columns of a pair's measured dry values (``granudb pairs list``): a source measured
 #: them for this particle material on this wall material (either way round).

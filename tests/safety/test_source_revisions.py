@@ -59,16 +59,18 @@ def test_a_source_change_is_a_revision_a_release_keeps(opened, tmp_path: Path) -
     draft = _sources_csv(opened, "draft", tmp_path / "c.zip")
     assert NEW.encode() in draft and OLD.encode() not in draft
 
-    pinned = [x for x in granudb.dataset("rel", db=opened)["pinned_changes"] if x.startswith(KEY)]
-    assert len(pinned) == 1 and pinned[0].startswith(f"{KEY} citation: release pins '")
-    assert OLD in pinned[0] and pinned[0].split("catalogue now ")[1].strip("'").endswith(
+    pinned = [
+        x for x in granudb.dataset("rel", db=opened)["pinned_changes"] if x.startswith("source ")
+    ]
+    assert len(pinned) == 1, pinned
+    assert pinned[0].startswith(f"source {KEY} citation: release cites revision 1, '")
+    assert OLD in pinned[0] and pinned[0].split("; revision 2 now reads ")[1].strip("'").endswith(
         "(corrected). Journal of Fluid Mechanics 510, 71-93."
     )
     assert granudb.dataset("draft", db=opened)["pinned_changes"] == []
     diff = [d["fields"] for d in granudb.diff_datasets("rel", "draft", db=opened)]
-    assert [x for x in diff if x.startswith(KEY)] == [
-        pinned[0].replace(": release pins ", ": ").replace(", catalogue now ", " → ")
-    ]
+    old_text, new_text = pinned[0].split(", '", 1)[1].split("; revision 2 now reads ")
+    assert [x for x in diff if x.startswith(KEY)] == [f"{KEY} citation: '{old_text} → {new_text}"]
 
 
 def test_sources_history_on_the_command_line(opened, db, cli, tmp_path: Path) -> None:
