@@ -316,9 +316,15 @@ def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed:
     batch = max(1, resampling.BATCH_CELLS // (n if large else 8 * n))
     parts = []
     series = one_step_series(model, st, e, (fit[0], fit[2])) if large else None
-    weights = np.zeros((min(batch, resamples), n))  # reused by every batch
+    # without stated u the draws are the generator's only use: the shared counts
+    # (``resampling.count_batches``); with it, each batch's draws, then its perturbations
+    plain = None if stated is not None else resampling.count_batches(seed, resamples, n, n, batch)
+    weights = np.zeros((min(batch, resamples), n)) if plain is None else None
     for start in range(0, resamples, batch):
-        w = resampling.draw_counts(rng, min(batch, resamples - start), n, n, weights)
+        if plain is None:
+            w = resampling.draw_counts(rng, min(batch, resamples - start), n, n, weights)
+        else:
+            w = next(plain)
         if stated is not None:
             st_b, e_b = resampling.perturbed(rng, len(w), st, e, stated)
             parts.append(refit(model, st_b, e_b, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))

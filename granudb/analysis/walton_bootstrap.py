@@ -238,8 +238,8 @@ def draw_counts(
     rng: np.random.Generator, m: int, n: int, size: int, out: np.ndarray | None = None
 ) -> np.ndarray:
     """(m, size) float counts of n draws with replacement among n runs (zero padding);
-    ``out``: an array of at least m rows of ``size`` whose padding is zero, filled and
-    returned (its first m rows) instead of a new one.
+    ``out``: an array (of any type that holds the counts) of at least m rows of ``size``
+    whose padding is zero, filled and returned (its first m rows) instead of a new one.
 
     Row by row, the draws are those of one ``rng.integers(0, n, size=(m, n))`` (the
     generator's values come in order); each row's draws and counts stay in cache (a
@@ -250,6 +250,55 @@ def draw_counts(
     for row in weights:
         row[:n] = np.bincount(rng.integers(0, n, size=n), minlength=n)
     return weights
+
+
+#: Draw counts kept for reuse, at most this many resamples × runs in all (one byte each):
+#: a report fits the same group with the same seed and resample rule several times (the
+#: Walton fit, the gap viscosity, the restitution fit on a group of the same runs, the
+#: bands of their curves), and drawing 200 × 100,000 runs costs as much as the rest of a
+#: fit. A request larger than this is drawn batch by batch and not kept.
+SHARED_CELLS = 40_000_000
+_shared: dict[tuple[int, int], tuple[np.ndarray, np.random.Generator]] = {}
+
+
+def shared_counts(seed: int, resamples: int, n: int) -> np.ndarray | None:
+    """(resamples, n) counts (uint8, or uint16 if a run is ever drawn 256 times) of the
+    draws ``draw_counts(np.random.default_rng(seed), resamples, n, n)`` makes: drawn once per
+    (seed, n) and kept (rows drawn for more resamples extend the kept ones, since the draws
+    come in order, so a smaller request is a prefix), the least recently used dropped
+    beyond ``SHARED_CELLS``. None when ``resamples`` × n alone exceeds it."""
+    if resamples * n > SHARED_CELLS:
+        return None
+    key = (int(seed), int(n))
+    kept, rng = _shared.pop(key, (np.zeros((0, n), dtype=np.uint8), None))
+    if rng is None:
+        rng = np.random.default_rng(seed)
+    if len(kept) < resamples:
+        more = np.empty((resamples - len(kept), n), dtype=np.uint16)
+        draw_counts(rng, len(more), n, n, more)
+        small = kept.dtype == np.uint8 and (more.size == 0 or more.max() < 256)
+        kept = np.concatenate([kept, more.astype(np.uint8) if small else more])
+    _shared[key] = (kept, rng)  # most recently used last
+    while sum(a.size for a, _ in _shared.values()) > SHARED_CELLS and len(_shared) > 1:
+        del _shared[next(iter(_shared))]
+    return kept[:resamples]
+
+
+def count_batches(seed: int, resamples: int, n: int, size: int, batch: int):
+    """Yield float (m, size) counts (zero padding beyond n), ``batch`` resamples at a
+    time, of the draws of ``draw_counts(np.random.default_rng(seed), resamples, n, size)``
+    (from ``shared_counts`` when they fit in it). The array is reused by the next batch:
+    use it before asking for the next."""
+    kept = shared_counts(seed, resamples, n)
+    rng = np.random.default_rng(seed)
+    weights = np.zeros((min(batch, resamples), size))
+    for start in range(0, resamples, batch):
+        m = min(batch, resamples - start)
+        if kept is None:
+            yield draw_counts(rng, m, n, size, weights)
+        else:
+            weights[:m, :n] = kept[start : start + m]
+            yield weights[:m]
 
 
 def _nth_drawn(counts: np.ndarray, need: int) -> np.ndarray:
@@ -316,8 +365,11 @@ def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
     """Exact best split per row: (S at the split, k, prefix sums at k, boundary prefix)."""
     m, b = len(w), runs.block
     blocksums = np.matmul(w.reshape(m, runs.blocks, b).transpose(1, 0, 2), runs.series)
-    prefix = np.zeros((m, runs.blocks + 1, SERIES))
-    np.cumsum(blocksums.transpose(1, 0, 2), axis=1, out=prefix[:, 1:])
+    # summed over blocks in the product's (blocks, m, series) order, contiguous; read
+    # as (m, blocks + 1, series)
+    prefix = np.zeros((runs.blocks + 1, m, SERIES))
+    np.cumsum(blocksums, axis=0, out=prefix[1:])
+    prefix = prefix.transpose(1, 0, 2)
     full = prefix[:, -1]
     stick, slide, _, _ = _parts(prefix, full[:, None, :])
     bounds = np.arange(runs.blocks + 1) * b
@@ -399,13 +451,8 @@ def batches(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resample
     """Yield (counts, decision) per batch of resamples: the (m, padded runs) draw counts
     (reused by the next batch: use them before asking for it) and their fits."""
     runs = Sorted(x, y, c, e)
-    size = runs.size
-    rng = np.random.default_rng(seed)
-    batch = max(1, BATCH_CELLS // size)
-    weights = np.zeros((min(batch, resamples), size))  # reused by every batch
-    for start in range(0, resamples, batch):
-        m = min(batch, resamples - start)
-        counts = draw_counts(rng, m, runs.n, size, weights)
+    batch = max(1, BATCH_CELLS // runs.size)
+    for counts in count_batches(seed, resamples, runs.n, runs.size, batch):
         yield counts, decide_blocks(runs, counts)
 
 

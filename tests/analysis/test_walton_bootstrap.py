@@ -103,3 +103,20 @@ def test_too_few_distinct_runs_in_a_resample_give_no_split() -> None:
     weights[0, [0, 4]] = [3, 2]  # two distinct runs: no line of two on each side
     got = fast.decide_blocks(runs, weights)
     assert got.bic[0, 2] == math.inf and got.model[0] != 2
+
+
+def test_shared_counts_are_the_draws_of_one_generator(monkeypatch) -> None:
+    n, seed = 300, 7
+    want = fast.draw_counts(np.random.default_rng(seed), 40, n, n)
+    fast._shared.pop((seed, n), None)
+    first = fast.shared_counts(seed, 25, n)  # drawn, then extended: a prefix of the same
+    assert np.array_equal(first, want[:25])
+    assert np.array_equal(fast.shared_counts(seed, 40, n), want)
+    assert np.array_equal(fast.shared_counts(seed, 10, n), want[:10])
+    size = 384
+    kept = np.concatenate([c.copy() for c in fast.count_batches(seed, 40, n, size, 16)])
+    monkeypatch.setattr(fast, "SHARED_CELLS", 100)  # too many cells to keep: drawn anew
+    assert fast.shared_counts(seed, 40, n) is None
+    drawn = np.concatenate([c.copy() for c in fast.count_batches(seed, 40, n, size, 16)])
+    assert np.array_equal(kept, drawn) and np.array_equal(drawn[:, :n], want)
+    assert not drawn[:, n:].any()
