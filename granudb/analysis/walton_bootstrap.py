@@ -56,7 +56,10 @@ RESAMPLE_RULE = (
 BLOCK_RUNS = 128
 #: Resamples × padded runs per batch (bounds memory at a few tens of MB).
 BATCH_CELLS = 1 << 21
-#: Candidate blocks × BLOCK_RUNS per refinement chunk.
+#: Runs per sub-block: a candidate block's sub-block sums come first, and only the
+#: sub-blocks whose lower bound is within the best S found are evaluated run by run.
+FINE_RUNS = 16
+#: Candidate (sub-)blocks × their runs per refinement chunk.
 REFINE_CELLS = 1 << 17
 # series: x², xy, y², c², dc, d², e, e², x, y, 1 (d = x − y)
 SERIES = 11
@@ -329,25 +332,42 @@ def _allowed(w: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 def _refine(
-    runs: Sorted, w: np.ndarray, prefix: np.ndarray, full: np.ndarray, pairs: tuple
+    runs: Sorted, w: np.ndarray, start: np.ndarray, full: np.ndarray, pairs: tuple, size: int
 ) -> tuple[np.ndarray, np.ndarray]:
-    """S(k) and k at the best k of each candidate (row, block) pair, from the six series
-    of the two lines only (the prefix sums at the chosen k follow in ``_at_split``)."""
+    """S(k) and k at the best k of each candidate (row, block) pair, blocks of ``size``
+    runs with the prefix sums ``start`` (P, LINES) at their first run, from the six
+    series of the two lines only (the prefix sums at the chosen k follow in
+    ``_at_split``)."""
     rows, blocks, lo, hi = pairs
-    b = runs.block
-    local = w.reshape(len(w), runs.blocks, b)[rows, blocks]  # (P, b)
-    sums = np.empty((len(rows), b + 1, LINES))
-    sums[:, 0] = prefix[rows, blocks, :LINES]
-    np.multiply(local[:, :, None], runs.lines[blocks], out=sums[:, 1:])
+    local = w.reshape(len(w), -1, size)[rows, blocks]  # (P, size)
+    sums = np.empty((len(rows), size + 1, LINES))
+    sums[:, 0] = start
+    np.multiply(local[:, :, None], runs.lines.reshape(-1, size, LINES)[blocks], out=sums[:, 1:])
     np.cumsum(sums[:, 1:], axis=1, out=sums[:, 1:])
     sums[:, 1:] += sums[:, :1]
     stick, slide, _, _ = _parts(sums, full[rows][:, None, :])
-    k = blocks[:, None] * b + np.arange(b + 1)
+    k = blocks[:, None] * size + np.arange(size + 1)
     inside = (k >= lo[:, None]) & (k <= hi[:, None])
     total = np.where(inside, np.maximum(stick + slide, 0.0), np.inf)
     best = np.argmin(total, axis=1)
     at = np.arange(len(rows))
     return total[at, best], k[at, best]
+
+
+def _sub_blocks(runs: Sorted, w: np.ndarray, prefix: np.ndarray, full: np.ndarray, pairs: tuple):
+    """(prefix sums (P, s + 1, LINES), S (P, s + 1), S's lower bound (P, s)) at the
+    boundaries of the s sub-blocks of ``FINE_RUNS`` runs of each candidate (row, block)
+    pair: the block's boundary sums plus the sub-blocks' weighted sums."""
+    rows, blocks = pairs
+    b, fine = runs.block, min(FINE_RUNS, runs.block)
+    local = w.reshape(len(w), runs.blocks, b // fine, 1, fine)[rows, blocks]  # (P, s, 1, f)
+    parts = np.matmul(local, runs.lines[blocks].reshape(len(rows), b // fine, fine, LINES))
+    sums = np.empty((len(rows), b // fine + 1, LINES))
+    sums[:, 0] = prefix[rows, blocks, :LINES]
+    np.cumsum(parts[:, :, 0], axis=1, out=sums[:, 1:])
+    sums[:, 1:] += sums[:, :1]
+    stick, slide, _, _ = _parts(sums, full[rows][:, None, :])
+    return sums, np.maximum(stick + slide, 0.0), stick[:, :-1] + slide[:, 1:]
 
 
 def _at_split(runs: Sorted, w: np.ndarray, prefix: np.ndarray, split: np.ndarray) -> np.ndarray:
@@ -380,12 +400,34 @@ def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
     keep = (lower <= (best + slack)[:, None]) | ~np.isfinite(best)[:, None]
     keep &= (bounds[1:] >= lo[:, None]) & (bounds[:-1] <= hi[:, None])
     rows, blocks = np.nonzero(keep)
-    value = np.full(m, np.inf)
-    split = np.zeros(m, dtype=int)
+    # the candidate blocks' sub-blocks: their boundaries may lower the best S found, and
+    # only the sub-blocks whose bound is within it are evaluated run by run
+    fine = min(FINE_RUNS, b)
+    per = b // fine
+    found = []
     step = max(1, REFINE_CELLS // b)
     for start in range(0, len(rows), step):
         r, j = rows[start : start + step], blocks[start : start + step]
-        total, k = _refine(runs, w, prefix, full, (r, j, lo[r], hi[r]))
+        sums, total, lower = _sub_blocks(runs, w, prefix, full, (r, j))
+        k = j[:, None] * b + np.arange(per + 1) * fine
+        inside = (k >= lo[r][:, None]) & (k <= hi[r][:, None])
+        np.minimum.at(best, r, np.min(np.where(inside, total, np.inf), axis=1))
+        found.append((sums, lower))
+    sums = np.concatenate([f[0] for f in found]) if found else np.zeros((0, per + 1, LINES))
+    lower = np.concatenate([f[1] for f in found]) if found else np.zeros((0, per))
+    slack = 1e-9 * np.abs(best) + 1e-300
+    k = (blocks * b)[:, None] + np.arange(per + 1) * fine
+    keep = (lower <= (best + slack)[rows][:, None]) | ~np.isfinite(best)[rows][:, None]
+    keep &= (k[:, 1:] >= lo[rows][:, None]) & (k[:, :-1] <= hi[rows][:, None])
+    pair, sub = np.nonzero(keep)
+    rows, blocks, sums = rows[pair], blocks[pair] * per + sub, sums[pair, sub]
+    value = np.full(m, np.inf)
+    split = np.zeros(m, dtype=int)
+    step = max(1, REFINE_CELLS // fine)
+    for start in range(0, len(rows), step):
+        r, j = rows[start : start + step], blocks[start : start + step]
+        pairs = (r, j, lo[r], hi[r])
+        total, k = _refine(runs, w, sums[start : start + step], full, pairs, fine)
         order = np.lexsort((k, total, r))  # per row: smallest S, then smallest k
         first = order[np.r_[True, r[order][1:] != r[order][:-1]]]
         better = (total[first] < value[r[first]]) | (
@@ -393,8 +435,24 @@ def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
         )
         chosen = first[better]
         value[r[chosen]], split[r[chosen]] = total[chosen], k[chosen]
+    split = _first_tied(w, split)
     at = np.where(np.isfinite(value)[:, None], _at_split(runs, w, prefix, split), 0.0)
     return value, split, at, full
+
+
+def _first_tied(w: np.ndarray, split: np.ndarray) -> np.ndarray:
+    """The smallest k with the S of each row's ``split``: a run drawn no time adds
+    nothing to any sum, so S is the same from just after the last drawn run before k
+    (``walton.decide`` keeps the smallest k of such a tie; the block search may find a
+    later one, its sums added in another order). Rows with no split are kept."""
+    rows = np.arange(len(w))[:, None]
+    back = split[:, None] - 1 - np.arange(64)  # k − 1, k − 2, …: the last drawn is near
+    drawn = (back >= 0) & (w[rows, np.maximum(back, 0)] > 0)
+    out = np.where(drawn.any(axis=1), split - np.argmax(drawn, axis=1), split)
+    for row in np.flatnonzero(~drawn.any(axis=1) & (split > 64)):  # 64 runs never drawn
+        before = np.flatnonzero(w[row, : split[row]])
+        out[row] = before[-1] + 1 if before.size else split[row]
+    return out
 
 
 def decide_blocks(runs: Sorted, w: np.ndarray) -> core.Decision:
