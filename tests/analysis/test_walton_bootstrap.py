@@ -108,7 +108,7 @@ def test_too_few_distinct_runs_in_a_resample_give_no_split() -> None:
 def test_shared_counts_are_the_draws_of_one_generator(monkeypatch) -> None:
     n, seed = 300, 7
     want = fast.draw_counts(np.random.default_rng(seed), 40, n, n)
-    fast._shared.pop((seed, n), None)
+    fast.forget_counts()
     first = fast.shared_counts(seed, 25, n)  # drawn, then extended: a prefix of the same
     assert np.array_equal(first, want[:25])
     assert np.array_equal(fast.shared_counts(seed, 40, n), want)
