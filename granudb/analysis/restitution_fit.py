@@ -475,23 +475,24 @@ def restitution(
     groups = frame.groupby([frame[k] for k in _INPUTS[:3]], sort=True).indices
     speeds = resampling.stated_speeds(frame)
     results = []
-    for key in sorted(groups):
-        rows = groups[key]
-        runs = rows[immersed[rows]]
-        if runs.size:
-            stated = None if speeds is None else tuple(r[runs] for r in speeds)
-            stated = stated if stated is not None and any(r.any() for r in stated) else None
-            row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]], stated=stated)
-            row["fit_method"] = method
-            if method == bayesian.METHOD:
-                form = bayesian.Form(
-                    lambda s, a, q: restitution_curve(model, s, a, q),
-                    PARAMETER_NAMES[model],
-                    E_DRY_MAX,
-                )
-                sigma = bayesian.stated_u(frame, "normal_restitution", runs)
-                found = bayesian.restitution_row(row, form, st[runs], e[runs], settings, sigma)
-                if draws is not None and found is not None:
-                    draws.append(found)
-            results.append(row)
+    with resampling.one_thread():  # as the other fits (walton_bootstrap.one_thread)
+        for key in sorted(groups):
+            rows = groups[key]
+            runs = rows[immersed[rows]]
+            if runs.size:
+                stated = None if speeds is None else tuple(r[runs] for r in speeds)
+                stated = stated if stated is not None and any(r.any() for r in stated) else None
+                row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]], stated=stated)
+                row["fit_method"] = method
+                if method == bayesian.METHOD:
+                    form = bayesian.Form(
+                        lambda s, a, q: restitution_curve(model, s, a, q),
+                        PARAMETER_NAMES[model],
+                        E_DRY_MAX,
+                    )
+                    sigma = bayesian.stated_u(frame, "normal_restitution", runs)
+                    found = bayesian.restitution_row(row, form, st[runs], e[runs], settings, sigma)
+                    if draws is not None and found is not None:
+                        draws.append(found)
+                results.append(row)
     return results

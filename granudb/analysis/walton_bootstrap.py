@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 
 from granudb.analysis import walton as core
+from granudb.lazy import threadpoolctl
 from granudb.vocabulary.terms import uncertainty_column
 
 #: Resamples of the Walton and gap-viscosity bootstraps for groups up to RULE_RUNS runs.
@@ -298,6 +299,15 @@ def weighted_sums(w: np.ndarray, series: np.ndarray) -> np.ndarray:
     blocks = w[:, :whole].reshape(m, -1, BLOCK_RUNS).transpose(1, 0, 2)
     out = np.matmul(blocks, series[:whole].reshape(-1, BLOCK_RUNS, series.shape[1])).sum(axis=0)
     return out + w[:, whole:] @ series[whole:]
+
+
+def one_thread() -> Any:
+    """A context in which the BLAS runs on one thread (a fit's bootstrap runs in it):
+    its products are small or split by ``weighted_sums``, and a BLAS that spreads a
+    product over the cores leaves threads spinning after it, which on a shared 2-core
+    machine slowed the numpy steps between the products (the three fits of
+    ``benchmarks/fit_speed.py`` on 100,000 runs by about a third)."""
+    return threadpoolctl.threadpool_limits(1, user_api="blas")
 
 
 def forget_counts() -> None:
