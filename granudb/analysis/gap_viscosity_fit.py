@@ -125,7 +125,7 @@ def _bootstrap(arrays: tuple, g: np.ndarray, smooth: np.ndarray, resamples: int,
     q_all, se_all = [], []
     for counts, decision in resampling.batches(x, y, c, e, resamples, seed):
         w = counts[:, :n]
-        sums = resampling.weighted_sums(w, series)  # right where no run sticks
+        sums = w @ series  # every run: right where the resample has no sticking line
         drawn = np.empty(len(w), dtype=np.int64)
         for row, k in enumerate(decision.split.tolist()):
             if k:

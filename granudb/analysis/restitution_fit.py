@@ -275,7 +275,7 @@ def one_step(
     if series is None:
         series = one_step_series(model, st, e, start)
     a0, p0 = (float(v) for v in start)
-    sums = resampling.weighted_sums(w, series)
+    sums = w @ series
     ga, gp, aa, ap, pp, rr, count = sums.T
     with np.errstate(invalid="ignore", divide="ignore"):
         if fixed:

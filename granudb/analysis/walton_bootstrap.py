@@ -288,25 +288,13 @@ def shared_counts(seed: int, resamples: int, n: int) -> np.ndarray | None:
     return kept[:resamples]
 
 
-def weighted_sums(w: np.ndarray, series: np.ndarray) -> np.ndarray:
-    """``w @ series`` ((m, n) weights, (n, s) series: (m, s)) as products over blocks of
-    ``BLOCK_RUNS`` runs, summed. Each product is small, so the BLAS does it on one thread:
-    one large product is spread over the machine's cores and its threads then spin
-    waiting for more, which on a shared 2-core machine slowed every step after it (the
-    gap-viscosity and restitution fits on 100,000 runs: 1.6 → 1.0 s together)."""
-    m, n = w.shape
-    whole = n - n % BLOCK_RUNS
-    blocks = w[:, :whole].reshape(m, -1, BLOCK_RUNS).transpose(1, 0, 2)
-    out = np.matmul(blocks, series[:whole].reshape(-1, BLOCK_RUNS, series.shape[1])).sum(axis=0)
-    return out + w[:, whole:] @ series[whole:]
-
-
 def one_thread() -> Any:
     """A context in which the BLAS runs on one thread (a fit's bootstrap runs in it):
-    its products are small or split by ``weighted_sums``, and a BLAS that spreads a
-    product over the cores leaves threads spinning after it, which on a shared 2-core
-    machine slowed the numpy steps between the products (the three fits of
-    ``benchmarks/fit_speed.py`` on 100,000 runs by about a third)."""
+    its products are small (20 resamples × 100,000 runs × 4 series: 5 ms on one thread,
+    10 ms on two here), and a BLAS that spreads a product over the cores leaves threads
+    spinning after it, which on a shared 2-core machine slowed the numpy steps between
+    the products (the three fits of ``benchmarks/fit_speed.py`` on 100,000 runs by about
+    a third)."""
     return threadpoolctl.threadpool_limits(1, user_api="blas")
 
 

@@ -120,11 +120,3 @@ def test_shared_counts_are_the_draws_of_one_generator(monkeypatch) -> None:
     drawn = np.concatenate([c.copy() for c in fast.count_batches(seed, 40, n, size, 16)])
     assert np.array_equal(kept, drawn) and np.array_equal(drawn[:, :n], want)
     assert not drawn[:, n:].any()
-
-
-def test_weighted_sums_are_the_product() -> None:
-    rng = np.random.default_rng(3)
-    for n in (5, fast.BLOCK_RUNS, 1000):  # fewer runs than a block, one block, a remainder
-        w = fast.draw_counts(rng, 7, n, n)
-        series = rng.standard_normal((n, 4))
-        assert np.allclose(fast.weighted_sums(w, series), w @ series, rtol=1e-12, atol=1e-12)
