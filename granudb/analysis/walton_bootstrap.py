@@ -18,13 +18,20 @@ same minimum is found from a few passes:
   run is added, and the sliding line's S_slide(k) (over μ_f ≥ 0) can only shrink when k
   grows. So within a block [K_J, K_J+1], S(k) ≥ S_stick(K_J) + S_slide(K_J+1): a lower bound
   from boundary sums alone. A block whose bound exceeds the best boundary value cannot hold
-  the minimum and is skipped; the others (those around the split) are evaluated run by run,
-  on the six series the two lines' residuals read (the prefix sums of all eleven are
+  the minimum and is skipped; the others (those around the split) are cut into
+  sub-blocks of ``FINE_RUNS`` runs, whose boundary sums lower the best value and bound
+  their S(k) the same way, and the sub-blocks that remain are evaluated run by run, on
+  the six series the two lines' residuals read (the prefix sums of all eleven are
   formed at each resample's chosen k only: where every run slides, as in lubricated
-  runs, about a hundred blocks of a 100,000-run group stay near the minimum, and this
-  halved their cost).
+  runs, about a hundred blocks of a 100,000-run group stay near the minimum; the two
+  steps cut their cost to a third).
   The minimum found is the minimum of ``decide`` (up to rounding: the sums are added in a
-  different order), smallest k on a tie.
+  different order), smallest k on a tie (a run drawn no time changes no sum, so the
+  smallest k of such a tie is found from the drawn runs: ``_first_tied``).
+
+The counts are drawn once for a group's fits of the same seed and size (the Walton and
+gap-viscosity fits and the restitution fit of the same runs, the bands of their curves:
+``shared_counts``), and the fits run with the BLAS on one thread (``one_thread``).
 
 The cost per resample is then the draw itself (integers and a bincount) plus one pass of
 the matrix product, so the number of resamples is bounded by time only for very large
