@@ -42,6 +42,7 @@ count used, the seed and the rule's text.
 
 from __future__ import annotations
 
+import hashlib
 from typing import Any
 
 import numpy as np
@@ -225,14 +226,21 @@ def _parts(p: np.ndarray, full: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.
     return core.lines(p[..., XX], p[..., XY], p[..., YY], *rest)
 
 
+def padding(n: int) -> tuple[int, int, int]:
+    """(runs per block, blocks, padded runs) of a group of ``n`` runs: blocks of
+    ``BLOCK_RUNS`` runs, fewer for a small group (the power of two ≥ n, at least 8)."""
+    block = min(BLOCK_RUNS, max(8, 1 << max(0, n - 1).bit_length()))
+    blocks = max(1, -(-n // block))
+    return block, blocks, blocks * block
+
+
 class Sorted:
     """One group's runs (sorted by folded Ψ_in), padded to whole blocks, as series."""
 
     def __init__(self, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray) -> None:
         self.n = len(x)
-        self.block = min(BLOCK_RUNS, max(8, 1 << max(0, self.n - 1).bit_length()))
-        self.blocks = max(1, -(-self.n // self.block))
-        self.size = size = self.blocks * self.block
+        self.block, self.blocks, self.size = padding(self.n)
+        size = self.size
         d = x - y
         # (blocks, block, SERIES): each block's runs × series, for the batched
         # product, filled in place (no second copy of a third of a million runs × SERIES)
@@ -306,8 +314,10 @@ def one_thread() -> Any:
 
 
 def forget_counts() -> None:
-    """Drop the counts ``shared_counts`` keeps: the next fit draws its resamples again."""
+    """Drop the counts ``shared_counts`` keeps and the decisions ``batches`` keeps: the
+    next fit draws and decides its resamples again."""
     _shared.clear()
+    _decided.clear()
 
 
 def count_batches(seed: int, resamples: int, n: int, size: int, batch: int):
@@ -528,13 +538,52 @@ def decide_blocks(runs: Sorted, w: np.ndarray) -> core.Decision:
     return core.decision(model, k, bic, line, (n_stick, distinct - n_stick), (mean, mean_se))
 
 
+#: Resamples of the bootstrap decisions kept (``batches``), all groups together (a few
+#: hundred bytes each): a report's Walton fit of a group, its gap-viscosity fit and the
+#: bands of its lines re-decide the same resamples of the same runs.
+KEPT_DECISIONS = 100_000
+_decided: dict[tuple, core.Decision] = {}
+
+
+def _runs_key(arrays: tuple, resamples: int, seed: int) -> tuple:
+    """The key of a bootstrap: a digest of the runs' values, their count, resamples, seed."""
+    digest = hashlib.blake2b(digest_size=16)
+    for a in arrays:
+        digest.update(np.ascontiguousarray(a, dtype=float).tobytes())
+    return digest.hexdigest(), len(arrays[0]), int(resamples), int(seed)
+
+
+def _rows(decision: core.Decision, start: int, stop: int) -> core.Decision:
+    fields = core.Decision.__dataclass_fields__
+    return core.Decision(*(getattr(decision, f)[start:stop] for f in fields))
+
+
 def batches(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resamples: int, seed: int):
     """Yield (counts, decision) per batch of resamples: the (m, padded runs) draw counts
-    (reused by the next batch: use them before asking for it) and their fits."""
-    runs = Sorted(x, y, c, e)
-    batch = max(1, BATCH_CELLS // runs.size)
-    for counts in count_batches(seed, resamples, runs.n, runs.size, batch):
-        yield counts, decide_blocks(runs, counts)
+    (reused by the next batch: use them before asking for it) and their fits. The
+    decisions of the same runs, resamples and seed are made once and kept (the least
+    recently used dropped beyond ``KEPT_DECISIONS`` resamples in all)."""
+    key = _runs_key((x, y, c, e), resamples, seed)
+    kept = _decided.pop(key, None)
+    n = len(x)
+    runs = Sorted(x, y, c, e) if kept is None else None
+    size = padding(n)[2]
+    batch = max(1, BATCH_CELLS // size)
+    parts, start = [], 0
+    for counts in count_batches(seed, resamples, n, size, batch):
+        if kept is None:
+            parts.append(decide_blocks(runs, counts))
+        yield counts, parts[-1] if kept is None else _rows(kept, start, start + len(counts))
+        start += len(counts)
+    _decided[key] = concatenate(parts) if kept is None else kept  # most recently used last
+    while sum(len(d.model) for d in _decided.values()) > KEPT_DECISIONS and len(_decided) > 1:
+        del _decided[next(iter(_decided))]
+
+
+def concatenate(parts: list[core.Decision]) -> core.Decision:
+    """One Decision of the resamples of ``parts``, in order."""
+    fields = core.Decision.__dataclass_fields__
+    return core.Decision(*(np.concatenate([getattr(p, f) for p in parts]) for f in fields))
 
 
 def bootstrap(
@@ -553,9 +602,10 @@ def bootstrap(
     Deterministic for a given (data, resamples, seed).
     """
     if stated is None:
-        parts = [decision for _, decision in batches(x, y, c, e, resamples, seed)]
-    else:
-        found = perturbed_batches(x, y, stated[0], e, stated[1], resamples, seed)
-        parts = [decision for _, decision in found]
-    fields = core.Decision.__dataclass_fields__
-    return core.Decision(*(np.concatenate([getattr(p, f) for p in parts]) for f in fields))
+        key = _runs_key((x, y, c, e), resamples, seed)
+        if key not in _decided:
+            for _ in batches(x, y, c, e, resamples, seed):  # decides and keeps them
+                pass
+        return _decided[key]
+    found = perturbed_batches(x, y, stated[0], e, stated[1], resamples, seed)
+    return concatenate([decision for _, decision in found])
