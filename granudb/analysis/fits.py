@@ -279,19 +279,20 @@ def walton(
     fluid), for the bands of its lines (``bands.walton_sets`` makes the same anew)."""
     bayesian.check_method(method)
     rows = []
-    for key, group in _groups(frame):
-        row = _walton_group(key, group, resamples, seed, sets)
-        row["fit_method"] = method
-        if method == bayesian.METHOD:
-            arrays = walton_arrays(group)
-            sigma = bayesian.stated_u(group, "effective_rebound", arrays[5])
-            found, why = bayesian.walton_row(row, arrays, settings, sigma)
-            if row["model"] is not None:
-                reason = _reason(row["model"], row["n_sticking"], row["n_sliding"])
-                row["reason"] = "; ".join(p for p in (reason, why) if p)
-            if draws is not None and found is not None:
-                draws.append(found)
-        rows.append(row)
+    with resampling.one_thread():
+        for key, group in _groups(frame):
+            row = _walton_group(key, group, resamples, seed, sets)
+            row["fit_method"] = method
+            if method == bayesian.METHOD:
+                arrays = walton_arrays(group)
+                sigma = bayesian.stated_u(group, "effective_rebound", arrays[5])
+                found, why = bayesian.walton_row(row, arrays, settings, sigma)
+                if row["model"] is not None:
+                    reason = _reason(row["model"], row["n_sticking"], row["n_sliding"])
+                    row["reason"] = "; ".join(p for p in (reason, why) if p)
+                if draws is not None and found is not None:
+                    draws.append(found)
+            rows.append(row)
     return rows
 
 

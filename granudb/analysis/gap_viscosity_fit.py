@@ -297,7 +297,8 @@ def gap_viscosity(
             *resampling.STATED_COLUMNS,
         ]  # fmt: skip
     )
-    return [  # dry runs (no fluid) are in no group
-        _fit_group(key, group, fluids.get(key[3]), resamples, seed)
-        for key, group in group_frames(frame, GROUP, [c for c in inputs if c not in GROUP])
-    ]
+    with resampling.one_thread():
+        return [  # dry runs (no fluid) are in no group
+            _fit_group(key, group, fluids.get(key[3]), resamples, seed)
+            for key, group in group_frames(frame, GROUP, [c for c in inputs if c not in GROUP])
+        ]

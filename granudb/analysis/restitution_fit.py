@@ -316,9 +316,15 @@ def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed:
     batch = max(1, resampling.BATCH_CELLS // (n if large else 8 * n))
     parts = []
     series = one_step_series(model, st, e, (fit[0], fit[2])) if large else None
-    weights = np.zeros((min(batch, resamples), n))  # reused by every batch
+    # without stated u the draws are the generator's only use: the shared counts
+    # (``resampling.count_batches``); with it, each batch's draws, then its perturbations
+    plain = None if stated is not None else resampling.count_batches(seed, resamples, n, n, batch)
+    weights = np.zeros((min(batch, resamples), n)) if plain is None else None
     for start in range(0, resamples, batch):
-        w = resampling.draw_counts(rng, min(batch, resamples - start), n, n, weights)
+        if plain is None:
+            w = resampling.draw_counts(rng, min(batch, resamples - start), n, n, weights)
+        else:
+            w = next(plain)
         if stated is not None:
             st_b, e_b = resampling.perturbed(rng, len(w), st, e, stated)
             parts.append(refit(model, st_b, e_b, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
@@ -469,23 +475,24 @@ def restitution(
     groups = frame.groupby([frame[k] for k in _INPUTS[:3]], sort=True).indices
     speeds = resampling.stated_speeds(frame)
     results = []
-    for key in sorted(groups):
-        rows = groups[key]
-        runs = rows[immersed[rows]]
-        if runs.size:
-            stated = None if speeds is None else tuple(r[runs] for r in speeds)
-            stated = stated if stated is not None and any(r.any() for r in stated) else None
-            row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]], stated=stated)
-            row["fit_method"] = method
-            if method == bayesian.METHOD:
-                form = bayesian.Form(
-                    lambda s, a, q: restitution_curve(model, s, a, q),
-                    PARAMETER_NAMES[model],
-                    E_DRY_MAX,
-                )
-                sigma = bayesian.stated_u(frame, "normal_restitution", runs)
-                found = bayesian.restitution_row(row, form, st[runs], e[runs], settings, sigma)
-                if draws is not None and found is not None:
-                    draws.append(found)
-            results.append(row)
+    with resampling.one_thread():  # as the other fits (walton_bootstrap.one_thread)
+        for key in sorted(groups):
+            rows = groups[key]
+            runs = rows[immersed[rows]]
+            if runs.size:
+                stated = None if speeds is None else tuple(r[runs] for r in speeds)
+                stated = stated if stated is not None and any(r.any() for r in stated) else None
+                row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]], stated=stated)
+                row["fit_method"] = method
+                if method == bayesian.METHOD:
+                    form = bayesian.Form(
+                        lambda s, a, q: restitution_curve(model, s, a, q),
+                        PARAMETER_NAMES[model],
+                        E_DRY_MAX,
+                    )
+                    sigma = bayesian.stated_u(frame, "normal_restitution", runs)
+                    found = bayesian.restitution_row(row, form, st[runs], e[runs], settings, sigma)
+                    if draws is not None and found is not None:
+                        draws.append(found)
+                results.append(row)
     return results

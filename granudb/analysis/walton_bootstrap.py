@@ -18,13 +18,20 @@ same minimum is found from a few passes:
   run is added, and the sliding line's S_slide(k) (over μ_f ≥ 0) can only shrink when k
   grows. So within a block [K_J, K_J+1], S(k) ≥ S_stick(K_J) + S_slide(K_J+1): a lower bound
   from boundary sums alone. A block whose bound exceeds the best boundary value cannot hold
-  the minimum and is skipped; the others (those around the split) are evaluated run by run,
-  on the six series the two lines' residuals read (the prefix sums of all eleven are
+  the minimum and is skipped; the others (those around the split) are cut into
+  sub-blocks of ``FINE_RUNS`` runs, whose boundary sums lower the best value and bound
+  their S(k) the same way, and the sub-blocks that remain are evaluated run by run, on
+  the six series the two lines' residuals read (the prefix sums of all eleven are
   formed at each resample's chosen k only: where every run slides, as in lubricated
-  runs, about a hundred blocks of a 100,000-run group stay near the minimum, and this
-  halved their cost).
+  runs, about a hundred blocks of a 100,000-run group stay near the minimum; the two
+  steps cut their cost to a third).
   The minimum found is the minimum of ``decide`` (up to rounding: the sums are added in a
-  different order), smallest k on a tie.
+  different order), smallest k on a tie (a run drawn no time changes no sum, so the
+  smallest k of such a tie is found from the drawn runs: ``_first_tied``).
+
+The counts are drawn once for a group's fits of the same seed and size (the Walton and
+gap-viscosity fits and the restitution fit of the same runs, the bands of their curves:
+``shared_counts``), and the fits run with the BLAS on one thread (``one_thread``).
 
 The cost per resample is then the draw itself (integers and a bincount) plus one pass of
 the matrix product, so the number of resamples is bounded by time only for very large
@@ -35,11 +42,13 @@ count used, the seed and the rule's text.
 
 from __future__ import annotations
 
+import hashlib
 from typing import Any
 
 import numpy as np
 
 from granudb.analysis import walton as core
+from granudb.lazy import threadpoolctl
 from granudb.vocabulary.terms import uncertainty_column
 
 #: Resamples of the Walton and gap-viscosity bootstraps for groups up to RULE_RUNS runs.
@@ -56,7 +65,10 @@ RESAMPLE_RULE = (
 BLOCK_RUNS = 128
 #: Resamples × padded runs per batch (bounds memory at a few tens of MB).
 BATCH_CELLS = 1 << 21
-#: Candidate blocks × BLOCK_RUNS per refinement chunk.
+#: Runs per sub-block: a candidate block's sub-block sums come first, and only the
+#: sub-blocks whose lower bound is within the best S found are evaluated run by run.
+FINE_RUNS = 16
+#: Candidate (sub-)blocks × their runs per refinement chunk.
 REFINE_CELLS = 1 << 17
 # series: x², xy, y², c², dc, d², e, e², x, y, 1 (d = x − y)
 SERIES = 11
@@ -214,14 +226,21 @@ def _parts(p: np.ndarray, full: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.
     return core.lines(p[..., XX], p[..., XY], p[..., YY], *rest)
 
 
+def padding(n: int) -> tuple[int, int, int]:
+    """(runs per block, blocks, padded runs) of a group of ``n`` runs: blocks of
+    ``BLOCK_RUNS`` runs, fewer for a small group (the power of two ≥ n, at least 8)."""
+    block = min(BLOCK_RUNS, max(8, 1 << max(0, n - 1).bit_length()))
+    blocks = max(1, -(-n // block))
+    return block, blocks, blocks * block
+
+
 class Sorted:
     """One group's runs (sorted by folded Ψ_in), padded to whole blocks, as series."""
 
     def __init__(self, x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray) -> None:
         self.n = len(x)
-        self.block = min(BLOCK_RUNS, max(8, 1 << max(0, self.n - 1).bit_length()))
-        self.blocks = max(1, -(-self.n // self.block))
-        self.size = size = self.blocks * self.block
+        self.block, self.blocks, self.size = padding(self.n)
+        size = self.size
         d = x - y
         # (blocks, block, SERIES): each block's runs × series, for the batched
         # product, filled in place (no second copy of a third of a million runs × SERIES)
@@ -238,8 +257,8 @@ def draw_counts(
     rng: np.random.Generator, m: int, n: int, size: int, out: np.ndarray | None = None
 ) -> np.ndarray:
     """(m, size) float counts of n draws with replacement among n runs (zero padding);
-    ``out``: an array of at least m rows of ``size`` whose padding is zero, filled and
-    returned (its first m rows) instead of a new one.
+    ``out``: an array (of any type that holds the counts) of at least m rows of ``size``
+    whose padding is zero, filled and returned (its first m rows) instead of a new one.
 
     Row by row, the draws are those of one ``rng.integers(0, n, size=(m, n))`` (the
     generator's values come in order); each row's draws and counts stay in cache (a
@@ -250,6 +269,72 @@ def draw_counts(
     for row in weights:
         row[:n] = np.bincount(rng.integers(0, n, size=n), minlength=n)
     return weights
+
+
+#: Draw counts kept for reuse, at most this many resamples × runs in all (one byte each):
+#: a report fits the same group with the same seed and resample rule several times (the
+#: Walton fit, the gap viscosity, the restitution fit on a group of the same runs, the
+#: bands of their curves), and drawing 200 × 100,000 runs costs as much as the rest of a
+#: fit. A request larger than this is drawn batch by batch and not kept.
+SHARED_CELLS = 40_000_000
+_shared: dict[tuple[int, int], tuple[np.ndarray, np.random.Generator]] = {}
+
+
+def shared_counts(seed: int, resamples: int, n: int) -> np.ndarray | None:
+    """(resamples, n) counts (uint8, or uint16 if a run is ever drawn 256 times) of the
+    draws ``draw_counts(np.random.default_rng(seed), resamples, n, n)`` makes: drawn once per
+    (seed, n) and kept (rows drawn for more resamples extend the kept ones, since the draws
+    come in order, so a smaller request is a prefix), the least recently used dropped
+    beyond ``SHARED_CELLS``. None when ``resamples`` × n alone exceeds it."""
+    if resamples * n > SHARED_CELLS:
+        return None
+    key = (int(seed), int(n))
+    kept, rng = _shared.pop(key, (np.zeros((0, n), dtype=np.uint8), None))
+    if rng is None:
+        rng = np.random.default_rng(seed)
+    if len(kept) < resamples:
+        more = np.empty((resamples - len(kept), n), dtype=np.uint16)
+        draw_counts(rng, len(more), n, n, more)
+        small = kept.dtype == np.uint8 and (more.size == 0 or more.max() < 256)
+        kept = np.concatenate([kept, more.astype(np.uint8) if small else more])
+    _shared[key] = (kept, rng)  # most recently used last
+    while sum(a.size for a, _ in _shared.values()) > SHARED_CELLS and len(_shared) > 1:
+        del _shared[next(iter(_shared))]
+    return kept[:resamples]
+
+
+def one_thread() -> Any:
+    """A context in which the BLAS runs on one thread (a fit's bootstrap runs in it):
+    its products are small (20 resamples × 100,000 runs × 4 series: 5 ms on one thread,
+    10 ms on two here), and a BLAS that spreads a product over the cores leaves threads
+    spinning after it, which on a shared 2-core machine slowed the numpy steps between
+    the products (the three fits of ``benchmarks/fit_speed.py`` on 100,000 runs by about
+    a third)."""
+    return threadpoolctl.threadpool_limits(1, user_api="blas")
+
+
+def forget_counts() -> None:
+    """Drop the counts ``shared_counts`` keeps and the decisions ``batches`` keeps: the
+    next fit draws and decides its resamples again."""
+    _shared.clear()
+    _decided.clear()
+
+
+def count_batches(seed: int, resamples: int, n: int, size: int, batch: int):
+    """Yield float (m, size) counts (zero padding beyond n), ``batch`` resamples at a
+    time, of the draws of ``draw_counts(np.random.default_rng(seed), resamples, n, size)``
+    (from ``shared_counts`` when they fit in it). The array is reused by the next batch:
+    use it before asking for the next."""
+    kept = shared_counts(seed, resamples, n)
+    rng = np.random.default_rng(seed)
+    weights = np.zeros((min(batch, resamples), size))
+    for start in range(0, resamples, batch):
+        m = min(batch, resamples - start)
+        if kept is None:
+            yield draw_counts(rng, m, n, size, weights)
+        else:
+            weights[:m, :n] = kept[start : start + m]
+            yield weights[:m]
 
 
 def _nth_drawn(counts: np.ndarray, need: int) -> np.ndarray:
@@ -280,25 +365,42 @@ def _allowed(w: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 def _refine(
-    runs: Sorted, w: np.ndarray, prefix: np.ndarray, full: np.ndarray, pairs: tuple
+    runs: Sorted, w: np.ndarray, start: np.ndarray, full: np.ndarray, pairs: tuple, size: int
 ) -> tuple[np.ndarray, np.ndarray]:
-    """S(k) and k at the best k of each candidate (row, block) pair, from the six series
-    of the two lines only (the prefix sums at the chosen k follow in ``_at_split``)."""
+    """S(k) and k at the best k of each candidate (row, block) pair, blocks of ``size``
+    runs with the prefix sums ``start`` (P, LINES) at their first run, from the six
+    series of the two lines only (the prefix sums at the chosen k follow in
+    ``_at_split``)."""
     rows, blocks, lo, hi = pairs
-    b = runs.block
-    local = w.reshape(len(w), runs.blocks, b)[rows, blocks]  # (P, b)
-    sums = np.empty((len(rows), b + 1, LINES))
-    sums[:, 0] = prefix[rows, blocks, :LINES]
-    np.multiply(local[:, :, None], runs.lines[blocks], out=sums[:, 1:])
+    local = w.reshape(len(w), -1, size)[rows, blocks]  # (P, size)
+    sums = np.empty((len(rows), size + 1, LINES))
+    sums[:, 0] = start
+    np.multiply(local[:, :, None], runs.lines.reshape(-1, size, LINES)[blocks], out=sums[:, 1:])
     np.cumsum(sums[:, 1:], axis=1, out=sums[:, 1:])
     sums[:, 1:] += sums[:, :1]
     stick, slide, _, _ = _parts(sums, full[rows][:, None, :])
-    k = blocks[:, None] * b + np.arange(b + 1)
+    k = blocks[:, None] * size + np.arange(size + 1)
     inside = (k >= lo[:, None]) & (k <= hi[:, None])
     total = np.where(inside, np.maximum(stick + slide, 0.0), np.inf)
     best = np.argmin(total, axis=1)
     at = np.arange(len(rows))
     return total[at, best], k[at, best]
+
+
+def _sub_blocks(runs: Sorted, w: np.ndarray, prefix: np.ndarray, full: np.ndarray, pairs: tuple):
+    """(prefix sums (P, s + 1, LINES), S (P, s + 1), S's lower bound (P, s)) at the
+    boundaries of the s sub-blocks of ``FINE_RUNS`` runs of each candidate (row, block)
+    pair: the block's boundary sums plus the sub-blocks' weighted sums."""
+    rows, blocks = pairs
+    b, fine = runs.block, min(FINE_RUNS, runs.block)
+    local = w.reshape(len(w), runs.blocks, b // fine, 1, fine)[rows, blocks]  # (P, s, 1, f)
+    parts = np.matmul(local, runs.lines[blocks].reshape(len(rows), b // fine, fine, LINES))
+    sums = np.empty((len(rows), b // fine + 1, LINES))
+    sums[:, 0] = prefix[rows, blocks, :LINES]
+    np.cumsum(parts[:, :, 0], axis=1, out=sums[:, 1:])
+    sums[:, 1:] += sums[:, :1]
+    stick, slide, _, _ = _parts(sums, full[rows][:, None, :])
+    return sums, np.maximum(stick + slide, 0.0), stick[:, :-1] + slide[:, 1:]
 
 
 def _at_split(runs: Sorted, w: np.ndarray, prefix: np.ndarray, split: np.ndarray) -> np.ndarray:
@@ -316,8 +418,11 @@ def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
     """Exact best split per row: (S at the split, k, prefix sums at k, boundary prefix)."""
     m, b = len(w), runs.block
     blocksums = np.matmul(w.reshape(m, runs.blocks, b).transpose(1, 0, 2), runs.series)
-    prefix = np.zeros((m, runs.blocks + 1, SERIES))
-    np.cumsum(blocksums.transpose(1, 0, 2), axis=1, out=prefix[:, 1:])
+    # summed over blocks in the product's (blocks, m, series) order, contiguous; read
+    # as (m, blocks + 1, series)
+    prefix = np.zeros((runs.blocks + 1, m, SERIES))
+    np.cumsum(blocksums, axis=0, out=prefix[1:])
+    prefix = prefix.transpose(1, 0, 2)
     full = prefix[:, -1]
     stick, slide, _, _ = _parts(prefix, full[:, None, :])
     bounds = np.arange(runs.blocks + 1) * b
@@ -328,12 +433,34 @@ def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
     keep = (lower <= (best + slack)[:, None]) | ~np.isfinite(best)[:, None]
     keep &= (bounds[1:] >= lo[:, None]) & (bounds[:-1] <= hi[:, None])
     rows, blocks = np.nonzero(keep)
-    value = np.full(m, np.inf)
-    split = np.zeros(m, dtype=int)
+    # the candidate blocks' sub-blocks: their boundaries may lower the best S found, and
+    # only the sub-blocks whose bound is within it are evaluated run by run
+    fine = min(FINE_RUNS, b)
+    per = b // fine
+    found = []
     step = max(1, REFINE_CELLS // b)
     for start in range(0, len(rows), step):
         r, j = rows[start : start + step], blocks[start : start + step]
-        total, k = _refine(runs, w, prefix, full, (r, j, lo[r], hi[r]))
+        sums, total, lower = _sub_blocks(runs, w, prefix, full, (r, j))
+        k = j[:, None] * b + np.arange(per + 1) * fine
+        inside = (k >= lo[r][:, None]) & (k <= hi[r][:, None])
+        np.minimum.at(best, r, np.min(np.where(inside, total, np.inf), axis=1))
+        found.append((sums, lower))
+    sums = np.concatenate([f[0] for f in found]) if found else np.zeros((0, per + 1, LINES))
+    lower = np.concatenate([f[1] for f in found]) if found else np.zeros((0, per))
+    slack = 1e-9 * np.abs(best) + 1e-300
+    k = (blocks * b)[:, None] + np.arange(per + 1) * fine
+    keep = (lower <= (best + slack)[rows][:, None]) | ~np.isfinite(best)[rows][:, None]
+    keep &= (k[:, 1:] >= lo[rows][:, None]) & (k[:, :-1] <= hi[rows][:, None])
+    pair, sub = np.nonzero(keep)
+    rows, blocks, sums = rows[pair], blocks[pair] * per + sub, sums[pair, sub]
+    value = np.full(m, np.inf)
+    split = np.zeros(m, dtype=int)
+    step = max(1, REFINE_CELLS // fine)
+    for start in range(0, len(rows), step):
+        r, j = rows[start : start + step], blocks[start : start + step]
+        pairs = (r, j, lo[r], hi[r])
+        total, k = _refine(runs, w, sums[start : start + step], full, pairs, fine)
         order = np.lexsort((k, total, r))  # per row: smallest S, then smallest k
         first = order[np.r_[True, r[order][1:] != r[order][:-1]]]
         better = (total[first] < value[r[first]]) | (
@@ -341,8 +468,24 @@ def _split(runs: Sorted, w: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple
         )
         chosen = first[better]
         value[r[chosen]], split[r[chosen]] = total[chosen], k[chosen]
+    split = _first_tied(w, split)
     at = np.where(np.isfinite(value)[:, None], _at_split(runs, w, prefix, split), 0.0)
     return value, split, at, full
+
+
+def _first_tied(w: np.ndarray, split: np.ndarray) -> np.ndarray:
+    """The smallest k with the S of each row's ``split``: a run drawn no time adds
+    nothing to any sum, so S is the same from just after the last drawn run before k
+    (``walton.decide`` keeps the smallest k of such a tie; the block search may find a
+    later one, its sums added in another order). Rows with no split are kept."""
+    rows = np.arange(len(w))[:, None]
+    back = split[:, None] - 1 - np.arange(64)  # k − 1, k − 2, …: the last drawn is near
+    drawn = (back >= 0) & (w[rows, np.maximum(back, 0)] > 0)
+    out = np.where(drawn.any(axis=1), split - np.argmax(drawn, axis=1), split)
+    for row in np.flatnonzero(~drawn.any(axis=1) & (split > 64)):  # 64 runs never drawn
+        before = np.flatnonzero(w[row, : split[row]])
+        out[row] = before[-1] + 1 if before.size else split[row]
+    return out
 
 
 def decide_blocks(runs: Sorted, w: np.ndarray) -> core.Decision:
@@ -354,7 +497,7 @@ def decide_blocks(runs: Sorted, w: np.ndarray) -> core.Decision:
     stick_all, _, beta_all, _ = _parts(full, full)
     _, slide_all, _, friction_none = _parts(zero, full)
     has_split = np.isfinite(value)
-    counted = w.sum(axis=1)
+    counted = full[:, ONE]  # the draws: integer sums, exact
     scale = np.maximum(full[:, YY] + full[:, DD], 1e-300) * core.SSE_FLOOR
     sse = np.stack([np.maximum(stick_all, 0.0), np.maximum(slide_all, 0.0), value], axis=1)
     penalty = (
@@ -395,18 +538,52 @@ def decide_blocks(runs: Sorted, w: np.ndarray) -> core.Decision:
     return core.decision(model, k, bic, line, (n_stick, distinct - n_stick), (mean, mean_se))
 
 
+#: Resamples of the bootstrap decisions kept (``batches``), all groups together (a few
+#: hundred bytes each): a report's Walton fit of a group, its gap-viscosity fit and the
+#: bands of its lines re-decide the same resamples of the same runs.
+KEPT_DECISIONS = 100_000
+_decided: dict[tuple, core.Decision] = {}
+
+
+def _runs_key(arrays: tuple, resamples: int, seed: int) -> tuple:
+    """The key of a bootstrap: a digest of the runs' values, their count, resamples, seed."""
+    digest = hashlib.blake2b(digest_size=16)
+    for a in arrays:
+        digest.update(np.ascontiguousarray(a, dtype=float).tobytes())
+    return digest.hexdigest(), len(arrays[0]), int(resamples), int(seed)
+
+
+def _rows(decision: core.Decision, start: int, stop: int) -> core.Decision:
+    fields = core.Decision.__dataclass_fields__
+    return core.Decision(*(getattr(decision, f)[start:stop] for f in fields))
+
+
 def batches(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resamples: int, seed: int):
     """Yield (counts, decision) per batch of resamples: the (m, padded runs) draw counts
-    (reused by the next batch: use them before asking for it) and their fits."""
-    runs = Sorted(x, y, c, e)
-    size = runs.size
-    rng = np.random.default_rng(seed)
+    (reused by the next batch: use them before asking for it) and their fits. The
+    decisions of the same runs, resamples and seed are made once and kept (the least
+    recently used dropped beyond ``KEPT_DECISIONS`` resamples in all)."""
+    key = _runs_key((x, y, c, e), resamples, seed)
+    kept = _decided.pop(key, None)
+    n = len(x)
+    runs = Sorted(x, y, c, e) if kept is None else None
+    size = padding(n)[2]
     batch = max(1, BATCH_CELLS // size)
-    weights = np.zeros((min(batch, resamples), size))  # reused by every batch
-    for start in range(0, resamples, batch):
-        m = min(batch, resamples - start)
-        counts = draw_counts(rng, m, runs.n, size, weights)
-        yield counts, decide_blocks(runs, counts)
+    parts, start = [], 0
+    for counts in count_batches(seed, resamples, n, size, batch):
+        if kept is None:
+            parts.append(decide_blocks(runs, counts))
+        yield counts, parts[-1] if kept is None else _rows(kept, start, start + len(counts))
+        start += len(counts)
+    _decided[key] = concatenate(parts) if kept is None else kept  # most recently used last
+    while sum(len(d.model) for d in _decided.values()) > KEPT_DECISIONS and len(_decided) > 1:
+        del _decided[next(iter(_decided))]
+
+
+def concatenate(parts: list[core.Decision]) -> core.Decision:
+    """One Decision of the resamples of ``parts``, in order."""
+    fields = core.Decision.__dataclass_fields__
+    return core.Decision(*(np.concatenate([getattr(p, f) for p in parts]) for f in fields))
 
 
 def bootstrap(
@@ -425,9 +602,10 @@ def bootstrap(
     Deterministic for a given (data, resamples, seed).
     """
     if stated is None:
-        parts = [decision for _, decision in batches(x, y, c, e, resamples, seed)]
-    else:
-        found = perturbed_batches(x, y, stated[0], e, stated[1], resamples, seed)
-        parts = [decision for _, decision in found]
-    fields = core.Decision.__dataclass_fields__
-    return core.Decision(*(np.concatenate([getattr(p, f) for p in parts]) for f in fields))
+        key = _runs_key((x, y, c, e), resamples, seed)
+        if key not in _decided:
+            for _ in batches(x, y, c, e, resamples, seed):  # decides and keeps them
+                pass
+        return _decided[key]
+    found = perturbed_batches(x, y, stated[0], e, stated[1], resamples, seed)
+    return concatenate([decision for _, decision in found])

@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 from analysis.synthetic import walton_frame
+from analysis.test_gap_viscosity import sliding_runs
 
 from granudb.analysis import fits, groups
 from granudb.analysis import walton as core
@@ -103,3 +104,47 @@ def test_too_few_distinct_runs_in_a_resample_give_no_split() -> None:
     weights[0, [0, 4]] = [3, 2]  # two distinct runs: no line of two on each side
     got = fast.decide_blocks(runs, weights)
     assert got.bic[0, 2] == math.inf and got.model[0] != 2
+
+
+def test_shared_counts_are_the_draws_of_one_generator(monkeypatch) -> None:
+    n, seed = 300, 7
+    want = fast.draw_counts(np.random.default_rng(seed), 40, n, n)
+    fast.forget_counts()
+    first = fast.shared_counts(seed, 25, n)  # drawn, then extended: a prefix of the same
+    assert np.array_equal(first, want[:25])
+    assert np.array_equal(fast.shared_counts(seed, 40, n), want)
+    assert np.array_equal(fast.shared_counts(seed, 10, n), want[:10])
+    size = 384
+    kept = np.concatenate([c.copy() for c in fast.count_batches(seed, 40, n, size, 16)])
+    monkeypatch.setattr(fast, "SHARED_CELLS", 100)  # too many cells to keep: drawn anew
+    assert fast.shared_counts(seed, 40, n) is None
+    drawn = np.concatenate([c.copy() for c in fast.count_batches(seed, 40, n, size, 16)])
+    assert np.array_equal(kept, drawn) and np.array_equal(drawn[:, :n], want)
+    assert not drawn[:, n:].any()
+
+
+def test_a_groups_resamples_are_decided_once() -> None:
+    x, y, c, e, *_ = groups.walton_arrays(walton_frame(300, spin=30.0, seed=5))
+    fast.forget_counts()
+    first = fast.bootstrap(x, y, c, e, 50, 3)
+    assert fast.bootstrap(x, y, c, e, 50, 3) is first  # kept, not decided again
+    by_batch = fast.concatenate([d for _, d in fast.batches(x, y, c, e, 50, 3)])
+    other = fast.bootstrap(x, y * 1.01, c, e, 50, 3)  # other runs: decided anew
+    assert other is not first and not np.array_equal(other.beta, first.beta)
+    fast.forget_counts()
+    fresh = fast.bootstrap(x, y, c, e, 50, 3)
+    for field in core.Decision.__dataclass_fields__:
+        for got in (by_batch, fresh):
+            assert np.array_equal(getattr(got, field), getattr(first, field), equal_nan=True)
+
+
+def test_gap_viscosity_after_the_walton_fit_of_its_runs_is_unchanged() -> None:
+    wet = sliding_runs(1.6e-3, n=300, seed=3)
+    fast.forget_counts()
+    [alone] = fits.gap_viscosity(wet, {})
+    fast.forget_counts()
+    fits.walton(wet)  # decides the group's resamples; the gap fit then reuses them
+    [after] = fits.gap_viscosity(wet, {})
+    assert after.keys() == alone.keys()
+    for name, value in alone.items():
+        assert after[name] == value or (value != value and after[name] != after[name]), name
