@@ -48,7 +48,7 @@ from granudb.io.package_schema import (
 from granudb.io.tables import TINY_RULE, Problems, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
-from granudb.vocabulary.catalogue import MATERIALS, ONE_LINE_TEXTS
+from granudb.vocabulary.catalogue import MATERIALS, ONE_LINE_TEXTS, check_source
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import check_name, check_text, name_key
 
@@ -226,6 +226,19 @@ def _check_block(
             e > MAX_RESTITUTION,
             first_row,
         )
+    if name == "sources":  # the rules a source typed on the command line follows
+        for index, row in enumerate(out.to_dict("records")):
+            stated = {k: v for k, v in row.items() if v is not None and v == v}
+            if "year" in stated and float(stated["year"]).is_integer():
+                stated["year"] = int(stated["year"])  # a fractional one is refused above
+            try:
+                check_source(stated)
+            except ValidationError as exc:
+                shown = np.zeros(len(out), dtype=bool)
+                shown[index] = True
+                found.add(
+                    f"{name}.{exc.field}: {exc.value} {exc.rule} in {{rows}}", shown, first_row
+                )
     if name in CASE_INSENSITIVE:  # materials and fluids: one block, a table of names
         column = PRIMARY_KEYS[name][0]
         raw = frame[column]

@@ -93,6 +93,15 @@ CASES: dict[str, tuple[Callable[[Path], None], str]] = {
         "materials.name",
     ),
     "notes NUL": (lambda p: _cell(p, "sources", "Joseph", "Jo\x00seph"), "U+0000"),
+    # a package's sources follow the rules of `granudb sources add`
+    "source DOI as a link": (
+        lambda p: _cell(p, "sources", ",10.1017/", ",https://doi.org/10.1017/"),
+        "sources.doi: 'https://doi.org/10.1017/",
+    ),
+    "source URL script": (
+        lambda p: _cell(p, "sources", ",https://", ",javascript://"),
+        "sources.url: 'javascript://",
+    ),
     "field of 50 MB": (
         lambda p: _cell(p, "sources", "Joseph", "J" * 50_000_000),
         "at most 10000 characters",
