@@ -322,3 +322,45 @@ def test_the_dem_export_of_kharaz_needs_no_roughness(opened, code: str) -> None:
     """The DEM fragment takes E, ν, e and μ (no σ): Kharaz's pair exports with 0.092."""
     text = granudb.dem_export(code, ["alumina"], [ANVIL], **KHARAZ, db=opened)
     assert "0.092" in text and "yade-chung-ooi-test4" in text
+
+
+def test_per_run_resolves_each_run_as_its_own_pair() -> None:
+    """``dry_values.per_run`` resolves each distinct (names, own values) once and hands it
+    to every run that has it: the same numbers as resolving every run by itself, with
+    missing names, NaN values and case-different names mixed in."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from granudb.analysis import dry_values
+
+    rng = np.random.default_rng(7)
+    n = 400
+    names = np.array(["steel", "Steel", "glass", None, "alumina"], dtype=object)
+    walls = np.array(["Zerodur", "zerodur", "glass", "PTFE"], dtype=object)
+    particle = names[rng.integers(0, len(names), n)]
+    wall = walls[rng.integers(0, len(walls), n)]
+    pick = np.array([np.nan, 0.9, 0.95])
+    own = {c: pick[rng.integers(0, 3, n)] for c in dry_values._OWN}
+    measured = [
+        SimpleNamespace(particle="steel", wall="Zerodur", dry_restitution=0.97,
+                        dry_friction=0.11, immersed_friction=0.02, source_locator=None,
+                        notes=None, source=SimpleNamespace(key="k", citation="c")),
+    ]  # fmt: skip
+    e, mu, wet = dry_values.per_run(particle, wall, own, measured)
+    for i in range(n):
+        values = [None if v != v else float(v) for v in (own[c][i] for c in dry_values._OWN)]
+        if particle[i] is None:
+            one = dry_values.BORROWED_VALUES
+        else:
+            first = SimpleNamespace(name=particle[i], dry_restitution=values[0],
+                                    dry_friction=values[2], dry_provenance=None)  # fmt: skip
+            second = SimpleNamespace(name=wall[i], dry_restitution=values[1],
+                                     dry_friction=values[3], dry_provenance=None)  # fmt: skip
+            pair = [m for m in measured
+                    if {m.particle.casefold(), m.wall.casefold()}
+                    == {particle[i].casefold(), wall[i].casefold()}]  # fmt: skip
+            one = dry_values.resolve(first, second, pair)
+        assert e[i] == one.restitution and mu[i] == one.friction, i
+        expected_wet = one.immersed_friction if one.immersed_friction_basis == "pair" else None
+        assert (math.isnan(wet[i]) and expected_wet is None) or wet[i] == expected_wet, i

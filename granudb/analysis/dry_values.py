@@ -30,6 +30,7 @@ from sqlalchemy.engine import Connection
 
 from granudb.db import catalog_rows
 from granudb.db.catalog_rows import MaterialRow
+from granudb.lazy import pandas as pd
 from granudb.physics.derive import DRY_FRICTION, DRY_RESTITUTION
 
 #: What a value borrowed from the global default says.
@@ -163,30 +164,46 @@ def per_run(
     the two materials' own values as the runs use them (``own``:
     ``particle_dry_restitution``, ``wall_dry_friction``, …; NaN where not known) and the
     measured pair values. One resolution per distinct pair and values."""
-    columns = [[None if v != v else v for v in own[c].tolist()] for c in _OWN]
-    keys = list(zip(particle.tolist(), wall.tolist(), *columns, strict=True))
+    arrays = [particle, wall, *(own[c] for c in _OWN)]
+    first, inverse = _distinct_rows(arrays)
     by_pair = {frozenset((row.particle.casefold(), row.wall.casefold())): row for row in measured}
-    distinct: dict[tuple, DryValues] = {}
-    for key in dict.fromkeys(keys):
-        p_name, w_name, p_e, w_e, p_mu, w_mu = key
+    found = []
+    for index in first.tolist():
+        p_name, w_name, p_e, w_e, p_mu, w_mu = (
+            None if _missing(a[index]) else a[index].item() if isinstance(a[index], np.generic)
+            else a[index] for a in arrays
+        )  # fmt: skip
         if not isinstance(p_name, str) or not isinstance(w_name, str):
-            distinct[key] = BORROWED_VALUES
+            found.append(BORROWED_VALUES)
             continue
-        first = SimpleNamespace(name=p_name, dry_restitution=p_e, dry_friction=p_mu,
-                                dry_provenance=None)  # fmt: skip
+        first_m = SimpleNamespace(name=p_name, dry_restitution=p_e, dry_friction=p_mu,
+                                  dry_provenance=None)  # fmt: skip
         second = SimpleNamespace(name=w_name, dry_restitution=w_e, dry_friction=w_mu,
                                  dry_provenance=None)  # fmt: skip
         pair = by_pair.get(frozenset((p_name.casefold(), w_name.casefold())))
-        distinct[key] = resolve(first, second, [pair] if pair is not None else [])
-    e = np.fromiter((distinct[k].restitution for k in keys), dtype=float, count=len(keys))
-    mu = np.fromiter((distinct[k].friction for k in keys), dtype=float, count=len(keys))
-    wet = np.fromiter(
-        (v.immersed_friction if v.immersed_friction_basis == "pair" else np.nan
-         for v in (distinct[k] for k in keys)),
+        found.append(resolve(first_m, second, [pair] if pair is not None else []))
+    e = np.array([v.restitution for v in found], dtype=float)[inverse]
+    mu = np.array([v.friction for v in found], dtype=float)[inverse]
+    wet = np.array(
+        [v.immersed_friction if v.immersed_friction_basis == "pair" else np.nan for v in found],
         dtype=float,
-        count=len(keys),
-    )  # fmt: skip
+    )[inverse]
     return e, mu, wet
+
+
+def _missing(value: Any) -> bool:
+    return value is None or (isinstance(value, float | np.floating) and value != value)
+
+
+def _distinct_rows(arrays: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """(the first run of each distinct row of ``arrays``' columns, each run's distinct
+    row): hashed column by column (``pd.factorize``, NaN and None a value of their own),
+    the combined code kept below the number of runs so it cannot overflow."""
+    combined = np.zeros(len(arrays[0]), dtype=np.int64)
+    for values in arrays:
+        codes, uniques = pd.factorize(values, use_na_sentinel=False)
+        combined, _ = pd.factorize(combined * len(uniques) + codes)
+    return np.unique(combined, return_index=True)[1], combined
 
 
 #: The materials' own dry values a stored run carries, in ``per_run``'s key order.
