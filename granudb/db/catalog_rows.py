@@ -362,13 +362,21 @@ def pinned_id(connection: Connection, kind: str, name: str, dataset_id: int) -> 
     """The id of the row called ``name`` that dataset ``dataset_id``'s runs use: a
     revision when the dataset is a release that kept one, else the live row."""
     ids = entry_ids(connection, kind, name)
-    used: set[int] = set()
-    for reference in RUN_REFERENCES[kind]:
-        column = RUNS.c[reference]
-        query = select(column).where(
-            RUNS.c.dataset_id == dataset_id, or_(*(column == i for i in ids))
-        )
-        used |= set(connection.execute(query.distinct()).scalars())
+    if len(ids) == 1:  # never revised: the live row is the one
+        return ids[0]
+    # One "is it used?" probe per candidate row and reference, stopping at the first run
+    # found: a DISTINCT over the dataset's runs read every run (0.05 s per call on
+    # 100,000 runs, eight calls per report).
+    used = {
+        i
+        for i in ids
+        for reference in RUN_REFERENCES[kind]
+        if connection.execute(
+            select(RUNS.c[reference])
+            .where(RUNS.c.dataset_id == dataset_id, RUNS.c[reference] == i)
+            .limit(1)
+        ).first()
+    }
     return used.pop() if len(used) == 1 else ids[0]
 
 
