@@ -18,6 +18,7 @@ from sqlalchemy.engine import Connection
 from granudb.analysis import bands, fits
 from granudb.analysis.groups import GROUP
 from granudb.db import catalog_rows, lookup_rows
+from granudb.lazy import pandas as pd
 from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
 from granudb.physics.impact import gyration_factor
@@ -202,14 +203,18 @@ def walton_lines(
     groups' bootstrap parameter sets, ``bands.walton_sets``) each line whose parameter has
     an interval gets its 95 % ``band`` (low, high over ``x``), else ``band`` is None."""
     folded = np.abs(np.asarray(psi_in, float))
-    names = np.asarray(labels, dtype=object)
+    # each run's group and branch compared as codes, not as 100,000 strings per group
+    codes, names = pd.factorize(np.asarray(labels, dtype=object))
+    code_of = {name: code for code, name in enumerate(names)}
+    finite = np.isfinite(folded)
+    sticking, sliding = branches == "sticking", branches == "sliding"
     factor = float(gyration_factor())
     lines = []
     for fit in walton:
         label = group_label(fit["particle"], fit["wall"], fit.get("fluid"))
-        mine = (names == label) & np.isfinite(folded)
-        stick = folded[mine & (branches == "sticking")]
-        slide = folded[mine & (branches == "sliding")]
+        mine = (codes == code_of.get(label, -2)) & finite
+        stick = folded[mine & sticking]
+        slide = folded[mine & sliding]
         split = fit.get("split_effective_incidence")
         split = float(split) if is_number(split) and fit.get("model") == "split" else None
         beta = fit.get("rotational_restitution")
