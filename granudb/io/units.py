@@ -123,7 +123,9 @@ def check_unit_expression(text: str) -> str:
         position = match.end()
         kind = match.lastgroup if match.lastgroup not in {"implicit", "sup"} else "name"
         if kind == "power":
-            if out and out[-1].startswith("**"):  # 10**9**9**9 is 10**(9**9**9) to Python
+            # 10**9**9**9 is 10**(9**9**9) to Python, and so is µ9**9 (µ**9**9): an exponent
+            # after an exponent, written or straight after a name, is refused
+            if out and "**" in out[-1]:
                 raise UnitSyntaxError("has an exponent of an exponent (write one, e.g. m^3)")
             exponent = _EXPONENT.match(text, position)
             if exponent is None:

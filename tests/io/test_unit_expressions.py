@@ -174,7 +174,16 @@ def test_unit_expressions_outside_the_grammar_are_refused(text: str, rule: str) 
 
 @pytest.mark.parametrize(
     "text",
-    ["0.3 m**(9**9**9)/s", "0.3 m^(9^9^9)/s", "1 m**(2**2**2**2**2)", "1 " + "m*" * 40 + "m"],
+    [
+        "0.3 m**(9**9**9)/s",
+        "0.3 m^(9^9^9)/s",
+        "1 m**(2**2**2**2**2)",
+        "1 " + "m*" * 40 + "m",
+        # an exponent straight after a name, then another: µ**9**9 (found by the fuzz test)
+        "1 µ9**9(9**9)m/s",
+        "1 m3^9^9/s",
+        "1 m²**9**9/s",
+    ],
 )
 def test_hostile_exponents_are_refused_at_once(text: str) -> None:
     # Before: Pint evaluated 9**9**9 and never returned.
