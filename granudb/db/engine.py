@@ -55,8 +55,8 @@ def make_engine(url: str) -> Engine:
             return create_engine(url, pool_pre_ping=True)
         except (ImportError, ModuleNotFoundError) as exc:
             raise DatabaseAccessError(
-                f"database: {parsed.render_as_string(hide_password=True)} needs a driver "
-                f"that is not installed ({exc.name}); for PostgreSQL: pip install 'psycopg[binary]'"
+                f"database: {parsed.render_as_string(hide_password=True)} needs a driver that "
+                f"is not installed ({exc.name}); for PostgreSQL: pip install 'granudb[postgres]'"
             ) from None
         except Exception as exc:  # noqa: BLE001 - any URL parse problem is the user's to fix
             raise DatabaseAccessError(f"database: {url!r} is not a usable URL ({exc})") from None
