@@ -212,12 +212,15 @@ def build_package(data: ExportData, created: str | None = None) -> dict[str, byt
 
 
 def _zip_bytes(files: dict[str, bytes]) -> bytes:
-    """The package as one zip archive (fixed timestamps: the same files, the same bytes)."""
+    """The package as one zip archive (fixed timestamps and modes: the same files, the same
+    bytes). Each entry is a regular file readable by all (``-rw-r--r--``), so the files a
+    colleague unpacks are not private to whoever unpacks them."""
     buffer = io.BytesIO()
     with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
         for path in sorted(files):
             info = zipfile.ZipInfo(path, date_time=(2000, 1, 1, 0, 0, 0))
             info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = (0o100644 & 0xFFFF) << 16
             archive.writestr(info, files[path])
     return buffer.getvalue()
 
