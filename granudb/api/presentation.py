@@ -9,6 +9,7 @@ this module imports neither numpy nor pandas.
 from __future__ import annotations
 
 from granudb.analysis import collision_query
+from granudb.reporting.fit_view import people_view as fit_people_view
 from granudb.reporting.format import display, display_uncertain
 from granudb.vocabulary import DERIVED_TERMS, FLUIDS, MATERIALS, Term, term
 from granudb.vocabulary.catalogue import (
@@ -52,6 +53,7 @@ __all__ = [
     "SOURCE_FIELDS",
     "SOURCE_NARROW",
     "derived_terms",
+    "fit_people_view",
     "display",
     "display_uncertain",
     "parameter_of",

@@ -147,6 +147,27 @@ def _cell(record: dict[str, Any], value: Any, column: str, digits: int) -> str:
     return api.display(value, column, digits)
 
 
+def emit_records(
+    views: Sequence[tuple[str, Sequence[tuple[str, str]]]], title: str | None = None
+) -> None:
+    """Records for people, each shown vertically (its heading, then one line per
+    quantity: name and what it reads), so that no value is ever cut whatever the
+    terminal's width: long words wrap at spaces, never inside a number."""
+    out = console()
+    if title:
+        out.print(rich_text.Text(title, style="bold"))
+    for heading, lines in views:
+        table = rich_table.Table(
+            title=rich_text.Text(heading), title_justify="left", show_header=False,
+            box=rich_box.SIMPLE, padding=(0, 1),
+        )  # fmt: skip
+        table.add_column("quantity", style="bold", overflow="fold", ratio=1)
+        table.add_column("value", overflow="fold", ratio=2)
+        for name, text in lines:
+            table.add_row(rich_text.Text(name), rich_text.Text(text))
+        out.print(table)
+
+
 def emit_one(
     record: dict[str, Any],
     fmt: Format,
