@@ -61,3 +61,14 @@ def check_keyword(word: Any, where: str = "--keyword") -> str:
     if not isinstance(word, str):
         raise ValidationError(where, word, "must be text")
     return check_name(where, word, max_length=100)
+
+
+def author_words(person: dict[str, Any]) -> str:
+    """An author as people read one: ``Jane Doe (ORCID 0000-0002-1825-0097, Lab A)``."""
+    name = " ".join(
+        str(person.get(k)).strip() for k in ("given_names", "family_names") if person.get(k)
+    )
+    more = [f"ORCID {person['orcid']}" if person.get("orcid") else "",
+            str(person.get("affiliation") or "").strip()]  # fmt: skip
+    said = ", ".join(m for m in more if m)
+    return f"{name} ({said})" if said else name
