@@ -11,7 +11,10 @@ a DEM deck) goes through here:
   ``os.replace`` when the caller may replace it (a rename replaces a symlink itself, never
   the file it points to);
 - on any failure (disk full, permission, an interrupted write) the temporary file is
-  removed and the error is one line naming the path and the cause.
+  removed and the error is one line naming the path and the cause;
+- the file gets the permissions any new file gets (``0o666`` less the umask: 0644 under
+  umask 022), not ``mkstemp``'s private 0600, so a colleague can open a shared report; a
+  folder likewise ``0o777`` less the umask.
 
 A folder of files (a package exported to a folder) is written into a temporary sibling
 folder and renamed into place in one step: all or nothing.
@@ -34,9 +37,19 @@ def refuse(field: str, path: Path, exc: OSError) -> ValidationError:
     return ValidationError(field, str(path), f"cannot be written ({cause}); nothing was written")
 
 
+def current_umask() -> int:
+    """The process's umask (read by setting it and putting it back at once)."""
+    mask = os.umask(0o077)
+    os.umask(mask)
+    return mask
+
+
 def _temporary(folder: Path, name: str) -> Path:
     handle, temporary = tempfile.mkstemp(prefix=f".{name}.", suffix=".part", dir=folder)
-    os.close(handle)
+    try:
+        os.fchmod(handle, 0o666 & ~current_umask())  # as open() would create it
+    finally:
+        os.close(handle)
     return Path(temporary)
 
 
@@ -100,7 +113,7 @@ def write_folder(
             target.parent.mkdir(parents=True, exist_ok=True)
             with target.open("xb") as handle:
                 handle.write(payload)
-        os.chmod(staging, 0o755)
+        os.chmod(staging, 0o777 & ~current_umask())  # as mkdir() would create it
         if folder.is_dir() and any(folder.iterdir()):
             shutil.rmtree(folder)  # replace: the caller said so
         os.rename(staging, folder)  # onto an absent or empty folder: one step

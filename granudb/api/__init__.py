@@ -96,6 +96,7 @@ FACE: dict[str, str] = {
     "display_uncertain": "presentation",
     "term": "presentation",
     "derived_terms": "presentation",
+    "fit_people_view": "presentation",
     "qualified_value": "scenario",
     "target_words": "scenario",
     "verify_table": "dem",

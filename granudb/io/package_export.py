@@ -161,6 +161,7 @@ def _descriptor(
         "granudb:dataset": dataset["name"],
         "granudb:content_hash": data.content_hash,
         "granudb:version": __version__,
+        **dataset_record(dataset),
         "resources": resources,
     }
     if dataset["license"]:
@@ -170,14 +171,36 @@ def _descriptor(
     return descriptor
 
 
+#: A released version and one superseded since are both releases to a receiver (which
+#: versions a database holds is its own affair).
+PACKAGE_STATUS = {"draft": "draft", "released": "released", "superseded": "released"}
+
+
+def dataset_record(dataset: dict[str, Any]) -> dict[str, Any]:
+    """The dataset's own metadata as stored, for an importer to store it again unchanged
+    (the round trip is lossless): the title and description as stored (``null`` where the
+    descriptor's ``title``/``description`` are placeholders from the name), the authors
+    and keywords as lists, the key of the dataset's own source, and its status (draft or
+    released). The descriptor's standard fields say the same for other readers."""
+    source = dataset["source"]
+    return {
+        "granudb:status": PACKAGE_STATUS[dataset["state"]],
+        "granudb:title": dataset["title"],
+        "granudb:description": dataset["description"],
+        "granudb:authors": dataset["authors"],
+        "granudb:keywords": dataset["keywords"],
+        "granudb:source": None if source is None else source["key"],
+    }
+
+
 def build_package(data: ExportData, created: str | None = None) -> dict[str, bytes]:
     """Every file of the package, by relative path.
 
-    ``created`` defaults to the dataset's creation time, so exporting the same dataset
-    twice gives the same bytes."""
+    ``created`` defaults to the dataset's creation time (in UTC, whatever the database
+    server's time zone), so exporting the same dataset twice gives the same bytes."""
     stamp = data.dataset.get("created_at")
     created = created or (
-        stamp.replace(tzinfo=stamp.tzinfo or UTC, microsecond=0).isoformat()
+        stamp.replace(tzinfo=stamp.tzinfo or UTC).astimezone(UTC).replace(microsecond=0).isoformat()
         if isinstance(stamp, datetime)
         else datetime.now(UTC).replace(microsecond=0).isoformat()
     )
@@ -212,12 +235,15 @@ def build_package(data: ExportData, created: str | None = None) -> dict[str, byt
 
 
 def _zip_bytes(files: dict[str, bytes]) -> bytes:
-    """The package as one zip archive (fixed timestamps: the same files, the same bytes)."""
+    """The package as one zip archive (fixed timestamps and modes: the same files, the same
+    bytes). Each entry is a regular file readable by all (``-rw-r--r--``), so the files a
+    colleague unpacks are not private to whoever unpacks them."""
     buffer = io.BytesIO()
     with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
         for path in sorted(files):
             info = zipfile.ZipInfo(path, date_time=(2000, 1, 1, 0, 0, 0))
             info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = (0o100644 & 0xFFFF) << 16
             archive.writestr(info, files[path])
     return buffer.getvalue()
 

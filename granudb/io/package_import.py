@@ -29,6 +29,7 @@ from typing import Any
 from granudb.db.package_store import HashMismatch, MergeConflict, PackageContent, store_package
 from granudb.errors import ValidationError
 from granudb.io.collision_file import MAX_RESTITUTION, MAX_SPEED_M_S, SPEEDS
+from granudb.io.package_dataset import dataset_record
 from granudb.io.package_files import (
     MAX_RESOURCE_BYTES,
     PackageError,
@@ -535,6 +536,8 @@ def validate_root(root: Path, *, keep_collisions: bool = True) -> Validated:
         tables["fluid_points"] = pd.DataFrame({c: [] for c in columns("fluid_points")})
         counts["fluid_points"] = 0
     _check_metadata(descriptor, problems)
+    keys = set(tables["sources"]["key"].dropna()) if "sources" in tables else set()
+    dataset_record(descriptor, keys, problems)
     return Validated(descriptor, tables, problems, counts, files)
 
 
@@ -559,16 +562,21 @@ def _content(validated: Validated, as_name: str | None) -> Any:
     doi = None
     if isinstance(package_id, str) and package_id.startswith("https://doi.org/"):
         doi = package_id.removeprefix("https://doi.org/")[:200]
-    text = {k: v if isinstance(v, str) else None for k, v in descriptor.items()}
+    record = dataset_record(descriptor, set(validated.tables["sources"]["key"].dropna()), [])
     return PackageContent(
         dataset=name,
         version=str(descriptor.get("version") or "1.0.0"),
         package=str(descriptor.get("name") or name),
-        title=text.get("title"),
-        description=text.get("description"),
+        title=record.title,
+        description=record.description,
         license=_license(descriptor),
         doi=doi,
         tables=validated.tables,
+        authors=record.authors,
+        keywords=record.keywords,
+        source=record.source,
+        status=record.status,
+        created=record.created,
     )
 
 
