@@ -125,16 +125,23 @@ def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, A
     rows = []
     if state is not None:
         rows += [
-            _row("Viscosity used", display(state.viscosity_pa_s, "viscosity_pa_s"), state.basis),
+            _row(
+                "Viscosity used",
+                display(state.viscosity_pa_s, "viscosity_pa_s"),
+                state.basis,
+                "viscosity_pa_s",
+            ),
             _row(
                 "Density used",
                 display(state.density_kg_m3, "density_kg_m3"),
                 record.get("density_source") or source,
+                "density_kg_m3",
             ),
             _row(
                 "Temperature",
                 display(state.temperature_c, "temperature_c"),
                 "given" if state.basis.startswith("interpolated") else "reference",
+                "temperature_c",
             ),
         ]
     else:
@@ -143,11 +150,13 @@ def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, A
                 "Density",
                 display(record.get("reference_density_kg_m3"), "density_kg_m3"),
                 record.get("density_source") or source,
+                "reference_density_kg_m3",
             ),
             _row(
                 "Reference temperature",
                 display(record.get("reference_temperature_c"), "temperature_c"),
                 source,
+                "reference_temperature_c",
             ),
         ]
     rows += [
@@ -155,16 +164,19 @@ def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, A
             "Reference viscosity",
             display(record["reference_viscosity_pa_s"], "viscosity_pa_s"),
             source,
+            "reference_viscosity_pa_s",
         ),
         _row(
             "Pressure–viscosity coefficient C",
             display(record.get("pressure_viscosity_pa_inv"), "pressure_viscosity_pa_inv"),
             record.get("pressure_viscosity_source") or "—",
+            "pressure_viscosity_pa_inv",
         ),
         _row(
             "Glycerol mass fraction",
             display(record.get("glycerol_mass_fraction"), "glycerol_mass_fraction"),
             source,
+            "glycerol_mass_fraction",
         ),
     ]
     return {"heading": f"Fluid: {record['name']}", "rows": rows + _conditions(record, source)}
