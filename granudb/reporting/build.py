@@ -288,10 +288,9 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     report["tables"].append(
         tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )
-    restitution = fits.restitution(frame, "threshold")
+    restitution = fits.restitution(frame, report=True)  # the form and why: its record
     if restitution:
-        formula, source = fits.RESTITUTION_MODELS["threshold"]
-        report["tables"].append(tables.restitution_table(restitution, formula, source))
+        report["tables"].append(tables.restitution_table(restitution))
     models = {f.name: fluid_model(f) for f in catalog_rows.fluid_rows(connection)}
     gap = fits.gap_viscosity(frame, models)
     if gap:
