@@ -145,19 +145,21 @@ def bootstrap_note(fits: list[dict[str, Any]]) -> str:
     made = sorted(
         {(f.get("confidence_level") or CONFIDENCE_LEVEL, interval_method(f),
           f.get("bootstrap_resamples"), f.get("bootstrap_seed"))
-         for f in fits if f.get("bootstrap_resamples")}
+         for f in fits if f.get("bootstrap_resamples") and f.get("fit_method") != "bayes"}
     )  # fmt: skip
-    if not made:
-        return ""
-    words = "; ".join(
+    words = [
         f"{level:.0%} intervals, {method}, {resamples} resamples, seed {seed}"
         for level, method, resamples, seed in made
-    )
+    ]
+    # a posterior's interval says its own level and sampler (its record's interval_method)
+    words += sorted({interval_method(f) for f in fits if f.get("fit_method") == "bayes"})
+    if not words:
+        return ""
     rules = sorted(
         {f["bootstrap_rule"] for f in fits if f.get("bootstrap_rule") not in (None, "as asked")}
     )
     ruled = any(resamples_said(f) for f in fits)
-    return f"Intervals in brackets: {words}." + (
+    return f"Intervals in brackets: {'; '.join(words)}." + (
         f" Resamples per group: {'; '.join(rules)}." if ruled and rules else ""
     )
 
