@@ -14,7 +14,6 @@ from typing import Any
 from granudb.analysis import fits
 from granudb.analysis.collisions import select_collisions
 from granudb.analysis.fluid_state import fluid_model
-from granudb.analysis.restitution_fit import DEFAULT_MODEL
 from granudb.api import inputs
 from granudb.api.collision_listing import collision_query
 from granudb.api.database import opened
@@ -117,7 +116,7 @@ def fit_restitution(
     >>> granudb.fit_restitution(db=db, method="bayes").empty
     True
     """
-    chosen = DEFAULT_MODEL if model is None else inputs.choice(model, RESTITUTION_MODELS, "model")
+    chosen = None if model is None else inputs.choice(model, RESTITUTION_MODELS, "model")
     how = _method(method, draws)
     return _fit(
         db,
