@@ -169,7 +169,11 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         + ". Needs atom_style sphere and comm_modify vel yes. Include this file after the "
         "atoms exist (after create_atoms or read_data), never straight after create_box: "
         "its groups are made by type, and a LAMMPS group holds only the atoms that exist "
-        "when it is made, so the wall fixes would act on nothing."
+        "when it is made, so the wall fixes would act on nothing. The fragment writes "
+        "pair_style granular and every pair_coeff and wall/gran fix itself, with the options "
+        "the values depend on (hertz k_n, tangential mindlin k_t, damping tsuji, "
+        "limit_damping): do not redefine pair_style or pair_coeff after it. "
+        + deck.time_step_sentence(model)
     )
     out += ["", "pair_style granular"]
     particles = model.particles
