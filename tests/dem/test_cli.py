@@ -179,7 +179,10 @@ def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
                               db=db)  # fmt: skip
     comments = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
     assert "predicted: lubricated μ_f (5.8)" not in comments
-    said = "coefficientFriction = 0.15 (the immersed friction 0.15, measured for glass on Zerodur"
+    said = (
+        "coefficientFriction = 0.15 (the immersed friction 0.15 granudb pair uses, measured for "
+        "glass on Zerodur"
+    )
     assert said in comments and "no sliding speed" in comments
     pair = granudb.pair("glass", "Zerodur", fluid="glycerol-78", diameter="12.7 mm",
                         velocity="0.3 m/s", db=db)  # fmt: skip
@@ -188,9 +191,9 @@ def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
 
 @pytest.mark.parametrize(
     ("fluid", "said"),
-    [(None, "rebounds with beta = 0.34 (joseph-hunt-2004 §3, figure 4: β = 0.34 ± 0.07; "
+    [(None, "rebounds with beta = 0.34 (measured: joseph-hunt-2004 §3, figure 4: β = 0.34 ± 0.07; "
             "± 2u (k = 2, about 95 %), u = 0.07 (the source's ±): 0.2–0.48)"),
-     ("glycerol-37", "rebounds with beta = 0.6 (joseph-hunt-2004 §4, figure 10: β ≈ 0.6)"),
+     ("glycerol-37", "rebounds with beta = 0.6 (measured: joseph-hunt-2004 §4, figure 10: β ≈ 0.6)"),
      ("glycerol-78", "no measured beta for this pair")],
 )  # fmt: skip
 def test_the_published_beta_of_the_pair_and_fluid_is_exported(db: str, fluid, said) -> None:
