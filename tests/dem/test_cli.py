@@ -193,7 +193,8 @@ def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
     ("fluid", "said"),
     [(None, "rebounds with beta = 0.34 (measured: joseph-hunt-2004 §3, figure 4: β = 0.34 ± 0.07; "
             "± 2u (k = 2, about 95 %), u = 0.07 (the source's ±): 0.2–0.48)"),
-     ("glycerol-37", "rebounds with beta = 0.6 (measured: joseph-hunt-2004 §4, figure 10: β ≈ 0.6)"),
+     ("glycerol-37",
+      "rebounds with beta = 0.6 (measured: joseph-hunt-2004 §4, figure 10: β ≈ 0.6)"),
      ("glycerol-78", "no measured beta for this pair")],
 )  # fmt: skip
 def test_the_published_beta_of_the_pair_and_fluid_is_exported(db: str, fluid, said) -> None:
