@@ -58,8 +58,15 @@ def _materials(db: str) -> None:
 
 def _sets(db: str, **options: object) -> dict[str, object]:
     return {
-        s: dem_model(["rdball"], ["rdplate"], values="predicted", parameter_set=s, db=db,
-                     **SCENARIO, **options).pair("rdball", "rdplate_wall")  # fmt: skip
+        s: dem_model(
+            ["rdball"],
+            ["rdplate"],
+            values="predicted",
+            parameter_set=s,
+            db=db,
+            **SCENARIO,
+            **options,
+        ).pair("rdball", "rdplate_wall")  # fmt: skip
         for s in ("central", "low", "high")
     }
 
