@@ -92,8 +92,8 @@ def tangential_stiffness(model: DemModel, pair: PairParameters) -> tuple[float, 
     k_t = ratio * scales.hertz_stiffness
     return k_t, (
         f"k_t = {ratio:.4f} k_n = {deck.num(k_t)} Pa ({k_t / mindlin:.3f} of Mindlin's 8 G*): a "
-        f"contact that never slides rebounds with beta = {deck.describe(beta)}, so Psi_out "
-        "follows Walton's relation with beta and mu_f (granudb.dem.damping)"
+        f"contact that never slides rebounds with beta = {deck.describe(beta)} "
+        "(granudb.dem.damping)"
     )
 
 
@@ -102,9 +102,11 @@ def tangential_stiffness(model: DemModel, pair: PairParameters) -> tuple[float, 
 FRICTION_LAW = deck.FrictionLaw("tangential mindlin", incremental=False, correct_above=1e-3)
 
 
-def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
-    """The granular model arguments of one pair and the comment lines explaining them; the
-    μ_f written is ``deck.friction_input`` with LAMMPS's damping α(e_in) and this k_t."""
+def _inputs(
+    model: DemModel, pair: PairParameters, clamp: bool
+) -> tuple[deck.Limited, float, str, float, str | None]:
+    """(tsuji input, k_t and its note, μ_f input and its note) of one pair: the μ_f written
+    is ``deck.friction_input`` with LAMMPS's damping α(e_in) and this k_t."""
     scales = model.contact(pair)
     e_in = tsuji_input(pair, clamp)
     k_t, k_t_note = tangential_stiffness(model, pair)
@@ -117,6 +119,34 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
         k_t / scales.hertz_stiffness,
         clamp,
     )
+    return e_in, k_t, k_t_note, mu_in, mu_note
+
+
+def rebound_range(
+    model: DemModel, pair: PairParameters, clamp: bool = False
+) -> deck.ReboundRange | None:
+    """The impact angles over which this deck's Ψ_out follows Walton's relation with the
+    pair's β (``deck.rebound_range`` on the written inputs); None without β."""
+    e_in, k_t, _, mu_in, _ = _inputs(model, pair, clamp)
+    ratio = k_t / model.contact(pair).hertz_stiffness
+    return deck.rebound_range(pair, damping.tsuji_alpha(e_in.value), ratio, mu_in, False)
+
+
+def stated_rebound(
+    model: DemModel, pair: PairParameters, angle_deg: float, clamp: bool = False
+) -> float:
+    """Ψ_out this deck's contact gives at ``angle_deg`` (``deck.contact_rebound`` on the
+    written inputs), where its ``rebound_range`` says Walton's relation does not hold."""
+    e_in, k_t, _, mu_in, _ = _inputs(model, pair, clamp)
+    ratio = k_t / model.contact(pair).hertz_stiffness
+    c = damping.tsuji_alpha(e_in.value)
+    return deck.contact_rebound(pair, c, ratio, mu_in, False, angle_deg)
+
+
+def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
+    """The granular model arguments of one pair and the comment lines explaining them."""
+    scales = model.contact(pair)
+    e_in, k_t, k_t_note, mu_in, mu_note = _inputs(model, pair, clamp)
     args = (
         f"hertz {deck.num(scales.hertz_stiffness)} {deck.num(e_in.value)} "
         f"tangential mindlin {deck.num(k_t)} 0.0 "
@@ -130,6 +160,11 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
         f"  k_n = 4/3 E* = {deck.num(scales.hertz_stiffness)} Pa (E* = "
         f"{deck.num(scales.reduced_modulus_pa)} Pa, granudb docs/physics.md section 13)",
         f"  {k_t_note}",
+        *(
+            [f"  {found.sentence(pair)}"]
+            if (found := rebound_range(model, pair, clamp)) is not None
+            else []
+        ),
         f"  tsuji input {deck.num(e_in.value)} so that LAMMPS's alpha(e) gives e = "
         f"{deck.num(pair.restitution.value)} on this Hertz contact with limit_damping "
         "(granudb.dem.damping); no tangential damping (x_gamma,t = 0)",

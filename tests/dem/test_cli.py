@@ -120,10 +120,14 @@ def test_verify_runs_the_real_code(cli, db: str) -> None:
     lines = [line for line in out.stdout.splitlines() if line.startswith(CODES)]
     assert lines and all(line.startswith("liggghts") for line in lines)
     assert all("not checked" not in line for line in lines)
-    # the issue's matrix: normal at 0.1, 0.3, 0.5 m/s, oblique at 30 and 60 degrees
+    # the issue's matrix: normal at 0.1, 0.3, 0.5 m/s, oblique at 30 and 60 degrees, and
+    # (issue 33) mid sticking branch for a pair with a measured beta
     kinds = {(line.split()[2], line.split()[3], line.split()[4]) for line in lines}
-    assert {("normal", v, "0") for v in ("0.10", "0.30", "0.50")} <= kinds
-    assert {("oblique", "0.30", "30"), ("oblique", "0.30", "60")} <= kinds
+    assert {("normal", v, "0.0") for v in ("0.10", "0.30", "0.50")} <= kinds
+    assert {("oblique", "0.30", a) for a in ("30.0", "60.0", "15.8")} <= kinds
+    # only judged quantities, each with its tolerance and verdict
+    assert {line.split()[5] for line in lines} == {"e", "mu_f", "Psi_out"}
+    assert all(line.split()[9].startswith("±") for line in lines)
 
 
 @pytest.mark.dem_run
@@ -145,7 +149,8 @@ def test_verify_for_scripts_is_json_with_the_verdict(cli, db: str) -> None:
     # steel on Zerodur has a measured beta that LIGGGHTS cannot set: a limit its deck states
     assert checked and {r["verdict"] for r in checked} == {"pass", "stated limit"}
     limited = [r for r in checked if r["verdict"] == "stated limit"]
-    assert [(r["kind"], r["angle_deg"]) for r in limited] == [("oblique", 30.0)]
+    # at 30° and mid sticking branch (15.8°), where dem verify now also checks beta
+    assert [(r["kind"], r["angle_deg"]) for r in limited] == [("oblique", 30.0), ("oblique", 15.8)]
 
 
 @pytest.mark.dem_run
@@ -165,7 +170,9 @@ def test_glycerol_78_verifies_and_a_wrong_deck_exits_non_zero(cli, db: str, monk
     monkeypatch.setitem(dem_verify.WRITERS, "liggghts", type("Wrong", (), {"write": wrong}))
     out = cli(*args, db=db)
     assert out.exit_code == 1
-    assert "FAIL (e " in out.stdout and out.stdout.splitlines()[-1].startswith("FAIL:")
+    failed = [line.split() for line in out.stdout.splitlines() if line.endswith("FAIL")]
+    assert failed and all(row[5] == "e" and row[9] == "±1%" for row in failed)
+    assert out.stdout.splitlines()[-1].startswith("FAIL:")
 
 
 def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
