@@ -2,15 +2,22 @@
 real codes are checked to reproduce (``granudb dem export|verify``).
 
 A simulation has one fluid (or none), particle types and walls. For each particle/wall
-pair the restitution and friction come from the source the user chooses, every number
-keeping its provenance as a comment in the exported fragment:
+pair e_dry and μ_f are the ones ``granudb pair`` uses for the same pair, fluid and speed
+(one record: ``derive_pair`` and its ``dry_values``), labelled as ``pair`` labels them
+(measured for the pair, from the materials' own values, borrowed, or the lubricated (5.8));
+an immersed e is the prediction ``pair`` makes, e = e_dry exp(−35/St_am) (Legendre et al.
+2006). A published value of the pair that this record does not use is named in the
+comment with the reason. ``values`` chooses what else comes in:
 
-- ``values="published"``: the paper's fits (ē_dry, dry μ_f, immersed μ_f) where the
-  database holds one for the pair, otherwise the prediction, said so;
-- ``values="dataset"``: a dataset's Walton fit (μ_f with its interval) and its runs' mean
-  e, otherwise the prediction, said so;
-- ``values="predicted"``: e = e_dry exp(−35/St) (Legendre et al. 2006) and Maw's μ_f of
-  the pair derivation (the dry 0.11, or the lubricated (5.8) where a film is expected).
+- ``values="published"`` (default): Walton's β of the pair and fluid where one is
+  published (``pair`` has none);
+- ``values="dataset"``: a dataset's Walton fit (μ_f and β with their intervals) and its
+  runs' mean e, in place of ``pair``'s values, said so;
+- ``values="predicted"``: ``pair``'s values only, no β.
+
+Each value's interval (for ``parameter_set`` low / high) is the source's ± of that very
+value, else the materials' stored u, else the u ``pair`` propagates from the stated inputs,
+and the comment says which.
 
 Particle–particle pairs have no measurement in the paper: they take the particle's values
 on the first wall, and the comment says so.
@@ -46,7 +53,7 @@ from granudb.dem import (
     yade,
 )
 from granudb.dem.spec import COVERAGE_FACTOR, identifier
-from granudb.dem.verify import TOLERANCES, Record, passed, summary, table, verify
+from granudb.dem.verify import TOLERANCES, Record, judged, passed, summary, table, verify
 from granudb.errors import ValidationError
 from granudb.output_files import write_text
 from granudb.reporting.pinned import announce_pinned
@@ -504,11 +511,13 @@ def dem_verify(
     **options: Any,
 ) -> list[Record]:
     """Run the exported parameters in every installed code (LIGGGHTS, LAMMPS, Yade) on
-    normal wall impacts at 0.1, 0.3 and 0.5 m/s, oblique ones at 30° and 60° and head-on
-    sphere pairs; one record per run, with its verdict against ``VERIFY_TOLERANCES`` (e
-    within 1 %; μ_f within 3 % on the sliding branch; Ψ_out within 10 % of Walton's
-    relation where β is measured, or a "stated limit" the deck explains), and "not
-    checked" (never "pass") for a code that is not installed; ``codes`` chooses some.
+    normal wall impacts at 0.1, 0.3 and 0.5 m/s, oblique ones at 30° and 60° (and, for a
+    pair with a measured β, mid-way along Walton's sticking branch) and head-on sphere
+    pairs; one record per run, with its verdict against ``VERIFY_TOLERANCES`` (e within
+    1 %; μ_f within 3 % on the sliding branch; Ψ_out within 10 % of Walton's relation
+    where β is measured, or a "stated limit" the deck explains, in which case the Ψ_out
+    the deck states instead is judged), and "not checked" (never "pass") for a code that
+    is not installed; ``codes`` chooses some.
     The options are ``dem_export``'s (a low or high ``parameter_set`` is verified as
     written); ``verify_table(records)`` prints them,
     ``verify_passed(records)`` is the overall verdict (the command's exit status).
@@ -539,12 +548,13 @@ def verify_passed(records: list[Record]) -> bool:
 
 def verify_document(records: list[Record]) -> dict[str, Any]:
     """The verification for scripts: the verdict, the summary, the tolerances and every
-    record as a dict."""
+    record as a dict, with ``judged``: the quantities its verdict rests on (quantity,
+    target, achieved, error, tolerance, verdict), as the table prints them."""
     return {
         "passed": passed(records),
         "summary": summary(records),
         "tolerances": dict(VERIFY_TOLERANCES),
-        "records": [asdict(r) for r in records],
+        "records": [{**asdict(r), "judged": [asdict(j) for j in judged(r)]} for r in records],
     }
 
 
