@@ -38,6 +38,14 @@ CODE = "LAMMPS"
 VERSION = "29 Sep 2021 - Update 2, Debian package lammps 20220106"
 
 
+#: The check of the stated time step: LAMMPS halts naming this fix when dt is above it.
+TIME_STEP_VARIABLE = "granudb_time_step_ok"
+TIME_STEP_FIX = "granudb_time_step_above_the_decks_bound"
+
+#: The communication setting granular pairs need, written by the fragment itself.
+COMM = "comm_modify vel yes"
+
+
 def type_number(model: DemModel, name: str) -> int:
     """LAMMPS atom type of a particle type: particles only, in model order (walls excluded)."""
     return [t.name for t in model.particles].index(name) + 1
@@ -201,7 +209,8 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
     out += deck.comment(
         "LAMMPS atom types are the particle types only: "
         + ", ".join(f"{type_number(model, t.name)} = {t.name}" for t in model.particles)
-        + ". Needs atom_style sphere and comm_modify vel yes. Include this file after the "
+        + ". Needs atom_style sphere (the fragment sets comm_modify vel yes). Include this file "
+        "after the "
         "atoms exist (after create_atoms or read_data), never straight after create_box: "
         "its groups are made by type, and a LAMMPS group holds only the atoms that exist "
         "when it is made, so the wall fixes would act on nothing. The fragment writes "
@@ -210,6 +219,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         "limit_damping): do not redefine pair_style or pair_coeff after it. "
         + deck.time_step_sentence(model)
     )
+    out += ["", *deck.comment("granular pairs need the ghost atoms' velocities:"), COMM]
     out += ["", "pair_style granular"]
     particles = model.particles
     for i, a in enumerate(particles):
@@ -237,4 +247,12 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
                 f"fix granudb_{wall.name}_{t.name} {group_name(t)} wall/gran granular {args} "
                 f"${{{wall_variable(wall)}}}"
             )
+    dt, _, _ = deck.time_step_bound(model)
+    out += [""] + deck.comment(
+        f"The time step bound stated above: LAMMPS stops (fix halt) when dt > {deck.num(dt)} s."
+    )
+    out += [
+        f'variable {TIME_STEP_VARIABLE} equal "dt <= {deck.num(dt)}"',
+        f"fix {TIME_STEP_FIX} all halt 10 v_{TIME_STEP_VARIABLE} == 0 error hard message yes",
+    ]
     return "\n".join(out) + "\n"

@@ -56,6 +56,10 @@ def pair_style(model: DemModel) -> str:
 #: ``pair_style gran``, after the wall's geometry in ``fix wall/gran``.
 SETTINGS = "tangential_damping off limitForce on"
 
+#: The communication setting granular pairs need (ghost atoms' velocities), written by the
+#: fragment itself.
+COMM = "communicate single vel yes"
+
 #: ``tangential history``: a total spring F_t = −8 G* a u, u cut back at the Coulomb cap
 #: μ_f |F_n| (src/tangential_model_history.h); corrected where the loss exceeds 0.1 %.
 FRICTION_LAW = deck.FrictionLaw("tangential history", incremental=False, correct_above=1e-3)
@@ -135,7 +139,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         f"The contact model these values are for: {SETTINGS} (module docstring of "
         "granudb.dem.liggghts); do not redefine pair_style after this file."
     )
-    out += [f"pair_style gran {pair_style(model)} {SETTINGS}", "pair_coeff * *"]
+    out += [COMM, f"pair_style gran {pair_style(model)} {SETTINGS}", "pair_coeff * *"]
     for wall in model.walls:
         out += deck.comment(
             f"wall {wall.name} (type {model.index(wall.name)}): set its geometry before "
@@ -159,8 +163,8 @@ def host_settings(model: DemModel) -> str:
     ``limitForce on`` and ``tangential_damping off``, which the values depend on."""
     walls = ", ".join(f"{wall_variable(w)}" for w in model.walls)
     return (
-        "Include after create_box (units si, atom_style granular, communicate single vel "
-        "yes) and before the run. This fragment writes the pair style, pair_coeff * * and "
+        "Include after create_box (units si, atom_style granular) and before the run. This "
+        f"fragment writes {COMM}, the pair style, pair_coeff * * and "
         f"the wall fixes itself with the settings the values depend on ({SETTINGS}): without "
         "limitForce on the coefficientRestitution written gives a lower e, without "
         "tangential_damping off a higher friction. Do not write another pair_style or "

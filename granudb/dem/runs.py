@@ -152,15 +152,12 @@ def lammps_input(model: DemModel, fragment: str, case: Case) -> str:
         lines.append(f"create_atoms {types[which]} single 0 0 {z!r} units box")
         lines.append(f"set atom {k} diameter {t.diameter_m!r} density {t.density_kg_m3!r}")
     lines.append(fragment)
-    if target.is_wall:  # keep only the wall fix of this pair
-        keep = f"fix granudb_{target.name}_{case.particle} "
-        lines = [
-            ln
-            for ln in "\n".join(lines).splitlines()
-            if not ln.startswith("fix granudb_") or ln.startswith(keep)
-        ]
-    else:
-        lines = [ln for ln in "\n".join(lines).splitlines() if not ln.startswith("fix granudb_")]
+    keep = f"fix granudb_{target.name}_{case.particle} "  # only this pair's wall fix, if any
+    lines = [
+        ln
+        for ln in "\n".join(lines).splitlines()
+        if " wall/gran " not in ln or (target.is_wall and ln.startswith(keep))
+    ]
     if target.is_wall:
         lines.append(f"velocity all set {case.v_tangential!r} 0 {-case.v_normal!r} units box")
     else:  # only sphere 1 moves

@@ -103,7 +103,6 @@ atom_style granular
 atom_modify map array
 boundary f f f
 newton off
-communicate single vel yes
 region box block -0.1 0.1 -0.1 0.1 -0.1 0.1 units box
 create_box 3 box
 neighbor 0.001 bin
@@ -122,7 +121,6 @@ LAMMPS_HOST = """units si
 atom_style sphere
 atom_modify map array
 boundary f f f
-comm_modify vel yes
 region box block -0.1 0.1 -0.1 0.1 -0.1 0.1 units box
 create_box 2 box
 create_atoms 1 single 0 0 0.00640 units box
@@ -162,3 +160,9 @@ def test_a_host_without_the_contact_options_gets_the_target(
     (tmp_path / "in.host").write_text(script)
     output = _run([binary, "-in", "in.host", "-log", "none", "-echo", "none"], tmp_path)
     assert _rebound(output) == pytest.approx(TARGET, rel=0.01)
+    if code == "lammps":  # a step above the stated bound stops the run, naming the check
+        script = host.format(speed=SPEED, dt=2 * dt, steps=_steps(dt))
+        (tmp_path / "in.host").write_text(script)
+        output = _run([binary, "-in", "in.host", "-log", "none", "-echo", "none"], tmp_path)
+        assert f"fix-id {lammps.TIME_STEP_FIX} met" in output, output[-2000:]
+        assert not re.search(r"^E ", output, re.MULTILINE)
