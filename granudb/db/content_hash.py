@@ -105,3 +105,24 @@ def update_content_hash(session: Session, dataset: Dataset) -> str:
     dataset.content_hash = content_hash(session, dataset)
     session.flush()
     return dataset.content_hash
+
+
+def rehash_drafts_naming(session: Session, kind: str, entry_id: int) -> list[str]:
+    """Hash again every draft whose runs name the material or fluid ``entry_id`` (``kind``
+    "material" or "fluid"), after its name changed: a draft's hash is over the names it
+    reads today, so ``dataset show`` and its export agree. A released version keeps the
+    name it was released with (``keep_for_releases``) and its hash. Returns the drafts'
+    labels (NAME@VERSION)."""
+    if kind == "material":
+        naming = (Collision.particle_id == entry_id) | (Collision.wall_id == entry_id)
+    else:
+        naming = Collision.fluid_id == entry_id
+    drafts = session.scalars(
+        select(Dataset)
+        .where(Dataset.state == "draft")
+        .where(Dataset.id.in_(select(Collision.dataset_id).where(naming)))
+        .order_by(Dataset.id)
+    ).all()
+    for dataset in drafts:
+        update_content_hash(session, dataset)
+    return [f"{d.name}@{d.version}" for d in drafts]
