@@ -299,8 +299,13 @@ def _wet_restitution(
 def _dataset_values(
     session: Any, dataset: str, particle: str, wall: str, fluid: Any, friction: Any, dry: Any
 ) -> tuple[Any, Any, Any]:
+    name, version = inputs.dataset_ref(dataset)  # NAME@VERSION: that version's runs
     query = CollisionQuery(
-        dataset=dataset, particle=particle, wall=wall, fluid=fluid.name if fluid else "dry"
+        dataset=name,
+        version=version,
+        particle=particle,
+        wall=wall,
+        fluid=fluid.name if fluid else "dry",
     )
     beta = None
     for fit in fits.walton(select_collisions(session, query)):

@@ -20,6 +20,7 @@ from sqlalchemy.orm import Session
 
 from granudb.db import catalog_rows
 from granudb.db.catalog_revisions import keep_for_releases, revisions
+from granudb.db.content_hash import rehash_drafts_naming
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, PublishedValue
 from granudb.db.upsert import Change
 from granudb.errors import ConflictError, ValidationError
@@ -123,6 +124,8 @@ def update_entry(
         row.source_id = source_id
     if new_name is not None and new_name != row.name:
         row.name, row.name_key = new_name, name_key(new_name)
+        session.flush()
+        rehash_drafts_naming(session, catalogue.kind, row.id)  # their runs read the new name
     session.flush()
     return Change("updated" if diffs else "unchanged", label, diffs)
 
