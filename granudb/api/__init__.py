@@ -95,6 +95,7 @@ FACE: dict[str, str] = {
     "display": "presentation",
     "display_uncertain": "presentation",
     "term": "presentation",
+    "spreadsheet_cell": "presentation",
     "derived_terms": "presentation",
     "qualified_value": "scenario",
     "target_words": "scenario",
