@@ -95,6 +95,7 @@ FACE: dict[str, str] = {
     "display": "presentation",
     "display_uncertain": "presentation",
     "term": "presentation",
+    "spreadsheet_cell": "presentation",
     "derived_terms": "presentation",
     "fit_people_view": "presentation",
     "qualified_value": "scenario",

@@ -137,10 +137,6 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
             {**_values(s), **catalog_rows.source_record(as_released[s.key])} for s in sources
         ],  # fmt: skip
     }
-<<<<<<< HEAD
     # the dataset's own source, cited as every other file of the package cites it
     own = next((s for s in tables["sources"] if s["id"] == dataset.source_id), None)
-    return ExportData(dataset_metadata(dataset, own), content_hash(session, dataset), tables)
-=======
-    return ExportData(dataset_metadata(dataset), export_hash(session, dataset), tables)
->>>>>>> hostile-b
+    return ExportData(dataset_metadata(dataset, own), export_hash(session, dataset), tables)

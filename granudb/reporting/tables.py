@@ -20,6 +20,7 @@ from granudb.lazy import pyarrow, pyarrow_csv
 from granudb.reporting.format import display, interval, is_number, plus_minus
 from granudb.reporting.groups import fluid_name, fluid_names, group_label
 from granudb.vocabulary import DERIVED_TERMS, TERMS
+from granudb.vocabulary.escaping import spreadsheet_frame
 from granudb.vocabulary.listings import REPORT_RUN_COLUMNS
 
 WALTON_PUBLISHED = ("rotational_restitution", "sliding_friction", "normal_restitution_mean")
@@ -359,8 +360,10 @@ def runs_csv(runs: Any) -> bytes:
     """The CSV of every run beside a report: machine names and SI values as stored (the
     shortest text that reads back as the same float, as every CSV granudb writes), text
     quoted, empty where there is no value. Written by Arrow's CSV writer: pandas' took
-    longer than the whole report's bound for 100,000 runs."""
-    table = pyarrow.Table.from_pandas(runs, preserve_index=False)
+    longer than the whole report's bound for 100,000 runs. A file for people's
+    spreadsheets: a text cell that would run as a formula is prefixed with ``'``
+    (``granudb.vocabulary.escaping.spreadsheet_frame``)."""
+    table = pyarrow.Table.from_pandas(spreadsheet_frame(runs), preserve_index=False)
     out = pyarrow.BufferOutputStream()
     pyarrow_csv.write_csv(table, out, pyarrow_csv.WriteOptions(quoting_style="needed"))
     return out.getvalue().to_pybytes()  # UTF-8
