@@ -340,7 +340,8 @@ def _fitted(fit: dict, name: str, what: str, dataset: str, value: Any = None) ->
     if low is not None and high is not None and high - low > 1e-9 * abs(central):
         low, high = max(float(low), bounds[0]), min(float(high), bounds[1])
         if low <= central <= high:
-            return Value(central, said, low, high, "95 % studentized bootstrap interval")
+            method = fit.get(f"{name}_interval_method") or "studentized bootstrap"
+            return Value(central, said, low, high, f"95 % interval: {method}")
     symbol = {"sliding_friction": "μ_f", "rotational_restitution": "β"}.get(name, "ē")
     why = [p for p in str(fit.get("reason") or "").split("; ") if f"of {symbol}" in p]
     return Value(
