@@ -245,6 +245,8 @@ def check_page(page: Path, update: bool = False) -> Result:
                         continue
                     if not line.startswith("granudb "):
                         continue
+                    if line.startswith("granudb dem verify") and not shutil.which("liggghts"):
+                        continue  # needs the DEM codes; their own tests say when one is missing
                     result.commands += 1
                     code, output = session.run(line)
                     if code != 0:
