@@ -95,8 +95,12 @@ def tex(formula: str) -> str:
     s = re.sub(r"([₀-₉]+)", lambda m: "_{" + m.group(1).translate(SUB) + "}", s)
     s = re.sub(
         r"\*?([²³⁴⁵⁻¹ᵀ]+)",
-        lambda m: "^{" + ("*" if m.group(0).startswith("*") else "")
-        + "".join(SUP[c] for c in m.group(1)) + "}",
+        lambda m: (
+            "^{"
+            + ("*" if m.group(0).startswith("*") else "")
+            + "".join(SUP[c] for c in m.group(1))
+            + "}"
+        ),
         s,
     )
     s = re.sub(r"(\w)\*\^\{", r"{\1^*}^{", s)
