@@ -90,3 +90,34 @@ def test_the_tour_uses_every_command_group() -> None:
     for name in root.list_commands(click.Context(root)):
         if name != "datasette-metadata":  # its own guide: guide/datasette.md
             assert f"granudb {name} " in tour, name
+
+
+def test_every_public_function_has_parameters_on_the_api_page() -> None:
+    """numpydoc Parameters for every public function: its own, or written from its
+    command's option help (docs/generated_docstrings.py), naming every parameter."""
+    import importlib
+    import inspect
+
+    from granudb import api
+
+    sys.path.insert(0, str(REPO / "docs"))
+    try:
+        from generated_docstrings import documented
+    finally:
+        sys.path.remove(str(REPO / "docs"))
+    generic = []
+    for name, module in api.NAMES.items():
+        function = getattr(importlib.import_module(f"granudb.api.{module}"), name, None)
+        if not inspect.isfunction(function):
+            continue
+        parameters = inspect.signature(function).parameters
+        if not parameters:
+            continue
+        text = documented(name, function)
+        section = text.split("Parameters\n----------", 1)[1].split("\n\n", 1)[0]
+        for parameter in parameters.values():
+            shown = ("**" if parameter.kind is parameter.VAR_KEYWORD else "") + parameter.name
+            assert f"\n{shown}" in "\n" + section, (name, parameter.name)
+        if "As the command's" in section:
+            generic.append(name)
+    assert len(generic) <= 10, generic  # nearly every parameter has its own words

@@ -189,11 +189,12 @@ class Session:
             shell=True,
             cwd=self.folder,
             env={**os.environ, **self.env},
-            capture_output=True,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,  # interleaved, as a terminal shows them
             text=True,
             timeout=120,
         )
-        return completed.returncode, completed.stdout + completed.stderr
+        return completed.returncode, completed.stdout
 
     def run_python(self, source: str) -> str | None:
         """Run a Python block as a script; the error, if it raised."""
