@@ -75,6 +75,17 @@ def _options() -> dict[str, dict[str, str]]:
     return found
 
 
+def _type(parameter: inspect.Parameter) -> str:
+    """numpydoc's type text: the annotation, or what an unannotated default says."""
+    if parameter.annotation is not inspect.Parameter.empty:
+        kind = str(parameter.annotation).replace("'", "")
+    elif parameter.default is None or parameter.default is inspect.Parameter.empty:
+        kind = "str or float"  # a quantity: an SI number or a string with its unit
+    else:
+        kind = type(parameter.default).__name__
+    return kind if parameter.default is inspect.Parameter.empty else f"{kind}, optional"
+
+
 def api_parameters(name: str, function: Any) -> str:
     """The numpydoc ``Parameters`` section of public function ``name``."""
     helps = _options().get(name, {})
@@ -88,8 +99,7 @@ def api_parameters(name: str, function: Any) -> str:
             text = SHARED[parameter.name]
         if text is None:
             text = f"As the command's ``--{parameter.name.replace('_', '-')}``."
-        optional = "" if parameter.default is inspect.Parameter.empty else ", optional"
-        lines += [f"{parameter.name}{optional}", "    " + text]
+        lines += [f"{parameter.name} : {_type(parameter)}", "    " + text]
     return "\n".join(lines)
 
 
@@ -103,6 +113,33 @@ def documented(name: str, function: Any) -> str:
     return f"{head.rstrip()}\n\n{section}\n" + (f"{sep}{tail}" if sep else "")
 
 
+_KINDS = {
+    inspect.Parameter.POSITIONAL_ONLY: griffe.ParameterKind.positional_only,
+    inspect.Parameter.POSITIONAL_OR_KEYWORD: griffe.ParameterKind.positional_or_keyword,
+    inspect.Parameter.VAR_POSITIONAL: griffe.ParameterKind.var_positional,
+    inspect.Parameter.KEYWORD_ONLY: griffe.ParameterKind.keyword_only,
+    inspect.Parameter.VAR_KEYWORD: griffe.ParameterKind.var_keyword,
+}
+
+
+def _runtime_signature(func: griffe.Function, function: Any) -> None:
+    """Give the page the signature Python reports (a decorator may spell out ``**fields``
+    as the named options the function takes), so its Parameters match it."""
+    parameters = []
+    for parameter in inspect.signature(function).parameters.values():
+        annotation = parameter.annotation
+        default = parameter.default
+        parameters.append(
+            griffe.Parameter(
+                parameter.name,
+                annotation=None if annotation is inspect.Parameter.empty else str(annotation),
+                kind=_KINDS[parameter.kind],
+                default=None if default is inspect.Parameter.empty else repr(default),
+            )
+        )
+    func.parameters = griffe.Parameters(*parameters)
+
+
 class GeneratedDocstrings(griffe.Extension):
     """Replace a function's static docstring by the one granudb generates."""
 
@@ -112,7 +149,9 @@ class GeneratedDocstrings(griffe.Extension):
         if func.path.startswith("granudb.physics."):
             text = inspect.getdoc(griffe.dynamic_import(func.path))
         elif func.path.startswith("granudb.api.") and not func.name.startswith("_"):
-            text = documented(func.name, griffe.dynamic_import(func.path))
+            function = griffe.dynamic_import(func.path)
+            text = documented(func.name, function)
+            _runtime_signature(func, function)
         else:
             return
         if text and text != func.docstring.value:

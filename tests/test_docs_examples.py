@@ -117,7 +117,10 @@ def test_every_public_function_has_parameters_on_the_api_page() -> None:
         section = text.split("Parameters\n----------", 1)[1].split("\n\n", 1)[0]
         for parameter in parameters.values():
             shown = ("**" if parameter.kind is parameter.VAR_KEYWORD else "") + parameter.name
-            assert f"\n{shown}" in "\n" + section, (name, parameter.name)
+            assert f"\n{shown} : " in "\n" + section or f"\n{shown}\n" in "\n" + section, (
+                name,
+                parameter.name,
+            )
         if "As the command's" in section:
             generic.append(name)
     assert len(generic) <= 10, generic  # nearly every parameter has its own words
