@@ -1,8 +1,8 @@
 """One door: every command is the face of one public function, named after it.
 
-The command line parses, calls one function of ``granudb.api`` and prints; README's
+The command line parses, calls one function of ``granudb.api`` and prints; docs/api.md's
 table "command → function" lists them all. These tests walk the Typer app, so a command
-added without its function, its README row, or with an option the function does not
+added without its function, its row there, or with an option the function does not
 take, fails here.
 """
 
@@ -20,7 +20,7 @@ import granudb
 from granudb import api
 from granudb.cli.main import COMMANDS, load_command
 
-README = Path(__file__).resolve().parents[1] / "README.md"
+TABLE_PAGE = Path(__file__).resolve().parents[1] / "docs" / "api.md"  # the table's home
 API_DIR = Path(api.__file__).parent
 
 #: Command options that shape only the printing (or the prompt), not the result.
@@ -62,9 +62,9 @@ ALL = commands()
 
 
 def readme_table() -> dict[str, str]:
-    """README's "command → function" table: ``granudb materials add`` → ``add_material``."""
+    """The "command → function" table of docs/api.md: ``materials add`` → ``add_material``."""
     rows = {}
-    for line in README.read_text(encoding="utf-8").splitlines():
+    for line in TABLE_PAGE.read_text(encoding="utf-8").splitlines():
         match = re.match(r"^\| `granudb ([^`]+)` \| `granudb\.(\w+)\(", line)
         if match:
             rows[match.group(1)] = match.group(2)

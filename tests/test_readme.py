@@ -1,76 +1,72 @@
-"""Every command of README's "A short tour" runs as written, on a fresh database.
+"""README is short and gets a newcomer to their own data fast; its links lead somewhere.
 
-Docs that cannot drift (after sqlite-utils' habit): the tour is parsed from README.md, each
-``granudb`` line is split like a shell would and run in-process, in order, against one
-database in a temporary folder that holds a copy of ``examples/``.
+Its examples are run, their output compared, by tests/test_docs_examples.py; here: its
+length, where "import your own CSV" comes, the install commands CI runs (.ci/run installs
+"exactly as README says"), and that every function and file it names exists.
 """
 
 from __future__ import annotations
 
 import re
-import shlex
-import shutil
 from pathlib import Path
 
 import pytest
 
 REPO = Path(__file__).resolve().parent.parent
+README = (REPO / "README.md").read_text(encoding="utf-8")
 
 
-def tour_commands() -> list[list[str]]:
-    text = (REPO / "README.md").read_text(encoding="utf-8")
-    section = text.split("## A short tour", 1)[1]
-    block = re.search(r"```sh\n(.*?)```", section, re.S)
-    assert block, "README's tour has no sh block"
-    commands = []
-    for line in block.group(1).splitlines():
-        line = line.strip()
-        if not line.startswith("granudb "):
-            continue
-        words = shlex.split(line, comments=True)
-        commands.append(words[1:])
-    return commands
+def test_readme_is_at_most_200_lines() -> None:
+    assert len(README.splitlines()) <= 200
 
 
-def _takes_db(words: list[str]) -> bool:
-    from typer.main import get_command
-
-    from granudb.cli.main import app, click
-
-    command = get_command(app)
-    for word in words:
-        if not hasattr(command, "get_command"):  # a group
-            break
-        sub = command.get_command(click.Context(command), word)  # loads lazy commands too
-        if sub is None:
-            break
-        command = sub
-    return any("--db" in param.opts for param in command.params)
+def test_a_newcomer_reaches_importing_their_own_csv_within_60_lines() -> None:
+    lines = README.splitlines()
+    first = next(i for i, line in enumerate(lines) if "granudb collisions import" in line)
+    assert first < 60, first
+    assert "own CSV" in "\n".join(lines[:first])
+    assert "--columns" in lines[first]  # with its own headers
 
 
-def test_the_tour_lists_every_command_group() -> None:
-    groups = {words[0] for words in tour_commands()}
-    from typer.main import get_command
+@pytest.mark.parametrize(
+    ("command", "in_ci"),
+    [
+        (
+            "python3 -m venv .venv && . .venv/bin/activate && pip install . && "
+            "granudb materials list",
+            ["pip install --quiet .\n", "granudb materials list"],
+        ),
+        ("pip install '.[test]' && pytest", ["pip install --quiet '.[test]'", "\npytest\n"]),
+        (
+            "pip install '.[docs]' && mkdocs build --strict",
+            ["pip install --quiet '.[docs]'", "mkdocs build --strict"],
+        ),
+    ],
+)
+def test_the_commands_ci_runs_are_the_readme_s(command: str, in_ci: list[str]) -> None:
+    assert command in README
+    ci = (REPO / ".ci" / "run").read_text(encoding="utf-8")
+    for words in in_ci:
+        assert words in ci
 
-    from granudb.cli.main import app, click
 
-    root = get_command(app)
-    assert set(root.list_commands(click.Context(root))) - {"datasette-metadata"} <= groups
-
-
-def test_every_tour_command_runs(cli, db: str, tmp_path: Path, monkeypatch) -> None:
-    shutil.copytree(REPO / "examples", tmp_path / "examples")
-    monkeypatch.chdir(tmp_path)
-    for words in tour_commands():
-        if words[:2] == ["dem", "verify"] and not shutil.which("liggghts"):
-            continue  # needs a DEM code; its own tests say when one is missing
-        result = cli(*words, db=db if _takes_db(words) else None)
-        assert result.exit_code == 0, f"granudb {' '.join(words)}\n{result.stderr}"
+def test_readme_says_sudo_may_be_absent_for_root() -> None:
+    assert re.search(r"`sudo`[^.]*unless you are root", README)
 
 
-@pytest.mark.parametrize("name", ["connect", "pair", "collisions", "fit_walton", "derive"])
+def test_every_relative_link_of_readme_exists() -> None:
+    links = re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", README)
+    local = [link for link in links if not re.match(r"[a-z]+://", link)]
+    assert local
+    missing = [link for link in local if not (REPO / link).exists()]
+    assert missing == []
+
+
+@pytest.mark.parametrize(
+    "name", ["connect", "pair", "import_collisions", "collisions", "fit_walton", "report"]
+)
 def test_the_python_section_names_real_functions(name: str) -> None:
     import granudb
 
     assert callable(getattr(granudb, name))
-    assert f"granudb.{name}(" in (REPO / "README.md").read_text(encoding="utf-8")
+    assert f"granudb.{name}(" in README
