@@ -65,7 +65,7 @@ WALBERLA = {
     "commit": "17a9f647db63c0874428cb254b446005ad2d83f6",
 }
 VSSUQ = {
-    "digitiser": "William Fullmer (VSSUQ authors), per-collision measurements",
+    "digitiser": "VSSUQ experimenters (W. C. LaMarche, Hrenya Research Group); files by W. Fullmer",
     "licence": "MIT (Copyright (c) 2021 William Fullmer; LICENSE of wfullmer/vssuq, "
     "shipped as LICENSE-vssuq in this package)",
     "repository": "https://github.com/wfullmer/vssuq",
@@ -343,9 +343,10 @@ def kharaz_rows() -> tuple[list[dict], list[dict]]:
 
 # -------------------------------------------------------------------------------- VSSUQ
 VSSUQ_SOURCE = (
-    "Fullmer, W. D. et al. VSSUQ: validation, sensitivity study and uncertainty "
-    "quantification of a polydisperse fluidized bed (particle properties). "
-    "https://github.com/wfullmer/vssuq"
+    "VSSUQ repository (2021-2022): measurements of the VSSUQ, a Very Small-Scale particle "
+    "fluidization experiment designed and operated by W. C. LaMarche (Hrenya Research Group, "
+    "University of Colorado), data and documentation by W. Fullmer. "
+    "https://github.com/wfullmer/vssuq (docs/particleprops.rst)"
 )
 VSSUQ_FILES = [
     ("epp_glass-glass", "normal_restitution", "glass", "glass", "particle-particle"),
@@ -381,6 +382,32 @@ def vssuq_rows() -> list[dict]:
                     file=f"data/particle_properties/{stem}.txt",
                     notes=f"dry, {kind}; one collision",
                     **{k: v for k, v in VSSUQ.items()},
+                )
+            )
+    summary = {r["stem"]: r for r in _read_raw("vssuq/summary.csv")}
+    for stem, quantity, particle, wall, kind in VSSUQ_FILES:
+        printed = summary[stem]
+        count = len((RAW / "vssuq" / f"{stem}.txt").read_text(encoding="utf-8").split())
+        line = int(printed["line"])
+        for statistic, column in (("mean", "mean"), ("sd", "stdev")):
+            text = printed[column]
+            rows.append(
+                _row(
+                    point=f"{stem}-printed",
+                    quantity=f"{quantity}_{statistic}",
+                    value=text,
+                    u=_fmt(rounding_u(text)),
+                    u_basis="rounding of the last printed digit",
+                    role="derived",
+                    particle=particle,
+                    wall=wall,
+                    source=VSSUQ_SOURCE,
+                    locator=f"docs/particleprops.rst line {line + (column == 'stdev')}"
+                    f" ({kind} {particle}-{wall})",
+                    file="docs/particleprops.rst",
+                    notes=f"the {column} VSSUQ prints for the {count} values of "
+                    f"data/particle_properties/{stem}.txt",
+                    **VSSUQ,
                 )
             )
     return rows
@@ -461,12 +488,8 @@ def joseph_walberla_rows() -> list[dict]:
     cases = _read_raw("joseph_hunt_walberla.csv")
     for case in cases:
         case["locator"] = f"{case['case']}: Mat_{case['material']}, Fluid_{case['fluid']}"
-        case["fluid"] = {
-            "Glycerol78": "glycerol-water 78 %",
-            "Glycerol45": "glycerol-water 45 %",
-            "Glycerol33": "glycerol-water 33 %",
-            "Glycerol37": "glycerol-water 37 %",
-        }[case["fluid"]]
+        # waLBerla's GlycerolNN is NN % wt glycerol in water: granudb's glycerol-NN
+        case["fluid"] = "glycerol-" + case["fluid"].removeprefix("Glycerol")
     columns = {
         "density_sphere_kg_m3": ("condition", "Zerodur", "sphere density"),
         "diameter_m": ("condition", "Zerodur", "sphere diameter"),
