@@ -11,7 +11,9 @@ committed packages are what it writes (so a hand edit of a package is caught).
 
 How u is stated (the ``u_basis`` column says which rule gave each value's u):
 
-- two digitisations of one point: the value is their mean and u half their difference;
+- two digitisations of one point: the value is their mean and u half their difference, at
+  least the median half-difference of that figure's paired points (two readings that
+  happen to coincide do not make a value exact);
 - one digitisation of a figure the other also digitised: u is the largest half-difference
   of that figure's paired points;
 - one digitisation of a figure nobody else digitised (the rebound angles): u is the
@@ -26,6 +28,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import statistics
 import sys
 from decimal import Decimal
 from pathlib import Path
@@ -280,11 +283,23 @@ def kharaz_rows() -> tuple[list[dict], list[dict]]:
             )
         )
 
-    two = "half the difference of the two digitisations (value: their mean)"
+    two = (
+        "half the difference of the two digitisations (value: their mean), at least the "
+        "median half-difference of the figure's paired points"
+    )
+    floor_value = {
+        q: statistics.median(abs(a[1] - b[1]) / 2 for a, b in p if a and b)
+        for q, p in paired.items()
+    }
+    floor_angle = statistics.median(
+        abs(a[0] - b[0]) / 2 for p in paired.values() for a, b in p if a and b
+    )
     for quantity, pairs in paired.items():
         for i, (a, b) in enumerate(pairs, start=1):
             if a and b:
-                emit(quantity, i, a, b, abs(a[1] - b[1]) / 2, two, abs(a[0] - b[0]) / 2, two)
+                u_value = max(abs(a[1] - b[1]) / 2, floor_value[quantity])
+                u_angle = max(abs(a[0] - b[0]) / 2, floor_angle)
+                emit(quantity, i, a, b, u_value, two, u_angle, two)
             else:
                 one = "one digitisation: the largest half-difference of this figure's paired points"
                 emit(quantity, i, a, b, half_value[quantity], one, half_angle, one)
@@ -569,7 +584,7 @@ DATASETS = {
     },
     "gondret-lance-petit-2002": {
         "title": "Gondret, Lance & Petit (2002): conditions of five bouncing-sphere cases in "
-        "silicone oils, with their reported Re and St (as waLBerla encodes them)",
+        "liquids, with their reported Re and St (as waLBerla encodes them)",
         "source": GONDRET_SOURCE,
         "doi": "10.1063/1.1427920",
         "licences": [WALBERLA["licence"]],

@@ -77,6 +77,10 @@ NAMES: dict[str, str] = {
     "import_dataset": "packages",
     "datasette_metadata": "datasette",
     "database_file": "datasette",
+    # the reference library of published collision data
+    "reference_list": "reference",
+    "reference_show": "reference",
+    "reference_reproduce": "reference",
     # DEM
     "dem_export": "dem",
     "dem_verify": "dem",
@@ -123,6 +127,11 @@ FACE: dict[str, str] = {
     "parameter_of": "presentation",
     "dataset_ref": "inputs",
     "load_seed": "schema",
+    "REFERENCE_COLUMNS": "reference",
+    "REFERENCE_CHECK_COLUMNS": "reference",
+    "REFERENCE_CHECK_NARROW": "reference",
+    "REFERENCE_NARROW": "reference",
+    "REFERENCE_VALUE_COLUMNS": "reference",
 }
 
 __all__ = sorted({**NAMES, **FACE, "DATABASE_ENV_VAR": ""})

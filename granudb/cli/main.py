@@ -79,6 +79,11 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
         "app",
         "Schema migrations (Alembic) and the shipped seed data.",
     ),
+    "reference": (
+        "granudb.cli.reference",
+        "app",
+        "Published collision data shipped as datasets, and their reproduction by granudb.",
+    ),
     "dem": (
         "granudb.cli.dem",
         "app",
