@@ -28,6 +28,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 import statistics
 import sys
 from decimal import Decimal
@@ -144,18 +145,56 @@ def rounding_u(text: str) -> float:
     return float(Decimal(5).scaleb(exponent - 1)) / math.sqrt(3)
 
 
+#: Units of granudb's names by their suffix (longest first), for names not in ``UNITS``.
+SUFFIX_UNITS = (
+    ("_pa_inv", "1/Pa"),
+    ("_rad_s", "rad/s"),
+    ("_kg_m3", "kg/m^3"),
+    ("_pa_s", "Pa s"),
+    ("_n_m", "N m"),
+    ("_m_s", "m/s"),
+    ("_rad", "rad"),
+    ("_deg", "deg"),
+    ("_pa", "Pa"),
+    ("_c", "degC"),
+    ("_m", "m"),
+    ("_s", "s"),
+)
+
+
+def unit_of(quantity: str) -> str:
+    """The unit of a granudb quantity name: ``UNITS``, else its suffix, else "1"."""
+    if quantity in UNITS:
+        return UNITS[quantity]
+    return next((unit for suffix, unit in SUFFIX_UNITS if quantity.endswith(suffix)), "1")
+
+
+def printed_rounding_u(printed: str, value: float) -> tuple[float, str]:
+    """u of a value printed without ± ("ζ_in = 20°", "η̂ ≈ 375 × 10⁻¹² Pa⁻¹"): the rounding
+    of the first number after the last "=" or "≈", carried to the stored unit by the ratio
+    value / that number; an order of magnitude ("≈ 10⁻⁴") gets u = the value."""
+    tail = re.split(r"[=≈]", printed)[-1]
+    if re.match(r"^\s*10[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+", tail):
+        return abs(value), "an order of magnitude as printed: u = the value"
+    numbers = re.findall(r"\d+(?:\.\d+)?", tail)
+    basis = "rounding of the last printed digit (of the value as printed, in the stored unit)"
+    if not numbers or float(numbers[0]) == 0.0:
+        return rounding_u(repr(value)), basis
+    return rounding_u(numbers[0]) * abs(value / float(numbers[0])), basis
+
+
 def _row(**kw) -> dict:
     row = {name: "" for name, _, _ in FIELDS}
     row.update(kw)
     row["value_id"] = f"{row['point']}:{row['quantity']}"
-    row.setdefault("unit", UNITS.get(row["quantity"], "1"))
     if not row["unit"]:
-        row["unit"] = UNITS.get(row["quantity"], "1")
+        row["unit"] = unit_of(row["quantity"])
     return row
 
 
 def _fmt(x: float) -> str:
-    return repr(round(float(x), 10))
+    """A number to 10 significant digits."""
+    return repr(float(f"{float(x):.10g}"))
 
 
 # --------------------------------------------------------------------- Kharaz et al. 2001
@@ -347,8 +386,9 @@ def kharaz_rows() -> tuple[list[dict], list[dict]]:
                 u_basis="rounding of the last printed digit",
                 role="condition",
                 locator=locator,
-                digitiser="",
-                licence="",
+                digitiser="granudb contributors, read from the page the locator names",
+                licence="a number quoted as a fact from the page the locator names; no "
+                "licence is claimed for it",
                 notes=notes,
                 **common,
             )
@@ -539,15 +579,17 @@ def joseph_seeded_rows() -> list[dict]:
             if r["source"] != "joseph-hunt-2004":
                 continue
             u_text = r["uncertainty"]
+            basis = "± printed in the paper"
+            if not u_text:
+                u, basis = printed_rounding_u(r["value_as_printed"], float(r["value"]))
+                u_text = _fmt(u)
             rows.append(
                 _row(
                     point=f"row-{i:03d} {r['label']}",
                     quantity=r["quantity"],
                     value=r["value"],
-                    u=u_text if u_text else _fmt(rounding_u(r["value"])),
-                    u_basis="± printed in the paper"
-                    if u_text
-                    else "rounding of the last printed digit",
+                    u=u_text,
+                    u_basis=basis,
                     role="measured",
                     particle=r["particle"],
                     wall=r["wall"],

@@ -202,7 +202,14 @@ def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
         f"β = {beta:.3f}" + ("" if beta_ok else " (not determined)") + f"; e = {e_n} (stated)",
         f"paper: μ_f = {KHARAZ_FRICTION} (as Chung & Ooi's test 4 and Lethe's example quote it)",
     ]
-    return {"fit": fit, "checks": checks, "summary": summary}
+    grid = np.radians(np.linspace(0.5, 87.0, 175))
+    fitted = np.array([_walton_e_t(t, b, mu, e_n) for t in grid])
+    spin = reported.spin_from_tangential_restitution(speed, grid, fitted, radius)
+    curves = {
+        "tangential_restitution": {"x": np.degrees(grid).tolist(), "y": fitted.tolist()},
+        "angular_velocity_out_rad_s": {"x": np.degrees(grid).tolist(), "y": spin.tolist()},
+    }
+    return {"fit": fit, "checks": checks, "summary": summary, "curves": curves}
 
 
 def vssuq(name: str, rows: list[dict]) -> dict[str, Any]:
@@ -251,6 +258,7 @@ def gondret(name: str, rows: list[dict]) -> dict[str, Any]:
     """Each case's St from its reported Re (St = Re ρ_p / (9 ρ_f)) against the St the case
     states, and Legendre et al.'s e(St) predicted (no measured e in the public source)."""
     checks, summary = [], []
+    cases_st, cases_e = [], []
     for case, q in _cases(rows).items():
         re_, u_re = q["reynolds_number"]
         rho_p, rho_f = q["density_sphere_kg_m3"][0], q["density_fluid_kg_m3"][0]
@@ -271,6 +279,8 @@ def gondret(name: str, rows: list[dict]) -> dict[str, Any]:
         e_dry, u_dry = q["dry_restitution"]
         e = float(flow.predicted_restitution(st_am, e_dry))
         u_e = e / e_dry * u_dry
+        cases_st.append(st_am)
+        cases_e.append(e)
         checks.append(
             _check(
                 "Legendre et al. e = e_dry exp(−35/St_am)",
@@ -286,7 +296,15 @@ def gondret(name: str, rows: list[dict]) -> dict[str, Any]:
             f"predicted e = {e:.3f} ± {u_e:.3f}; Gondret et al.'s measured e is in their "
             "figure, not in a readable public file"
         )
-    return {"checks": checks, "summary": summary}
+    stokes = np.geomspace(10.5, 2000.0, 120)
+    curves = {
+        "normal_restitution": {
+            "x": stokes.tolist(),
+            "y": flow.predicted_restitution(stokes, 0.97).tolist(),
+        },
+        "cases": {"x": cases_st, "y": cases_e},
+    }
+    return {"checks": checks, "summary": summary, "curves": curves}
 
 
 def joseph_walberla(name: str, rows: list[dict], seeded: list[dict]) -> dict[str, Any]:

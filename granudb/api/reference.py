@@ -111,4 +111,5 @@ def reference_reproduce(name: str) -> dict[str, Any]:
         "title": meta["title"],
         "summary": found["summary"],
         "checks": found["checks"],
+        "curves": found.get("curves", {}),
     }
