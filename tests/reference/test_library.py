@@ -55,9 +55,7 @@ def test_each_package_validates(name: str) -> None:
     report = frictionless.validate(str(LIBRARY / name / "datapackage.json"))
     assert report.valid, report.flatten(["rowNumber", "fieldName", "type", "note"])
     tool = shutil.which("cffconvert") or str(Path(sys.executable).parent / "cffconvert")
-    check = subprocess.run(
-        [tool, "--validate"], cwd=LIBRARY / name, capture_output=True, text=True
-    )
+    check = subprocess.run([tool, "--validate"], cwd=LIBRARY / name, capture_output=True, text=True)
     assert check.returncode == 0, check.stdout + check.stderr
     descriptor = json.loads((LIBRARY / name / "datapackage.json").read_text("utf-8"))
     cff = (LIBRARY / name / "CITATION.cff").read_text("utf-8")
