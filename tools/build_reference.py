@@ -93,6 +93,12 @@ UNITS = {
     "stokes_number": "1",
     "dry_restitution": "1",
     "poisson_ratio": "1",
+    "sphere_poisson_ratio": "1",
+    "wall_poisson_ratio": "1",
+    "sphere_youngs_modulus_pa": "Pa",
+    "wall_youngs_modulus_pa": "Pa",
+    "sphere_density_kg_m3": "kg/m^3",
+    "sliding_friction": "1",
 }
 
 #: What each quantity is, in words (the README and the docs render these).
@@ -176,7 +182,7 @@ def printed_rounding_u(printed: str, value: float) -> tuple[float, str]:
     tail = re.split(r"[=≈]", printed)[-1]
     if re.match(r"^\s*10[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+", tail):
         return abs(value), "an order of magnitude as printed: u = the value"
-    numbers = re.findall(r"\d+(?:\.\d+)?", tail)
+    numbers = re.findall(r"\d+(?:\.\d+)?(?:e[-+]?\d+)?", tail)
     basis = "rounding of the last printed digit (of the value as printed, in the stored unit)"
     if not numbers or float(numbers[0]) == 0.0:
         return rounding_u(repr(value)), basis
@@ -376,13 +382,49 @@ def kharaz_rows() -> tuple[list[dict], list[dict]]:
             "Yade Test4.py, en (granudb seed source yade-chung-ooi-test4)",
         ),
     ]
-    for quantity, text, notes, locator in conditions:
+    # the material constants and the paper's friction, as granudb's seed sources quote
+    # them (seed_data/published_values.csv: lethe-oblique-wall-impact, yade-chung-ooi-test4)
+    seeded = {
+        ("alumina sphere (Kharaz et al. 2001)", "density_kg_m3"): "sphere_density_kg_m3",
+        ("alumina sphere (Kharaz et al. 2001)", "youngs_modulus_pa"): "sphere_youngs_modulus_pa",
+        ("alumina sphere (Kharaz et al. 2001)", "poisson_ratio"): "sphere_poisson_ratio",
+        ("soda-lime glass anvil (Kharaz et al. 2001)", "youngs_modulus_pa"): (
+            "wall_youngs_modulus_pa"
+        ),
+        ("soda-lime glass anvil (Kharaz et al. 2001)", "poisson_ratio"): "wall_poisson_ratio",
+        ("dry alumina on soda-lime glass (Kharaz et al. 2001)", "sliding_friction"): (
+            "sliding_friction"
+        ),
+    }
+    with (ROOT / "seed_data" / "published_values.csv").open(encoding="utf-8") as f:
+        for r in csv.DictReader(f):
+            name = seeded.get((r["label"], r["quantity"]))
+            if name is None:
+                continue
+            u, _ = printed_rounding_u(r["value_as_printed"], float(r["value"]))
+            conditions.append(
+                (
+                    name,
+                    _fmt(float(r["value"])),
+                    u,
+                    f"as granudb's seed source {r['source']} gives it ({r['value_as_printed']}); "
+                    + r["notes"],
+                    f"{r['source_locator']} (granudb seed source {r['source']}, "
+                    "seed_data/published_values.csv)",
+                )
+            )
+    for entry in conditions:
+        if len(entry) == 4:  # a number written in the page: the rounding of its digits
+            quantity, text, notes, locator = entry
+            u = rounding_u(text)
+        else:
+            quantity, text, u, notes, locator = entry
         rows.append(
             _row(
                 point="conditions",
                 quantity=quantity,
                 value=text,
-                u=_fmt(rounding_u(text)),
+                u=_fmt(u),
                 u_basis="rounding of the last printed digit",
                 role="condition",
                 locator=locator,

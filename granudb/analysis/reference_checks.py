@@ -29,9 +29,6 @@ from granudb.physics import flow, reported
 
 #: Coverage factor of the verdicts (≈ 95 % for a normal distribution).
 COVERAGE = 2.0
-#: Kharaz et al.'s sliding friction as the secondary sources quote it (granudb seed sources
-#: yade-chung-ooi-test4 and lethe-oblique-wall-impact: "friction 0.092").
-KHARAZ_FRICTION = 0.092
 #: The resamples and seed of the Kharaz Walton fit (the bootstrap is seeded: same answer).
 WALTON_SEED = 20260101
 
@@ -67,7 +64,8 @@ def verdict(reported_value: float, computed: float, u_reported: float, u_compute
     }
 
 
-def _check(check: str, point: str, quantity: str, got: tuple, want: tuple, how: str) -> dict:
+def compare(check: str, point: str, quantity: str, got: tuple, want: tuple, how: str) -> dict:
+    """One check: ``got`` and ``want`` are (value, u); the verdict by ``verdict``."""
     row = dict.fromkeys(CHECK_KEYS)
     row.update(check=check, point=point, quantity=quantity, how=how)
     row.update(reported=want[0], u_reported=want[1], computed=got[0], u_computed=got[1])
@@ -75,7 +73,7 @@ def _check(check: str, point: str, quantity: str, got: tuple, want: tuple, how: 
     return row
 
 
-def _points(rows: list[dict], prefix: str) -> list[dict]:
+def figure_points(rows: list[dict], prefix: str) -> list[dict]:
     """Figure points ``prefix-NN`` as {point, theta (rad), u_theta, value, u}."""
     by_point: dict[str, dict] = {}
     for r in rows:
@@ -106,10 +104,11 @@ def _walton_e_t(theta: float, beta: float, mu: float, e: float) -> float:
 def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
     """Walton fit of e_t(θ), then e_t, spin and both rebound angles predicted per point."""
     e_n, u_e = _condition(rows, "normal_restitution")
+    paper_mu, u_paper_mu = _condition(rows, "sliding_friction")
     speed, _ = _condition(rows, "impact_speed_m_s")
     diameter, _ = _condition(rows, "diameter_m")
     radius = diameter / 2.0
-    et = _points(rows, "et")
+    et = figure_points(rows, "et")
     theta = np.array([p["theta"] for p in et])
     e_t = np.array([p["value"] for p in et])
     psi_in = reported.incidence_from_angle(theta)
@@ -128,15 +127,15 @@ def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
     mu, beta = fit["sliding_friction"], fit["rotational_restitution"]
     mu_se = fit["sliding_friction_stderr"]
     checks = [
-        _check(
+        compare(
             "Walton fit of e_t(θ)",
             f"{fit['n_runs']} points ({fit['model']}: {fit['n_sticking']} sticking, "
             f"{fit['n_sliding']} sliding)",
             "sliding_friction",
             (mu, mu_se),
-            (KHARAZ_FRICTION, 0.0005 / math.sqrt(3)),
+            (paper_mu, u_paper_mu),
             "Walton's model fitted by granudb (Ψ_in = tan θ, Ψ_out = Ψ_in (3.5 e_t − 2.5), "
-            f"e = {e_n}); reported: Kharaz et al.'s 0.092 as Chung & Ooi's test 4 quotes it",
+            f"e = {e_n}); reported: Kharaz et al.'s μ_f as Chung & Ooi's test 4 quotes it",
         )
     ]
     beta_ok = math.isfinite(beta)
@@ -144,7 +143,7 @@ def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
     for p in et:
         got = _walton_e_t(p["theta"], b, mu, e_n)
         checks.append(
-            _check(
+            compare(
                 "e_t(θ) of the fitted Walton model",
                 p["point"],
                 "tangential_restitution",
@@ -153,13 +152,13 @@ def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
                 f"θ = {math.degrees(p['theta']):.2f}°",
             )
         )
-    for p in _points(rows, "omega"):
+    for p in figure_points(rows, "omega"):
         fitted_e_t = _walton_e_t(p["theta"], b, mu, e_n)
         got = float(
             reported.spin_from_tangential_restitution(speed, p["theta"], fitted_e_t, radius)
         )
         checks.append(
-            _check(
+            compare(
                 "spin after impact, ω_out = V sin θ (1 − e_t)/(K² R) of the fitted e_t",
                 p["point"],
                 "angular_velocity_out_rad_s",
@@ -172,7 +171,7 @@ def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
         ("rcom", "rebound_angle_centre_deg", "centre-of-mass rebound angle atan(e_t tan θ / e)"),
         ("rcp", "rebound_angle_contact_deg", "contact-point rebound angle atan(Ψ_out / e)"),
     ):
-        for p in _points(rows, prefix):
+        for p in figure_points(rows, prefix):
             fitted_e_t = _walton_e_t(p["theta"], b, mu, e_n)
             if prefix == "rcom":
                 angle = reported.centre_rebound_angle(p["theta"], fitted_e_t, e_n)
@@ -181,7 +180,7 @@ def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
                 psi_out = reported.rebound_from_tangential_restitution(psi, fitted_e_t)
                 angle = reported.contact_rebound_angle(psi_out, e_n)
             checks.append(
-                _check(
+                compare(
                     words + " of the fitted model",
                     p["point"],
                     quantity,
@@ -200,7 +199,7 @@ def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
         f"Walton fit of {fit['n_runs']} e_t(θ) points: model {fit['model']}, "
         f"μ_f = {mu:.4f} ± {mu_se:.4f} (standard error), interval {interval}; "
         f"β = {beta:.3f}" + ("" if beta_ok else " (not determined)") + f"; e = {e_n} (stated)",
-        f"paper: μ_f = {KHARAZ_FRICTION} (as Chung & Ooi's test 4 and Lethe's example quote it)",
+        f"paper: μ_f = {paper_mu:g} (as Chung & Ooi's test 4 and Lethe's example quote it)",
     ]
     grid = np.radians(np.linspace(0.5, 87.0, 175))
     fitted = np.array([_walton_e_t(t, b, mu, e_n) for t in grid])
@@ -234,7 +233,7 @@ def vssuq(name: str, rows: list[dict]) -> dict[str, Any]:
         )
         for statistic, got in (("mean", mean), ("sd", sd)):
             checks.append(
-                _check(
+                compare(
                     f"{statistic} of the per-collision values",
                     stem,
                     f"{quantity}_{statistic}",
@@ -266,7 +265,7 @@ def gondret(name: str, rows: list[dict]) -> dict[str, Any]:
         speed = float(reported.speed_for_reynolds_number(re_, rho_f, d / 2, mu))
         st = float(flow.stokes_number(rho_p, d / 2, speed, mu))
         checks.append(
-            _check(
+            compare(
                 "St from the reported Re, St = Re ρ_p / (9 ρ_f)",
                 case,
                 "stokes_number",
@@ -282,7 +281,7 @@ def gondret(name: str, rows: list[dict]) -> dict[str, Any]:
         cases_st.append(st_am)
         cases_e.append(e)
         checks.append(
-            _check(
+            compare(
                 "Legendre et al. e = e_dry exp(−35/St_am)",
                 case,
                 "normal_restitution",
@@ -328,7 +327,7 @@ def joseph_walberla(name: str, rows: list[dict], seeded: list[dict]) -> dict[str
                 continue
             value, u, locator = table[key]
             checks.append(
-                _check(
+                compare(
                     f"waLBerla input {mine} against the paper's value",
                     f"{case} ({particle} in {fluid})",
                     mine,
@@ -364,7 +363,7 @@ def joseph_tables(name: str, rows: list[dict], walberla: list[dict]) -> dict[str
         st = float(flow.stokes_number(rho_p, radius, speed, mu))
         how = f"glass {rho_p:g} kg/m³ in glycerol-45 {rho_f:g} kg/m³, {mu:g} Pa s (waLBerla case)"
         checks.append(
-            _check(
+            compare(
                 "St from the reported Re, St = Re ρ_p / (9 ρ_f)",
                 "figure 3 collision",
                 "stokes_number",
@@ -376,7 +375,7 @@ def joseph_tables(name: str, rows: list[dict], walberla: list[dict]) -> dict[str
         st_am = float(flow.added_mass_stokes_number(rho_p, rho_f, radius, speed, mu))
         e = float(flow.predicted_restitution(st_am, dry[0]))
         checks.append(
-            _check(
+            compare(
                 "Legendre et al. e = e_dry exp(−35/St_am)",
                 "figure 3 collision",
                 "normal_restitution",

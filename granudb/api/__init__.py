@@ -81,6 +81,7 @@ NAMES: dict[str, str] = {
     "reference_list": "reference",
     "reference_show": "reference",
     "reference_reproduce": "reference",
+    "reference_dem": "reference",
     # DEM
     "dem_export": "dem",
     "dem_verify": "dem",
@@ -131,6 +132,9 @@ FACE: dict[str, str] = {
     "REFERENCE_CHECK_COLUMNS": "reference",
     "REFERENCE_CHECK_NARROW": "reference",
     "REFERENCE_NARROW": "reference",
+    "REFERENCE_DEM_COLUMNS": "reference",
+    "REFERENCE_DEM_NARROW": "reference",
+    "DEM_REFERENCE_CODES": "reference",
     "REFERENCE_VALUE_COLUMNS": "reference",
 }
 

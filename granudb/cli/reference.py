@@ -67,3 +67,30 @@ def reproduce(name: ReferenceName, fmt: FormatOption = Format.table) -> None:
     for kind in kinds:
         rows = [c for c in result["checks"] if c["check"] == kind]
         emit(rows, api.REFERENCE_CHECK_NARROW, fmt, title=kind)
+
+
+@app.command()
+@wraps("reference_dem")
+def dem(
+    name: ReferenceName,
+    codes: Annotated[
+        list[str] | None,
+        typer.Option("--code", help="liggghts, lammps or yade (repeat; default: all three)."),
+    ] = None,
+    points: Annotated[
+        list[str] | None,
+        typer.Option("--point", help="A figure point to run, e.g. et-05 (repeat; default all)."),
+    ] = None,
+    fmt: FormatOption = Format.table,
+) -> None:
+    """Run the dataset's DEM deck in LIGGGHTS, LAMMPS and Yade and compare each code's
+    output with the experiment per point (verdict within 2 u_c of the data's u)."""
+    result = api.reference_dem(name, codes=codes, points=points)
+    if fmt is Format.json:
+        say(to_json(result))
+        return
+    if fmt is Format.table:
+        inputs = ", ".join(f"{k} = {v:g}" for k, v in result["inputs"].items())
+        say(f"{result['name']}: the deck's inputs {inputs}")
+    columns = api.REFERENCE_DEM_NARROW if fmt is Format.table else api.REFERENCE_DEM_COLUMNS
+    emit(result["rows"], columns, fmt, title="Each code against the experiment")
