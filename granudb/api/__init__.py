@@ -82,6 +82,10 @@ NAMES: dict[str, str] = {
     "reference_show": "reference",
     "reference_reproduce": "reference",
     "reference_dem": "reference",
+    # runs as papers report them
+    "import_reported_runs": "reported",
+    "reported_runs": "reported",
+    "fit_reported": "reported",
     # DEM
     "dem_export": "dem",
     "dem_verify": "dem",
@@ -135,6 +139,9 @@ FACE: dict[str, str] = {
     "REFERENCE_DEM_COLUMNS": "reference",
     "REFERENCE_DEM_NARROW": "reference",
     "DEM_REFERENCE_CODES": "reference",
+    "REPORTED_COLUMNS": "reported",
+    "REPORTED_NARROW": "reported",
+    "REPORTED_FITS": "reported",
     "REFERENCE_VALUE_COLUMNS": "reference",
 }
 

@@ -213,6 +213,7 @@ def downgrade(
 #: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
 #: rows that lose something, what happens to them). Checked constraints are not data.
 _STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
+    "0012": [("reported_runs", "run", "1 = 1", "dropped (the runs as papers report them)")],
     "0011": [
         (table, "conditions", "conditions IS NOT NULL", "dropped (the values' conditions)")
         for table in ("materials", "fluids")
