@@ -129,3 +129,16 @@ def test_the_downgrade_names_the_reported_runs_it_drops(cli, db: str, tmp_path: 
     refused = cli("db", "downgrade", "0011", db=db)
     assert refused.exit_code != 0
     assert "reported_runs.run: 1 values dropped" in refused.stdout + refused.stderr
+
+
+def test_a_material_its_reported_runs_use_is_not_removed(cli, db: str, tmp_path: Path) -> None:
+    added = cli("materials", "add", "bead", "--density", "2500 kg/m^3", "--youngs-modulus",
+                "60 GPa", "--poisson-ratio", "0.23", db=db)  # fmt: skip
+    assert added.exit_code == 0, added.stderr
+    path = _write(tmp_path / "e.csv", "run,particle,wall,e\nr,bead,Zerodur,0.9\n")
+    assert cli("reported", "import", str(path), "--collection", "c", db=db).exit_code == 0
+    before = dump_hash(db)
+    refused = cli("materials", "remove", "bead", "--yes", db=db)
+    assert refused.exit_code == 1
+    assert "1 runs as reported" in refused.stderr and refused.stderr.count("\n") == 1
+    assert dump_hash(db) == before
