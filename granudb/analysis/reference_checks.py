@@ -190,8 +190,9 @@ def kharaz(name: str, rows: list[dict]) -> dict[str, Any]:
                 )
             )
     low, high = fit["sliding_friction_low"], fit["sliding_friction_high"]
+    method = fit.get("sliding_friction_interval_method") or fit.get("interval_method", "")
     interval = (
-        f"[{low:.4f}, {high:.4f}] ({fit['confidence_level']:.0%})"
+        f"[{low:.4f}, {high:.4f}] ({fit['confidence_level']:.0%}, {method})"
         if math.isfinite(low)
         else f"none: {fit['reason']}"
     )

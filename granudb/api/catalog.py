@@ -16,6 +16,7 @@ from granudb.api.database import opened
 from granudb.api.frames import records_frame
 from granudb.db import catalog_rows
 from granudb.db import sources as source_reads
+from granudb.reporting.history import with_changes
 from granudb.vocabulary import FLUIDS, MATERIALS, Catalogue
 from granudb.vocabulary.catalogue import SOURCE_COLUMNS
 
@@ -70,7 +71,8 @@ def material(name: str, *, db: Any = None) -> dict[str, Any]:
 def material_history(name: str, *, db: Any = None) -> list[dict[str, Any]]:
     """A material as it is and as released datasets keep it: the current values, then
     each revision (newest first) with when it was kept and which dataset versions use it
-    (``granudb.db.catalog_revisions``: a release never changes).
+    (``granudb.db.catalog_revisions``: a release never changes); ``changes`` says what
+    each change did (``field: old → new``, from the revision before).
 
     Examples
     --------
@@ -79,7 +81,8 @@ def material_history(name: str, *, db: Any = None) -> list[dict[str, Any]]:
     ['current']
     """
     with opened(db) as database, database.reading() as connection:
-        return catalog_rows.entry_history(connection, "material", inputs.text(name, "name"))
+        found = catalog_rows.entry_history(connection, "material", inputs.text(name, "name"))
+    return with_changes(found)
 
 
 def fluid_history(name: str, *, db: Any = None) -> list[dict[str, Any]]:
@@ -94,7 +97,8 @@ def fluid_history(name: str, *, db: Any = None) -> list[dict[str, Any]]:
     ('current', 11)
     """
     with opened(db) as database, database.reading() as connection:
-        return catalog_rows.entry_history(connection, "fluid", inputs.text(name, "name"))
+        found = catalog_rows.entry_history(connection, "fluid", inputs.text(name, "name"))
+    return with_changes(found)
 
 
 def fluids(db: Any = None, *, as_frame: bool = True) -> Any:
@@ -144,8 +148,10 @@ def sources(db: Any = None, *, as_frame: bool = True) -> Any:
 def source_history(key: str, *, db: Any = None) -> list[dict[str, Any]]:
     """The source ``key`` as it is and as it was before each change, newest first: each
     record its values with ``revision`` ("current" or its number), ``kept_at`` (when it
-    changed) and ``reason`` (why). A released dataset reads a source as it was when
-    released, so its package's sources never change.
+    changed), ``reason`` (why) and ``changes`` (``field: old → new`` from the revision
+    before, so a change to a field a table does not show is still said). A released
+    dataset reads a source as it was when released, so its package's sources never
+    change.
 
     Examples
     --------
@@ -162,7 +168,7 @@ def source_history(key: str, *, db: Any = None) -> list[dict[str, Any]]:
         values = {c: row[c] for c in current}
         records.append({"revision": str(number), "kept_at": row["kept_at"],
                         "reason": row["reason"], **values})  # fmt: skip
-    return [records[0], *reversed(records[1:])]
+    return with_changes([records[0], *reversed(records[1:])])
 
 
 def _listing(rows: Any, record: Any, columns: list[str], db: Any, as_frame: bool) -> Any:

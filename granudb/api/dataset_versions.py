@@ -29,57 +29,15 @@ from granudb.api.database import opened
 from granudb.api.frames import records_frame
 from granudb.db import catalogue_differences, dataset_catalog
 from granudb.db import datasets as store
+from granudb.db.content_hash import hash_problem
 from granudb.errors import ValidationError
 from granudb.reporting.format import difference_line
 from granudb.reporting.pinned import pinned_notes
 from granudb.vocabulary.listings import DATASET_COLUMNS
+from granudb.vocabulary.people import check_author, check_keyword
 from granudb.vocabulary.text import check_name, check_text
 
-_ORCID = re.compile(r"^(?:https://orcid\.org/)?(\d{4}-\d{4}-\d{4}-\d{3}[\dX])$")
 _DOI = re.compile(r"^10\.\d{4,9}/\S+$")
-AUTHOR_FIELDS = ("given_names", "family_names", "orcid", "affiliation")
-
-
-def check_orcid(value: str, field: str = "orcid") -> str:
-    """The ORCID iD ``0000-0002-1825-0097`` if its form and ISO 7064 11,2 check digit are
-    right (a bare iD, or the https://orcid.org/ URL), else ``ValidationError``."""
-    match = _ORCID.match(value.strip())
-    if match is None:
-        raise ValidationError(field, value, "is not an ORCID iD (0000-0000-0000-0000)")
-    digits = match.group(1).replace("-", "")
-    total = 0
-    for digit in digits[:-1]:
-        total = (total + int(digit)) * 2
-    check = (12 - total % 11) % 11
-    if digits[-1] != ("X" if check == 10 else str(check)):
-        raise ValidationError(field, value, "has a wrong check digit (not a real ORCID iD)")
-    return match.group(1)
-
-
-def check_author(person: Any, where: str = "author") -> dict[str, str | None]:
-    """One author as {"given_names", "family_names", "orcid", "affiliation"}; family
-    names are required, the rest optional."""
-    if not isinstance(person, dict):
-        raise ValidationError(where, person, "must be an object with family_names")
-    unknown = set(person) - set(AUTHOR_FIELDS)
-    if unknown:
-        raise ValidationError(
-            where, sorted(unknown)[0], f"is not an author field ({', '.join(AUTHOR_FIELDS)})"
-        )
-    values = {k: person.get(k) or None for k in AUTHOR_FIELDS}
-    for key, text in values.items():
-        if text is not None and not isinstance(text, str):
-            raise ValidationError(f"{where} {key}", text, "must be text")
-    if values["family_names"] is None:
-        raise ValidationError(f"{where} family_names", "(missing)", "is required")
-    check_name(f"{where} family_names", values["family_names"])
-    if values["given_names"] is not None:
-        check_name(f"{where} given_names", values["given_names"])
-    if values["affiliation"] is not None:
-        check_name(f"{where} affiliation", values["affiliation"], max_length=500)
-    if values["orcid"] is not None:
-        values["orcid"] = check_orcid(values["orcid"], f"{where} orcid")
-    return values
 
 
 def parse_author(text: str) -> dict[str, str | None]:
@@ -121,7 +79,7 @@ def check_metadata(values: dict[str, Any]) -> dict[str, str | None]:
             people = [check_author(p, f"author {i + 1}") for i, p in enumerate(value)]
             out[field] = json.dumps(people, ensure_ascii=False)
         elif field == "keywords":
-            words = [check_name("--keyword", w, max_length=100) for w in value]
+            words = [check_keyword(w) for w in value]
             out[field] = json.dumps(list(dict.fromkeys(words)), ensure_ascii=False)
         else:
             raise ValidationError(field, value, "is not an editable dataset field")
@@ -164,6 +122,9 @@ def dataset(name: str, *, version: str | None = None, db: Any = None) -> dict[st
         chosen = store.get_dataset(session, name, version)
         record = dataset_catalog.dataset_record(session, chosen)
         record["pinned_changes"] = pinned_notes(session.connection(), chosen.id)
+        problem = hash_problem(session, chosen)  # e.g. values a downgrade dropped
+        if problem is not None:
+            record["pinned_changes"].append(f"content hash: {problem}")
         record["groups"] = dataset_catalog.group_counts(session, chosen)
     return record
 

@@ -8,8 +8,12 @@ this module imports neither numpy nor pandas.
 
 from __future__ import annotations
 
+from typing import Any
+
 from granudb.analysis import collision_query
-from granudb.reporting.format import display, display_uncertain
+from granudb.reporting import format as formats
+from granudb.reporting.fit_view import people_view as fit_people_view
+from granudb.reporting.format import display_uncertain
 from granudb.vocabulary import DERIVED_TERMS, FLUIDS, MATERIALS, Term, term
 from granudb.vocabulary.catalogue import (
     PAIR_VALUE_COLUMNS,
@@ -19,6 +23,7 @@ from granudb.vocabulary.catalogue import (
     SOURCE_NARROW,
     parameter_of,
 )
+from granudb.vocabulary.escaping import spreadsheet_cell
 from granudb.vocabulary.listings import (
     COLLISION_NARROW,
     DATASET_COLUMNS,
@@ -27,9 +32,37 @@ from granudb.vocabulary.listings import (
     FIT_NARROW,
     PUBLISHED_NARROW,
 )
+from granudb.vocabulary.people import AUTHOR_FIELDS, author_words
 
 DEFAULT_COLLISION_COLUMNS = COLLISION_NARROW
 FIT_TABLE_COLUMNS = FIT_NARROW
+
+
+def words(value: Any) -> str:
+    """A list or mapping in words, never as Python writes it: authors as people
+    (``Jane Doe (ORCID …, Lab A); Rick Roe``), a list joined by commas, a mapping as
+    ``key: value`` pairs."""
+    if isinstance(value, dict):
+        if "family_names" in value and set(value) <= set(AUTHOR_FIELDS):
+            return author_words(value)
+        return "; ".join(f"{k}: {words(v)}" for k, v in value.items())
+    if isinstance(value, list | tuple | set):
+        parts = [words(v) for v in value]
+        joiner = "; " if any(isinstance(v, dict) for v in value) else ", "
+        return joiner.join(parts) if parts else "—"
+    return formats.display(value, "")
+
+
+def display(value: Any, column: str, digits: int = 4) -> str:
+    """How a table shows the SI ``value`` of ``column`` to a person (``60 GPa``,
+    ``130.5 nm``; ``granudb.reporting.format.display``); a list or mapping in ``words``.
+
+    >>> display(["glass", "lubrication"], "keywords")
+    'glass, lubrication'
+    """
+    if isinstance(value, dict | list | tuple | set):
+        return words(value)
+    return formats.display(value, column, digits)
 
 
 def derived_terms() -> dict[str, Term]:
@@ -52,9 +85,12 @@ __all__ = [
     "SOURCE_FIELDS",
     "SOURCE_NARROW",
     "derived_terms",
+    "fit_people_view",
+    "words",
     "display",
     "display_uncertain",
     "parameter_of",
+    "spreadsheet_cell",
     "term",
 ]
 

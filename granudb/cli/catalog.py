@@ -105,10 +105,11 @@ def catalogue_app(catalogue: Any, help_text: str) -> typer.Typer:
     @wraps(f"{kind}_history")
     def history(name: Name, db: DbOption = None, fmt: FormatOption = Format.table) -> None:
         records = getattr(api, f"{kind}_history")(name, db=db)
-        shown = ("revision", "kept_at", *catalogue.narrow[1:-1], "used_by")
-        columns = shown if fmt is Format.table else ("revision", "kept_at", "used_by",
-                                                      *catalogue.columns)  # fmt: skip
-        emit(records, list(columns), fmt, title=f"{kind.capitalize()} {name}: history")
+        shown = ("revision", "kept_at", "changes", *catalogue.narrow[1:-1], "used_by")
+        columns = shown if fmt is Format.table else ("revision", "kept_at", "changes",
+                                                      "used_by", *catalogue.columns)  # fmt: skip
+        emit(records, list(columns), fmt, title=f"{kind.capitalize()} {name}: history",
+             vertical=True)  # fmt: skip
 
     history.__doc__ = (
         f"A {kind} as it is and as released datasets keep it (a release never changes)."

@@ -1,8 +1,9 @@
 """``granudb fit walton|restitution|gap-viscosity``: the paper's fits on stored runs.
 
 Each command takes the collision filters of ``collisions list`` and prints one row per
-group (dataset × particle × wall × fluid). A table shows the main columns; JSON and CSV
-every key the fit returns (``granudb.analysis.fits`` documents them).
+group (dataset × particle × wall × fluid); JSON and CSV show
+every key the fit returns (``granudb.analysis.fits`` documents them). A table shows each
+group as a record: every value with its interval or the reason it has none.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from granudb.cli.options import (
     text,
     wraps,
 )
-from granudb.cli.output import emit
+from granudb.cli.output import emit, emit_records
 
 app = typer.Typer(
     help="Fit measured collisions: Walton β and μ_f, e(St), gap viscosity.", no_args_is_help=True
@@ -37,8 +38,11 @@ def _show(frame: Any, kind: str, fmt: Format, title: str) -> None:
     every = list(frame.columns)
     if "prior" in every:
         title += BAYES_TITLE
-    shown = [c for c in api.FIT_TABLE_COLUMNS[kind] if c in every] if fmt is Format.table else every
-    emit(frame.to_dict("records"), shown or every, fmt, title=title)
+    if fmt is Format.table:  # for people: each group's values with interval or reason
+        views = [api.fit_people_view(kind, r) for r in frame.to_dict("records")]
+        emit_records(views, title=title)
+        return
+    emit(frame.to_dict("records"), every, fmt, title=title)
 
 
 def _fit_command(kind: str, help_text: str, title: str, *options: Any) -> None:

@@ -30,22 +30,6 @@ def _clean(value: Any) -> Any:
     return value
 
 
-#: A text cell a spreadsheet would run as a formula starts with one of these (OWASP's CSV
-#: injection advice); numbers are written as numbers and never start with them as text.
-FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
-
-
-def spreadsheet_safe(value: Any) -> Any:
-    """A CSV cell for people's spreadsheets: ``None`` as empty, and a text cell that would
-    be read as a formula prefixed with ``'`` (shown, not run). Machine formats that must
-    keep bytes exact (Data Packages) do not use this."""
-    if value is None:
-        return ""
-    if isinstance(value, str) and value.startswith(FORMULA_STARTS):
-        return "'" + value
-    return value
-
-
 def to_json(data: Any) -> str:
     if isinstance(data, dict):
         data = {k: to_json_value(v) for k, v in data.items()}
@@ -108,9 +92,12 @@ def emit(
     title: str | None = None,
     *,
     symbols: bool = False,
+    vertical: bool = False,
 ) -> None:
     """Print ``records`` (SI dicts) in ``fmt``, keeping ``columns`` in order; a table uses
-    symbols for its headers when ``symbols``, JSON and CSV always the machine names."""
+    symbols for its headers when ``symbols``, JSON and CSV always the machine names. With
+    ``vertical`` (a history: few records of long text) a table shows each record as name
+    and value lines."""
     rows = [{c: r.get(c) for c in columns} for r in records]
     if fmt is Format.json:
         sys.stdout.write(to_json(rows) + "\n")
@@ -118,24 +105,97 @@ def emit(
         writer = csv.DictWriter(sys.stdout, fieldnames=list(columns), lineterminator="\n")
         writer.writeheader()
         for row in rows:
-            writer.writerow({k: spreadsheet_safe(_clean(v)) for k, v in row.items()})
+            writer.writerow({k: api.spreadsheet_cell(_csv_value(v)) for k, v in row.items()})
     else:
-        narrow = {"box": rich_box.SIMPLE_HEAD, "padding": (0, 0), "show_edge": False}
-        narrow = narrow if symbols else {}
-        table = rich_table.Table(
-            title=rich_text.Text(title) if title else None, title_justify="left", **narrow
-        )
-        for column in columns:
-            table.add_column(header(column, symbols), overflow="ellipsis", no_wrap=symbols)
-        digits = 3 if symbols else 4
-        for record, row in zip(records, rows, strict=True):
-            cells = (
-                SHORT_WORDS.get(v, v) if symbols and isinstance(v, str) else v
-                for v in (row[c] for c in columns)
-            )
-            table.add_row(*(rich_text.Text(_cell(record, v, c, digits))
-                            for v, c in zip(cells, columns, strict=True)))  # fmt: skip
-        console().print(table)
+        _table(records, rows, columns, title, symbols, vertical)
+
+
+def _csv_value(value: Any) -> Any:
+    """A CSV cell: a list or mapping (a dataset's authors) as JSON text, never as Python
+    writes it."""
+    if isinstance(value, dict | list | tuple):
+        return json.dumps(to_json_value(value), ensure_ascii=False)
+    return _clean(value)
+
+
+def _is_value(value: Any) -> bool:
+    """A number or a time: a cell that is never cut (text may be)."""
+    if isinstance(value, bool):
+        return False
+    return isinstance(value, int | float) or hasattr(value, "isoformat") or hasattr(value, "item")
+
+
+#: The narrowest a text column is squeezed to before a table is shown record by record.
+TEXT_MIN_WIDTH = 6
+
+
+def _table(
+    records: Sequence[dict[str, Any]],
+    rows: list[dict[str, Any]],
+    columns: Sequence[str],
+    title: str | None,
+    symbols: bool,
+    vertical: bool = False,
+) -> None:
+    """A Rich table in which no number is cut: each column holding numbers (or times) is
+    at least as wide as its widest value, text columns give way (wrapped or shortened with
+    "…"); when even that does not fit the terminal, each record is shown vertically
+    (name and value on a line)."""
+    digits = 3 if symbols else 4
+    cells = [
+        [
+            _cell(record, SHORT_WORDS.get(v, v) if symbols and isinstance(v, str) else v, c,
+                  digits)
+            for v, c in ((row[c], c) for c in columns)
+        ]
+        for record, row in zip(records, rows, strict=True)
+    ]  # fmt: skip
+    valued = [any(_is_value(row[c]) for row in rows) for c in columns]
+    heads = [header(column, symbols) for column in columns]
+    # a header wraps at spaces (not in symbols mode); a value column is never narrower
+    # than its widest value nor its header's longest word
+    words = [len(h) if symbols else max(len(w) for w in h.split() or [""]) for h in heads]
+    natural = [max([len(r[i]) for r in cells] + [words[i]]) for i in range(len(columns))]
+    out = console()
+    overhead = len(columns) - 1 if symbols else 3 * len(columns) + 1
+    fixed = sum(w for w, is_value in zip(natural, valued, strict=True) if is_value)
+    texts = [w for w, is_value in zip(natural, valued, strict=True) if not is_value]
+    room = out.width - overhead - fixed
+    if vertical or room < sum(min(w, TEXT_MIN_WIDTH) for w in texts):
+        _vertical(cells, columns, title, symbols)
+        return
+    cap = max(texts, default=0)
+    while cap > TEXT_MIN_WIDTH and sum(min(w, cap) for w in texts) > room:
+        cap -= 1  # text columns give way evenly, the widest first
+    narrow = {"box": rich_box.SIMPLE_HEAD, "padding": (0, 0), "show_edge": False}
+    narrow = narrow if symbols else {}
+    table = rich_table.Table(
+        title=rich_text.Text(title) if title else None, title_justify="left", **narrow
+    )
+    for head, is_value, width in zip(heads, valued, natural, strict=True):
+        if is_value:  # never cut: as wide as its widest value
+            table.add_column(head, width=width, overflow="fold", no_wrap=symbols)
+        else:
+            table.add_column(head, width=min(width, cap), overflow="ellipsis", no_wrap=symbols)
+    for row in cells:
+        table.add_row(*(rich_text.Text(c) for c in row))
+    out.print(table)
+
+
+def _vertical(
+    cells: list[list[str]], columns: Sequence[str], title: str | None, symbols: bool
+) -> None:
+    """Each record as a two-column table (name, value): nothing is cut at any width."""
+    out = console()
+    if title:
+        out.print(rich_text.Text(title, style="bold"))
+    for row in cells:
+        table = rich_table.Table(show_header=False, box=rich_box.SIMPLE, padding=(0, 1))
+        table.add_column("property", style="bold", overflow="fold", ratio=1)
+        table.add_column("value", overflow="fold", ratio=2)
+        for column, text in zip(columns, row, strict=True):
+            table.add_row(rich_text.Text(header(column, symbols)), rich_text.Text(text))
+        out.print(table)
 
 
 def _cell(record: dict[str, Any], value: Any, column: str, digits: int) -> str:
@@ -145,6 +205,27 @@ def _cell(record: dict[str, Any], value: Any, column: str, digits: int) -> str:
     if isinstance(u, int | float) and not isinstance(u, bool) and u > 0:
         return api.display_uncertain(value, u, column)
     return api.display(value, column, digits)
+
+
+def emit_records(
+    views: Sequence[tuple[str, Sequence[tuple[str, str]]]], title: str | None = None
+) -> None:
+    """Records for people, each shown vertically (its heading, then one line per
+    quantity: name and what it reads), so that no value is ever cut whatever the
+    terminal's width: long words wrap at spaces, never inside a number."""
+    out = console()
+    if title:
+        out.print(rich_text.Text(title, style="bold"))
+    for heading, lines in views:
+        table = rich_table.Table(
+            title=rich_text.Text(heading), title_justify="left", show_header=False,
+            box=rich_box.SIMPLE, padding=(0, 1),
+        )  # fmt: skip
+        table.add_column("quantity", style="bold", overflow="fold", ratio=1)
+        table.add_column("value", overflow="fold", ratio=2)
+        for name, text in lines:
+            table.add_row(rich_text.Text(name), rich_text.Text(text))
+        out.print(table)
 
 
 def emit_one(

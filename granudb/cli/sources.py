@@ -58,9 +58,9 @@ def show(key: SourceKey, db: DbOption = None, fmt: FormatOption = Format.table) 
 def history(key: SourceKey, db: DbOption = None, fmt: FormatOption = Format.table) -> None:
     """Show a source as it is and as it was before each change (when and why)."""
     records = api.source_history(key, db=db)
-    columns = ["revision", "kept_at", "reason", *api.SOURCE_NARROW]
+    columns = ["revision", "kept_at", "reason", "changes", *api.SOURCE_FIELDS]
     emit(records, columns if fmt is Format.table else list(records[0]), fmt,
-         title=f"Source {key}: history")  # fmt: skip
+         title=f"Source {key}: history", vertical=True)  # fmt: skip
 
 
 def _field(column: str, *aliases: str) -> Any:

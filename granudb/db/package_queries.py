@@ -17,7 +17,7 @@ from sqlalchemy.orm import Session
 
 from granudb.db import catalog_rows, datasets
 from granudb.db.catalogue_differences import sources_read
-from granudb.db.content_hash import content_hash
+from granudb.db.content_hash import export_hash
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
 from granudb.vocabulary.listings import DATASET_DESCRIPTION
 
@@ -46,17 +46,20 @@ def _json_list(text: object) -> list[Any]:
     return value if isinstance(value, list) else []
 
 
-def dataset_metadata(dataset: Dataset) -> dict[str, Any]:
+def dataset_metadata(dataset: Dataset, source: dict[str, Any] | None = None) -> dict[str, Any]:
     """The dataset's descriptive metadata; ``authors`` and ``keywords`` are read when the
-    schema has them (JSON text) and are empty lists otherwise."""
-    source = dataset.source
+    schema has them (JSON text) and are empty lists otherwise. ``source`` is the
+    dataset's own source as the dataset cites it (a release: as released); without it,
+    the row as it is today."""
+    source = source or (None if dataset.source is None else _values(dataset.source))
     return {
         **{field: getattr(dataset, field) for field in DATASET_DESCRIPTION},
+        "state": dataset.state,
         "doi": dataset.doi,
         "created_at": dataset.created_at,
         "authors": _json_list(getattr(dataset, "authors", None)),
         "keywords": _json_list(getattr(dataset, "keywords", None)),
-        "source": None if source is None else _values(source),
+        "source": source,
     }
 
 
@@ -134,4 +137,6 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
             {**_values(s), **catalog_rows.source_record(as_released[s.key])} for s in sources
         ],  # fmt: skip
     }
-    return ExportData(dataset_metadata(dataset), content_hash(session, dataset), tables)
+    # the dataset's own source, cited as every other file of the package cites it
+    own = next((s for s in tables["sources"] if s["id"] == dataset.source_id), None)
+    return ExportData(dataset_metadata(dataset, own), export_hash(session, dataset), tables)

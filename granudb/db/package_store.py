@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from datetime import datetime
 from typing import Any
 
 import numpy as np
@@ -24,8 +25,9 @@ from granudb.db.bulk_insert import CollisionBlock, NameColumn
 from granudb.db.catalog_rows import source_record
 from granudb.db.collision_store import FirstProblem, FluidRanges, insert_collisions
 from granudb.db.content_hash import content_hash, update_content_hash
-from granudb.db.datasets import check_dataset_name, check_version
-from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key
+from granudb.db.datasets import RELEASED, SUPERSEDED, check_dataset_name, check_version
+from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name_key, utcnow
+from granudb.db.roles import require_curator
 from granudb.errors import ConflictError
 from granudb.vocabulary.rules import same_value
 from granudb.vocabulary.text import MAX_NAME
@@ -49,6 +51,13 @@ class PackageContent:
     license: str | None
     doi: str | None
     tables: dict[str, Any]
+    #: The dataset's authors and keywords as stored (JSON text), its own source's key,
+    #: "draft" or "released", and its creation time (None: now).
+    authors: str | None = None
+    keywords: str | None = None
+    source: str | None = None
+    status: str = "draft"
+    created: datetime | None = None
 
 
 @dataclass
@@ -280,6 +289,10 @@ def store_package(
             description=content.description,
             license=content.license,
             doi=content.doi,
+            authors=content.authors,
+            keywords=content.keywords,
+            source_id=merger.source_ids.get(content.source) if content.source else None,
+            **({"created_at": content.created} if content.created else {}),
         )
         session.add(dataset)
         session.flush()
@@ -301,9 +314,27 @@ def store_package(
         result.dataset, result.version = content.dataset, content.version
         result.rows, result.content_hash = rows, update_content_hash(session, dataset)
         if declared_hash is not None:
-            _check_declared(session, dataset, result.content_hash, declared_hash,
-                            (materials, fluids))  # fmt: skip
+            result.content_hash = _check_declared(session, dataset, result.content_hash,
+                                                  declared_hash, (materials, fluids))  # fmt: skip
+        if content.status == RELEASED:
+            _released(session, dataset)
         return result
+
+
+def _released(session: Session, dataset: Dataset) -> None:
+    """A release imported stays a release (a curator's act, as releasing is), released
+    here now: it reads its sources and pair values as this database holds them at import,
+    which are the package's (a source or row that differs is a conflict). When this
+    database already has a released version of the name, that one stays current and the
+    imported one comes in superseded."""
+    require_curator(session.connection(), f"importing the release {dataset.name}")
+    current = session.scalars(
+        select(Dataset.id).filter_by(name=dataset.name, state=RELEASED)
+        .where(Dataset.id != dataset.id)
+    ).first()  # fmt: skip
+    dataset.state = SUPERSEDED if current is not None else RELEASED
+    dataset.released_at = utcnow()
+    session.flush()
 
 
 def _temperatures(frame: Any, stored: dict[str, str]) -> CollisionBlock:
@@ -333,18 +364,30 @@ def _stored_names(session: Session, fluids: dict[str, int]) -> dict[str, str]:
 
 def _check_declared(
     session: Session, dataset: Dataset, stored: str, declared: str, ids: tuple[dict, dict]
-) -> None:
+) -> str:
     """Refuse a package whose collisions, under the package's own names, do not give the
-    hash it declares. They give the stored hash unless a name was matched in another case
-    or renamed; then the stored rows are hashed again with the package's names."""
+    hash it declares; return the hash to record. They give the stored hash unless a name
+    was renamed (a name matched in another case hashes alike: names are hashed in
+    canonical form); then the stored rows are hashed again with the package's names. A
+    package hashed under the first definition (names as spelled, before they were
+    canonical) is checked under it, and its hash is kept when the names are this
+    database's: a release keeps the hash it was published with."""
     own = []
     for model, by_name in zip((Material, Fluid), ids, strict=True):
         here = dict(session.execute(select(model.id, model.name).where(
             model.id.in_(sorted(set(by_name.values()))))).all())  # fmt: skip
         own.append({here[i]: name for name, i in by_name.items() if here[i] != name})
-    computed = stored if not any(own) else content_hash(session, dataset, renamed=tuple(own))
-    if computed != declared:
-        raise HashMismatch(
-            f"content hash: computed {computed[:16]}…, the package declares "
-            f"{str(declared)[:16]}…; the collisions changed"
-        )
+    renamed = tuple(own) if any(own) else None
+    computed = stored if renamed is None else content_hash(session, dataset, renamed)
+    if computed == declared:
+        return stored
+    if content_hash(session, dataset, renamed, spelled=True) == declared:
+        if renamed is None:
+            dataset.content_hash = declared
+            session.flush()
+            return declared
+        return stored
+    raise HashMismatch(
+        f"content hash: computed {computed[:16]}…, the package declares "
+        f"{str(declared)[:16]}…; the collisions changed"
+    )

@@ -24,6 +24,7 @@ from granudb.io.package_metadata import citation_cff, contributors, keywords, ze
 from granudb.io.package_schema import DESCRIPTIONS, columns, table_schema
 from granudb.output_files import write_bytes, write_folder
 from granudb.version import __version__
+from granudb.vocabulary.escaping import doi_address, markdown_code, markdown_link, markdown_text
 
 PROFILE = "https://datapackage.org/profiles/2.0/datapackage.json"
 RESOURCE_ORDER = ["collisions", "materials", "fluids", "fluid_points", "sources"]
@@ -68,19 +69,20 @@ def _readme(data: ExportData, tables: dict[str, list[dict[str, Any]]]) -> str:
         group = (row["particle"], row["wall"], row["fluid"] or "dry")
         pairs[group] = pairs.get(group, 0) + 1
     lines = [
-        f"# {_line(dataset['title'] or dataset['name'])}",
+        f"# {markdown_text(dataset['title'] or dataset['name'])}",
         "",
-        f"Dataset `{_line(dataset['name'])}`, version {_line(dataset['version'])}, exported by "
+        f"Dataset {markdown_code(dataset['name'])}, version {markdown_text(dataset['version'])}, "
+        "exported by "
         f"granudb {__version__} as a [Frictionless Data Package](https://datapackage.org) (v2).",
         "",
-        dataset["description"] or "",
+        _paragraphs(dataset["description"] or ""),
         "",
         "## Contents",
         "",
         "| particle | wall | fluid | runs |",
         "|---|---|---|---:|",
         *(
-            f"| {_cell_md(p)} | {_cell_md(w)} | {_cell_md(f)} | {n} |"
+            f"| {markdown_text(p)} | {markdown_text(w)} | {markdown_text(f)} | {n} |"
             for (p, w, f), n in sorted(pairs.items())
         ),
         "",
@@ -115,23 +117,22 @@ def _readme(data: ExportData, tables: dict[str, list[dict[str, Any]]]) -> str:
         "## How to cite",
         "",
         f"Cite the dataset as in `CITATION.cff` (Zenodo metadata: `.zenodo.json`); license: "
-        f"{_line(dataset['license'] or 'not stated')}.",
+        f"{markdown_text(dataset['license'] or 'not stated')}.",
     ]
     if tables["sources"]:
         lines += ["", "Sources of the values:", ""]
         lines += [
-            f"- {_line(s['citation'])}" + (f" https://doi.org/{s['doi']}" if s["doi"] else "")
+            f"- {markdown_text(s['citation'])}"
+            + (f" {markdown_link(doi_address(s['doi']))}" if s["doi"] else "")
             for s in tables["sources"]
         ]
     return "\n".join(lines) + "\n"
 
 
-def _line(text: str) -> str:
-    return " ".join(str(text).split())
-
-
-def _cell_md(text: str) -> str:
-    return _line(text).replace("|", "\\|")
+def _paragraphs(text: str) -> str:
+    """Free text (a description) as Markdown: its lines kept, each escaped as text
+    (``granudb.vocabulary.escaping``), so nothing in it becomes markup."""
+    return "\n".join(markdown_text(line) for line in text.splitlines())
 
 
 def _descriptor(
@@ -161,6 +162,7 @@ def _descriptor(
         "granudb:dataset": dataset["name"],
         "granudb:content_hash": data.content_hash,
         "granudb:version": __version__,
+        **dataset_record(dataset),
         "resources": resources,
     }
     if dataset["license"]:
@@ -170,14 +172,36 @@ def _descriptor(
     return descriptor
 
 
+#: A released version and one superseded since are both releases to a receiver (which
+#: versions a database holds is its own affair).
+PACKAGE_STATUS = {"draft": "draft", "released": "released", "superseded": "released"}
+
+
+def dataset_record(dataset: dict[str, Any]) -> dict[str, Any]:
+    """The dataset's own metadata as stored, for an importer to store it again unchanged
+    (the round trip is lossless): the title and description as stored (``null`` where the
+    descriptor's ``title``/``description`` are placeholders from the name), the authors
+    and keywords as lists, the key of the dataset's own source, and its status (draft or
+    released). The descriptor's standard fields say the same for other readers."""
+    source = dataset["source"]
+    return {
+        "granudb:status": PACKAGE_STATUS[dataset["state"]],
+        "granudb:title": dataset["title"],
+        "granudb:description": dataset["description"],
+        "granudb:authors": dataset["authors"],
+        "granudb:keywords": dataset["keywords"],
+        "granudb:source": None if source is None else source["key"],
+    }
+
+
 def build_package(data: ExportData, created: str | None = None) -> dict[str, bytes]:
     """Every file of the package, by relative path.
 
-    ``created`` defaults to the dataset's creation time, so exporting the same dataset
-    twice gives the same bytes."""
+    ``created`` defaults to the dataset's creation time (in UTC, whatever the database
+    server's time zone), so exporting the same dataset twice gives the same bytes."""
     stamp = data.dataset.get("created_at")
     created = created or (
-        stamp.replace(tzinfo=stamp.tzinfo or UTC, microsecond=0).isoformat()
+        stamp.replace(tzinfo=stamp.tzinfo or UTC).astimezone(UTC).replace(microsecond=0).isoformat()
         if isinstance(stamp, datetime)
         else datetime.now(UTC).replace(microsecond=0).isoformat()
     )
@@ -212,12 +236,15 @@ def build_package(data: ExportData, created: str | None = None) -> dict[str, byt
 
 
 def _zip_bytes(files: dict[str, bytes]) -> bytes:
-    """The package as one zip archive (fixed timestamps: the same files, the same bytes)."""
+    """The package as one zip archive (fixed timestamps and modes: the same files, the same
+    bytes). Each entry is a regular file readable by all (``-rw-r--r--``), so the files a
+    colleague unpacks are not private to whoever unpacks them."""
     buffer = io.BytesIO()
     with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
         for path in sorted(files):
             info = zipfile.ZipInfo(path, date_time=(2000, 1, 1, 0, 0, 0))
             info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = (0o100644 & 0xFFFF) << 16
             archive.writestr(info, files[path])
     return buffer.getvalue()
 

@@ -111,6 +111,14 @@ def upgrade() -> None:
     )
 
 
+#: What ``downgrade()`` drops, as (table, column, SQL condition on the rows that lose
+#: something, what happens to them): what ``granudb db downgrade`` asks consent for
+#: (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    ("reported_runs", "run", "1 = 1", "dropped (the runs as papers report them)"),
+]
+
+
 def downgrade() -> None:
-    # the reported runs go; ``granudb db downgrade`` names them and asks (``_STEP_LOSSES``)
+    # the reported runs go; ``granudb db downgrade`` names them and asks first
     op.drop_table("reported_runs")
