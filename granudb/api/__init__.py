@@ -77,6 +77,15 @@ NAMES: dict[str, str] = {
     "import_dataset": "packages",
     "datasette_metadata": "datasette",
     "database_file": "datasette",
+    # the reference library of published collision data
+    "reference_list": "reference",
+    "reference_show": "reference",
+    "reference_reproduce": "reference",
+    "reference_dem": "reference",
+    # runs as papers report them
+    "import_reported_runs": "reported",
+    "reported_runs": "reported",
+    "fit_reported": "reported",
     # DEM
     "dem_export": "dem",
     "dem_verify": "dem",
@@ -125,6 +134,17 @@ FACE: dict[str, str] = {
     "parameter_of": "presentation",
     "dataset_ref": "inputs",
     "load_seed": "schema",
+    "REFERENCE_COLUMNS": "reference",
+    "REFERENCE_CHECK_COLUMNS": "reference",
+    "REFERENCE_CHECK_NARROW": "reference",
+    "REFERENCE_NARROW": "reference",
+    "REFERENCE_DEM_COLUMNS": "reference",
+    "REFERENCE_DEM_NARROW": "reference",
+    "DEM_REFERENCE_CODES": "reference",
+    "REPORTED_COLUMNS": "reported",
+    "REPORTED_NARROW": "reported",
+    "REPORTED_FITS": "reported",
+    "REFERENCE_VALUE_COLUMNS": "reference",
 }
 
 __all__ = sorted({**NAMES, **FACE, "DATABASE_ENV_VAR": ""})
