@@ -17,11 +17,15 @@ a DEM deck) goes through here:
   folder likewise ``0o777`` less the umask.
 
 A folder of files (a package exported to a folder) is written into a temporary sibling
-folder and renamed into place in one step: all or nothing.
+folder and renamed into place in one step: all or nothing. A folder that belongs to a file
+(a Markdown report's figures) lands with it (``land_with``): a write killed between the
+two leaves a folder marked as granudb's own unfinished write, which the rerun replaces.
 """
 
 from __future__ import annotations
 
+import contextlib
+import json
 import os
 import shutil
 import tempfile
@@ -123,3 +127,66 @@ def write_folder(
         if staging.exists():
             shutil.rmtree(staging, ignore_errors=True)
     return folder
+
+
+#: The mark inside a folder that lands with a file (a Markdown report's figures): JSON
+#: naming that file and the folder's files; removed once the file is in place.
+LANDING_MARK = ".granudb-landing"
+
+
+def land_with(
+    folder: Path,
+    files: Mapping[str, bytes],
+    path: Path,
+    payload: bytes,
+    *,
+    replace: bool = False,
+    field: str = "output",
+) -> Path:
+    """``files`` in a new ``folder`` and ``payload`` at ``path``, landing together: the
+    folder is staged whole with a mark (``LANDING_MARK``) and renamed into place
+    (``write_folder``), then ``path`` is written, then the mark goes. A write killed
+    between the two leaves a folder whose mark names a file that is not there:
+    ``unfinished`` recognises it as granudb's own, so it never blocks the rerun."""
+    mark = json.dumps({"file": path.name, "files": sorted(files)}).encode("utf-8")
+    write_folder(folder, {**files, LANDING_MARK: mark}, field=field)
+    try:
+        write_bytes(path, payload, replace=replace, field=field)
+    except BaseException:
+        clear_unfinished(folder, path)
+        raise
+    (folder / LANDING_MARK).unlink(missing_ok=True)
+    return path
+
+
+def unfinished(folder: Path, path: Path) -> list[str] | None:
+    """The files of ``folder`` if it is a leftover of a ``land_with`` that did not finish
+    (its mark names ``path``, which does not exist); None otherwise."""
+    mark = folder / LANDING_MARK
+    if folder.is_symlink() or mark.is_symlink() or not mark.is_file() or path.exists():
+        return None
+    try:
+        said = json.loads(mark.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(said, dict) or said.get("file") != path.name:
+        return None
+    names = said.get("files")
+    if not isinstance(names, list) or not all(isinstance(n, str) and "/" not in n for n in names):
+        return None
+    return names
+
+
+def clear_unfinished(folder: Path, path: Path) -> bool:
+    """Remove a leftover ``unfinished`` folder: only the files its mark lists, the mark,
+    and the folder if nothing else is in it. True when one was removed."""
+    names = unfinished(folder, path)
+    if names is None:
+        return False
+    for name in [*names, LANDING_MARK]:
+        target = folder / name
+        if not target.is_symlink() and target.is_file():
+            target.unlink()
+    with contextlib.suppress(OSError):
+        folder.rmdir()
+    return True

@@ -425,6 +425,7 @@ def walton_row(
             continue  # a line of < 3 runs: no value whatever the method
         median, low, high = posterior.summary(name)
         row.update({value_key: median, f"{prefix}_low": low, f"{prefix}_high": high})
+        row[f"{prefix}_interval_method"] = INTERVAL_METHOD
         if f"{prefix}_stderr" in row:
             row[f"{prefix}_stderr"] = posterior.spread(name)
     row["sigma"] = posterior.summary("log_sigma")[0] if sigma is None else math.nan

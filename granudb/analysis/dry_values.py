@@ -21,6 +21,7 @@ the DEM export all take the values and their sources from ``dry_values``.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from types import SimpleNamespace
 from typing import Any
@@ -55,21 +56,75 @@ class DryValues:
     immersed_friction: float
     immersed_friction_basis: str
     immersed_friction_source: str
+    #: The database's source keys each value cites ("; "-joined, None: none), so a
+    #: report lists every one of them among its references.
+    restitution_source_keys: str | None = None
+    friction_source_keys: str | None = None
+    immersed_friction_source_keys: str | None = None
 
     def record(self) -> dict[str, Any]:
         """The values as JSON/CSV fields (``dry_restitution``, ``dry_restitution_basis``,
-        ``dry_restitution_source``, the same for ``dry_friction`` and
-        ``immersed_friction``)."""
+        ``dry_restitution_source``, ``dry_restitution_source_keys``, the same for
+        ``dry_friction`` and ``immersed_friction``)."""
         return {
             key if key.startswith("immersed") else f"dry_{key}": value
             for key, value in asdict(self).items()
         }
 
+    def keys(self) -> set[str]:
+        """Every source key the three values cite."""
+        joined = (self.restitution_source_keys, self.friction_source_keys,
+                  self.immersed_friction_source_keys)  # fmt: skip
+        return {key for text in joined if text for key in text.split("; ")}
+
+
+def material_dry_source(material: Any) -> str:
+    """Where a material's own dry e and μ come from, in the words ``materials show``
+    gives (its ``dry_provenance``, set by ``--dry-source``), or "not stated". A record
+    (dict) or a row."""
+    text = material.get("dry_provenance") if isinstance(material, dict) else (
+        getattr(material, "dry_provenance", None))  # fmt: skip
+    return text if text else "not stated"
+
+
+def provenance_keys(text: str | None, sources: Mapping[str, Any] | None) -> tuple[str, ...]:
+    """The stored sources a free-text provenance names: a source's key written in it, or
+    its first author's surname with its year ("Nijssen, Ottens & Padding 2022" names
+    ``nijssen-ottens-padding-2022``, whose citation begins "Nijssen, T. M. J., … (2022)").
+
+    >>> from types import SimpleNamespace as S
+    >>> row = S(citation="Nijssen, T. M. J., Ottens, M. & Padding, J. T. (2022). Script", year=2022)
+    >>> provenance_keys("Nijssen, Ottens & Padding 2022, model code", {"nijssen-2022": row})
+    ('nijssen-2022',)
+    >>> provenance_keys("lab note 12", {"nijssen-2022": row})
+    ()
+    """
+    if not text or not sources:
+        return ()
+    found = []
+    for key, row in sorted(sources.items()):
+        citation = row if isinstance(row, str) else row.citation
+        surname = citation.split(",")[0].strip()
+        year = None if isinstance(row, str) else row.year
+        if key in text or (
+            year is not None and len(surname) > 1 and surname in text and str(year) in text
+        ):
+            found.append(key)
+    return tuple(found)
+
+
+def _joined(keys: Any) -> str | None:
+    keys = sorted({k for k in keys if k})
+    return "; ".join(keys) if keys else None
+
 
 #: The borrowed values, for a caller without a pair (``verdicts`` of an old document).
+#: The source key of the borrowed values.
+BORROWED_KEY = "joseph-hunt-2004"
 BORROWED_VALUES = DryValues(
-    DRY_RESTITUTION, *("borrowed", BORROWED), *(DRY_FRICTION, "borrowed", BORROWED) * 2
-)
+    DRY_RESTITUTION, *("borrowed", BORROWED), *(DRY_FRICTION, "borrowed", BORROWED) * 2,
+    *(BORROWED_KEY,) * 3,
+)  # fmt: skip
 #: What the immersed friction says when the pair has no measured value of its own.
 NO_IMMERSED = "the dry value (no immersed value measured for the pair): "
 
@@ -95,46 +150,60 @@ def _own(material: MaterialRow, column: str) -> float | None:
 
 def _from_materials(
     first: MaterialRow, second: MaterialRow, column: str
-) -> tuple[float, str] | None:
-    """The combination rule (module doc) for ``column`` of the two materials, or None."""
+) -> tuple[float, str, list[MaterialRow]] | None:
+    """The combination rule (module doc) for ``column`` of the two materials, or None;
+    with the materials whose value it uses."""
     bodies = (first,) if first.name == second.name else (first, second)
     known = [(m, v) for m in bodies if (v := _own(m, column)) is not None]
     if not known:
         return None
-    where = "; ".join(f"{m.name}: {m.dry_provenance or 'no source given'}" for m, _ in known)
+    where = "; ".join(f"{m.name}: {material_dry_source(m)}" for m, _ in known)
+    used = [m for m, _ in known]
     if len(known) == 1:
         material, value = known[0]
         missing = [m.name for m in bodies if _own(m, column) is None]
         note = f" ({missing[0]}'s not known)" if missing else ""
-        return value, f"{material.name}'s own value{note} [{where}]"
+        return value, f"{material.name}'s own value{note} [{where}]", used
     (a, x), (b, y) = known
     if column == "dry_restitution":
-        return min(x, y), f"the lower of {a.name}'s and {b.name}'s (granudb's rule) [{where}]"
-    return math.sqrt(x * y), f"√(μ₁μ₂) of {a.name}'s and {b.name}'s (granudb's rule) [{where}]"
+        words = f"the lower of {a.name}'s and {b.name}'s (granudb's rule) [{where}]"
+        return min(x, y), words, used
+    words = f"√(μ₁μ₂) of {a.name}'s and {b.name}'s (granudb's rule) [{where}]"
+    return math.sqrt(x * y), words, used
 
 
 def resolve(
     first: MaterialRow,
     second: MaterialRow,
     measured: list[catalog_rows.PairValueRow],
+    sources: Mapping[str, Any] | None = None,
 ) -> DryValues:
-    """The rule of the module doc, for two material rows and the pair's measured rows."""
+    """The rule of the module doc, for two material rows and the pair's measured rows;
+    ``sources`` (key → stored source) name the keys a material's provenance cites."""
     chosen: dict[str, tuple[float, str, str]] = {}
+    keys: dict[str, str | None] = {}
     for column, default in (("dry_restitution", DRY_RESTITUTION), ("dry_friction", DRY_FRICTION)):
         pair = next((r for r in measured if getattr(r, column) is not None), None)
         if pair is not None:
             chosen[column] = (float(getattr(pair, column)), "pair", _cited(pair))
+            keys[column] = _joined([catalog_rows.source_key(pair.source)])
         elif (combined := _from_materials(first, second, column)) is not None:
             chosen[column] = (combined[0], "materials", combined[1])
+            keys[column] = _joined(
+                k for m in combined[2] for k in provenance_keys(m.dry_provenance, sources)
+            )
         else:
             chosen[column] = (default, "borrowed", BORROWED)
+            keys[column] = BORROWED_KEY
     e, mu = chosen["dry_restitution"], chosen["dry_friction"]
     wet = next((r for r in measured if r.immersed_friction is not None), None)
     if wet is not None:
         immersed = (float(wet.immersed_friction), "pair", _cited(wet, "in a liquid"))
+        wet_keys = _joined([catalog_rows.source_key(wet.source)])
     else:
         immersed = (mu[0], mu[1], NO_IMMERSED + mu[2])
-    return DryValues(*e, *mu, *immersed)
+        wet_keys = keys["dry_friction"]
+    return DryValues(*e, *mu, *immersed, keys["dry_restitution"], keys["dry_friction"], wet_keys)
 
 
 def dry_values(
@@ -150,7 +219,7 @@ def dry_values(
     second = catalog_rows.get_material_row(connection, wall, dataset_id)
     before = catalog_rows.released_at(connection, dataset_id)
     measured = catalog_rows.pair_value_rows(connection, particle, wall, before=before)
-    return resolve(first, second, measured)
+    return resolve(first, second, measured, catalog_rows.sources_as_of(connection, before))
 
 
 def per_run(

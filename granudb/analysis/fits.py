@@ -57,15 +57,21 @@ WALTON_KEYS = {
     "dataset, particle, wall, fluid": "the group ('dry' when no fluid)",
     "n_runs": "runs with finite Ψ_in, Ψ_out and e",
     "n_folded": "runs with v_T,in < 0, whose Ψ_in and Ψ_out were negated before fitting",
-    "model": "'sticking', 'sliding' or 'split' (smallest BIC), or None with fewer than 3 runs",
-    "model_reason": "the BIC values behind the choice, in words",
+    "model": "'sticking', 'sliding' or 'split' (smallest BIC; a split where runs counted as "
+    "sliding stick by their own kinematics: walton.kinematic_sticking), or None (not "
+    "determined) with fewer than 3 runs or too few runs on a line to choose",
+    "model_reason": "the BIC values behind the choice, or why none was chosen, in words",
     "bic_sticking, bic_sliding, bic_split": "BIC = n ln(S/n) + p ln n, p = 2, 2, 4",
     "model_support_sticking, _sliding, _split": "share of bootstrap resamples choosing it",
     "n_sticking, n_sliding": "runs on each line of the chosen model",
     "split_effective_incidence": "folded Ψ_in of the first sliding run of a split, else NaN",
     "rotational_restitution": "β from the sticking line (NaN unless it has ≥ 3 runs)",
-    "rotational_restitution_low, _high": "studentized bootstrap interval of β (NaN, with the "
-    "reason, below MIN_RUNS_FOR_INTERVAL runs on the line or when the bootstrap is degenerate)",
+    "rotational_restitution_low, _high": "95 % interval of β: studentized bootstrap from "
+    "MIN_RUNS_FOR_INTERVAL runs on the line, the t-interval below (NaN, with the reason, where "
+    "neither is measured to hold: fits._beta_refusal, or a degenerate bootstrap)",
+    "rotational_restitution_interval_method, sliding_friction_interval_method, "
+    "normal_restitution_interval_method": "how that parameter's interval was made ('' when "
+    "none): the bootstrap's method, SMALL_N_METHOD or MEAN_METHOD",
     "rotational_restitution_stderr": "least-squares standard error of β on its line",
     "rotational_restitution_determined": "share of resamples in which β was determined",
     "sliding_friction": "μ_f from the sliding line (NaN unless it has ≥ 3 runs)",
@@ -73,7 +79,8 @@ WALTON_KEYS = {
     "sliding_friction_lower_bound": "all sticking: μ_f ≥ (1+β)Ψ_in/((1+e)B) at the largest "
     "Ψ_in (2.10): a bound, not a value",
     "normal_restitution_mean": "ē over all runs of the group",
-    "normal_restitution_low, _high": "studentized bootstrap interval of ē",
+    "normal_restitution_low, _high, _stderr, _determined": "interval of ē (bootstrap-t from "
+    "MIN_RUNS_FOR_INTERVAL runs, the t-interval of the mean from 2), s/√n, share determined",
     "normal_restitution_std": "standard deviation of e over the runs",
     "walton_factor": "mean B used (7/2 unless the frame has walton_factor)",
     "confidence_level, bootstrap_resamples, bootstrap_seed": "how the intervals were made",
@@ -81,8 +88,9 @@ WALTON_KEYS = {
     "'as asked' when the caller gave one)",
     "reason": "why β or μ_f is absent ('' when both are given)",
     "fit_method": "'bootstrap' or 'bayes' (FIT_METHODS)",
-    "interval_method": "how the intervals were made (the bootstrap's says whether the runs' "
-    "stated speed uncertainties were used: resampling.STATED_WALTON_METHOD)",
+    "interval_method": "how the intervals were made: the one method of every given interval, "
+    "else each parameter's ('β: …; μ_f: …; ē: …'); the bootstrap's says whether the runs' "
+    "stated speed uncertainties were used (resampling.STATED_WALTON_METHOD)",
     "bayes only: prior, likelihood, sigma": "how the posterior was made "
     "(values are posterior medians, _low/_high its 95 % equal-tailed credible interval, "
     "_stderr its standard deviation; sigma the scatter of Ψ_out)",
@@ -157,15 +165,43 @@ BOUNDS = {
 MIN_RUNS_FOR_INTERVAL = 10
 
 
-def _interval(row: dict, name: str, values: tuple, point: tuple, runs: int) -> str:
-    """Put the bootstrap-t interval of ``name`` into ``row``; the reason when there is none."""
-    found = intervals.studentized(*point, *values, bounds=BOUNDS[name], level=CONFIDENCE_LEVEL)
-    refused = intervals.too_few(runs, MIN_RUNS_FOR_INTERVAL) if math.isfinite(point[0]) else ""
-    reason = refused or found.reason
+#: What each parameter's ``_interval_method`` says when the small-n interval gave it.
+SMALL_N_METHOD = (
+    f"{intervals.T_METHOD}, on the least-squares line through the origin of the runs on "
+    f"the line (fewer than {MIN_RUNS_FOR_INTERVAL} runs, or runs moved by their kinematics)"
+)
+MEAN_METHOD = (
+    f"{intervals.T_METHOD}: the mean of the runs' e (fewer than {MIN_RUNS_FOR_INTERVAL} runs)"
+)
+
+
+#: What the small-n interval's method adds when the runs state a u: it is not redrawn.
+STATED_SMALL_N = "; the runs' stated u is not redrawn: it is in the per-run values' scatter"
+
+
+def _interval(row: dict, name: str, values: tuple, point: tuple, runs: int, how=None) -> str:
+    """Put the interval of ``name`` into ``row``, its method under ``name + '_interval_method'``;
+    the reason when there is none. ``how``: {"boot": the bootstrap's method, "small": the
+    small-n interval at any n, "refuse": why the small-n interval is refused, "stated": the
+    runs state a u}. Below MIN_RUNS_FOR_INTERVAL runs the t-interval of the per-run values
+    (``intervals.t_interval``), else the bootstrap-t."""
+    how = how or {}
+    small = how.get("small", False) or runs < MIN_RUNS_FOR_INTERVAL
+    if small and how.get("refuse"):
+        found, method = intervals.Interval(math.nan, math.nan, 0.0, how["refuse"]), ""
+    elif small:
+        found = intervals.t_interval(*point, runs, bounds=BOUNDS[name], level=CONFIDENCE_LEVEL)
+        method = MEAN_METHOD if name == "normal_restitution" else SMALL_N_METHOD
+        method += STATED_SMALL_N if how.get("stated") else ""
+    else:
+        found = intervals.studentized(*point, *values, bounds=BOUNDS[name], level=CONFIDENCE_LEVEL)
+        method = how.get("boot", intervals.METHOD)
+    reason = found.reason
     row[f"{name}_low"] = math.nan if reason else found.low
     row[f"{name}_high"] = math.nan if reason else found.high
     row[f"{name}_stderr"] = point[1] if math.isfinite(point[0]) else math.nan
     row[f"{name}_determined"] = found.determined
+    row[f"{name}_interval_method"] = "" if reason else method
     return reason if math.isfinite(point[0]) else ""
 
 
@@ -191,6 +227,48 @@ def bootstrap_plan(n: int, resamples: int | None) -> tuple[int, str]:
     return resampling.resample_count(n), resampling.RESAMPLE_RULE
 
 
+def _beta_refusal(model: str, n: int) -> str:
+    """Why β gets no small-n interval ('' where its t-interval is measured to hold): on the
+    sticking line of a split (a sliding run near the crossing taken as sticking biases β:
+    the t-interval covered 0.81 to 0.94 at n = 5 to 9, 0.83 with stated u), or all
+    sticking with fewer runs than a split needs to be tested (n = 3: 0.18 on split data)."""
+    if model == "split":
+        return (
+            f"interval not determined: fewer than {MIN_RUNS_FOR_INTERVAL} runs on the sticking "
+            "line of a split (no interval measured here holds its coverage there: the "
+            "t-interval covered 0.81–0.94 at 5–9 runs)"
+        )
+    if n < 2 * core.MIN_RUNS_PER_LINE:
+        return (
+            f"interval not determined: {n} runs cannot test a split (it needs "
+            f"{2 * core.MIN_RUNS_PER_LINE}); on split data β's t-interval covered 0.18 there"
+        )
+    return ""
+
+
+#: The row's ``interval_method`` when none of its parameters has an interval.
+NO_INTERVAL = "no interval given (reason says why)"
+
+
+def _joined_method(row: dict) -> str:
+    """The row's ``interval_method``: the one method every given interval used, or each
+    parameter's ("β: …; μ_f: …; ē: …") when they differ."""
+    found = {
+        symbol: row.get(f"{name}_interval_method", "")
+        for symbol, name in (
+            ("β", "rotational_restitution"),
+            ("μ_f", "sliding_friction"),
+            ("ē", "normal_restitution"),
+        )
+    }
+    given = {symbol: method for symbol, method in found.items() if method}
+    if not given:
+        return NO_INTERVAL
+    if len(set(given.values())) == 1:
+        return next(iter(given.values()))
+    return "; ".join(f"{symbol}: {method}" for symbol, method in given.items())
+
+
 def _walton_group(
     key: tuple, group: Any, asked: int | None, seed: int, sets: dict | None = None
 ) -> dict[str, Any]:
@@ -202,14 +280,22 @@ def _walton_group(
     row: dict[str, Any] = {**dict(zip(GROUP, key, strict=True)), "n_runs": n, "n_folded": folded}
     row.update(confidence_level=CONFIDENCE_LEVEL, bootstrap_resamples=resamples)
     row["bootstrap_rule"] = rule
-    row["interval_method"] = intervals.METHOD + (
-        resampling.STATED_WALTON_METHOD if stated is not None else ""
-    )
+    boot_method = intervals.METHOD + (resampling.STATED_WALTON_METHOD if stated is not None else "")
+    row["interval_method"] = boot_method
     row.update(bootstrap_seed=seed, walton_factor=float(np.mean(factor)) if n else math.nan)
     row.update(dict.fromkeys(_NUMBERS, math.nan), model=None, model_reason="")
     row.update(n_sticking=0, n_sliding=0)
+    row.update({f"{name}_interval_method": "" for name in BOUNDS})
     if n < core.MIN_RUNS_FOR_PARAMETER:
         row["normal_restitution_mean"] = float(np.mean(e)) if n else math.nan
+        if n >= 2:
+            se = float(np.std(e, ddof=1) / math.sqrt(n))
+            stated_u = {"stated": stated is not None}
+            _interval(
+                row, "normal_restitution", (), (row["normal_restitution_mean"], se), n, stated_u
+            )
+            row["normal_restitution_std"] = float(np.std(e, ddof=1))
+        row["interval_method"] = _joined_method(row)
         row["reason"] = f"{n} runs: a Walton fit needs at least {core.MIN_RUNS_FOR_PARAMETER}"
         return row
     fit = core.decide(np.ones((1, n)), x, y, c, e)
@@ -224,32 +310,72 @@ def _walton_group(
         {f"model_support_{m}": float(np.mean(boot.model == i)) for i, m in enumerate(core.MODELS)}
     )
     ranked = sorted(bic, key=bic.get)
-    row["model"] = model
     row["model_reason"] = (
         f"{model}: smallest BIC {bic[model]:.4g} (next {ranked[1]} {bic[ranked[1]]:.4g}; "
         "BIC = n ln(S/n) + p ln n, p = 2 sticking, 2 sliding, 4 split)"
     )
+    # a run counted as sliding whose own kinematics says it sticks never enters μ_f
+    moved, moved_why = (0, "") if model == "sticking" else core.kinematic_sticking(x, y, c, k)
+    if moved:
+        k += moved
+        fit = core.at_split(x, y, c, e, k)
+        if min(k, n - k) < core.MIN_RUNS_PER_LINE:
+            row.update(n_sticking=k, n_sliding=n - k)
+            row["normal_restitution_mean"] = float(np.mean(e))
+            row["normal_restitution_std"] = float(np.std(e, ddof=1))
+            mean = (float(fit.restitution[0]), float(fit.restitution_se[0]))
+            _interval(
+                row,
+                "normal_restitution",
+                (),
+                mean,
+                n,
+                {"small": True, "stated": stated is not None},
+            )
+            row["interval_method"] = _joined_method(row)
+            row["model_reason"] = (
+                f"not determined: {moved_why}; {k} sticking and {n - k} sliding runs, too "
+                f"few to choose a model (a split needs {core.MIN_RUNS_PER_LINE} runs on each "
+                f"line; BIC chose {model})"
+            )
+            row["reason"] = (
+                f"model not determined ({k} sticking, {n - k} sliding runs): no β, no μ_f"
+            )
+            return row
+        row["model_reason"] = (
+            f"split: {moved_why}; BIC chose {model} (smallest BIC {bic[model]:.4g})"
+        )
+        model = "split"
+    how = {"boot": boot_method, "small": bool(moved), "stated": stated is not None}
+    row["model"] = model
     row.update(n_sticking=k, n_sliding=n - k)
     row["split_effective_incidence"] = float(x[k]) if model == "split" else math.nan
     row["rotational_restitution"] = float(fit.beta[0])
     beta = (float(fit.beta[0]), float(fit.beta_se[0]))
-    why_beta = _interval(row, "rotational_restitution", (boot.beta, boot.beta_se), beta, k)
+    why_beta = _interval(
+        row,
+        "rotational_restitution",
+        (boot.beta, boot.beta_se),
+        beta,
+        k,
+        {**how, "refuse": _beta_refusal(model, n)},
+    )
     row["sliding_friction"] = float(fit.friction[0])
     friction = (float(fit.friction[0]), float(fit.friction_se[0]))
-    why_mu = _interval(row, "sliding_friction", (boot.friction, boot.friction_se), friction, n - k)
+    why_mu = _interval(
+        row, "sliding_friction", (boot.friction, boot.friction_se), friction, n - k, how
+    )
     bound = math.nan
     if model == "sticking" and not math.isnan(row["rotational_restitution"]):
         bound = float((1 + row["rotational_restitution"]) * x[-1] / c[-1])
     row["sliding_friction_lower_bound"] = bound
     row["normal_restitution_mean"] = float(np.mean(e))
     mean = (float(fit.restitution[0]), float(fit.restitution_se[0]))
-    ranges = {}
     why_e = _interval(
-        ranges, "normal_restitution", (boot.restitution, boot.restitution_se), mean, n
+        row, "normal_restitution", (boot.restitution, boot.restitution_se), mean, n, how
     )
-    row.update(normal_restitution_low=ranges["normal_restitution_low"])
-    row.update(normal_restitution_high=ranges["normal_restitution_high"])
     row["normal_restitution_std"] = float(np.std(e, ddof=1))
+    row["interval_method"] = _joined_method(row)
     said = [
         f"interval of {symbol} {why}"
         for symbol, why in (("β", why_beta), ("μ_f", why_mu), ("ē", why_e))

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from sqlalchemy.engine import Connection
 
-from granudb.analysis.dry_values import DryValues, resolve
+from granudb.analysis.dry_values import DryValues, provenance_keys, resolve
 from granudb.analysis.fluid_state import FluidState, fluid_state, state_uncertainty
 from granudb.analysis.refusals import physics_refusal
 from granudb.db import catalog_rows
@@ -79,6 +79,8 @@ class PairResult:
     derived: dict[str, Any]
     dry: DryValues
     citations: dict[str, str] = field(default_factory=dict)
+    #: The same sources as stored rows (citation and DOI), for a report's references.
+    cited_sources: dict[str, Any] = field(default_factory=dict)
 
 
 def is_dry(fluid: str | None) -> bool:
@@ -197,7 +199,11 @@ def derive_pair(
         "u_viscosity_pa_s": u_viscosity,
         "u_fluid_density_kg_m3": u_density,
     }
-    if state is not None and fluid_row is not None and fluid_row.u_pressure_viscosity_pa_inv:
+    if (
+        state is not None
+        and fluid_row is not None
+        and fluid_row.u_pressure_viscosity_pa_inv is not None
+    ):
         propagated["u_pressure_viscosity_pa_inv"] = fluid_row.u_pressure_viscosity_pa_inv
     if u_viscosity is not None:  # the fluid's state, with the temperature's share
         given_u["u_viscosity_pa_s"] = u_viscosity
@@ -206,7 +212,9 @@ def derive_pair(
     measured = catalog_rows.pair_value_rows(
         connection, particle, wall, before=catalog_rows.released_at(connection, dataset_id)
     )
-    dry = resolve(first, second, measured)
+    released = catalog_rows.released_at(connection, dataset_id)
+    sources = catalog_rows.sources_as_of(connection, released)
+    dry = resolve(first, second, measured, sources)
     inputs = {
         "diameter_m": diameter_m,
         "wall_diameter_m": wall_diameter_m,
@@ -249,6 +257,13 @@ def derive_pair(
         for row in (first, second, fluid_row)
         if row is not None and row.source is not None
     }
+    # the sources the dry values used cite (a pair's measurement) and those the two
+    # materials' own dry values name (their provenance, shown with the materials)
+    cited = dry.keys() | {
+        key for row in (first, second) for key in provenance_keys(row.dry_provenance, sources)
+    }
+    citations.update({key: sources[key].citation for key in sorted(cited) if key in sources})
+    cited_sources = {key: sources.get(key, text) for key, text in citations.items()}
     return PairResult(
         catalog_rows.material_record(first),
         catalog_rows.material_record(second),
@@ -258,6 +273,7 @@ def derive_pair(
         derived,
         dry,
         citations,
+        cited_sources,
     )
 
 

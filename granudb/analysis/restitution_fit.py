@@ -43,6 +43,36 @@ RESTITUTION_MODELS = {
 PARAMETER_NAMES = {"threshold": "fitted_critical_stokes", "exponential": "k"}
 #: The form fitted when none is named: Legendre et al.'s, the form of the prediction.
 DEFAULT_MODEL = "exponential"
+#: The form a report fits instead, and why (``restitution_model``).
+REPORT_MODEL = "threshold"
+REPORT_REASON = (
+    "the report's choice, not fit restitution's default (exponential): its fitted St_c is "
+    "the no-rebound threshold of these runs, read beside the St_c of the rebound verdict "
+    "(figure 5)"
+)
+DEFAULT_REASON = "granudb's default: the form of the predicted restitution (Legendre et al.)"
+
+
+def restitution_model(asked: str | None = None, *, report: bool = False) -> tuple[str, str]:
+    """The one decision of which e(St_n) form is fitted, and why, for ``fit restitution``,
+    ``granudb.fit_restitution`` and the report alike: the form ``asked`` for, else in a
+    report ``REPORT_MODEL``, else ``DEFAULT_MODEL``. Every fit row carries the reason
+    (``model_reason``) and every caption says it.
+
+    >>> restitution_model()[0], restitution_model(report=True)[0]
+    ('exponential', 'threshold')
+    >>> restitution_model("threshold")
+    ('threshold', 'as asked')
+    """
+    if asked is not None:
+        if asked not in RESTITUTION_MODELS:
+            raise ValidationError(
+                "model", asked, f"must be one of {', '.join(RESTITUTION_MODELS)}", parameter=True
+            )
+        return asked, "as asked"
+    return (REPORT_MODEL, REPORT_REASON) if report else (DEFAULT_MODEL, DEFAULT_REASON)
+
+
 E_DRY_MAX = 1.0
 SEED = 0
 #: Fewer runs than this give no interval: St_c's bootstrap-t interval covered 0.85 to 0.86
@@ -436,11 +466,13 @@ def _intervals(
 
 def restitution(
     frame: Any,
-    model: str = DEFAULT_MODEL,
+    model: str | None = None,
     *,
     method: str = "bootstrap",
     settings: bayesian.Settings = bayesian.DEFAULT,
     draws: list | None = None,
+    report: bool = False,
+    resamples: int | None = None,
 ) -> list[dict[str, Any]]:
     """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
     (figure 5).
@@ -453,17 +485,16 @@ def restitution(
     (``interval_method``, ``bootstrap_resamples``, ``bootstrap_seed``; NaN with
     ``interval_reason`` below MIN_RUNS_FOR_INTERVAL runs or when degenerate);
     ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
-    ``reason`` (why the fit is empty, else ''); ``fit_method``. Where runs carry stated
+    ``reason`` (why the fit is empty, else ''); ``fit_method``; ``model_reason`` (why
+    this form: ``restitution_model``; ``model`` None: the default, or with ``report`` the
+    report's form); ``resamples``: the bootstrap's count (None: the rule's). Where runs carry stated
     uncertainties of their normal speeds (``u_v_n_in_m_s``, ``u_v_n_out_m_s``), every
     resample perturbs them too (``interval_method`` says so; docs/physics.md, "Fit
     intervals"). ``method`` "bayes": values are posterior medians with 95 % credible
     intervals (``bayesian.restitution_row``, which adds the prior, likelihood, sampler
     settings and diagnostics), each group's draws appended to ``draws`` when a list is given.
     """
-    if model not in RESTITUTION_MODELS:
-        raise ValidationError(
-            "model", model, f"must be one of {', '.join(RESTITUTION_MODELS)}", parameter=True
-        )
+    model, why = restitution_model(model, report=report)
     bayesian.check_method(method)
     st = frame["normal_stokes_number"].to_numpy(dtype=float)
     e = frame["normal_restitution"].to_numpy(dtype=float)
@@ -482,8 +513,10 @@ def restitution(
             if runs.size:
                 stated = None if speeds is None else tuple(r[runs] for r in speeds)
                 stated = stated if stated is not None and any(r.any() for r in stated) else None
-                row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]], stated=stated)
+                row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]],
+                                 resamples, stated)  # fmt: skip
                 row["fit_method"] = method
+                row["model_reason"] = why
                 if method == bayesian.METHOD:
                     form = bayesian.Form(
                         lambda s, a, q: restitution_curve(model, s, a, q),

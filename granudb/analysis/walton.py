@@ -38,6 +38,7 @@ re-decides the model and the split at a fraction of ``decide``'s cost.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -213,3 +214,71 @@ def percentile_interval(values: np.ndarray, level: float) -> tuple[float, float,
     tail = 50.0 * (1.0 - level)
     low, high = np.percentile(finite, [tail, 100.0 - tail])
     return float(low), float(high), finite.size / values.size
+
+
+#: A run counted as sliding is moved to the sticking side when sliding on the line of the
+#: sliding runs after it would need β above Walton's bound by more than this many standard
+#: deviations of that line's prediction (``kinematic_sticking``).
+KINEMATIC_MARGIN = 2.0
+
+
+def kinematic_sticking(x: np.ndarray, y: np.ndarray, c: np.ndarray, k: int) -> tuple[int, str]:
+    """(runs of [k, n) that stick by their own kinematics, the reason in words).
+
+    A run on the sliding line has Ψ_out = Ψ_in − μ_f c; sliding is possible only while the
+    rebound does not reverse the contact point faster than it came, Ψ_out ≥ −Ψ_in, i.e. β =
+    μ_f c/Ψ_in − 1 ≤ 1 (Walton's bound), so a run with Ψ_in < μ_f c/2 cannot slide on a line
+    of that μ_f. The runs counted as sliding (sorted by Ψ_in, from ``k``) are taken in order:
+    the first is moved to the sticking side when the line fitted to the sliding runs after
+    it predicts for it a Ψ_out below −Ψ_in (β > 1) by more than ``KINEMATIC_MARGIN``
+    standard deviations of that prediction (from the scatter of those runs, when there are
+    two or more), and its own β = −Ψ_out/Ψ_in lies in Walton's
+    [−1, 1] (Ψ_out consistent with a sticking line). Its single-run μ_f, (1+β)Ψ_in/c, is
+    then a lower bound, never a value (docs/physics.md §14). Stops at the first run that
+    may slide (a sticking run has a smaller Ψ_in than every sliding run)."""
+    n = len(x)
+    moved, said = 0, []
+    while n - (k + moved) >= 2:
+        i = k + moved
+        rest = slice(i + 1, n)
+        cc = float(np.sum(c[rest] ** 2))
+        mu = max(float(np.sum((x[rest] - y[rest]) * c[rest])) / cc, 0.0)
+        m = n - i - 1
+        residual = (x[rest] - y[rest]) - mu * c[rest]
+        spread = math.sqrt(float(np.sum(residual**2)) / (m - 1)) if m >= 2 else 0.0
+        predicted = spread * math.sqrt(1.0 + c[i] ** 2 / cc)
+        # on the line of the others, the run would leave with Ψ_out = Ψ_in − μ c < −Ψ_in
+        beyond = (mu * c[i] - 2.0 * x[i]) - KINEMATIC_MARGIN * predicted
+        beta_i = -y[i] / x[i] if x[i] > 0 else math.nan
+        if not (beyond > 0 and BETA_BOUNDS[0] <= beta_i <= BETA_BOUNDS[1]):
+            break
+        said.append(
+            f"the run at Ψ_in {x[i]:.3g} sticks by its own kinematics (β {beta_i:+.2f}, "
+            f"single-run μ_f {(1 + beta_i) * x[i] / c[i]:.3g}, a lower bound): on the sliding "
+            f"line of the {m} runs after it (μ_f {mu:.3g}) it would need β > 1"
+        )
+        moved += 1
+    return moved, "; ".join(said)
+
+
+def at_split(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, k: int) -> Decision:
+    """The Decision of a split held at ``k`` (runs [0, k) stick, [k, n) slide), as
+    ``decide`` makes it for its chosen k: the model ``split`` (``sticking`` when k = n,
+    ``sliding`` when k = 0), β and μ_f from lines of at least MIN_RUNS_FOR_PARAMETER runs,
+    BIC as NaN (no choice was made here)."""
+    n = len(x)
+    d = x - y
+    sxx, sxy, syy = (float(np.sum(v[:k])) for v in (x * x, x * y, y * y))
+    tcc, tdc, tdd = (float(np.sum(v[k:])) for v in (c * c, d * c, d * d))
+    stick, slide, beta, friction = lines(*(np.array([v]) for v in (sxx, sxy, syy, tcc, tdc, tdd)))
+    beta_se = standard_error(stick, np.array([k]), np.array([sxx]))
+    friction_se = standard_error(slide, np.array([n - k]), np.array([tcc]))
+    model = np.array([0 if k == n else 1 if k == 0 else 2])
+    mean = np.array([float(np.mean(e))])
+    spread = np.array([float(np.sum((e - mean) ** 2))])
+    mean_se = standard_error(spread, np.array([n]), np.array([n]))
+    line = (beta, beta_se, friction, friction_se)
+    bic = np.full((1, len(MODELS)), np.nan)
+    return decision(
+        model, np.array([k]), bic, line, (np.array([k]), np.array([n - k])), (mean, mean_se)
+    )

@@ -15,7 +15,7 @@ are loaded lazily — so that ``import granudb`` and ``granudb --help`` stay fas
 from __future__ import annotations
 
 from importlib import import_module
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from granudb.config import ENV_VAR as DATABASE_ENV_VAR  # noqa: F401 (public: the --db variable)
 
@@ -95,6 +95,7 @@ FACE: dict[str, str] = {
     "display": "presentation",
     "display_uncertain": "presentation",
     "term": "presentation",
+    "spreadsheet_cell": "presentation",
     "derived_terms": "presentation",
     "fit_people_view": "presentation",
     "qualified_value": "scenario",
@@ -128,14 +129,149 @@ FACE: dict[str, str] = {
 
 __all__ = sorted({**NAMES, **FACE, "DATABASE_ENV_VAR": ""})
 
+if TYPE_CHECKING:
+    # One `from m import (a as a, …)` per module, the explicit re-exports checkers need:
+    # isort: off
+    # What static type checkers see: every name of the tables above, with its real
+    # signature (tests/test_typing.py keeps this list and the tables equal). At run time
+    # the names load on first use through ``__getattr__`` below.
+    from granudb.api.catalog import (
+        fluid as fluid,
+        fluid_history as fluid_history,
+        fluids as fluids,
+        material as material,
+        material_history as material_history,
+        materials as materials,
+        source as source,
+        source_history as source_history,
+        sources as sources,
+    )
+    from granudb.api.catalog_changes import (
+        add_fluid as add_fluid,
+        add_fluid_point as add_fluid_point,
+        add_material as add_material,
+        import_fluid_points as import_fluid_points,
+        remove_fluid as remove_fluid,
+        remove_material as remove_material,
+        update_fluid as update_fluid,
+        update_material as update_material,
+    )
+    from granudb.api.collision_changes import (
+        import_collisions as import_collisions,
+        remove_collisions as remove_collisions,
+    )
+    from granudb.api.collision_listing import (
+        collisions as collisions,
+    )
+    from granudb.api.database import (
+        connect as connect,
+        grant_role as grant_role,
+    )
+    from granudb.api.dataset_versions import (
+        dataset as dataset,
+        datasets as datasets,
+        diff_datasets as diff_datasets,
+        edit_dataset as edit_dataset,
+        new_dataset_version as new_dataset_version,
+        release_dataset as release_dataset,
+        remove_dataset as remove_dataset,
+    )
+    from granudb.api.datasette import (
+        database_file as database_file,
+        datasette_metadata as datasette_metadata,
+    )
+    from granudb.api.dem import (
+        DEM_CODES as DEM_CODES,
+        DEM_VALUE_SOURCES as DEM_VALUE_SOURCES,
+        VERIFY_TOLERANCES as VERIFY_TOLERANCES,
+        dem_export as dem_export,
+        dem_verify as dem_verify,
+        verify_document as verify_document,
+        verify_passed as verify_passed,
+        verify_table as verify_table,
+    )
+    from granudb.api.derivation import (
+        derive as derive,
+    )
+    from granudb.api.errors import (
+        ConfirmationNeeded as ConfirmationNeeded,
+        GranudbError as GranudbError,
+        MissingInput as MissingInput,
+        PackageError as PackageError,
+        ValidationError as ValidationError,
+        __version__ as __version__,
+    )
+    from granudb.api.fits import (
+        RESTITUTION_MODELS as RESTITUTION_MODELS,
+        fit_gap_viscosity as fit_gap_viscosity,
+        fit_restitution as fit_restitution,
+        fit_walton as fit_walton,
+    )
+    from granudb.api.inputs import (
+        dataset_ref as dataset_ref,
+    )
+    from granudb.api.lab_report import (
+        REPORT_FORMATS as REPORT_FORMATS,
+        report as report,
+    )
+    from granudb.api.packages import (
+        export_dataset as export_dataset,
+        import_dataset as import_dataset,
+        validate_dataset as validate_dataset,
+    )
+    from granudb.api.pair_dry import (
+        add_pair_value as add_pair_value,
+        dry_values as dry_values,
+        pair_values as pair_values,
+    )
+    from granudb.api.presentation import (
+        COLLISION_FILTERS as COLLISION_FILTERS,
+        DATASET_COLUMNS as DATASET_COLUMNS,
+        DATASET_GROUP_COLUMNS as DATASET_GROUP_COLUMNS,
+        DEFAULT_COLLISION_COLUMNS as DEFAULT_COLLISION_COLUMNS,
+        DIFF_COLUMNS as DIFF_COLUMNS,
+        FIT_TABLE_COLUMNS as FIT_TABLE_COLUMNS,
+        FLUIDS as FLUIDS,
+        MATERIALS as MATERIALS,
+        PAIR_VALUE_COLUMNS as PAIR_VALUE_COLUMNS,
+        POINT_COLUMNS as POINT_COLUMNS,
+        PUBLISHED_NARROW as PUBLISHED_NARROW,
+        SOURCE_COLUMNS as SOURCE_COLUMNS,
+        SOURCE_FIELDS as SOURCE_FIELDS,
+        SOURCE_NARROW as SOURCE_NARROW,
+        derived_terms as derived_terms,
+        display as display,
+        display_uncertain as display_uncertain,
+        parameter_of as parameter_of,
+        term as term,
+    )
+    from granudb.api.scenario import (
+        pair as pair,
+        qualified_value as qualified_value,
+        target_words as target_words,
+    )
+    from granudb.api.schema import (
+        db_current as db_current,
+        db_downgrade as db_downgrade,
+        db_history as db_history,
+        db_seed as db_seed,
+        db_upgrade as db_upgrade,
+        load_seed as load_seed,
+    )
+    from granudb.api.source_changes import (
+        add_source as add_source,
+        update_source as update_source,
+    )
+    # isort: on
+else:
 
-def __getattr__(name: str) -> Any:
-    module = NAMES.get(name) or FACE.get(name)
-    if module is None:
-        raise AttributeError(f"module 'granudb.api' has no attribute {name!r}")
-    value = getattr(import_module(f"granudb.api.{module}"), name)
-    globals()[name] = value  # the next access does not come here again
-    return value
+    def __getattr__(name: str) -> Any:
+        module = NAMES.get(name) or FACE.get(name)
+        if module is None:
+            raise AttributeError(f"module 'granudb.api' has no attribute {name!r}")
+        value = getattr(import_module(f"granudb.api.{module}"), name)
+        globals()[name] = value  # the next access does not come here again
+        return value
 
 
 def __dir__() -> list[str]:

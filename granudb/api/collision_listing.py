@@ -46,6 +46,10 @@ def collision_query(**filters: Any) -> CollisionQuery:
     for name in _TEXT_FILTERS:
         if filters.get(name) is not None:
             given[name] = inputs.text(filters[name], name)
+    if "dataset" in given:  # NAME@VERSION, as every --dataset that reads accepts it
+        given["dataset"], version = inputs.dataset_ref(given["dataset"], given.get("version"))
+        if version is not None:
+            given["version"] = version
     for name in ("min_normal_stokes", "max_normal_stokes"):
         if filters.get(name) is not None:
             given[name] = inputs.quantity(filters[name], "normal_stokes_number", name)

@@ -29,6 +29,7 @@ from granudb.api.database import opened
 from granudb.api.frames import records_frame
 from granudb.db import catalogue_differences, dataset_catalog
 from granudb.db import datasets as store
+from granudb.db.content_hash import hash_problem
 from granudb.errors import ValidationError
 from granudb.reporting.format import difference_line
 from granudb.reporting.pinned import pinned_notes
@@ -121,6 +122,9 @@ def dataset(name: str, *, version: str | None = None, db: Any = None) -> dict[st
         chosen = store.get_dataset(session, name, version)
         record = dataset_catalog.dataset_record(session, chosen)
         record["pinned_changes"] = pinned_notes(session.connection(), chosen.id)
+        problem = hash_problem(session, chosen)  # e.g. values a downgrade dropped
+        if problem is not None:
+            record["pinned_changes"].append(f"content hash: {problem}")
         record["groups"] = dataset_catalog.group_counts(session, chosen)
     return record
 

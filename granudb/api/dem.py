@@ -2,15 +2,22 @@
 real codes are checked to reproduce (``granudb dem export|verify``).
 
 A simulation has one fluid (or none), particle types and walls. For each particle/wall
-pair the restitution and friction come from the source the user chooses, every number
-keeping its provenance as a comment in the exported fragment:
+pair e_dry and μ_f are the ones ``granudb pair`` uses for the same pair, fluid and speed
+(one record: ``derive_pair`` and its ``dry_values``), labelled as ``pair`` labels them
+(measured for the pair, from the materials' own values, borrowed, or the lubricated (5.8));
+an immersed e is the prediction ``pair`` makes, e = e_dry exp(−35/St_am) (Legendre et al.
+2006). A published value of the pair that this record does not use is named in the
+comment with the reason. ``values`` chooses what else comes in:
 
-- ``values="published"``: the paper's fits (ē_dry, dry μ_f, immersed μ_f) where the
-  database holds one for the pair, otherwise the prediction, said so;
-- ``values="dataset"``: a dataset's Walton fit (μ_f with its interval) and its runs' mean
-  e, otherwise the prediction, said so;
-- ``values="predicted"``: e = e_dry exp(−35/St) (Legendre et al. 2006) and Maw's μ_f of
-  the pair derivation (the dry 0.11, or the lubricated (5.8) where a film is expected).
+- ``values="published"`` (default): Walton's β of the pair and fluid where one is
+  published (``pair`` has none);
+- ``values="dataset"``: a dataset's Walton fit (μ_f and β with their intervals) and its
+  runs' mean e, in place of ``pair``'s values, said so;
+- ``values="predicted"``: ``pair``'s values only, no β.
+
+Each value's interval (for ``parameter_set`` low / high) is the source's ± of that very
+value, else the materials' stored u, else the u ``pair`` propagates from the stated inputs,
+and the comment says which.
 
 Particle–particle pairs have no measurement in the paper: they take the particle's values
 on the first wall, and the comment says so.
@@ -19,13 +26,14 @@ on the first wall, and the comment says so.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict
+from dataclasses import asdict, replace
 from pathlib import Path
 from typing import Any
 
 from granudb.analysis import fits
 from granudb.analysis.collision_query import CollisionQuery
 from granudb.analysis.collisions import select_collisions
+from granudb.analysis.dry_values import NO_IMMERSED
 from granudb.analysis.fluid_state import fluid_state
 from granudb.analysis.pair import derive_pair, is_dry
 from granudb.api import inputs
@@ -44,8 +52,8 @@ from granudb.dem import (
     predicted_wet_restitution,
     yade,
 )
-from granudb.dem.spec import identifier
-from granudb.dem.verify import TOLERANCES, Record, passed, summary, table, verify
+from granudb.dem.spec import COVERAGE_FACTOR, identifier
+from granudb.dem.verify import TOLERANCES, Record, judged, passed, summary, table, verify
 from granudb.errors import ValidationError
 from granudb.output_files import write_text
 from granudb.reporting.pinned import announce_pinned
@@ -57,10 +65,10 @@ WRITERS = {"liggghts": liggghts, "lammps": lammps, "yade": yade, "mercurydpm": m
 
 
 def _provenance(basis: str, source: str) -> str:
-    """A dry value's origin in a deck's comment, from its basis and source as
-    ``granudb.dry_values`` gives them ("measured for steel on Zerodur (…)" says itself)."""
-    word = {"materials": "from the materials' own values", "borrowed": "assumed"}.get(basis)
-    return f"{word}: {source}" if word else source
+    """A dry value's label in a deck's comment, from its basis and source as
+    ``granudb.dry_values`` gives them: "measured for steel on Zerodur (…)" and
+    "borrowed: …" say themselves; the materials' combination says so."""
+    return f"from the materials' own values: {source}" if basis == "materials" else source
 
 
 VALUE_SOURCES = ("published", "dataset", "predicted")
@@ -76,36 +84,128 @@ PUBLISHED_QUANTITIES = {
 }
 
 
-def _dry_values(session: Any, particle: str, wall: str) -> dict[str, Any]:
-    """The dry values of a particle/wall pair, each (value, where it was printed): the one
-    place a DEM export reads dry e, μ_f and β from."""
-    return _published(session, particle, wall, None)
+def _is_immersed(row: dict) -> bool:
+    return row["fluid"] is not None or (row["label"] or "").startswith("immersed")
 
 
 def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dict[str, Any]:
+    """The published rows of the pair in ``fluid`` (None: dry), by quantity (the first of
+    each): {quantity: row}."""
     found: dict[str, Any] = {}
     for row in sources.published_records(session):
         same_pair = (row["particle"], row["wall"]) == (particle, wall)
         if not same_pair or row["quantity"] not in PUBLISHED_QUANTITIES:
             continue
-        immersed_row = row["fluid"] is not None or (row["label"] or "").startswith("immersed")
-        if immersed_row != (fluid is not None) or (row["fluid"] and row["fluid"] != fluid):
+        if _is_immersed(row) != (fluid is not None) or (row["fluid"] and row["fluid"] != fluid):
             continue
-        where = f"{row['source']} {row['source_locator']}: {row['value_as_printed']}"
-        found.setdefault(
-            row["quantity"],
-            Value.uncertain(
-                row["value"], where, row["uncertainty"], "(the source's ±)",
-                PUBLISHED_QUANTITIES[row["quantity"]],
-            ),
-        )  # fmt: skip
+        found.setdefault(row["quantity"], row)
     return found
+
+
+def _printed(row: dict) -> str:
+    return f"{row['source']} {row['source_locator']}: {row['value_as_printed']}"
+
+
+def _source_u(
+    session: Any, pair: tuple[str, str], quantity: str, value: float, immersed: bool
+) -> tuple[float | None, str]:
+    """The ± a published row prints for this very value of the pair (dry, or immersed in
+    any liquid), or (None, "")."""
+    for row in sources.published_records(session):
+        if (row["particle"], row["wall"]) != pair or row["quantity"] != quantity:
+            continue
+        if _is_immersed(row) == immersed and row["value"] == value and row["uncertainty"]:
+            return float(row["uncertainty"]), f"(the source's ±: {_printed(row)})"
+    return None, ""
+
+
+def _materials_u(result: Any, column: str, value: float) -> tuple[float | None, str]:
+    """u of a dry value combined from the two materials' own values (``dry_values``'
+    rule) from their stored u: the chosen one's for the lower e, GUM's for √(μ₁μ₂);
+    (None, "") where an input's u is not stated."""
+    same = result.wall["name"] == result.particle["name"]
+    bodies = [result.particle] + ([] if same else [result.wall])
+    known = [m for m in bodies if m.get(column) is not None]
+    if column == "dry_restitution" or len(known) == 1:
+        chosen = next((m for m in known if m[column] == value), None)
+        u = None if chosen is None else chosen.get(f"u_{column}")
+        if not u:
+            return None, ""
+        return u, f"(the stated u of {chosen['name']}'s {column.replace('_', ' ')})"
+    if any(not m.get(f"u_{column}") for m in known):
+        return None, ""
+    relative = math.hypot(*(m[f"u_{column}"] / m[column] for m in known)) / 2.0
+    return value * relative, "(GUM, from the stated u of both materials' dry friction)"
 
 
 def _predicted(
     session: Any, particle: str, wall: str, fluid: str | None, scenario: dict, pinned: Any
 ) -> Any:
     return derive_pair(session, particle, wall, fluid=fluid, dataset_id=pinned, **scenario)
+
+
+def _friction(session: Any, result: Any, material: str, wall: str, fluid: Any) -> Value:
+    """μ_f as ``granudb pair`` uses it, labelled as it labels it, with its interval: the
+    source's ± of that very value, else the materials' stated u, else the u ``pair``
+    propagates; a published value for the pair that the record does not use is named."""
+    derived, pair_dry = result.derived, result.dry
+    used = float(derived["friction_coefficient_used"])
+    lubricated = (
+        fluid is not None
+        and derived.get("lubricated_friction_state") == "in_range"
+        and used == derived.get("lubricated_friction")
+    )
+    immersed = fluid is not None and not lubricated and used == pair_dry.immersed_friction
+    u_mu, stated = None, ""
+    if lubricated:
+        said = f"predicted: lubricated μ_f (5.8) of {material}/{wall} at the stated speed"
+    else:  # the pair's dry (or, asperities touching in a liquid, immersed) value
+        kind, basis, source = (
+            ("immersed", pair_dry.immersed_friction_basis, pair_dry.immersed_friction_source)
+            if immersed
+            else ("dry", pair_dry.friction_basis, pair_dry.friction_source)
+        )
+        said = f"the {kind} friction {used:g} granudb pair uses, {_provenance(basis, source)}"
+        if fluid is not None:  # the export is of a normal impact: (5.8) has no sliding speed
+            said += " (the export has no sliding speed, so (5.8) gives no lubricated μ_f)"
+        if basis == "pair":
+            in_liquid = immersed and not source.startswith(NO_IMMERSED)  # its own value
+            u_mu, stated = _source_u(session, (material, wall), "sliding_friction", used, in_liquid)
+        elif basis == "materials":
+            u_mu, stated = _materials_u(result, "dry_friction", used)
+    propagated = derived.get("u_friction_coefficient_used")
+    if u_mu is None and propagated:
+        u_mu, stated = float(propagated), "(propagated, GUM, as granudb pair gives it)"
+    other = _published(session, material, wall, fluid.name if fluid else None).get(
+        "sliding_friction"
+    )
+    if other is not None and other["value"] != used:
+        said += (
+            f"; not the published {_printed(other)}: granudb's pair values do not hold it "
+            f"for {material} on {wall}{' in a liquid' if fluid else ''}, so granudb pair does "
+            "not use it either"
+        )
+    return Value.uncertain(used, said, u_mu, stated, PUBLISHED_QUANTITIES["sliding_friction"])
+
+
+def _dry_restitution(session: Any, result: Any, material: str, wall: str) -> Value:
+    """e_dry as ``granudb pair`` uses it (Thornton's past yield), with its interval: the
+    source's ± of that very value, else the materials' stated u."""
+    derived, pair_dry = result.derived, result.dry
+    ceiling = float(derived["restitution_ceiling"])
+    said = _provenance(pair_dry.restitution_basis, pair_dry.restitution_source)
+    u_e, stated = None, ""
+    if derived.get("restitution_model") == "elastic_plastic":
+        said += f"; past yield at the stated speed Thornton (1997) gives {ceiling:.3g}"
+    elif pair_dry.restitution_basis == "pair":
+        u_e, stated = _source_u(
+            session, (material, wall), "normal_restitution_mean", ceiling, False
+        )
+    elif pair_dry.restitution_basis == "materials":
+        u_e, stated = _materials_u(result, "dry_restitution", ceiling)
+    return Value.uncertain(
+        ceiling, said, u_e, stated, PUBLISHED_QUANTITIES["normal_restitution_mean"]
+    )
 
 
 def _pair_values(
@@ -122,70 +222,38 @@ def _pair_values(
     """(restitution Value, friction Value, WetParameters or None, β Value or None) for one
     pair, each with its interval where one is stated and at ``parameter_set``'s end of it
     (``Value.at``); with ``pinned`` (a dataset's id) the catalogue as that dataset's runs
-    use it."""
-    fluid_name = fluid.name if fluid else None
-    result = _predicted(session, particle.material, wall, fluid_name, scenario, pinned)
-    derived, pair_dry = result.derived, result.dry
-    used = float(derived["friction_coefficient_used"])
-    lubricated = (
-        fluid is not None
-        and derived.get("lubricated_friction_state") == "in_range"
-        and used == derived.get("lubricated_friction")
-    )
-    if lubricated:
-        said = f"predicted: lubricated μ_f (5.8) of {particle.material}/{wall} at the stated speed"
-    else:  # the pair's dry (or, asperities touching in a liquid, immersed) value, as pair says
-        immersed = fluid is not None and used == pair_dry.immersed_friction != pair_dry.friction
-        kind, basis, source = (
-            ("immersed", pair_dry.immersed_friction_basis, pair_dry.immersed_friction_source)
-            if immersed
-            else ("dry", pair_dry.friction_basis, pair_dry.friction_source)
-        )
-        said = f"the {kind} friction {used:g}, {_provenance(basis, source)}"
-        if fluid is not None:  # the export is of a normal impact: (5.8) has no sliding speed
-            said += " (the export has no sliding speed, so (5.8) gives no lubricated μ_f)"
-    friction = Value.uncertain(
-        used, said, derived.get("u_friction_coefficient_used"), "(propagated, GUM)",
-        PUBLISHED_QUANTITIES["sliding_friction"],
-    )  # fmt: skip
-    ceiling = float(derived["restitution_ceiling"])
-    dry_said = _provenance(pair_dry.restitution_basis, pair_dry.restitution_source)
-    if derived.get("restitution_model") == "elastic_plastic":
-        dry_said += f"; past yield at the stated speed Thornton (1997) gives {ceiling:.3g}"
-    dry = Value(ceiling, dry_said)
+    use it.
+
+    e_dry and μ_f are ``granudb pair``'s (one record: ``derive_pair`` and its
+    ``dry_values``), labelled as it labels them (``_friction``, ``_dry_restitution``).
+    Only ``values="dataset"`` replaces them (by the dataset's fit, saying so); Walton's β
+    is published (``values="published"``) or fitted (``"dataset"``): pair has none."""
+    material = particle.material
+    result = _predicted(session, material, wall, fluid.name if fluid else None, scenario, pinned)
+    friction = _friction(session, result, material, wall, fluid)
+    dry = _dry_restitution(session, result, material, wall)
     beta = None
     if values == "published":
-        dry_found = _dry_values(session, particle.material, wall)
-        found = dry_found if fluid is None else _published(
-            session, particle.material, wall, fluid.name
-        )  # fmt: skip
-        friction = found.get("sliding_friction", friction)
-        beta = found.get("rotational_restitution")
-        dry = dry_found.get("normal_restitution_mean", dry)
+        row = _published(session, material, wall, fluid.name if fluid else None).get(
+            "rotational_restitution"
+        )
+        if row is not None:
+            beta = Value.uncertain(
+                row["value"], f"measured: {_printed(row)}", row["uncertainty"],
+                "(the source's ±)", PUBLISHED_QUANTITIES["rotational_restitution"],
+            )  # fmt: skip
     elif values == "dataset":
         friction, dry, beta = _dataset_values(
-            session, dataset, particle.material, wall, fluid, friction, dry
+            session, dataset, material, wall, fluid, friction, dry
         )
-    dry, friction = dry.at(parameter_set), friction.at(parameter_set)
     beta = None if beta is None else beta.at(parameter_set)
+    friction = friction.at(parameter_set)
     if fluid is None:
-        return dry, friction, None, beta
-
-    def wet(e_dry: Value) -> tuple[Value, Any]:
-        return predicted_wet_restitution(
-            e_dry, particle, fluid.viscosity_pa_s, scenario["speed_m_s"], fluid.density_kg_m3
-        )
-
-    restitution, law = wet(dry)
-    if dry.low is not None and dry.high is not None:  # e_wet rises with e_dry
-        ends = [wet(Value(end, dry.provenance))[0].value for end in (dry.low, dry.high)]
-        restitution = Value(
-            restitution.value, restitution.provenance, min(ends[0], restitution.value),
-            max(ends[1], restitution.value), f"from the dry e's {dry.interval}",
-        )  # fmt: skip
+        return dry.at(parameter_set), friction, None, beta
+    restitution, law = _wet_restitution(particle, fluid, scenario, dry, result, parameter_set)
     if restitution.value == 0.0:
         raise ValidationError(
-            f"restitution {particle.material}/{wall}",
+            f"restitution {material}/{wall}",
             "0",
             "no rebound is predicted (normal Stokes number at or below the critical 10 at this "
             "speed): no DEM contact law represents that; give a higher --velocity",
@@ -193,11 +261,51 @@ def _pair_values(
     return restitution, friction, law, beta
 
 
+def _wet_restitution(
+    particle: Any, fluid: Any, scenario: dict, dry: Value, result: Any, parameter_set: str
+) -> tuple[Value, Any]:
+    """The predicted e_wet (``predicted_wet_restitution``, the one ``pair`` makes) with the
+    interval ± 2u, u by GUM from the dry e's u and the u ``pair`` propagates from the
+    inputs' stated ones, at ``parameter_set``'s end; and the e(St) law through it."""
+
+    def wet(e_dry: Value) -> tuple[Value, Any]:
+        return predicted_wet_restitution(
+            e_dry, particle, fluid.viscosity_pa_s, scenario["speed_m_s"], fluid.density_kg_m3
+        )
+
+    restitution, law = wet(dry)
+    u_dry = None  # the dry e's u: half the wider side of its interval (one side may be cut)
+    if dry.high is not None and dry.low is not None:
+        u_dry = max(dry.value - dry.low, dry.high - dry.value) / COVERAGE_FACTOR
+    u_flow = float(result.derived.get("u_predicted_restitution") or 0.0)
+    share = 0.0 if u_dry is None else restitution.value / dry.value * u_dry
+    if share or u_flow:  # e_wet ∝ e_dry: GUM's sum of the two contributions
+        parts = [f"{share:.2g} from the dry e's u"] if share else []
+        if u_flow:
+            parts.append(f"{u_flow:.2g} from the inputs' stated u as granudb pair gives it")
+        restitution = Value.uncertain(
+            restitution.value, restitution.provenance, math.hypot(share, u_flow),
+            f"(propagated, GUM: {' and '.join(parts)})",
+            PUBLISHED_QUANTITIES["normal_restitution_mean"],
+        )  # fmt: skip
+    restitution = restitution.at(parameter_set)
+    if parameter_set != "central":  # the law through the e written
+        law = wet(dry.at(parameter_set))[1]
+        if restitution.value >= law.max_restitution:
+            law = replace(law, max_restitution=min(1.0, restitution.value * 1.000001))
+    return restitution, law
+
+
 def _dataset_values(
     session: Any, dataset: str, particle: str, wall: str, fluid: Any, friction: Any, dry: Any
 ) -> tuple[Any, Any, Any]:
+    name, version = inputs.dataset_ref(dataset)  # NAME@VERSION: that version's runs
     query = CollisionQuery(
-        dataset=dataset, particle=particle, wall=wall, fluid=fluid.name if fluid else "dry"
+        dataset=name,
+        version=version,
+        particle=particle,
+        wall=wall,
+        fluid=fluid.name if fluid else "dry",
     )
     beta = None
     for fit in fits.walton(select_collisions(session, query)):
@@ -232,7 +340,8 @@ def _fitted(fit: dict, name: str, what: str, dataset: str, value: Any = None) ->
     if low is not None and high is not None and high - low > 1e-9 * abs(central):
         low, high = max(float(low), bounds[0]), min(float(high), bounds[1])
         if low <= central <= high:
-            return Value(central, said, low, high, "95 % studentized bootstrap interval")
+            method = fit.get(f"{name}_interval_method") or "studentized bootstrap"
+            return Value(central, said, low, high, f"95 % interval: {method}")
     symbol = {"sliding_friction": "μ_f", "rotational_restitution": "β"}.get(name, "ē")
     why = [p for p in str(fit.get("reason") or "").split("; ") if f"of {symbol}" in p]
     return Value(
@@ -408,11 +517,13 @@ def dem_verify(
     **options: Any,
 ) -> list[Record]:
     """Run the exported parameters in every installed code (LIGGGHTS, LAMMPS, Yade) on
-    normal wall impacts at 0.1, 0.3 and 0.5 m/s, oblique ones at 30° and 60° and head-on
-    sphere pairs; one record per run, with its verdict against ``VERIFY_TOLERANCES`` (e
-    within 1 %; μ_f within 3 % on the sliding branch; Ψ_out within 10 % of Walton's
-    relation where β is measured, or a "stated limit" the deck explains), and "not
-    checked" (never "pass") for a code that is not installed; ``codes`` chooses some.
+    normal wall impacts at 0.1, 0.3 and 0.5 m/s, oblique ones at 30° and 60° (and, for a
+    pair with a measured β, mid-way along Walton's sticking branch) and head-on sphere
+    pairs; one record per run, with its verdict against ``VERIFY_TOLERANCES`` (e within
+    1 %; μ_f within 3 % on the sliding branch; Ψ_out within 10 % of Walton's relation
+    where β is measured, or a "stated limit" the deck explains, in which case the Ψ_out
+    the deck states instead is judged), and "not checked" (never "pass") for a code that
+    is not installed; ``codes`` chooses some.
     The options are ``dem_export``'s (a low or high ``parameter_set`` is verified as
     written); ``verify_table(records)`` prints them,
     ``verify_passed(records)`` is the overall verdict (the command's exit status).
@@ -443,12 +554,13 @@ def verify_passed(records: list[Record]) -> bool:
 
 def verify_document(records: list[Record]) -> dict[str, Any]:
     """The verification for scripts: the verdict, the summary, the tolerances and every
-    record as a dict."""
+    record as a dict, with ``judged``: the quantities its verdict rests on (quantity,
+    target, achieved, error, tolerance, verdict), as the table prints them."""
     return {
         "passed": passed(records),
         "summary": summary(records),
         "tolerances": dict(VERIFY_TOLERANCES),
-        "records": [asdict(r) for r in records],
+        "records": [{**asdict(r), "judged": [asdict(j) for j in judged(r)]} for r in records],
     }
 
 

@@ -14,7 +14,6 @@ from typing import Any
 from granudb.analysis import fits
 from granudb.analysis.collisions import select_collisions
 from granudb.analysis.fluid_state import fluid_model
-from granudb.analysis.restitution_fit import DEFAULT_MODEL
 from granudb.api import inputs
 from granudb.api.collision_listing import collision_query
 from granudb.api.database import opened
@@ -22,6 +21,7 @@ from granudb.db import catalog_rows
 from granudb.errors import ValidationError
 from granudb.lazy import pandas as pd
 from granudb.output_files import write_text
+from granudb.vocabulary.escaping import spreadsheet_frame
 
 #: The forms of e(St_n) ``fit_restitution`` fits.
 RESTITUTION_MODELS = tuple(fits.RESTITUTION_MODELS)
@@ -52,7 +52,8 @@ def _fit(db: Any, filters: dict[str, Any], as_frame: bool, run: Callable, draws:
         rows = run(session, select_collisions(session, query), found)
     table = pd.concat(found, ignore_index=True) if found else None
     if draws is not None:
-        text = (table if table is not None else pd.DataFrame()).to_csv(index=False)
+        frame = spreadsheet_frame(table if table is not None else pd.DataFrame())
+        text = frame.to_csv(index=False)  # for spreadsheets: no text cell runs as a formula
         write_text(Path(draws), text, field="draws")
     if not as_frame:
         return rows
@@ -117,7 +118,7 @@ def fit_restitution(
     >>> granudb.fit_restitution(db=db, method="bayes").empty
     True
     """
-    chosen = DEFAULT_MODEL if model is None else inputs.choice(model, RESTITUTION_MODELS, "model")
+    chosen = None if model is None else inputs.choice(model, RESTITUTION_MODELS, "model")
     how = _method(method, draws)
     return _fit(
         db,

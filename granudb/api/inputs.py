@@ -18,7 +18,7 @@ from typing import Any, TypeVar
 from granudb.errors import MissingInput, ValidationError
 from granudb.io.units import parse_quantity, parse_uncertain_quantity
 from granudb.vocabulary import check_value, unit_of_column
-from granudb.vocabulary.text import MAX_NAME, check_name
+from granudb.vocabulary.text import MAX_NAME, MAX_TEXT, check_name, check_text
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -187,6 +187,15 @@ def name(value: Any, parameter: str, *, max_length: int = MAX_NAME) -> str:
     name rules (``granudb.vocabulary.text``), refused naming the parameter."""
     try:
         return check_name(parameter, text(value, parameter), max_length=max_length)
+    except ValidationError as exc:
+        raise _as_parameter(exc, parameter) from None
+
+
+def free_text(value: Any, parameter: str, *, max_length: int = MAX_TEXT) -> str:
+    """Free text from outside (a description, a reason): the shared text rules
+    (``granudb.vocabulary.text.check_text``), in NFC, refused naming the parameter."""
+    try:
+        return check_text(parameter, text(value, parameter), max_length=max_length)
     except ValidationError as exc:
         raise _as_parameter(exc, parameter) from None
 

@@ -23,6 +23,7 @@ from granudb.vocabulary.catalogue import (
     SOURCE_NARROW,
     parameter_of,
 )
+from granudb.vocabulary.escaping import spreadsheet_cell
 from granudb.vocabulary.listings import (
     COLLISION_NARROW,
     DATASET_COLUMNS,
@@ -89,6 +90,7 @@ __all__ = [
     "display",
     "display_uncertain",
     "parameter_of",
+    "spreadsheet_cell",
     "term",
 ]
 

@@ -61,11 +61,18 @@ def db_upgrade(revision: str = "head", *, db: Any = None) -> tuple[str | None, s
 
 
 def db_downgrade(
-    revision: str, *, confirm: Confirm | None = None, db: Any = None
+    revision: str,
+    *,
+    confirm: Confirm | None = None,
+    drop_released_values: bool = False,
+    db: Any = None,
 ) -> tuple[str | None, str | None, list[str]]:
     """Migrate the database back to ``revision`` ("base" drops every granudb table);
     returns (before, after, what was lost). What would lose stored values is asked first
-    (``confirm``); a downgrade that loses nothing runs at once.
+    (``confirm``); a downgrade that loses nothing runs at once. One that would change a
+    released version (drop values it holds, so its export no longer matches its content
+    hash) is refused unless ``drop_released_values`` names that consequence: consent to
+    the losses (``--yes``) is not enough.
 
     Examples
     --------
@@ -76,9 +83,11 @@ def db_downgrade(
     """
     database = _schema(db)
     try:
-        losses = migration.plan_downgrade(database, revision)
+        losses, releases = migration.preview_downgrade(database, revision)
+        if releases and not drop_released_values:
+            raise migration.released_refusal(revision, releases, "--drop-released-values")
         agreed(confirm, f"db downgrade {revision}", losses)
-        before, after = migration.downgrade(database, revision, accepted=losses)
+        before, after = migration.downgrade(database, revision, accepted=losses, releases=releases)
         return before, after, losses
     finally:
         if database is not db:

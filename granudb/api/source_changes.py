@@ -20,6 +20,9 @@ from granudb.db import source_changes
 from granudb.errors import ValidationError
 from granudb.vocabulary.catalogue import SOURCE_FIELDS
 
+#: The longest reason a correction keeps (a sentence or two, not a document).
+MAX_REASON = 1000
+
 #: Fields an update may clear with "" (the citation and kind cannot be empty).
 _CLEARABLE = ("doi", "url", "year", "notes")
 
@@ -105,7 +108,9 @@ def update_source(key: str, *, reason: str | None = None, db: Any = None, **fiel
     """
     key = inputs.text(key, "key")
     values = _fields(_given(fields), clearing=True)
-    why = "sources update" + (f": {inputs.text(reason, 'reason')}" if reason else "")
+    if reason:
+        reason = inputs.free_text(reason, "reason", max_length=MAX_REASON)
+    why = "sources update" + (f": {reason}" if reason else "")
     with opened(db) as database, database.session(write=True) as session:
         change = source_changes.update_source(session, key, values, why)
     return Update(change.action, change.label, change.diffs)

@@ -38,14 +38,26 @@ def upgrade(
 def downgrade(
     revision: Annotated[str, typer.Argument(help='Target revision, or "base" to drop all.')],
     yes: YesOption = False,
+    drop_released_values: Annotated[
+        bool,
+        typer.Option(
+            "--drop-released-values",
+            help="Accept that released versions lose values they hold (their exports "
+            "then no longer match their content hashes); --yes alone does not.",
+        ),
+    ] = False,
     db: DbOption = None,
 ) -> None:
     """Migrate the database back to an older revision.
 
-    Says first which tables and columns would lose values (and how many) and asks, or needs
-    --yes; a downgrade that loses nothing runs at once.
+    Says first which tables and columns would lose values (and how many, and which
+    released versions that changes) and asks, or needs --yes; a downgrade that would
+    change a released version also needs --drop-released-values. A downgrade that loses
+    nothing runs at once.
     """
-    before, after, losses = api.db_downgrade(revision, confirm=asker(yes), db=db)
+    before, after, losses = api.db_downgrade(
+        revision, confirm=asker(yes), drop_released_values=drop_released_values, db=db
+    )
     for line in losses:
         say(f"lost {line}")
     say(f"schema: {before or 'empty'} → {after or 'empty'}")

@@ -29,7 +29,7 @@ model_options = text_options(
         "velocity": 'Characteristic impact speed, "0.3 m/s" (required).',
         "fluid": "The fluid, or omit / 'dry'.",
         "values": "Where values come from: published (default), dataset or predicted.",
-        "dataset": "The dataset whose fits to use (--values dataset).",
+        "dataset": "The dataset whose fits to use, NAME or NAME@VERSION (--values dataset).",
         "parameter_set": Annotated[
             str | None,
             typer.Option(

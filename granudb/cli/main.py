@@ -170,11 +170,27 @@ class GranudbGroup(TyperGroup):
         with formatter.section("Commands"):
             formatter.write_dl([(name, _shorten(text, width)) for name, text in rows])
 
+    def _as_option(self, exc: Any) -> str:
+        """A refusal naming its parameter as the option spells it: the option's flag when
+        it differs from the parameter's name (``parameter_set`` is ``--set``)."""
+        spelled: dict[str, str] = {}
+        groups = list(self.commands.values())
+        while groups:
+            command = groups.pop()
+            groups.extend(getattr(command, "commands", {}).values())
+            for param in command.params:
+                flags = [o for o in param.opts if o.startswith("--")]
+                if param.name and flags and flags[0][2:].replace("-", "_") != param.name:
+                    spelled[param.name] = flags[0]
+        if exc.parameter and exc.field in spelled:
+            return exc.render(spelled[exc.field])
+        return exc.as_option()
+
     def invoke(self, ctx: typer.Context) -> Any:
         try:
             return super().invoke(ctx)
         except api.GranudbError as exc:
-            shown = exc.as_option() if isinstance(exc, api.ValidationError) else str(exc)
+            shown = self._as_option(exc) if isinstance(exc, api.ValidationError) else str(exc)
             message = shown.replace("\n", " ")
             typer.echo(f"Error: {message}", err=True)
             raise typer.Exit(exc.exit_code) from None

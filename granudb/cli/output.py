@@ -30,22 +30,6 @@ def _clean(value: Any) -> Any:
     return value
 
 
-#: A text cell a spreadsheet would run as a formula starts with one of these (OWASP's CSV
-#: injection advice); numbers are written as numbers and never start with them as text.
-FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
-
-
-def spreadsheet_safe(value: Any) -> Any:
-    """A CSV cell for people's spreadsheets: ``None`` as empty, and a text cell that would
-    be read as a formula prefixed with ``'`` (shown, not run). Machine formats that must
-    keep bytes exact (Data Packages) do not use this."""
-    if value is None:
-        return ""
-    if isinstance(value, str) and value.startswith(FORMULA_STARTS):
-        return "'" + value
-    return value
-
-
 def to_json(data: Any) -> str:
     if isinstance(data, dict):
         data = {k: to_json_value(v) for k, v in data.items()}
@@ -121,7 +105,7 @@ def emit(
         writer = csv.DictWriter(sys.stdout, fieldnames=list(columns), lineterminator="\n")
         writer.writeheader()
         for row in rows:
-            writer.writerow({k: spreadsheet_safe(_csv_value(v)) for k, v in row.items()})
+            writer.writerow({k: api.spreadsheet_cell(_csv_value(v)) for k, v in row.items()})
     else:
         _table(records, rows, columns, title, symbols, vertical)
 

@@ -37,6 +37,7 @@ from granudb.db.content_hash import (
 )
 from granudb.lazy import pyarrow as pa
 from granudb.lazy import pyarrow_compute as pc
+from granudb.vocabulary.text import name_key
 
 #: Rows formatted at once when hashing; bounds the text held in memory (~5 MB).
 HASH_BLOCK_ROWS = 20_000
@@ -198,11 +199,11 @@ class _Names:
             if triple not in self.codes:
                 self.codes[triple] = len(self.prefixes)
                 self.prefixes.append(
-                    FIELD_SEPARATOR.join(
+                    FIELD_SEPARATOR.join(  # canonical names, as content_hash writes them
                         (
-                            self.materials[triple[0]],
-                            self.materials[triple[1]],
-                            self.fluids.get(triple[2], ""),
+                            name_key(self.materials[triple[0]]),
+                            name_key(self.materials[triple[1]]),
+                            name_key(self.fluids.get(triple[2], "")),
                         )
                     )
                 )

@@ -20,6 +20,7 @@ from sqlalchemy.orm import Session
 
 from granudb.db import catalog_rows
 from granudb.db.catalog_revisions import keep_for_releases, revisions
+from granudb.db.content_hash import rehash_drafts_naming
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, PublishedValue
 from granudb.db.upsert import Change
 from granudb.errors import ConflictError, ValidationError
@@ -41,12 +42,14 @@ PUBLISHED_REFERENCES: dict[str, tuple[Any, ...]] = {
 }
 
 
-def check_entry_name(catalogue: Catalogue, name: str) -> None:
-    """The shared name rules (``granudb.vocabulary.text``) and the kind's reserved names."""
-    check_name(f"{catalogue.kind} name", name)
+def check_entry_name(catalogue: Catalogue, name: str) -> str:
+    """``name`` in NFC if it follows the shared name rules (``granudb.vocabulary.text``)
+    and is not one of the kind's reserved names."""
+    name = check_name(f"{catalogue.kind} name", name)
     reason = catalogue.reserved.get(name.casefold())
     if reason is not None:
         raise ValidationError(f"{catalogue.kind} name", name, reason)
+    return name
 
 
 def _entry(session: Session, catalogue: Catalogue, name: str) -> Any:
@@ -68,7 +71,7 @@ def add_entry(
 ) -> Any:
     """Add a material or fluid; refuses a name that exists (compared case-insensitively),
     a missing required property, and values that break a rule."""
-    check_entry_name(catalogue, name)
+    name = check_entry_name(catalogue, name)
     values = {**catalogue.defaults, **values}
     _check_fields(catalogue, values)
     for column in catalogue.required:
@@ -109,7 +112,7 @@ def update_entry(
     if source_id is not None and row.source_id != source_id:
         diffs.append(("source", row.source.key if row.source else None, source))
     if new_name is not None and new_name != row.name:
-        check_entry_name(catalogue, new_name)
+        new_name = check_entry_name(catalogue, new_name)
         clash = catalog_rows.entry_name(session.connection(), catalogue.kind, new_name)
         if clash is not None and name_key(clash) != row.name_key:
             raise ConflictError(f"{catalogue.kind}: {new_name!r} already exists")
@@ -123,6 +126,8 @@ def update_entry(
         row.source_id = source_id
     if new_name is not None and new_name != row.name:
         row.name, row.name_key = new_name, name_key(new_name)
+        session.flush()
+        rehash_drafts_naming(session, catalogue.kind, row.id)  # their runs read the new name
     session.flush()
     return Change("updated" if diffs else "unchanged", label, diffs)
 

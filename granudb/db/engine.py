@@ -11,6 +11,8 @@ with ``BEGIN IMMEDIATE`` so a writer waits for the lock up front instead of fail
 
 from __future__ import annotations
 
+import os
+import re
 import sqlite3
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -55,8 +57,8 @@ def make_engine(url: str) -> Engine:
             return create_engine(url, pool_pre_ping=True)
         except (ImportError, ModuleNotFoundError) as exc:
             raise DatabaseAccessError(
-                f"database: {parsed.render_as_string(hide_password=True)} needs a driver "
-                f"that is not installed ({exc.name}); for PostgreSQL: pip install 'psycopg[binary]'"
+                f"database: {parsed.render_as_string(hide_password=True)} needs a driver that "
+                f"is not installed ({exc.name}); for PostgreSQL: pip install 'granudb[postgres]'"
             ) from None
         except Exception as exc:  # noqa: BLE001 - any URL parse problem is the user's to fix
             raise DatabaseAccessError(f"database: {url!r} is not a usable URL ({exc})") from None
@@ -115,6 +117,8 @@ def recognise_sqlite(path: Path) -> None:
 
     Read through a read-only connection (``mode=ro``): the file's header (WAL mode) and
     contents are untouched whatever it is. An empty or absent file is a new database.
+    When the probe fails, the cause is diagnosed (``sqlite_failure``): a good file on a
+    read-only or full disk is never called "not a SQLite database".
     """
     if not path.is_file() or path.stat().st_size == 0:
         return
@@ -125,9 +129,7 @@ def recognise_sqlite(path: Path) -> None:
         finally:
             probe.close()
     except sqlite3.DatabaseError as exc:
-        raise DatabaseAccessError(
-            f"database: {path} is not a SQLite database ({exc}); nothing was changed"
-        ) from None
+        raise sqlite_failure(path, str(exc), waited_s=PROBE_TIMEOUT_S) from None
     tables = {t for t in tables if not t.startswith("sqlite_")}
     if tables and "alembic_version" not in tables:
         raise SchemaError(
@@ -137,13 +139,90 @@ def recognise_sqlite(path: Path) -> None:
         )
 
 
-def translate_db_error(exc: DBAPIError) -> GranudbError:
-    """A database driver error as one line a person can act on."""
+#: How long the read-only probe of ``recognise_sqlite`` waits for a lock (sqlite3's default).
+PROBE_TIMEOUT_S = 5.0
+#: Free space below which a failing write or open is put down to a full disk (SQLite needs
+#: room for its -wal and -shm files and a page or two more).
+FULL_DISK_BYTES = 1 << 20
+
+
+def _statvfs(path: Path) -> os.statvfs_result | None:
+    for place in (path, path.parent):
+        try:
+            return os.statvfs(place)
+        except OSError:
+            continue
+    return None
+
+
+def sqlite_failure(path: Path, text: str, *, waited_s: float = BUSY_TIMEOUT_S) -> GranudbError:
+    """The cause of SQLite's error ``text`` on the file ``path``, as one line.
+
+    SQLite's own words name the symptom ("unable to open database file", "disk I/O
+    error"); the cause is read from the file system: the file's words first where they are
+    exact (not a database, locked), then a read-only mount, a full disk, missing
+    permission, a read-only database. Each cause has its own message and what to do, and
+    every one says nothing was changed (the file is only read to diagnose).
+    """
+    lowered = text.lower()
+    folder = path.parent
+    if "not a database" in lowered or "malformed" in lowered:
+        return DatabaseAccessError(
+            f"database: {path} is not a SQLite database ({text}); nothing was changed"
+        )
+    if "locked" in lowered or "busy" in lowered:
+        return DatabaseAccessError(
+            f"database: {path} is locked by another program (waited {waited_s:.0f} s: "
+            f"{text}); close the other program or try again; nothing was changed"
+        )
+    stat = _statvfs(path)
+    if stat is not None and stat.f_flag & os.ST_RDONLY:
+        return DatabaseAccessError(
+            f"database: {path} is on a read-only file system (SQLite must write its -wal "
+            f"and -shm files beside it: {text}); remount it read-write or copy the file to "
+            "a writable folder; nothing was changed"
+        )
+    free = stat.f_bavail * stat.f_frsize if stat is not None else None
+    if free is not None and free < FULL_DISK_BYTES:
+        return DatabaseAccessError(
+            f"database: the disk holding {folder} is full ({free} bytes free: {text}); "
+            "free some space and try again; nothing was changed"
+        )
+    denied = [
+        str(p)
+        for p, mode in ((path, os.R_OK | os.W_OK), (folder, os.W_OK | os.X_OK))
+        if p.exists() and not os.access(p, mode)
+    ]
+    if denied:
+        return DatabaseAccessError(
+            f"database: permission denied on {' and '.join(denied)} (SQLite must read and "
+            f"write the file and create its -wal and -shm files in the folder: {text}); "
+            "ask for write access or copy the file; nothing was changed"
+        )
+    if "readonly" in lowered or "read-only" in lowered or "read only" in lowered:
+        return DatabaseAccessError(f"database: is read-only ({text}); nothing was changed")
+    if "full" in lowered or "disk" in lowered:
+        return DatabaseAccessError(f"database: disk full or failing ({text}); nothing was changed")
+    return DatabaseAccessError(f"database: cannot open {path} ({text}); nothing was changed")
+
+
+#: SQLite's words for trouble with the file rather than with a statement.
+_FILE_TROUBLE = re.compile(
+    r"unable to open|disk|full|read-?only|locked|busy|not a database|"
+    r"malformed|permission|i/o"
+)
+
+
+def translate_db_error(exc: DBAPIError, path: Path | None = None) -> GranudbError:
+    """A database driver error as one line a person can act on (``path``: the SQLite file,
+    whose file system is asked for the cause of an I/O, lock or permission error)."""
     text = str(exc.orig) if exc.orig is not None else str(exc)
     text = text.splitlines()[0]
     lowered = text.lower()
     if getattr(exc.orig, "sqlstate", None) == INSUFFICIENT_PRIVILEGE:
         return roles.refusal(text)
+    if path is not None and isinstance(exc, OperationalError) and _FILE_TROUBLE.search(lowered):
+        return sqlite_failure(path, text)
     if isinstance(exc, IntegrityError):
         if "check constraint" in lowered:
             return GranudbError(f"database refused a value: {text}")
@@ -176,6 +255,11 @@ class Database:
     seed_report: list[str] = field(default_factory=list)
 
     @property
+    def sqlite_path(self) -> Path | None:
+        """The SQLite file (None for PostgreSQL or an in-memory database)."""
+        return _sqlite_file(self.url)
+
+    @property
     def dialect(self) -> str:
         return self.engine.dialect.name
 
@@ -202,7 +286,7 @@ class Database:
             with self._read_bind().connect() as connection, connection.begin():
                 yield connection
         except DBAPIError as exc:
-            raise translate_db_error(exc) from None
+            raise translate_db_error(exc, self.sqlite_path) from None
 
     @contextmanager
     def changing(self) -> Iterator[Connection]:
@@ -213,7 +297,7 @@ class Database:
             with bind.connect() as connection, connection.begin():
                 yield connection
         except DBAPIError as exc:
-            raise translate_db_error(exc) from None
+            raise translate_db_error(exc, self.sqlite_path) from None
 
     @contextmanager
     def session(self, *, write: bool = False) -> Iterator[Session]:
@@ -228,7 +312,7 @@ class Database:
             bind = self._read_bind()
         session = sqlalchemy_orm.Session(bind=bind, expire_on_commit=False)
         try:
-            with _undone_on_error(session.rollback):
+            with _undone_on_error(session.rollback, self.sqlite_path):
                 yield session
                 session.commit()
         finally:
@@ -269,20 +353,20 @@ def open_database(
             database.seed_report = on_create(session)
             session.flush()
 
-    with _undone_on_error(engine.dispose):
+    with _undone_on_error(engine.dispose, path):
         database.created = migration.ensure_current(database, _fill if on_create else None)
     return database
 
 
 @contextmanager
-def _undone_on_error(undo: Callable[[], object]) -> Iterator[None]:
+def _undone_on_error(undo: Callable[[], object], path: Path | None = None) -> Iterator[None]:
     """Run ``undo`` when the block fails, then raise: a database error as granudb's one-line
     error (``translate_db_error``), anything else (an interrupt too) as it is."""
     try:
         yield
     except DBAPIError as exc:
         undo()
-        raise translate_db_error(exc) from None
+        raise translate_db_error(exc, path) from None
     except BaseException:
         undo()
         raise

@@ -26,8 +26,6 @@ from granudb.lazy import (
     alembic_script,
 )
 from granudb.resources import shipped_dir
-from granudb.vocabulary import COLLISION_TARGET, COLLISION_UNCERTAINTIES
-from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
 
 if TYPE_CHECKING:
     from alembic.config import Config
@@ -198,107 +196,80 @@ def upgrade(database: Database, revision: str = "head") -> tuple[str | None, str
 
 
 def downgrade(
-    database: Database, revision: str, *, accepted: list[str] | None = None
+    database: Database,
+    revision: str,
+    *,
+    accepted: list[str] | None = None,
+    releases: list[str] | None = None,
 ) -> tuple[str | None, str | None]:
     """Migrate back to ``revision`` ("base" drops every granudb table).
 
     A downgrade that would drop or change stored values (``downgrade_losses``) is refused
-    unless ``accepted`` is exactly the list of losses the person agreed to: recomputed
-    inside the schema transaction, so rows written after they agreed are never dropped
-    without their consent.
+    unless ``accepted`` is exactly the list of losses the person agreed to, and one that
+    would change a released version (``released_affected``) unless ``releases`` is
+    exactly the list of those versions: both recomputed inside the schema transaction, so
+    rows written after they agreed are never dropped without their consent.
     """
-    return _run(database, "downgrade", revision, accepted=accepted or [])
+    return _run(database, "downgrade", revision, accepted=accepted or [], releases=releases or [])
 
 
-#: What each revision's downgrade drops or alters, as (table, column, SQL condition on the
-#: rows that lose something, what happens to them). Checked constraints are not data.
-_STEP_LOSSES: dict[str, list[tuple[str, str, str, str]]] = {
-    "0011": [
-        (table, "conditions", "conditions IS NOT NULL", "dropped (the values' conditions)")
-        for table in ("materials", "fluids")
-    ],
-    "0010": [
-        (
-            "materials",
-            "roughness_rms_m",
-            "roughness_rms_m IS NULL",
-            "not stated, become 0.0 (the older schema needs a number; an upgrade keeps the 0)",
+#: Where a revision declares its downgrade's losses (``DOWNGRADE_LOSSES`` in its file,
+#: next to ``downgrade()``): a list of (table, column, SQL condition on the rows that lose
+#: something, what happens to them). Table "*": every table goes.
+LOSSES_ATTRIBUTE = "DOWNGRADE_LOSSES"
+
+
+def declared_losses(step: str) -> list[tuple[str, str, str, str]]:
+    """What revision ``step``'s downgrade declares it loses; a revision that declares
+    nothing is refused (an undeclared loss would be dropped without consent)."""
+    module = script_directory().get_revision(step).module
+    declared = getattr(module, LOSSES_ATTRIBUTE, None)
+    if not isinstance(declared, list) or not all(
+        isinstance(e, tuple) and len(e) == 4 and all(isinstance(x, str) for x in e)
+        for e in declared
+    ):
+        raise SchemaError(
+            f"revision {step}: declares no {LOSSES_ATTRIBUTE} (a list of (table, column, "
+            "condition, what happens)) beside its downgrade(); it cannot be downgraded "
+            "with consent; nothing was changed"
         )
-    ],
-    "0009": [
-        (
-            "source_revisions",
-            "citation",
-            "1 = 1",
-            "dropped (the sources' history; released datasets then read today's sources)",
-        ),
-    ],  # fmt: skip
-    "0008": [
-        ("collisions", c, f"{c} IS NOT NULL", "dropped (the stated standard uncertainty)")
-        for c in COLLISION_UNCERTAINTIES
-    ],
-    "0007": [
-        *(
-            ("materials", c, f"{c} IS NOT NULL", "dropped")
-            for c in (
-                "dry_restitution",
-                "dry_friction",
-                "dry_provenance",
-                "brittleness",
-                "u_dry_restitution",
-                "u_dry_friction",
-            )
-        ),
-        ("pair_values", "dry_restitution", "1 = 1", "dropped (the pair values table goes)"),
-    ],
-    "0006": [
-        (table, c, f"{c} IS NOT NULL", "dropped (the standard uncertainty)")
-        for table, columns in (
-            ("materials", MATERIALS.uncertainties.values()),
-            ("fluids", FLUIDS.uncertainties.values()),
-            ("fluid_points", ("u_viscosity_pa_s", "u_density_kg_m3")),
-        )
-        for c in columns
-        if c not in ("u_dry_restitution", "u_dry_friction")  # 0007's
-    ],
-    "0005": [
-        (
-            "collisions",
-            "v_n_in_m_s",
-            "wall_v_n_in_m_s IS NOT NULL AND (v_n_in_m_s <= 0 OR v_n_out_m_s < 0)",
-            "removed (two-sphere runs the older schema cannot hold)",
-        ),
-        *(
-            (
-                table,
-                "revision_of",
-                "revision_of IS NOT NULL",
-                "dropped (released datasets then read today's values)",
-            )
-            for table in ("materials", "fluids")
-        ),
-    ],  # fmt: skip
-    "0004": [
-        ("datasets", "authors", "authors IS NOT NULL", "dropped"),
-        ("datasets", "keywords", "keywords IS NOT NULL", "dropped"),
-        ("datasets", "state", "state <> 'draft'", "dropped (released versions become drafts)"),
-        ("datasets", "released_at", "released_at IS NOT NULL", "dropped"),
-    ],
-    "0003": [
-        ("materials", "yield_stress_pa", "yield_stress_pa IS NOT NULL", "dropped"),
-        # 0003 added the free target sphere's velocities: the vocabulary's COLLISION_TARGET
-        *(("collisions", c, f"{c} IS NOT NULL", "dropped") for c in COLLISION_TARGET),
-        ("collisions", "omega_in_rad_s", "omega_in_rad_s IS NULL", "not measured, become 0.0"),
-        ("collisions", "omega_out_rad_s", "omega_out_rad_s IS NULL", "not measured, become 0.0"),
-        (
-            "collisions",
-            "nominal_angle_rad",
-            "nominal_angle_rad IS NULL",
-            "not recorded, become the centre's path angle",
-        ),
-    ],
-    "0002": [("datasets", "doi", "doi IS NOT NULL", "dropped")],
+    return declared
+
+
+#: The dataset versions whose content a loss in each table reaches: SQL selecting
+#: dataset ids, given the declared condition on that table's rows.
+_REACHES = {
+    "collisions": "SELECT dataset_id FROM collisions WHERE ({c})",
+    "datasets": "SELECT id FROM datasets WHERE ({c})",
+    "materials": (
+        "SELECT dataset_id FROM collisions WHERE particle_id IN (SELECT id FROM materials "
+        "WHERE ({c})) OR wall_id IN (SELECT id FROM materials WHERE ({c}))"
+    ),
+    "fluids": "SELECT dataset_id FROM collisions WHERE fluid_id IN "
+    "(SELECT id FROM fluids WHERE ({c}))",
+    "fluid_points": "SELECT dataset_id FROM collisions WHERE fluid_id IN "
+    "(SELECT fluid_id FROM fluid_points WHERE ({c}))",
+    # a release cites its sources as they were: without the history, as they are now
+    "source_revisions": "SELECT id FROM datasets WHERE EXISTS (SELECT 1 FROM "
+    "source_revisions WHERE ({c}))",
+    "*": "SELECT id FROM datasets",
 }
+
+
+def _released(connection: Connection, table: str, condition: str) -> list[str]:
+    """NAME@VERSION of the released (or superseded) versions whose content the loss of
+    ``table``'s rows matching ``condition`` reaches (their export would change)."""
+    reach = _REACHES.get(table)
+    columns = {c["name"] for c in inspect(connection).get_columns("datasets")}
+    if reach is None or "state" not in columns:  # before 0004 nothing was released
+        return []
+    rows = connection.execute(
+        text(
+            "SELECT name, version FROM datasets WHERE state <> 'draft' AND id IN "
+            f"({reach.format(c=condition)}) ORDER BY name, version"
+        )
+    ).all()
+    return [f"{name}@{version}" for name, version in rows]
 
 
 def _steps(connection: Connection, current: str | None, target: str) -> list[str] | None:
@@ -322,46 +293,94 @@ def _steps(connection: Connection, current: str | None, target: str) -> list[str
     return list(reversed(order[order.index(target) + 1 : at + 1]))
 
 
-def downgrade_losses(connection: Connection, revision: str) -> list[str]:
-    """What going back to ``revision`` would drop or alter, one phrase per table or column
-    with its row count (nothing listed: nothing is lost). Bookkeeping that granudb can do
-    without (``seed_records``, ``alembic_version``) is not counted."""
+def downgrade_plan(connection: Connection, revision: str) -> tuple[list[str], list[str]]:
+    """(what going back to ``revision`` would drop or alter, one phrase per table or column
+    with its row count and the released versions it reaches; the released versions it
+    would change). Read only from each revision's ``DOWNGRADE_LOSSES``. Bookkeeping that
+    granudb can do without (``seed_records``, ``alembic_version``) is not counted."""
     current = current_revision(connection)
     steps = _steps(connection, current, revision)
-    if steps is None:
-        tables = sorted(set(inspect(connection).get_table_names()) - {"alembic_version"})
-        counts = {
-            t: connection.execute(text(f'SELECT count(*) FROM "{t}"')).scalar() for t in tables
-        }
-        return [f"table {t}: all {n} rows" for t, n in counts.items() if n and t != "seed_records"]
-    losses = []
-    for step in steps:
-        for table, column, condition, what in _STEP_LOSSES.get(step, []):
+    declared = (
+        [("*", "*", "1 = 1", "")]
+        if steps is None
+        else [entry for step in steps for entry in declared_losses(step)]
+    )
+    losses: list[str] = []
+    releases: list[str] = []
+    for table, column, condition, what in declared:
+        if table == "*":
+            tables = sorted(set(inspect(connection).get_table_names()) - {"alembic_version"})
+            counts = {
+                t: connection.execute(text(f'SELECT count(*) FROM "{t}"')).scalar() for t in tables
+            }
+            reached = _released(connection, "*", condition) if "datasets" in tables else []
+            losses += [
+                f"table {t}: all {n} rows" + _in_releases(reached if t == "datasets" else [])
+                for t, n in counts.items()
+                if n and t != "seed_records"
+            ]
+        else:
             count = connection.execute(
                 text(f'SELECT count(*) FROM "{table}" WHERE {condition}')
             ).scalar()
-            if count:
-                losses.append(f"{table}.{column}: {count} values {what}")
-    return losses
+            if not count:
+                continue
+            reached = _released(connection, table, condition)
+            losses.append(f"{table}.{column}: {count} values {what}" + _in_releases(reached))
+        releases += [r for r in reached if r not in releases]
+    return losses, sorted(releases)
+
+
+def _in_releases(reached: list[str]) -> str:
+    if not reached:
+        return ""
+    return f" — changes released versions {', '.join(reached)}"
+
+
+def downgrade_losses(connection: Connection, revision: str) -> list[str]:
+    """The losses of ``downgrade_plan``."""
+    return downgrade_plan(connection, revision)[0]
+
+
+def preview_downgrade(database: Database, revision: str) -> tuple[list[str], list[str]]:
+    """``downgrade_plan`` for the database as it is now (read only)."""
+    with database.engine.connect() as connection:
+        check_revision(current_revision(connection), connection)
+        plan = downgrade_plan(connection, revision)
+        connection.rollback()
+    return plan
 
 
 def plan_downgrade(database: Database, revision: str) -> list[str]:
-    """``downgrade_losses`` for the database as it is now (read only)."""
-    with database.engine.connect() as connection:
-        check_revision(current_revision(connection), connection)
-        losses = downgrade_losses(connection, revision)
-        connection.rollback()
-    return losses
+    """The losses of ``preview_downgrade``."""
+    return preview_downgrade(database, revision)[0]
+
+
+def released_refusal(revision: str, releases: list[str], option: str) -> ConfirmationNeeded:
+    """The refusal of a downgrade that would change released versions without their
+    being named: consent to losing values is not consent to changing a release."""
+    return ConfirmationNeeded(
+        f"db downgrade {revision}: would change released versions {', '.join(releases)} "
+        "(values they hold are dropped, so their exports no longer match their content "
+        f"hashes); --yes is not enough: add {option} to accept that; nothing was changed"
+    )
 
 
 def _run(
-    database: Database, action: str, revision: str, *, accepted: list[str] | None = None
+    database: Database,
+    action: str,
+    revision: str,
+    *,
+    accepted: list[str] | None = None,
+    releases: list[str] | None = None,
 ) -> tuple[str | None, str | None]:
     with schema_transaction(database) as connection:
         before = current_revision(connection)
         check_revision(before, connection)
         if action == "downgrade":
-            losses = downgrade_losses(connection, revision)
+            losses, reached = downgrade_plan(connection, revision)
+            if reached and reached != (releases or []):
+                raise released_refusal(revision, reached, "--drop-released-values")
             if losses != (accepted or []):
                 raise ConfirmationNeeded(
                     f"db downgrade {revision}: loses {'; '.join(losses)}; not confirmed, "

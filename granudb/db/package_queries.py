@@ -17,7 +17,7 @@ from sqlalchemy.orm import Session
 
 from granudb.db import catalog_rows, datasets
 from granudb.db.catalogue_differences import sources_read
-from granudb.db.content_hash import content_hash
+from granudb.db.content_hash import export_hash
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
 from granudb.vocabulary.listings import DATASET_DESCRIPTION
 
@@ -139,4 +139,4 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
     }
     # the dataset's own source, cited as every other file of the package cites it
     own = next((s for s in tables["sources"] if s["id"] == dataset.source_id), None)
-    return ExportData(dataset_metadata(dataset, own), content_hash(session, dataset), tables)
+    return ExportData(dataset_metadata(dataset, own), export_hash(session, dataset), tables)

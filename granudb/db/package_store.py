@@ -314,8 +314,8 @@ def store_package(
         result.dataset, result.version = content.dataset, content.version
         result.rows, result.content_hash = rows, update_content_hash(session, dataset)
         if declared_hash is not None:
-            _check_declared(session, dataset, result.content_hash, declared_hash,
-                            (materials, fluids))  # fmt: skip
+            result.content_hash = _check_declared(session, dataset, result.content_hash,
+                                                  declared_hash, (materials, fluids))  # fmt: skip
         if content.status == RELEASED:
             _released(session, dataset)
         return result
@@ -364,18 +364,30 @@ def _stored_names(session: Session, fluids: dict[str, int]) -> dict[str, str]:
 
 def _check_declared(
     session: Session, dataset: Dataset, stored: str, declared: str, ids: tuple[dict, dict]
-) -> None:
+) -> str:
     """Refuse a package whose collisions, under the package's own names, do not give the
-    hash it declares. They give the stored hash unless a name was matched in another case
-    or renamed; then the stored rows are hashed again with the package's names."""
+    hash it declares; return the hash to record. They give the stored hash unless a name
+    was renamed (a name matched in another case hashes alike: names are hashed in
+    canonical form); then the stored rows are hashed again with the package's names. A
+    package hashed under the first definition (names as spelled, before they were
+    canonical) is checked under it, and its hash is kept when the names are this
+    database's: a release keeps the hash it was published with."""
     own = []
     for model, by_name in zip((Material, Fluid), ids, strict=True):
         here = dict(session.execute(select(model.id, model.name).where(
             model.id.in_(sorted(set(by_name.values()))))).all())  # fmt: skip
         own.append({here[i]: name for name, i in by_name.items() if here[i] != name})
-    computed = stored if not any(own) else content_hash(session, dataset, renamed=tuple(own))
-    if computed != declared:
-        raise HashMismatch(
-            f"content hash: computed {computed[:16]}…, the package declares "
-            f"{str(declared)[:16]}…; the collisions changed"
-        )
+    renamed = tuple(own) if any(own) else None
+    computed = stored if renamed is None else content_hash(session, dataset, renamed)
+    if computed == declared:
+        return stored
+    if content_hash(session, dataset, renamed, spelled=True) == declared:
+        if renamed is None:
+            dataset.content_hash = declared
+            session.flush()
+            return declared
+        return stored
+    raise HashMismatch(
+        f"content hash: computed {computed[:16]}…, the package declares "
+        f"{str(declared)[:16]}…; the collisions changed"
+    )

@@ -120,6 +120,8 @@ def grant(connection: Connection, account: str, role: str) -> list[str]:
     exists = connection.execute(
         text("SELECT 1 FROM pg_roles WHERE rolname = :name"), {"name": account}
     ).scalar()
+    if exists:
+        _refuse_unrestrictable(connection, account, role)
     if not exists:
         connection.execute(text(f"CREATE ROLE {who} LOGIN"))
         done.append(f"created login role {account} (no password: set one with ALTER ROLE)")
@@ -146,6 +148,40 @@ def grant(connection: Connection, account: str, role: str) -> list[str]:
         connection.execute(text(statement))
     done.append(f"{account} is a {role} of this database ({ROLE_RIGHTS[role]})")
     return done
+
+
+def _refuse_unrestrictable(connection: Connection, account: str, role: str) -> None:
+    """Refuse to call ``account`` a ``role`` when table privileges cannot hold it: a
+    superuser passes every privilege check, and the owner of a table (or a member of the
+    owning role) may grant itself back anything revoked, alter or drop it. Saying "reads
+    everything, writes nothing" of such an account would be false."""
+    superuser = connection.execute(
+        text("SELECT rolsuper FROM pg_roles WHERE rolname = :name"), {"name": account}
+    ).scalar()
+    owned = (
+        connection.execute(
+            text(
+                "SELECT tablename FROM pg_tables WHERE schemaname = 'public' "
+                "AND pg_has_role(:name, tableowner, 'USAGE') ORDER BY tablename"
+            ),
+            {"name": account},
+        )
+        .scalars()
+        .all()
+    )
+    if not superuser and not owned:
+        return
+    why = (
+        "is a superuser (PostgreSQL lets it write whatever it is granted)"
+        if superuser
+        else f"owns granudb's tables ({', '.join(owned[:3])}{'…' if len(owned) > 3 else ''}: "
+        "an owner can grant itself back any right)"
+    )
+    raise DatabaseAccessError(
+        f"db grant: {account} {why}, so it cannot be made a {role}; a {role} must be a "
+        "login that is not a superuser and does not own the tables: grant the role to a new "
+        f"account (`granudb db grant {account}_{role} --as {role}`); nothing was changed"
+    )
 
 
 ROLE_RIGHTS = {

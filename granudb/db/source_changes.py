@@ -21,25 +21,23 @@ from granudb.db.upsert import Change
 from granudb.errors import ConflictError
 from granudb.vocabulary.catalogue import check_source
 from granudb.vocabulary.rules import same_value
+from granudb.vocabulary.text import name_key, nfc
 
 
 def add_source(session: Session, values: dict[str, Any]) -> None:
     """Add the source ``values`` (``key`` and ``citation`` required, the other columns
     of ``SOURCE_COLUMNS`` optional, ``kind`` "publication" unless given); refuses a key
     that exists and a field that breaks its rule (``check_source``)."""
-    values = {"kind": "publication", **values}
+    values = {"kind": "publication", **values}  # a copy: the key is stored in NFC
     check_source(values)
-    found = (
-        session.connection()
-        .execute(
-            select(catalog_rows.SOURCES.c.key).where(catalog_rows.SOURCES.c.key == values["key"])
-        )
-        .scalar()
-    )
+    values["key"] = nfc(values["key"])
+    keys = session.connection().execute(select(catalog_rows.SOURCES.c.key)).scalars()
+    found = next((k for k in keys if name_key(k) == name_key(values["key"])), None)
     if found is not None:
+        shown = "" if found == values["key"] else f" as {found!r}"
         raise ConflictError(
-            f"source: {values['key']!r} already exists (use `granudb sources update`); "
-            "nothing was changed"
+            f"source: {values['key']!r} already exists{shown} (keys are compared ignoring "
+            "case; use `granudb sources update`); nothing was changed"
         )
     session.add(Source(**values))
     session.flush()

@@ -38,6 +38,14 @@ CODE = "LAMMPS"
 VERSION = "29 Sep 2021 - Update 2, Debian package lammps 20220106"
 
 
+#: The check of the stated time step: LAMMPS halts naming this fix when dt is above it.
+TIME_STEP_VARIABLE = "granudb_time_step_ok"
+TIME_STEP_FIX = "granudb_time_step_above_the_decks_bound"
+
+#: The communication setting granular pairs need, written by the fragment itself.
+COMM = "comm_modify vel yes"
+
+
 def type_number(model: DemModel, name: str) -> int:
     """LAMMPS atom type of a particle type: particles only, in model order (walls excluded)."""
     return [t.name for t in model.particles].index(name) + 1
@@ -92,8 +100,8 @@ def tangential_stiffness(model: DemModel, pair: PairParameters) -> tuple[float, 
     k_t = ratio * scales.hertz_stiffness
     return k_t, (
         f"k_t = {ratio:.4f} k_n = {deck.num(k_t)} Pa ({k_t / mindlin:.3f} of Mindlin's 8 G*): a "
-        f"contact that never slides rebounds with beta = {deck.describe(beta)}, so Psi_out "
-        "follows Walton's relation with beta and mu_f (granudb.dem.damping)"
+        f"contact that never slides rebounds with beta = {deck.describe(beta)} "
+        "(granudb.dem.damping)"
     )
 
 
@@ -102,9 +110,11 @@ def tangential_stiffness(model: DemModel, pair: PairParameters) -> tuple[float, 
 FRICTION_LAW = deck.FrictionLaw("tangential mindlin", incremental=False, correct_above=1e-3)
 
 
-def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
-    """The granular model arguments of one pair and the comment lines explaining them; the
-    μ_f written is ``deck.friction_input`` with LAMMPS's damping α(e_in) and this k_t."""
+def _inputs(
+    model: DemModel, pair: PairParameters, clamp: bool
+) -> tuple[deck.Limited, float, str, float, str | None]:
+    """(tsuji input, k_t and its note, μ_f input and its note) of one pair: the μ_f written
+    is ``deck.friction_input`` with LAMMPS's damping α(e_in) and this k_t."""
     scales = model.contact(pair)
     e_in = tsuji_input(pair, clamp)
     k_t, k_t_note = tangential_stiffness(model, pair)
@@ -117,6 +127,34 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
         k_t / scales.hertz_stiffness,
         clamp,
     )
+    return e_in, k_t, k_t_note, mu_in, mu_note
+
+
+def rebound_range(
+    model: DemModel, pair: PairParameters, clamp: bool = False
+) -> deck.ReboundRange | None:
+    """The impact angles over which this deck's Ψ_out follows Walton's relation with the
+    pair's β (``deck.rebound_range`` on the written inputs); None without β."""
+    e_in, k_t, _, mu_in, _ = _inputs(model, pair, clamp)
+    ratio = k_t / model.contact(pair).hertz_stiffness
+    return deck.rebound_range(pair, damping.tsuji_alpha(e_in.value), ratio, mu_in, False)
+
+
+def stated_rebound(
+    model: DemModel, pair: PairParameters, angle_deg: float, clamp: bool = False
+) -> float:
+    """Ψ_out this deck's contact gives at ``angle_deg`` (``deck.contact_rebound`` on the
+    written inputs), where its ``rebound_range`` says Walton's relation does not hold."""
+    e_in, k_t, _, mu_in, _ = _inputs(model, pair, clamp)
+    ratio = k_t / model.contact(pair).hertz_stiffness
+    c = damping.tsuji_alpha(e_in.value)
+    return deck.contact_rebound(pair, c, ratio, mu_in, False, angle_deg)
+
+
+def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[str, list[str]]:
+    """The granular model arguments of one pair and the comment lines explaining them."""
+    scales = model.contact(pair)
+    e_in, k_t, k_t_note, mu_in, mu_note = _inputs(model, pair, clamp)
     args = (
         f"hertz {deck.num(scales.hertz_stiffness)} {deck.num(e_in.value)} "
         f"tangential mindlin {deck.num(k_t)} 0.0 "
@@ -130,6 +168,11 @@ def coefficients(model: DemModel, pair: PairParameters, clamp: bool) -> tuple[st
         f"  k_n = 4/3 E* = {deck.num(scales.hertz_stiffness)} Pa (E* = "
         f"{deck.num(scales.reduced_modulus_pa)} Pa, granudb docs/physics.md section 13)",
         f"  {k_t_note}",
+        *(
+            [f"  {found.sentence(pair)}"]
+            if (found := rebound_range(model, pair, clamp)) is not None
+            else []
+        ),
         f"  tsuji input {deck.num(e_in.value)} so that LAMMPS's alpha(e) gives e = "
         f"{deck.num(pair.restitution.value)} on this Hertz contact with limit_damping "
         "(granudb.dem.damping); no tangential damping (x_gamma,t = 0)",
@@ -166,11 +209,17 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
     out += deck.comment(
         "LAMMPS atom types are the particle types only: "
         + ", ".join(f"{type_number(model, t.name)} = {t.name}" for t in model.particles)
-        + ". Needs atom_style sphere and comm_modify vel yes. Include this file after the "
+        + ". Needs atom_style sphere (the fragment sets comm_modify vel yes). Include this file "
+        "after the "
         "atoms exist (after create_atoms or read_data), never straight after create_box: "
         "its groups are made by type, and a LAMMPS group holds only the atoms that exist "
-        "when it is made, so the wall fixes would act on nothing."
+        "when it is made, so the wall fixes would act on nothing. The fragment writes "
+        "pair_style granular and every pair_coeff and wall/gran fix itself, with the options "
+        "the values depend on (hertz k_n, tangential mindlin k_t, damping tsuji, "
+        "limit_damping): do not redefine pair_style or pair_coeff after it. "
+        + deck.time_step_sentence(model)
     )
+    out += ["", *deck.comment("granular pairs need the ghost atoms' velocities:"), COMM]
     out += ["", "pair_style granular"]
     particles = model.particles
     for i, a in enumerate(particles):
@@ -198,4 +247,12 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
                 f"fix granudb_{wall.name}_{t.name} {group_name(t)} wall/gran granular {args} "
                 f"${{{wall_variable(wall)}}}"
             )
+    dt, _, _ = deck.time_step_bound(model)
+    out += [""] + deck.comment(
+        f"The time step bound stated above: LAMMPS stops (fix halt) when dt > {deck.num(dt)} s."
+    )
+    out += [
+        f'variable {TIME_STEP_VARIABLE} equal "dt <= {deck.num(dt)}"',
+        f"fix {TIME_STEP_FIX} all halt 10 v_{TIME_STEP_VARIABLE} == 0 error hard message yes",
+    ]
     return "\n".join(out) + "\n"

@@ -33,7 +33,7 @@ comment, never the viscous model.
 from __future__ import annotations
 
 from granudb.dem import damping, deck
-from granudb.dem.spec import DemModel, PairParameters
+from granudb.dem.spec import DemModel, PairParameters, ParticleType
 
 CODE = "LIGGGHTS"
 VERSION = "3.8.0, Debian package liggghts"
@@ -55,6 +55,10 @@ def pair_style(model: DemModel) -> str:
 #: The contact settings every export needs (see the module docstring): after the models in
 #: ``pair_style gran``, after the wall's geometry in ``fix wall/gran``.
 SETTINGS = "tangential_damping off limitForce on"
+
+#: The communication setting granular pairs need (ghost atoms' velocities), written by the
+#: fragment itself.
+COMM = "communicate single vel yes"
 
 #: ``tangential history``: a total spring F_t = −8 G* a u, u cut back at the Coulomb cap
 #: μ_f |F_n| (src/tangential_model_history.h); corrected where the loss exceeds 0.1 %.
@@ -107,11 +111,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
         for a, b, p in deck.ordered_pairs(model)
     }
     out = deck.header(CODE, VERSION, model)
-    out += deck.comment(
-        f"Use with: pair_style gran {pair_style(model)} {SETTINGS} ; pair_coeff * * ; walls "
-        f"as fix ID all wall/gran {pair_style(model)} primitive type N zplane 0.0 {SETTINGS} "
-        "(N = the wall's type; the settings come last)."
-    )
+    out += deck.comment(host_settings(model))
     out += deck.rebound_lines(model, REBOUND_LIMIT)
     moduli = [t.youngs_modulus_pa for t in model.types]
     if max(moduli) > HARD_LIMIT_PA:
@@ -135,7 +135,49 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
             for p in model.pairs
         }
         out += _matrix(model, "coefficientRollingFriction", rolling, "rolling_friction")
+    out += [""] + deck.comment(
+        f"The contact model these values are for: {SETTINGS} (module docstring of "
+        "granudb.dem.liggghts); do not redefine pair_style after this file."
+    )
+    out += [COMM, f"pair_style gran {pair_style(model)} {SETTINGS}", "pair_coeff * *"]
+    for wall in model.walls:
+        out += deck.comment(
+            f"wall {wall.name} (type {model.index(wall.name)}): set its geometry before "
+            f'including this file, e.g. variable {wall_variable(wall)} string "zplane 0.0"'
+        )
+        out.append(
+            f"fix granudb_wall_{wall.name} all wall/gran {pair_style(model)} primitive type "
+            f"{model.index(wall.name)} ${{{wall_variable(wall)}}} {SETTINGS}"
+        )
     return "\n".join(out) + "\n"
+
+
+def wall_variable(wall: ParticleType) -> str:
+    """Name of the string variable holding a wall's geometry (e.g. ``zplane 0.0``)."""
+    return f"granudb_wall_{wall.name}"
+
+
+def host_settings(model: DemModel) -> str:
+    """What the host input needs around this fragment (``dem verify`` runs with exactly
+    this): the fragment writes the pair style and the wall fixes itself, with
+    ``limitForce on`` and ``tangential_damping off``, which the values depend on."""
+    walls = ", ".join(f"{wall_variable(w)}" for w in model.walls)
+    return (
+        "Include after create_box (units si, atom_style granular) and before the run. This "
+        f"fragment writes {COMM}, the pair style, pair_coeff * * and "
+        f"the wall fixes itself with the settings the values depend on ({SETTINGS}): without "
+        "limitForce on the coefficientRestitution written gives a lower e, without "
+        "tangential_damping off a higher friction. Do not write another pair_style or "
+        "wall/gran for these types. "
+        + (
+            f"Set the string variable{'s' if len(model.walls) > 1 else ''} {walls} (a "
+            "wall/gran geometry, e.g. zplane 0.0) before including it: LIGGGHTS stops on an "
+            "unset variable. "
+            if model.walls
+            else ""
+        )
+        + deck.time_step_sentence(model)
+    )
 
 
 def _per_type(model: DemModel, prop: str, values: dict[str, deck.Limited]) -> list[str]:

@@ -46,6 +46,11 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
     )
     out = [line.replace("# ", "// ", 1) for line in out]
     out.append(f"// species class: {species}; walls get a species too (density unused).")
+    out += deck.comment(
+        deck.time_step_sentence(model) + " MercuryDPM is not run by dem verify (no package): "
+        "set setTimeStep() at or below this bound.",
+        "// ",
+    )
     for t in model.types:
         out.append(f"auto* {t.name} = speciesHandler.copyAndAddObject({species}());")
         out.append(

@@ -102,19 +102,15 @@ def liggghts_input(model: DemModel, fragment: str, case: Case) -> str:
     dt, steps, radius, gap, target, size, lines = _start(
         model, case, LIGGGHTS_SETUP, len(model.types)
     )
+    lines += [f"neighbor {radius / 5} bin", "neigh_modify delay 0"]
+    lines += [f'variable {liggghts.wall_variable(w)} string "zplane 0.0"' for w in model.walls]
+    keep = f"fix granudb_wall_{target.name} "  # only this case's wall, if any
     lines += [
-        f"neighbor {radius / 5} bin",
-        "neigh_modify delay 0",
-        fragment,
-        f"pair_style gran {liggghts.pair_style(model)} {liggghts.SETTINGS}",
-        "pair_coeff * *",
-        f"timestep {dt!r}",
+        ln
+        for ln in fragment.splitlines()
+        if not ln.startswith("fix granudb_wall_") or ln.startswith(keep)
     ]
-    if target.is_wall:
-        lines.append(
-            f"fix wall all wall/gran {liggghts.pair_style(model)} primitive type "
-            f"{model.index(target.name)} zplane 0.0 {liggghts.SETTINGS}"
-        )
+    lines.append(f"timestep {dt!r}")
     types = [model.index(case.particle), model.index(case.target)]
     for k, (which, z) in enumerate(_atoms(model, case, radius, gap), start=1):
         t = model.type(case.particle if which == 0 else case.target)
@@ -156,15 +152,12 @@ def lammps_input(model: DemModel, fragment: str, case: Case) -> str:
         lines.append(f"create_atoms {types[which]} single 0 0 {z!r} units box")
         lines.append(f"set atom {k} diameter {t.diameter_m!r} density {t.density_kg_m3!r}")
     lines.append(fragment)
-    if target.is_wall:  # keep only the wall fix of this pair
-        keep = f"fix granudb_{target.name}_{case.particle} "
-        lines = [
-            ln
-            for ln in "\n".join(lines).splitlines()
-            if not ln.startswith("fix granudb_") or ln.startswith(keep)
-        ]
-    else:
-        lines = [ln for ln in "\n".join(lines).splitlines() if not ln.startswith("fix granudb_")]
+    keep = f"fix granudb_{target.name}_{case.particle} "  # only this pair's wall fix, if any
+    lines = [
+        ln
+        for ln in "\n".join(lines).splitlines()
+        if " wall/gran " not in ln or (target.is_wall and ln.startswith(keep))
+    ]
     if target.is_wall:
         lines.append(f"velocity all set {case.v_tangential!r} 0 {-case.v_normal!r} units box")
     else:  # only sphere 1 moves
@@ -221,6 +214,7 @@ for (p, t, wall, r1, r2, gap, vt, vn, dt, steps) in CASES:
                         [g['granudb_ip2']], [Law2_ScGeom_MindlinPhys_Mindlin()]),
         NewtonIntegrator(gravity=(0, 0, 0), damping=0)]
     O.dt = dt
+    g['granudb_check']()  # as the fragment's header says
     O.run(steps, True)
     v2 = 0.0 if wall else other.state.vel[2]
     print('GRANUDB %r %r %r %r' % (float(s.state.vel[0]), float(s.state.vel[2]),

@@ -30,7 +30,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-from granudb.dem import lammps, liggghts, runs, yade
+from granudb.dem import deck, lammps, liggghts, runs, yade
 from granudb.dem.runs import Case
 from granudb.dem.spec import TOLERANCES, DemModel
 from granudb.physics.impact import (
@@ -80,6 +80,9 @@ class Record:
     note: str = ""
     verdict: str = NOT_CHECKED  # "pass", "fail", "stated limit" or "not checked"
     reason: str = ""  # what failed, against which tolerance
+    rebound_limit: str | None = None  # the deck's stated limit of Ψ_out here, if any
+    stated_psi_out: float | None = None  # where so, the Ψ_out the deck states instead
+    stated_rel_error: float | None = None  # Ψ_out against it
 
 
 def installed_codes() -> dict[str, str | None]:
@@ -100,6 +103,9 @@ def cases(
         for w in model.walls:
             out += [Case(p.name, w.name, v, 0.0) for v in speeds]
             out += [Case(p.name, w.name, v_oblique, a) for a in angles_deg]
+            sticking = deck.sticking_angle(model.pair(p.name, w.name))
+            if sticking is not None and sticking not in angles_deg:
+                out.append(Case(p.name, w.name, v_oblique, sticking))
         for q in model.particles:
             if model.index(q.name) >= model.index(p.name):
                 out += [Case(p.name, q.name, v, 0.0) for v in speeds]
@@ -220,6 +226,12 @@ def _record(
         if beta is not None:
             walton = float(walton_rebound(psi_in, beta.value, mu, pair.restitution.value))
             limit = getattr(WRITERS.get(code), "REBOUND_LIMIT", None)
+            if limit is None and code == "lammps":  # the range its deck states
+                found = lammps.rebound_range(model, pair)
+                if found is not None and not found.holds_at(case.angle_deg):
+                    limit = found.sentence(pair)
+                    stated = lammps.stated_rebound(model, pair, case.angle_deg)
+                    fields.update(stated_psi_out=stated, stated_rel_error=psi_out / stated - 1.0)
             fields.update(
                 target_beta=beta.value,
                 rebound_rel_error=psi_out / walton - 1.0 if walton else math.nan,
@@ -243,7 +255,7 @@ def _record(
 def _verdict(fields: dict[str, object]) -> dict[str, str]:
     """Pass, fail or stated limit against ``TOLERANCES``, with the failures said."""
     failures, limits = [], []
-    limit = fields.pop("rebound_limit", None)
+    limit = fields.get("rebound_limit")
     rebound_error = fields.get("rebound_rel_error")
     if rebound_error is not None and not abs(float(rebound_error)) <= TOLERANCES["rebound"]:  # type: ignore[arg-type]
         said = (
@@ -251,6 +263,12 @@ def _verdict(fields: dict[str, object]) -> dict[str, str]:
             f"±{TOLERANCES['rebound']:.0%})"
         )
         (limits if limit else failures).append(said + (": stated in the deck" if limit else ""))
+    stated = fields.get("stated_rel_error")
+    if stated is not None and not abs(float(stated)) <= TOLERANCES["rebound"]:  # type: ignore[arg-type]
+        failures.append(  # the deck states what its code gives here: that claim is judged
+            f"Psi_out {float(stated):+.2%} from the Psi_out the deck states for this angle "  # type: ignore[arg-type]
+            f"(tolerance ±{TOLERANCES['rebound']:.0%})"
+        )
     e_error = float(fields["e_rel_error"])  # type: ignore[arg-type]
     if not abs(e_error) <= TOLERANCES["restitution"]:
         failures.append(f"e {e_error:+.2%} (tolerance ±{TOLERANCES['restitution']:.0%})")
@@ -283,43 +301,85 @@ def summary(records: Sequence[Record]) -> str:
     return f"{verdict}: {said} (tolerances {limits})"
 
 
+@dataclass(frozen=True)
+class Judged:
+    """One quantity a verification judged: its target, what the code gave, the error and
+    the tolerance it is judged against, and the verdict."""
+
+    quantity: str
+    target: float
+    achieved: float
+    error: float
+    tolerance: float
+    verdict: str
+
+
+def judged(record: Record) -> list[Judged]:
+    """The quantities ``record``'s verdict rests on, and only those: e always; μ_f where
+    the impact slides throughout (elsewhere (2.9) gives only a bound); Ψ_out where the
+    pair has a measured β (a "stated limit" where the deck states it cannot hold there)."""
+    if record.status != "checked" or record.achieved_e is None or record.e_rel_error is None:
+        return []
+
+    def verdict(error: float, tolerance: float, limit: bool = False) -> str:
+        return PASS if abs(error) <= tolerance else (LIMIT if limit else FAIL)
+
+    out = [
+        Judged("e", record.target_e, record.achieved_e, record.e_rel_error,
+               TOLERANCES["restitution"], verdict(record.e_rel_error, TOLERANCES["restitution"]))
+    ]  # fmt: skip
+    sliding = record.regime == TANGENTIAL_REGIME_NAMES[GROSS_SLIP]
+    if sliding and record.target_friction is not None and record.friction_rel_error is not None:
+        out.append(
+            Judged("mu_f", record.target_friction, float(record.achieved_friction or 0.0),
+                   record.friction_rel_error, TOLERANCES["friction"],
+                   verdict(record.friction_rel_error, TOLERANCES["friction"]))
+        )  # fmt: skip
+    if record.target_beta is not None and record.rebound_rel_error is not None:
+        out.append(
+            Judged("Psi_out", float(record.psi_out_walton or 0.0), float(record.psi_out or 0.0),
+                   record.rebound_rel_error, TOLERANCES["rebound"],
+                   verdict(record.rebound_rel_error, TOLERANCES["rebound"],
+                           bool(record.rebound_limit)))
+        )  # fmt: skip
+    if record.stated_psi_out is not None and record.stated_rel_error is not None:
+        out.append(
+            Judged("Psi_out (as the deck states)", record.stated_psi_out,
+                   float(record.psi_out or 0.0), record.stated_rel_error, TOLERANCES["rebound"],
+                   verdict(record.stated_rel_error, TOLERANCES["rebound"]))
+        )  # fmt: skip
+    return out
+
+
 def table(records: Sequence[Record]) -> str:
-    """Records as a plain-text table (target against achieved), one line per run; the
-    text columns as wide as their longest entry, so every column lines up."""
+    """Records as a plain-text table: one line per quantity judged (``judged``), with its
+    target, what the code gave, the error, the tolerance and the verdict; nothing that is
+    not judged. A stated limit is explained once below the table, as the deck states it."""
     code, pair, kind = (
         max([len(title), *(len(getattr(r, name)) for r in records)])
         for title, name in (("code", "code"), ("pair", "pair"), ("kind", "kind"))
     )
-    head = (
+    each = {id(r): judged(r) for r in records}
+    width = max([8, *(len(j.quantity) for js in each.values() for j in js)])
+    rows = [
         f"{'code':{code}} {'pair':{pair}} {'kind':{kind}} {'V m/s':>6} {'angle':>5} "
-        f"{'e target':>9} {'e achieved':>10} {'err':>7} {'Psi_in':>7} {'Psi_out':>8} "
-        f"{'Walton':>8} {'mu':>6} {'mu ach.':>8} {'err':>7} {'beta':>5} {'b ach.':>6}  verdict"
-    )
-    rows = [head]
+        f"{'quantity':{width}} {'target':>9} {'achieved':>9} {'error':>8} {'tolerance':>9}  verdict"
+    ]
+    limits: dict[str, str] = {}
     for r in records:
         start = f"{r.code:{code}} {r.pair:{pair}} {r.kind:{kind}} {r.speed_m_s:6.2f} "
+        start += f"{r.angle_deg:5.1f} "
         if r.status != "checked":
-            rows.append(f"{start}{r.angle_deg:5.0f} {r.target_e:9.4f} not checked ({r.note})")
+            rows.append(f"{start}not checked ({r.note})")
             continue
-        line = (
-            f"{start}{r.angle_deg:5.0f} "
-            f"{r.target_e:9.4f} {r.achieved_e:10.5f} {r.e_rel_error:+7.2%}"
-        )
-        if r.psi_in is not None:
-            line += (
-                f" {r.psi_in:7.3f} {r.psi_out:8.4f} {r.psi_out_walton:8.4f} "
-                f"{r.target_friction:6.3f} {r.achieved_friction:8.4f} "
-                f"{r.friction_rel_error:+7.2%}"
+        for j in each[id(r)]:
+            mark = ""
+            if j.verdict == LIMIT and r.rebound_limit:
+                mark = f" [{limits.setdefault(r.rebound_limit, str(len(limits) + 1))}]"
+            rows.append(
+                f"{start}{j.quantity:{width}} {j.target:9.5f} {j.achieved:9.5f} {j.error:+8.2%} "
+                f"{'±' + format(j.tolerance, '.0%'):>9}  {j.verdict.upper()}{mark}"
             )
-            beta = "" if r.target_beta is None else f"{r.target_beta:.2f}"
-            achieved = "" if r.achieved_beta is None else f"{r.achieved_beta:.3f}"
-            line += f" {beta:>5} {achieved:>6}"
-        else:
-            line += " " * 63
-        rows.append(
-            f"{line}  {r.verdict.upper()}"
-            + (f" ({r.reason})" if r.reason else "")
-            + (f" [{r.note}]" if r.note and r.kind != "oblique" else "")
-        )
+    rows += [f"[{n}] stated limit in the deck: {text}" for text, n in limits.items()]
     rows.append(summary(records))
     return "\n".join(rows)

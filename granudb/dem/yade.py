@@ -117,11 +117,7 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
     """Python to ``exec`` in a Yade script before building bodies and engines."""
     deck.check_poisson(CODE, model, -1.0, clamp)
     out = deck.header(CODE, VERSION, model)
-    out += deck.comment(
-        "Defines granudb_material (name -> material id) and granudb_ip2. Use: "
-        "InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(), "
-        "Ig2_Facet_Sphere_ScGeom()], [granudb_ip2], [Law2_ScGeom_MindlinPhys_Mindlin()])."
-    )
+    out += deck.comment(host_settings(model))
     out += deck.rebound_lines(model, REBOUND_LIMIT)
     if model.walls:
         out += deck.comment(
@@ -170,7 +166,54 @@ def write(model: DemModel, *, clamp: bool = False) -> str:
     out += beta_rows + ["  )),", "  frictAngle=MatchMaker(matches=("]
     out += friction_rows + ["  )),", "  betas=MatchMaker(matches=("]
     out += shear_rows + ["  )),", ")"]
+    dt, _, _ = deck.time_step_bound(model)
+    out += ["", *CHECK.format(dt=deck.num(dt), steps=deck.MIN_STEPS_PER_CONTACT).splitlines()]
     return "\n".join(out) + "\n"
+
+
+#: Yade's NewtonIntegrator default: it scales every body's acceleration by (1 ± damping),
+#: numerical damping on top of the contact's (measured: e 0.703 for a target 0.860).
+DEFAULT_NEWTON_DAMPING = 0.2
+
+
+def host_settings(model: DemModel) -> str:
+    """The host script's settings the fragment's values depend on (``dem verify`` runs with
+    exactly these), and how ``granudb_check()`` stops a script without them."""
+    return (
+        "Defines granudb_material (name -> material id), granudb_ip2 and granudb_check(). "
+        "Host settings the values below depend on (dem verify runs with exactly these): "
+        "(1) O.engines with InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), "
+        "Ig2_Wall_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()], [granudb_ip2], "
+        "[Law2_ScGeom_MindlinPhys_Mindlin()]); (2) NewtonIntegrator(damping=0.0, ...): "
+        f"Yade's default damping={DEFAULT_NEWTON_DAMPING:g} damps every body's motion on top "
+        "of the contact law (e = 0.703 for a target 0.860); (3) "
+        + deck.time_step_sentence(model)
+        + " Call granudb_check() after setting O.engines and O.dt and before O.run(): it "
+        "raises RuntimeError naming any of (1)-(3) that is not in place."
+    )
+
+
+#: The check a Yade fragment ends with (``host_settings``); ``{dt}`` is the bound.
+CHECK = """def granudb_check():
+    # Stops a script whose settings would not give the values above (see the header).
+    problems = []
+    newton = [e for e in O.engines if type(e).__name__ == 'NewtonIntegrator']
+    if not newton:
+        problems.append('no NewtonIntegrator in O.engines')
+    for e in newton:
+        if e.damping != 0.0:
+            problems.append('NewtonIntegrator(damping=%r): these values need damping=0.0 '
+                            '(Yade default 0.2 lowers e, e.g. 0.703 for 0.860)' % e.damping)
+    loops = [e for e in O.engines if type(e).__name__ == 'InteractionLoop']
+    if not any(granudb_ip2 in list(e.physDispatcher.functors) for e in loops):
+        problems.append('no InteractionLoop uses granudb_ip2')
+    laws = [type(f).__name__ for e in loops for f in e.lawDispatcher.functors]
+    if 'Law2_ScGeom_MindlinPhys_Mindlin' not in laws:
+        problems.append('no InteractionLoop uses Law2_ScGeom_MindlinPhys_Mindlin')
+    if O.dt > {dt}:
+        problems.append('O.dt = %g s exceeds {dt} s (t_c/{steps}, see the header)' % O.dt)
+    if problems:
+        raise RuntimeError('granudb deck: ' + '; '.join(problems))"""
 
 
 def friction_angle(mu: float) -> float:

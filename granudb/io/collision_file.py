@@ -120,10 +120,13 @@ def stated_uncertainties(given: dict[str, str] | str | None) -> dict[str, tuple[
                     "must be 'column=± u', e.g. 'v_n_in=± 3 %'",
                     parameter=True,
                 )
-        given = {name.strip(): text.strip() for name, _, text in pairs}
+        given = [(name.strip(), text.strip()) for name, _, text in pairs]
+    else:
+        given = list(given.items())
     by_base = {base_name(c): c for c in COLLISION_UNCERTAIN}
-    stated = {}
-    for name, text in given.items():
+    stated: dict[str, tuple[float, bool]] = {}
+    named: dict[str, str] = {}
+    for name, text in given:
         column = name if name in COLLISION_UNCERTAIN else by_base.get(name.strip().lower())
         if column is None:
             raise ValidationError(
@@ -132,8 +135,32 @@ def stated_uncertainties(given: dict[str, str] | str | None) -> dict[str, tuple[
                 f"is not a column with an uncertainty (one of: {', '.join(by_base)})",
                 parameter=True,
             )
-        stated[column] = parse_uncertainty(text, unit_of_column(column), f"u({name})")
+        if column in stated:
+            raise ValidationError(
+                "uncertainty",
+                repr(name),
+                f"is given twice (as {named[column]!r} too): state each column once",
+                parameter=True,
+            )
+        named[column] = name
+        stated[column] = _stated(column, name, text)
     return stated
+
+
+def _stated(column: str, name: str, text: str) -> tuple[float, bool]:
+    """A stated uncertainty of ``column`` under the rules of its CSV cell ``u_…``: read by
+    ``parse_uncertainty`` (finite, not subnormal, in the column's unit; a relative one of
+    a Celsius temperature refused), a speed no faster than ``MAX_SPEED_M_S``, and a
+    relative one at most 100 % (above, the value itself is not known)."""
+    field = f"u({name})"
+    u, relative = parse_uncertainty(text, unit_of_column(column), field)
+    if relative and u > 1.0:
+        rule = "is a relative uncertainty above 100 % of each value: give an absolute one"
+        raise ValidationError(field, text, rule)
+    if not relative and column in SPEEDS and u > MAX_SPEED_M_S:
+        rule = f"is faster than {MAX_SPEED_M_S:g} m/s (beyond any impact apparatus)"
+        raise ValidationError(field, text, rule)
+    return u, relative
 
 
 def fill_stated(values: dict[str, Any], stated: dict[str, tuple[float, bool]]) -> None:

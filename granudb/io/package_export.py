@@ -24,6 +24,7 @@ from granudb.io.package_metadata import citation_cff, contributors, keywords, ze
 from granudb.io.package_schema import DESCRIPTIONS, columns, table_schema
 from granudb.output_files import write_bytes, write_folder
 from granudb.version import __version__
+from granudb.vocabulary.escaping import doi_address, markdown_code, markdown_link, markdown_text
 
 PROFILE = "https://datapackage.org/profiles/2.0/datapackage.json"
 RESOURCE_ORDER = ["collisions", "materials", "fluids", "fluid_points", "sources"]
@@ -68,19 +69,20 @@ def _readme(data: ExportData, tables: dict[str, list[dict[str, Any]]]) -> str:
         group = (row["particle"], row["wall"], row["fluid"] or "dry")
         pairs[group] = pairs.get(group, 0) + 1
     lines = [
-        f"# {_line(dataset['title'] or dataset['name'])}",
+        f"# {markdown_text(dataset['title'] or dataset['name'])}",
         "",
-        f"Dataset `{_line(dataset['name'])}`, version {_line(dataset['version'])}, exported by "
+        f"Dataset {markdown_code(dataset['name'])}, version {markdown_text(dataset['version'])}, "
+        "exported by "
         f"granudb {__version__} as a [Frictionless Data Package](https://datapackage.org) (v2).",
         "",
-        dataset["description"] or "",
+        _paragraphs(dataset["description"] or ""),
         "",
         "## Contents",
         "",
         "| particle | wall | fluid | runs |",
         "|---|---|---|---:|",
         *(
-            f"| {_cell_md(p)} | {_cell_md(w)} | {_cell_md(f)} | {n} |"
+            f"| {markdown_text(p)} | {markdown_text(w)} | {markdown_text(f)} | {n} |"
             for (p, w, f), n in sorted(pairs.items())
         ),
         "",
@@ -115,23 +117,22 @@ def _readme(data: ExportData, tables: dict[str, list[dict[str, Any]]]) -> str:
         "## How to cite",
         "",
         f"Cite the dataset as in `CITATION.cff` (Zenodo metadata: `.zenodo.json`); license: "
-        f"{_line(dataset['license'] or 'not stated')}.",
+        f"{markdown_text(dataset['license'] or 'not stated')}.",
     ]
     if tables["sources"]:
         lines += ["", "Sources of the values:", ""]
         lines += [
-            f"- {_line(s['citation'])}" + (f" https://doi.org/{s['doi']}" if s["doi"] else "")
+            f"- {markdown_text(s['citation'])}"
+            + (f" {markdown_link(doi_address(s['doi']))}" if s["doi"] else "")
             for s in tables["sources"]
         ]
     return "\n".join(lines) + "\n"
 
 
-def _line(text: str) -> str:
-    return " ".join(str(text).split())
-
-
-def _cell_md(text: str) -> str:
-    return _line(text).replace("|", "\\|")
+def _paragraphs(text: str) -> str:
+    """Free text (a description) as Markdown: its lines kept, each escaped as text
+    (``granudb.vocabulary.escaping``), so nothing in it becomes markup."""
+    return "\n".join(markdown_text(line) for line in text.splitlines())
 
 
 def _descriptor(

@@ -21,6 +21,7 @@ under a name differing in case, or renamed by ``--rename-conflicts``: import the
 
 from __future__ import annotations
 
+import csv
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -46,7 +47,7 @@ from granudb.io.package_schema import (
     check_schema,
     columns,
 )
-from granudb.io.tables import TINY_RULE, Problems, underflows
+from granudb.io.tables import MAX_HEADER_BYTES, MAX_HEADERS, TINY_RULE, Problems, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.catalogue import MATERIALS, ONE_LINE_TEXTS, check_source
@@ -314,6 +315,10 @@ def _read_table(
     bad: dict[str, tuple[str, str]] = {}
     kept, key_hashes = [], []
     rows = 0
+    bound = _header_bound(name, path)
+    if bound is not None:  # before pandas reads a line of unbounded width
+        problems.append(bound)
+        return None, 0
     try:
         with _csv_blocks(path) as reader:
             for frame in reader:
@@ -356,6 +361,35 @@ def _read_table(
     if not kept:
         return pd.DataFrame({c: [] for c in columns(name)}), 0
     return pd.concat(kept, ignore_index=True), rows
+
+
+def _header_bound(name: str, path: Path) -> str | None:
+    """The problem of a resource's header line, read with a size limit before anything
+    parses it: longer than ``MAX_HEADER_BYTES``, wider than ``MAX_HEADERS`` columns (the
+    bounds of a CSV file's header), or not text. A header of a million columns is
+    refused after reading 16 KiB, not after pandas has built a million-column frame."""
+    try:
+        with path.open("rb") as handle:
+            head = handle.read(MAX_HEADER_BYTES + 1)
+    except OSError as exc:
+        return f"{name}: {path.name} cannot be read ({exc.strerror or exc})"
+    end = head.find(b"\n")
+    line = head[: end if end >= 0 else len(head)]
+    if b"\x00" in line:
+        return f"{name}: {path.name} is not a text file (it holds NUL bytes)"
+    if end < 0 and len(head) > MAX_HEADER_BYTES:
+        return (
+            f"{name}: {path.name} has a header line longer than {MAX_HEADER_BYTES:,} bytes "
+            f"(a header has at most {MAX_HEADERS} columns)"
+        )
+    try:
+        text = line.decode("utf-8").rstrip("\r")
+    except UnicodeDecodeError:
+        return f"{name}: {path.name} is not UTF-8 text"
+    width = len(next(csv.reader([text]), []))
+    if width > MAX_HEADERS:
+        return f"{name}: {path.name} has {width:,} columns, more than {MAX_HEADERS}"
+    return None
 
 
 def _header_only(path: Path) -> list[str]:

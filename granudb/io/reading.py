@@ -12,6 +12,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
+from granudb.errors import ValidationError
 from granudb.lazy import pyarrow as pa
 
 #: Arrow's own setting of jemalloc's dirty-page decay, restored after an import.
@@ -125,3 +126,37 @@ class Prefetched:
         """Stop reading ahead and wait for the thread (it finishes its current block)."""
         self._stop.set()
         self._thread.join()
+
+
+#: The largest small table read whole (fluid points, a seed file): far above any real one.
+MAX_SMALL_TABLE_BYTES = 16 * 1024 * 1024
+
+
+def read_text_file(
+    path: Path, field: str = "FILE", *, max_bytes: int = MAX_SMALL_TABLE_BYTES
+) -> str:
+    """The text of the small file ``path`` (UTF-8, a byte-order mark dropped), refused in
+    one line when it is larger than ``max_bytes``, holds a NUL byte (a binary file: an
+    image, a spreadsheet's .xlsx, an executable) or is not UTF-8."""
+    with path.open("rb") as handle:
+        data = handle.read(max_bytes + 1)
+    return decoded_text(data, path.name, field, max_bytes=max_bytes)
+
+
+def decoded_text(data: bytes, name: str, field: str = "FILE", *, max_bytes: int) -> str:
+    """``data`` (the bytes of the file ``name``) as text, by ``read_text_file``'s rules."""
+    if len(data) > max_bytes:
+        raise ValidationError(field, name, f"is larger than {max_bytes:,} bytes")
+    if b"\x00" in data:
+        raise ValidationError(
+            field, name, "is not a text file (it holds NUL bytes): give a CSV file"
+        )
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ValidationError(
+            field,
+            name,
+            f"is not UTF-8 text (byte {exc.start + 1} cannot be read): a binary "
+            "file, or text in another encoding (save it as CSV UTF-8)",
+        ) from None

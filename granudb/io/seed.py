@@ -7,11 +7,14 @@ them (idempotently, reporting every change).
 
 from __future__ import annotations
 
+import io
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from granudb.errors import ValidationError
+from granudb.io.reading import read_text_file
 from granudb.io.tables import convert_frame, map_headers
 from granudb.lazy import pandas as pd
 from granudb.resources import shipped_dir
@@ -53,7 +56,14 @@ PUBLISHED_TEXT = [
 
 def read_table(path: Path, numeric: list[str], text: list[str]) -> list[dict[str, Any]]:
     """A seed CSV as SI records (``None`` for empty cells)."""
-    raw = pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig")
+    text = read_text_file(path)  # bounded; a binary file refused as such
+    if not text.strip():
+        raise ValidationError("FILE", path.name, "is empty")
+    try:
+        raw = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False)
+    except pd.errors.ParserError as exc:
+        first = str(exc).splitlines()[0]
+        raise ValidationError("FILE", path.name, f"is not a well-formed CSV ({first})") from None
     mapping = map_headers(list(raw.columns), numeric, text, table=path.name)
     # Rows are numbered as a spreadsheet shows them: the header is row 1.
     frame = convert_frame(raw, mapping, table=path.name, first_row=2)

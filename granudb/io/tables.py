@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from granudb.errors import ValidationError
-from granudb.io.units import conversion, round_significant
+from granudb.io.units import TINY_RULE, conversion, round_significant
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.vocabulary.terms import UNCERTAINTY_PREFIX, plain_uncertainty_header
@@ -383,13 +383,6 @@ def _not_a_number(cell: str, decimal: str) -> str:
     if decimal == "." and re.match(_DECIMAL_COMMA, cell):
         return "has a decimal comma: use a decimal point, or import with --decimal ','"
     return "is not a number"
-
-
-#: The rule for a number too small to be a value: below the smallest normal double in
-#: SI (about 2.2e-308), where a float keeps fewer significant digits (a subnormal), or
-#: that a unit's conversion turns into 0 (5e-324 mm/s). No measurement is that small;
-#: storing it would store a different number (0, or fewer digits).
-TINY_RULE = "is too small to be a value: not 0 but below 2.2e-308 in SI (a subnormal number)"
 
 
 def underflows(raw: Any, si: Any) -> Any:

@@ -307,9 +307,23 @@ _SECOND_NUMBER = re.compile(r"(?!1\s*/)[0-9.]")
 _THOUSANDS = re.compile(r"^[-+]?[0-9]{1,3}(?:,[0-9]{3})+(?![0-9])")
 
 
-def _finite(field: str, text: str, value: float) -> float:
+#: The rule for a number too small to be a value: below the smallest normal double in
+#: SI (about 2.2e-308), where a float keeps fewer significant digits (a subnormal), or
+#: that a unit's conversion turns into 0 (5e-324 mm/s). No measurement is that small;
+#: storing it would store a different number (0, or fewer digits).
+TINY_RULE = "is too small to be a value: not 0 but below 2.2e-308 in SI (a subnormal number)"
+
+
+def _finite(field: str, text: str, value: float, written: float | None = None) -> float:
+    """``value`` (SI) rounded to the 15 digits a person typed, if finite and, when the
+    number ``written`` was not 0, not 0 or subnormal in SI (``TINY_RULE``): the one rule
+    for a number from an option, as for a CSV cell."""
     if not math.isfinite(value):
         raise ValidationError(field, text, "must be a finite number")
+    if (written is None or written != 0) and value != 0 and abs(value) < _TINY:
+        raise ValidationError(field, text, TINY_RULE)
+    if written is not None and written != 0 and value == 0:
+        raise ValidationError(field, text, TINY_RULE)
     # Pint's conversions leave float dust (4.5 cP -> 0.0045000000000000005); what a person
     # typed is stored as they meant it.
     return float(f"{value:.15g}")
@@ -361,7 +375,7 @@ def parse_quantity(text: str | float, unit: Unit | str, field: str) -> float:
     if not unit_text:
         if unit.pint != "dimensionless":
             raise ValidationError(field, raw, f"needs a unit, e.g. '{unit.example}'")
-        return _finite(field, raw, float(number.group()))
+        return _finite(field, raw, float(number.group()), float(number.group()))
     if _SECOND_NUMBER.match(unit_text):
         raise ValidationError(
             field, raw, "has a space inside the number or two numbers: write e.g. 1000 Pa"
@@ -370,7 +384,9 @@ def parse_quantity(text: str | float, unit: Unit | str, field: str) -> float:
         scale, offset = _conversion(_spelled(unit_text), unit.suffix)
     except UnitSyntaxError as exc:
         raise ValidationError(field, raw, str(exc)) from None
-    return _finite(field, raw, float(number.group()) * scale + offset)
+    written = float(number.group())
+    # with an offset (273.15 K is 0 degC) a value that is 0 in SI is a value
+    return _finite(field, raw, written * scale + offset, written if offset == 0 else None)
 
 
 def round_significant(values: Any, digits: int = 15) -> Any:
@@ -410,6 +426,9 @@ def round_significant(values: Any, digits: int = 15) -> Any:
 #: The signs that separate a value from its uncertainty.
 PLUS_MINUS = re.compile(r"\s*(?:±|\+/-|\+-)\s*")
 _PARENTHESISED = re.compile(r"^\((?P<inner>[^()]*)\)\s*(?P<unit>.*)$")
+#: A percentage followed by a unit: "1 % kg/m^3" after a ± is ambiguous.
+_PERCENT_THEN_UNIT = re.compile(r"^(?:%|percent)\s*(?P<rest>\S.*)$")
+_TINY = 2.2250738585072014e-308  # the smallest normal double
 
 
 def split_uncertain(text: str) -> tuple[str, str] | None:
@@ -433,6 +452,15 @@ def split_uncertain(text: str) -> tuple[str, str] | None:
     u_number = _LEADING_NUMBER.match(u)
     if number is not None and number.end() == len(value) and u_number is not None:
         u_unit = u[u_number.end() :].strip()
+        percent = _PERCENT_THEN_UNIT.match(u_unit)
+        if percent is not None:  # "7780 ± 1 % kg/m^3": 1 % of 7780 kg/m^3, or 77.8 ± 0.01?
+            rest = percent["rest"]
+            raise ValidationError(
+                "value",
+                raw,
+                f"is ambiguous: write '{value} {rest} ± {u_number.group()} %' (a relative "
+                f"uncertainty) or '({value} ± {u_number.group()}) % {rest}' (a value in %)",
+            )
         if u_unit not in {"%", "percent"}:  # "23.6 ± 2 nm": the unit belongs to both
             value = f"{value} {u_unit}".strip()
     return value, u
@@ -454,12 +482,21 @@ def parse_uncertain_quantity(
     (20.0, 0.5)
     """
     unit = UNITS[unit] if isinstance(unit, str) else unit
-    split = split_uncertain(text) if isinstance(text, str) else None
+    try:
+        split = split_uncertain(text) if isinstance(text, str) else None
+    except ValidationError as exc:
+        raise ValidationError(field, exc.value, exc.rule) from None
     if split is None:
         return parse_quantity(text, unit, field), None
     value_text, u_text = split
     value = parse_quantity(value_text, unit, field)
     u, relative = _uncertainty(u_text, unit, field, text)
+    if relative and unit.suffix == "c":
+        # a fraction of a Celsius number is not a fraction of the temperature
+        if not _KELVIN.search(value_text):
+            rule = _RELATIVE_CELSIUS[:-1] + ", or the temperature in K ('293.15 K ± 1 %')"
+            raise ValidationError(field, text, rule)
+        return value, _finite(field, text, (value + 273.15) * u)
     return value, _finite(field, text, abs(value) * u if relative else u)
 
 
@@ -478,7 +515,17 @@ def parse_uncertainty(text: str, unit: Unit | str, field: str) -> tuple[float, b
     raw = str(text).strip()
     sign = PLUS_MINUS.match(raw)
     u, relative = _uncertainty(raw[sign.end() :] if sign else raw, unit, field, raw)
-    return _finite(field, raw, u), relative
+    if relative and unit.suffix == "c":
+        raise ValidationError(field, raw, _RELATIVE_CELSIUS)
+    return _finite(field, raw, u, u), relative
+
+
+#: A relative uncertainty of a temperature is a fraction of the absolute temperature only.
+_KELVIN = re.compile(r"[0-9.]\s*(?:K|kelvin)\s*$")
+_RELATIVE_CELSIUS = (
+    "is a relative uncertainty of a Celsius temperature (3 % of 20 degC is not 3 % of the "
+    "temperature): give it in K ('± 0.5 K')"
+)
 
 
 def _uncertainty(u_text: str, unit: Unit, field: str, text: str) -> tuple[float, bool]:

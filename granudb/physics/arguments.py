@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable
-from typing import TypeVar
+from typing import TypeVar, overload
 
 F = TypeVar("F", bound=Callable[..., object])
 
@@ -142,6 +142,14 @@ def parameters_section(names: list[str], special: dict[str, str]) -> str:
         raise KeyError(f"no description for argument(s) {', '.join(unknown)}: add to ARGUMENTS")
     entries = [f"{name} : {special.get(name) or ARGUMENTS[name]}" for name in names]
     return "\n".join(["Parameters", "----------", *entries])
+
+
+@overload
+def parameters(function: F, /) -> F: ...
+
+
+@overload
+def parameters(function: None = None, /, **special: str) -> Callable[[F], F]: ...
 
 
 def parameters(function: F | None = None, /, **special: str) -> F | Callable[[F], F]:

@@ -172,6 +172,36 @@ def elastic_plastic_restitution(
     return np.fmin(as_float(dry_restitution), plastic)
 
 
+@parameters(
+    yield_speed="normal impact speed at the onset of yield V_y [m/s]; NaN where not known",
+)
+def handover_speed(dry_restitution: Numeric, yield_speed: Numeric) -> Numeric:
+    r"""The normal speed V_h [m/s] above which Thornton's (15.1) e falls below e_dry, so
+    that ``elastic_plastic_restitution`` = min(e_dry, e_T(V_y/V)) is Thornton's e: below
+    V_h (past V_y or not) e_dry applies, above it Thornton's e (docs/physics.md §15).
+    e_T decreases with V from 1 at V_y, so V_h ≥ V_y (= V_y for e_dry ≥ 1); NaN V_y or
+    e_dry gives NaN. Solved by bisection on r = V_y/V (e_T rises with r).
+
+    Examples
+    --------
+    >>> e_t = float(thornton_restitution(1.0, 11.0))  # 0.644 at 11 V_y
+    >>> round(float(handover_speed(e_t, 1.0)), 6)
+    11.0
+    >>> float(handover_speed(1.0, 0.02))
+    0.02
+    """
+    e_dry, v_y = np.broadcast_arrays(as_float(dry_restitution), as_float(yield_speed))
+    low, high = np.zeros(e_dry.shape), np.ones(e_dry.shape)  # r where e_T < e_dry, ≥ e_dry
+    for _ in range(60):  # each halves the bracket: 2⁻⁶⁰ of r
+        middle = 0.5 * (low + high)
+        below = thornton_restitution(middle, 1.0) < e_dry
+        low, high = np.where(below, middle, low), np.where(below, high, middle)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        speed = np.where(e_dry >= 1.0, v_y, v_y / high)
+    speed = np.where(np.isnan(e_dry) | np.isnan(v_y), np.nan, speed)
+    return speed if speed.ndim else float(speed)
+
+
 @parameters
 def hertz_strain(contact_radius: Numeric, effective_radius: Numeric) -> tuple[Numeric, Numeric]:
     r"""Hertz's small-strain measures a/R* and δ/R* = (a/R*)² [-] (docs/physics.md §16;

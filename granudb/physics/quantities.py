@@ -105,7 +105,13 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
         "e_dry": np.where(
             plastic, limits.elastic_plastic_restitution(x["e_dry"], yield_speed, v_n), x["e_dry"]
         ),
-        "e_model": np.where(plastic, "elastic_plastic", "elastic").astype(object),
+        # which e applies: Thornton's only where it is below e_dry (above the hand-over
+        # speed, ``limits.handover_speed``); past V_y but below it, e_dry still applies
+        "e_model": np.where(
+            plastic & (limits.thornton_restitution(yield_speed, v_n) < x["e_dry"]),
+            "elastic_plastic",
+            "elastic",
+        ).astype(object),
     }
 
 

@@ -118,10 +118,16 @@ def _scale(factor: Any, sens: Sens) -> Sens:
 
 def scaled_sources(x: Arrays, u: Arrays) -> Arrays:
     """Each given source's scaled uncertainty: u/|x| (relative) or u (absolute); NaN or
-    missing u is "not given" and left out.
+    missing u is "not given" and left out. A u stated as 0 (known exactly) is kept: the
+    quantities it reaches then have u = 0, where one it does not reach has none (NaN,
+    "not stated", never 0; ``propagate``).
 
     >>> scaled_sources({"e1": np.array([200e9])}, {"e1": np.array([10e9])})["e1"]
     array([0.05])
+    >>> scaled_sources({"e1": np.array([200e9])}, {"e1": np.array([0.0])})["e1"]
+    array([0.])
+    >>> scaled_sources({"e1": np.array([200e9])}, {"e1": np.array([np.nan])})
+    {}
     """
     out: Arrays = {}
     for source, relative in SOURCES.items():
@@ -129,13 +135,11 @@ def scaled_sources(x: Arrays, u: Arrays) -> Arrays:
         if given is None:
             continue
         value = np.asarray(given, dtype=float)
-        total = value.sum()  # u ≥ 0 (``derive`` checks): 0 is none given, NaN some not given
-        if total != total:
-            value = np.nan_to_num(value, nan=0.0)
-            if not value.any():
-                continue
-        elif total == 0:
+        stated = ~np.isnan(value)  # u ≥ 0 (``derive`` checks); NaN: not given
+        if not stated.any():
             continue
+        if not stated.all():
+            value = np.nan_to_num(value, nan=0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             out[source] = value / np.abs(x[source]) if relative else value
     return out
@@ -166,7 +170,7 @@ def _norm(sens: Sens, scaled: Arrays, squares: Arrays | None = None) -> np.ndarr
     """√(Σ (s_k u_k)²) over the given sources (after ``_merged``); ``squares``, the
     u_k² if already computed, save a multiplication for each constant s_k."""
     total = _variance(sens, scaled, squares)
-    return 0.0 if total is None else np.sqrt(total)
+    return np.nan if total is None else np.sqrt(total)
 
 
 def _variance(sens: Sens, scaled: Arrays, squares: Arrays | None = None) -> Any:
@@ -431,13 +435,14 @@ def propagate(
         if name not in sums and (name in columns or name == "_yield_ratio"):
             if id(value) not in norms:
                 total = variance(value)
-                norms[id(value)] = 0.0 if total is None else np.sqrt(total)
+                norms[id(value)] = np.nan if total is None else np.sqrt(total)
             relative[name] = norms[id(value)]
     for name, (factor, parts) in sums.items():
         relative[name] = _sum_norm(factor, parts, scaled, variance)
     lubricated = (tan["mu_used"] == lub["mu_lub"]) & np.isfinite(lub["mu_lub"])
+    # the dry or immersed μ used otherwise is a stored value: its u is not propagated here
     relative["friction_coefficient_used"] = np.where(
-        lubricated, relative["lubricated_friction"], 0.0
+        lubricated, relative["lubricated_friction"], np.nan
     )
     if lubricated.all():
         friction = sens["lubricated_friction"]
@@ -456,12 +461,10 @@ def propagate(
         else:
             u_q = columns[name] * relative[name]
             out[f"u_{name}"] = np.abs(u_q, out=u_q) if isinstance(u_q, np.ndarray) else abs(u_q)
+    # Outside an immersed rebound e is e_dry (dry) or 0 by the St_c rule: neither has a
+    # propagated u (e_dry's own is not an input here), so none is stated.
     rebound = np.isfinite(f["st_am"]) & (columns["predicted_restitution"] > 0) & f["immersed"]
-    out["u_predicted_restitution"] = np.where(
-        rebound,
-        out["u_predicted_restitution"],
-        np.where(np.isnan(columns["predicted_restitution"]), np.nan, 0.0),
-    )
+    out["u_predicted_restitution"] = np.where(rebound, out["u_predicted_restitution"], np.nan)
     out.update(
         verdict_probabilities(
             film=columns["film_parameter"],
@@ -561,8 +564,8 @@ def _sum_norm(factor: Any, parts: tuple, scaled: Arrays, variance: Any) -> Any:
                 total, owned = total + (term if weight == 1 else weight * term), True
     else:
         total = variance(_lin(*parts))
-    if total is None:  # no given source: no uncertainty, whatever the factor
-        return 0.0
+    if total is None:  # no given source: not stated (never 0), whatever the factor
+        return np.nan
     norm = np.sqrt(total)
     return norm if factor is None else norm * np.abs(factor)
 

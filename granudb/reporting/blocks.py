@@ -13,8 +13,9 @@ from typing import Any
 
 import numpy as np
 
+from granudb.analysis.dry_values import material_dry_source
 from granudb.analysis.pair import TARGET_WORDS
-from granudb.reporting.format import display, engineering, unicode_math
+from granudb.reporting.format import display, engineering, is_number, unicode_math
 from granudb.reporting.values import qualified_value
 from granudb.reporting.verdicts import GAP_DEFINITION, roughness_verdict
 from granudb.vocabulary import DERIVED_TERMS, MATERIAL_PROPERTIES, TERMS
@@ -40,16 +41,75 @@ def _row(label: str, value: str, source: str, name: str | None = None) -> dict[s
     return {"label": label, "value": value, "source": source, "name": name, "symbol": None}
 
 
-def material_block(role: str, record: dict[str, Any]) -> dict[str, Any]:
-    """A material's stored properties, each with where it comes from."""
+#: The material's own dry values: their source is the material's dry provenance.
+DRY_COLUMNS = ("dry_restitution", "dry_friction")
+
+
+def material_block(
+    role: str, record: dict[str, Any], used: Mapping[str, Any] | None = None
+) -> dict[str, Any]:
+    """A material's stored properties, each with where it comes from: the entry's source
+    and locator, and for its own dry e and μ the provenance ``materials show`` gives
+    (``material_dry_source``). With ``used`` (a pair's ``DryValues.record()``), a dry
+    value the pair does not use says which value applies to the pair instead."""
     source = _source(record)
     rows = []
     for column in PROPERTY_COLUMNS:
         note = source
         if column == "shear_modulus_pa" and record.get("shear_modulus_derived"):
             note = "derived: G = E / (2(1 + ν))"
+        elif column in DRY_COLUMNS:
+            note = material_dry_source(record)
+            if used is not None and is_number(record.get(column)):
+                note += _which_applies(record, column, used)
         rows.append(_row(_title(column), display(record.get(column), column), note, column))
     return {"heading": f"{role}: {record['name']}", "rows": rows + _conditions(record, source)}
+
+
+#: The heading of a pair report's block of the dry values it uses.
+DRY_USED_HEADING = "Dry values used for the pair"
+
+
+def _which_applies(record: Mapping[str, Any], column: str, used: Mapping[str, Any]) -> str:
+    """What a material's own dry value is to the pair: the one used, or not."""
+    if used[f"{column}_basis"] == "materials" and used[column] == record[column]:
+        return f". {record['name']}'s own value: the one this pair uses"
+    basis = BASIS_WORDS.get(used[f"{column}_basis"], used[f"{column}_basis"])
+    return (
+        f". {record['name']}'s own value; this pair uses {display(used[column], column)}, "
+        f"{basis} (see {DRY_USED_HEADING.lower()})"
+    )
+
+
+#: A dry value's basis in words.
+BASIS_WORDS = {
+    "pair": "measured for the pair",
+    "materials": "from the two materials' own values",
+    "borrowed": "borrowed",
+}
+
+
+#: Each dry value of the pair: its record's prefix and label.
+_DRY_USED = (
+    ("dry_restitution", "e_dry, dry restitution"),
+    ("dry_friction", "μ_dry, dry friction"),
+    ("immersed_friction", "μ where asperities touch in a liquid"),
+)
+
+
+def dry_used_block(pair: str, used: Mapping[str, Any]) -> dict[str, Any]:
+    """The dry e and μ every prediction of ``pair`` uses, each with its basis and source
+    as ``granudb pair`` and ``pairs show`` give them (``DryValues.record()``)."""
+    rows = [
+        _row(
+            label,
+            display(used[name], name),
+            f"{used[f'{name}_basis']}: {used[f'{name}_source']}",
+            name,
+        )  # fmt: skip
+        for name, label in _DRY_USED
+    ]
+    return {"heading": f"{DRY_USED_HEADING}: {pair}", "rows": rows}
 
 
 def _conditions(record: dict[str, Any], source: str) -> list[dict[str, Any]]:
@@ -65,16 +125,23 @@ def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, A
     rows = []
     if state is not None:
         rows += [
-            _row("Viscosity used", display(state.viscosity_pa_s, "viscosity_pa_s"), state.basis),
+            _row(
+                "Viscosity used",
+                display(state.viscosity_pa_s, "viscosity_pa_s"),
+                state.basis,
+                "viscosity_pa_s",
+            ),
             _row(
                 "Density used",
                 display(state.density_kg_m3, "density_kg_m3"),
                 record.get("density_source") or source,
+                "density_kg_m3",
             ),
             _row(
                 "Temperature",
                 display(state.temperature_c, "temperature_c"),
                 "given" if state.basis.startswith("interpolated") else "reference",
+                "temperature_c",
             ),
         ]
     else:
@@ -83,11 +150,13 @@ def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, A
                 "Density",
                 display(record.get("reference_density_kg_m3"), "density_kg_m3"),
                 record.get("density_source") or source,
+                "reference_density_kg_m3",
             ),
             _row(
                 "Reference temperature",
                 display(record.get("reference_temperature_c"), "temperature_c"),
                 source,
+                "reference_temperature_c",
             ),
         ]
     rows += [
@@ -95,16 +164,19 @@ def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, A
             "Reference viscosity",
             display(record["reference_viscosity_pa_s"], "viscosity_pa_s"),
             source,
+            "reference_viscosity_pa_s",
         ),
         _row(
             "Pressure–viscosity coefficient C",
             display(record.get("pressure_viscosity_pa_inv"), "pressure_viscosity_pa_inv"),
             record.get("pressure_viscosity_source") or "—",
+            "pressure_viscosity_pa_inv",
         ),
         _row(
             "Glycerol mass fraction",
             display(record.get("glycerol_mass_fraction"), "glycerol_mass_fraction"),
             source,
+            "glycerol_mass_fraction",
         ),
     ]
     return {"heading": f"Fluid: {record['name']}", "rows": rows + _conditions(record, source)}

@@ -20,6 +20,7 @@ from sqlalchemy.engine import Connection, make_url
 from granudb.analysis import fits
 from granudb.analysis.collision_query import CollisionQuery
 from granudb.analysis.collisions import select_collisions
+from granudb.analysis.dry_values import dry_values, provenance_keys
 from granudb.analysis.fluid_state import fluid_model
 from granudb.analysis.pair import derive_pair
 from granudb.db import catalog_rows, lookup_rows
@@ -144,7 +145,7 @@ def pair_report(
     add_collisions(
         reader, report, CollisionQuery(particle=particle, wall=wall, fluid=fluid), pair=True
     )
-    report["references"] = references.references(report, dict(result.citations))
+    report["references"] = references.references(report, dict(result.cited_sources))
     return report
 
 
@@ -171,9 +172,12 @@ def _pair_sections(
             dry=result.dry.record(),
         )
     ]
+    used = result.dry.record()
+    report["methods"] = references.methods(references.e_dry_words(used))
     report["properties"] = [
-        blocks.material_block("Particle", result.particle),
-        blocks.material_block("Wall", result.wall),
+        blocks.material_block("Particle", result.particle, used),
+        blocks.material_block("Wall", result.wall, used),
+        blocks.dry_used_block(f"{result.particle['name']} on {result.wall['name']}", used),
     ]
     if immersed:
         report["properties"].append(blocks.fluid_block(result.fluid, result.fluid_state))
@@ -236,18 +240,24 @@ def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict
     pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
     particles = sorted(set(frame["particle"].unique().tolist()))
     walls = sorted(set(frame["wall"].unique().tolist()) - set(particles))
+    known = sources_read(connection, pinned)  # a release cites its sources as released
     for role, names in (("Particle", particles), ("Wall", walls)):
         for name in names:
             record = catalog.material_record(catalog.get_material_row(connection, name, pinned))
             blocks_out.append(blocks.material_block(role, record))
             keys.add(record.get("source"))
+            keys.update(provenance_keys(record.get("dry_provenance"), known))
+    pairs = frame[["particle", "wall"]].drop_duplicates().itertuples(index=False)
+    for particle, wall in sorted((str(p), str(w)) for p, w in pairs):
+        used = dry_values(connection, particle, wall, pinned)
+        blocks_out.append(blocks.dry_used_block(f"{particle} on {wall}", used.record()))
+        keys.update(used.keys())
     for name in sorted(set(fluid_names(frame["fluid"]).tolist()) - {"dry"}):
         record = catalog.fluid_record(catalog.get_fluid_row(connection, name, pinned))
         blocks_out.append(blocks.fluid_block(record))
         keys |= {record.get("source"), record.get("density_source"),
                  record.get("pressure_viscosity_source")}  # fmt: skip
     keys.add(dataset_source(connection, pinned))  # the runs' own source
-    known = sources_read(connection, pinned)  # a release cites its sources as released
     citations = {key: known[key] for key in sorted(k for k in keys if k)}
     return blocks_out, citations
 
@@ -278,10 +288,9 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     report["tables"].append(
         tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )
-    restitution = fits.restitution(frame, "threshold")
+    restitution = fits.restitution(frame, report=True)  # the form and why: its record
     if restitution:
-        formula, source = fits.RESTITUTION_MODELS["threshold"]
-        report["tables"].append(tables.restitution_table(restitution, formula, source))
+        report["tables"].append(tables.restitution_table(restitution))
     models = {f.name: fluid_model(f) for f in catalog_rows.fluid_rows(connection)}
     gap = fits.gap_viscosity(frame, models)
     if gap:

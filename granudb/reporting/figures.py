@@ -30,6 +30,7 @@ from granudb.reporting.groups import (
     group_label,
     sorted_codes,
 )
+from granudb.reporting.tables import PARAMETER_LABELS, model_said
 
 #: Dry runs are drawn at the viscosity of air at 20 °C, so they appear on the map.
 AIR_VISCOSITY_PA_S = 1.8e-5
@@ -362,12 +363,23 @@ def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) 
             continue
         low, high = float(np.min(st_n[mask])), float(np.max(st_n[mask]))
         grid = np.geomspace(max(min(low / 2, critical_stokes / 2), 0.1), high * 2, 200)
+        e_dry = float(dry[mask].median()) if dry is not None else DRY_RESTITUTION
         e = flow.predicted_restitution(
-            grid * float(np.median(ratio[mask])), dry[mask].median() if dry is not None else
-            DRY_RESTITUTION, critical_stokes
+            grid * float(np.median(ratio[mask])), e_dry, critical_stokes
         )  # fmt: skip
-        curves.append({"label": label, "st_n": grid, "e": np.where(grid > critical_stokes, e, 0.0)})
+        curves.append({"label": label, "st_n": grid, "e": np.where(grid > critical_stokes, e, 0.0),
+                       "e_dry": e_dry})  # fmt: skip
     return curves
+
+
+def curves_e_dry(curves: Sequence[Mapping[str, Any]]) -> str:
+    """The e_dry each predicted curve was drawn with, as its caption says it: "e_dry =
+    0.97" when all agree, else each group's ("e_dry = 0.97 (glass on Zerodur in water),
+    0.6 (PTFE on Zerodur in water)")."""
+    values = {round(c["e_dry"], 3) for c in curves}
+    if len(values) == 1:
+        return f"e_dry = {next(iter(values)):.3g}"
+    return "e_dry = " + ", ".join(f"{c['e_dry']:.3g} ({c['label']})" for c in curves)
 
 
 def restitution_figure(
@@ -399,12 +411,13 @@ def restitution_figure(
         + (
             ", with each group's predicted curve (dotted, in the group's colour): e = e_dry "
             "exp(−35/St), Legendre et al. (2006), St = (ρ_p + ρ_f/2) 2R* v_N,in / (9μ) the "
-            f"added-mass Stokes number, e_dry = 0.97, 0 for St_n ≤ St_c = {critical_stokes:g}"
+            f"added-mass Stokes number, {curves_e_dry(curves)} (the pair's dry value each "
+            f"group's runs used), 0 for St_n ≤ St_c = {critical_stokes:g}"
             if curves
             else ""
         )
-        + ". The grey line, where drawn, is the threshold fit of these runs; its St_c is "
-        "fitted, not the verdict's St_c."
+        + "."
+        + ("" if line is None else " The grey line is the " + fit_said(line[3]) + ".")
         + band_caption(band is not None).replace("a line", "the grey line", 1)
         + (plots.ERROR_BARS if errors else "")
     )
@@ -420,8 +433,24 @@ def _restitution_curve(
         return None
     r = fitted[0]
     grid = np.geomspace(max(1.0, float(np.nanmin(st_n)) * 0.5), float(np.nanmax(st_n)) * 2, 200)
-    curve = fits.restitution_curve("threshold", grid, r["e_dry"], r["parameter"])
-    return grid, curve, f"threshold fit, fitted St_c = {r['parameter']:.2g}", r
+    curve = fits.restitution_curve(r["model"], grid, r["e_dry"], r["parameter"])
+    name = PARAMETER_LABELS.get(r.get("parameter_name", ""), "fitted parameter")
+    return grid, curve, f"{r['model']} fit, {name} = {r['parameter']:.2g}", r
+
+
+def fit_said(fit: Mapping[str, Any]) -> str:
+    """The restitution fit a figure draws, from its record: its group, form, why, e_dry
+    and its parameter ("threshold fit of d: glass/Zerodur, e = … (…), the report's
+    choice …; e_dry = 0.968, mean e of …; fitted St_c = 33, not the verdict's St_c")."""
+    name = PARAMETER_LABELS.get(fit.get("parameter_name", ""), "fitted parameter")
+    words = (
+        f"{fit['model']} fit of {fit['dataset']}: {fit['particle']}/{fit['wall']}, "
+        f"{model_said(fit)[4:]}; e_dry = {fit['e_dry']:.3g} ({fit.get('e_dry_source')}); "
+        f"{name} = {fit['parameter']:.2g}"
+    )
+    if fit.get("parameter_name") == "fitted_critical_stokes":
+        words += ", fitted, not the verdict's St_c"
+    return words
 
 
 def thinned(count: int) -> str:

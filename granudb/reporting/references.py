@@ -137,7 +137,7 @@ METHODS = [
     (
         "predicted wet restitution",
         "e = e_dry exp(−35/St), St = (ρ_p + ρ_f/2) 2R* v_N,in/(9μ); 0 for St_n ≤ St_c",
-        "Legendre et al. (2006); e_dry = 0.97 from " + J_H + " §3",
+        "Legendre et al. (2006); {e_dry}",
     ),
     (
         "onset of yield",
@@ -182,8 +182,27 @@ METHODS = [
 ]
 
 
-def methods() -> list[dict[str, str]]:
-    return [{"quantity": q, "relation": r, "source": s} for q, r, s in METHODS]
+#: What the methods table says of e_dry on a report over stored runs (each run's pair).
+E_DRY_OF_RUNS = (
+    "e_dry of each run's pair by the dry-values rule (the pair's measured value, else the "
+    "two materials' own, else borrowed; docs/physics.md §18)"
+)
+
+
+def e_dry_words(used: dict[str, Any]) -> str:
+    """The methods table's e_dry, from a pair's dry values record (``DryValues.record()``)."""
+    return (
+        f"e_dry = {used['dry_restitution']:g}, {used['dry_restitution_basis']}: "
+        f"{used['dry_restitution_source']}"
+    )
+
+
+def methods(e_dry: str = E_DRY_OF_RUNS) -> list[dict[str, str]]:
+    """The methods table; ``e_dry``: where the predicted restitution's e_dry comes from
+    (``e_dry_words`` of the pair's record, or each run's pair)."""
+    return [
+        {"quantity": q, "relation": r, "source": s.replace("{e_dry}", e_dry)} for q, r, s in METHODS
+    ]
 
 
 def _strings(value: Any) -> Iterable[str]:

@@ -14,11 +14,13 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
+from granudb.analysis.fits import CONFIDENCE_LEVEL
 from granudb.analysis.walton_bootstrap import DEFAULT_RESAMPLES
 from granudb.lazy import pyarrow, pyarrow_csv
 from granudb.reporting.format import display, interval, is_number, plus_minus
 from granudb.reporting.groups import fluid_name, fluid_names, group_label
 from granudb.vocabulary import DERIVED_TERMS, TERMS
+from granudb.vocabulary.escaping import spreadsheet_frame
 from granudb.vocabulary.listings import REPORT_RUN_COLUMNS
 
 WALTON_PUBLISHED = ("rotational_restitution", "sliding_friction", "normal_restitution_mean")
@@ -133,24 +135,32 @@ def resamples_said(fit: Mapping[str, Any]) -> str:
     return f" ({count} resamples, seed {fit.get('bootstrap_seed')})"
 
 
+def interval_method(fit: Mapping[str, Any]) -> str:
+    """How a fit's intervals were made, as its own record says (``interval_method``)."""
+    return str(fit.get("interval_method") or "method not recorded")
+
+
 def bootstrap_note(fits: list[dict[str, Any]]) -> str:
     """How the intervals were made, said once: level, resamples and seed, and the resample
     rule when a large group was resampled fewer times."""
     made = sorted(
-        {(f.get("confidence_level"), f.get("bootstrap_resamples"), f.get("bootstrap_seed"))
-         for f in fits if f.get("bootstrap_resamples")}
+        {(f.get("confidence_level") or CONFIDENCE_LEVEL, interval_method(f),
+          f.get("bootstrap_resamples"), f.get("bootstrap_seed"))
+         for f in fits if f.get("bootstrap_resamples") and f.get("fit_method") != "bayes"}
     )  # fmt: skip
-    if not made:
+    words = [
+        f"{level:.0%} intervals, {method}, {resamples} resamples, seed {seed}"
+        for level, method, resamples, seed in made
+    ]
+    # a posterior's interval says its own level and sampler (its record's interval_method)
+    words += sorted({interval_method(f) for f in fits if f.get("fit_method") == "bayes"})
+    if not words:
         return ""
-    words = "; ".join(
-        f"{level:.0%} bootstrap percentile intervals over runs, {resamples} resamples, seed {seed}"
-        for level, resamples, seed in made
-    )
     rules = sorted(
         {f["bootstrap_rule"] for f in fits if f.get("bootstrap_rule") not in (None, "as asked")}
     )
     ruled = any(resamples_said(f) for f in fits)
-    return f"Intervals in brackets: {words}." + (
+    return f"Intervals in brackets: {'; '.join(words)}." + (
         f" Resamples per group: {'; '.join(rules)}." if ruled and rules else ""
     )
 
@@ -210,17 +220,43 @@ def _restitution_cells(r: Mapping[str, Any]) -> tuple[str, str]:
     return e_dry, fit_cell(r, "parameter")
 
 
-def restitution_table(restitution: list[dict[str, Any]], formula: str, source: str) -> dict:
+#: What a restitution form's parameter is called in a table.
+PARAMETER_LABELS = {"fitted_critical_stokes": "fitted St_c", "k": "fitted k"}
+
+
+def model_said(fit: Mapping[str, Any]) -> str:
+    """A restitution fit's form in words, from its record: name, formula, citation and
+    why it was chosen ("The threshold form e = … (…), the report's choice, …")."""
+    words = f"The {fit.get('model', 'fitted')} form {fit.get('formula', '')}"
+    if fit.get("citation"):
+        words += f" ({fit['citation']})"
+    if fit.get("model_reason"):
+        words += f", {fit['model_reason']}"
+    return words
+
+
+def restitution_table(restitution: list[dict[str, Any]]) -> dict:
+    """The restitution fits, with the form, its parameter and how the intervals were made
+    said from the fits' own records."""
     first = restitution[0] if restitution else {}
     stokes = first.get("stokes_number") or "the normal Stokes number St_n"
+    parameter = PARAMETER_LABELS.get(first.get("parameter_name", ""), "fitted parameter")
+    threshold = (
+        " The fitted St_c is the no-rebound threshold of these runs, not the St_c of the "
+        "rebound verdict."
+        if first.get("parameter_name") == "fitted_critical_stokes"
+        else ""
+    )
+    note = (
+        f"{model_said(first)}; Stokes number: {stokes}.{threshold} e_dry ≤ 1, fixed to the "
+        "mean e of the group's dry runs where it has any. Without an interval, ± is the "
+        "asymptotic standard error of the least squares. " + bootstrap_note(restitution)
+    )
     return {
         "id": "restitution-fit",
         "heading": "Restitution against Stokes number (figure 5)",
-        "note": f"Threshold form {formula} ({source}); Stokes number: {stokes}. The fitted St_c "
-        "is the no-rebound threshold of these runs, not the St_c of the rebound verdict; "
-        "e_dry ≤ 1, fixed to the mean e of the group's dry runs where it has any. ± is the "
-        "asymptotic standard error of the least squares.",
-        "columns": ["group", "e_dry (source)", "fitted St_c", "runs"],
+        "note": note.strip(),
+        "columns": ["group", "e_dry (source)", parameter, "runs"],
         "rows": [
             [
                 f"{r['dataset']}: {r['particle']}/{r['wall']}",
@@ -324,8 +360,10 @@ def runs_csv(runs: Any) -> bytes:
     """The CSV of every run beside a report: machine names and SI values as stored (the
     shortest text that reads back as the same float, as every CSV granudb writes), text
     quoted, empty where there is no value. Written by Arrow's CSV writer: pandas' took
-    longer than the whole report's bound for 100,000 runs."""
-    table = pyarrow.Table.from_pandas(runs, preserve_index=False)
+    longer than the whole report's bound for 100,000 runs. A file for people's
+    spreadsheets: a text cell that would run as a formula is prefixed with ``'``
+    (``granudb.vocabulary.escaping.spreadsheet_frame``)."""
+    table = pyarrow.Table.from_pandas(spreadsheet_frame(runs), preserve_index=False)
     out = pyarrow.BufferOutputStream()
     pyarrow_csv.write_csv(table, out, pyarrow_csv.WriteOptions(quoting_style="needed"))
     return out.getvalue().to_pybytes()  # UTF-8

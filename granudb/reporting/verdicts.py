@@ -100,7 +100,7 @@ def verdicts(
         tangential_verdict(derived),
         quasi_static_verdict(derived),
         strain_verdict(derived),
-        yield_verdict(derived, materials),
+        yield_verdict(derived, materials, dry),
     ]
     return [with_probability(verdict, derived) for verdict in said]
 
@@ -168,15 +168,33 @@ def rebound_verdict(
     )
 
 
-def _ceiling(derived: Mapping[str, Any], dry: Mapping[str, Any]) -> str:
-    """The dry e the prediction starts from, with its source; past yield Thornton's."""
+def restitution_applies(derived: Mapping[str, Any], dry: Mapping[str, Any]) -> str:
+    """Which dry e the prediction uses, read from the record (``restitution_model``, the
+    one rule of ``physics.quantities``): e_dry below yield and, past it, below the
+    hand-over speed V_h where Thornton's e falls to e_dry; Thornton's e above V_h. The
+    words every verdict about it uses."""
+    e_dry = dry_words(dry, "dry_restitution")
+    v_y, v_n = derived.get("yield_speed_m_s"), derived.get("normal_speed_m_s")
+    if derived.get("elastic_state") != "yield_exceeded" or not is_number(v_y):
+        return e_dry
+    v_h = in_words(float(limits.handover_speed(dry["dry_restitution"], v_y)), "m/s")
+    where = f"v_N,in = {in_words(v_n, 'm/s')}, V_y = {in_words(v_y, 'm/s')}, V_h = {v_h}"
     if derived.get("restitution_model") == "elastic_plastic":
         return (
-            f"past yield: the elastic–plastic e = {in_words(derived.get('restitution_ceiling'))} "
-            f"({THORNTON}; V_y = {in_words(derived.get('yield_speed_m_s'), 'm/s')}), below "
-            f"{dry_words(dry, 'dry_restitution')}"
+            f"Thornton's elastic–plastic e = {in_words(derived.get('restitution_ceiling'))}, "
+            f"which applies above the hand-over speed V_h where it falls below {e_dry} "
+            f"({where}; {THORNTON})"
         )
-    return dry_words(dry, "dry_restitution")
+    return (
+        f"{e_dry}, which applies: past the onset of yield but below the hand-over speed "
+        f"V_h, above which Thornton's elastic–plastic e would fall below it ({where}; "
+        f"{THORNTON})"
+    )
+
+
+def _ceiling(derived: Mapping[str, Any], dry: Mapping[str, Any]) -> str:
+    """The dry e the prediction starts from, with its source (``restitution_applies``)."""
+    return restitution_applies(derived, dry)
 
 
 def restitution_verdict(
@@ -458,7 +476,9 @@ def _yield_known(materials: Sequence[Mapping[str, Any]]) -> tuple[list[str], lis
 
 
 def yield_verdict(
-    derived: Mapping[str, Any], materials: Sequence[Mapping[str, Any]] = ()
+    derived: Mapping[str, Any],
+    materials: Sequence[Mapping[str, Any]] = (),
+    dry: Mapping[str, Any] = BORROWED_DRY,
 ) -> Verdict:
     """Onset of yield, p_max = 1.6 Y of the softer body (docs/physics.md §11)."""
     state = str(derived.get("elastic_state") or "unknown")
@@ -476,8 +496,8 @@ def yield_verdict(
             f"{in_words(v_n, 'm/s')}): {pressure} > 1.6 Y of "
             f"{', '.join(known) or 'the softer body'} (Johnson 1985 §11.4). Hertz's elastic "
             "relations (2.1), (2.2), (5.5) and the lubricated friction built on them are "
-            "outside their range here; the predicted restitution uses the elastic–plastic "
-            f"e = {in_words(derived.get('restitution_ceiling'))} ({THORNTON}).",
+            "outside their range here; the predicted restitution uses "
+            f"{restitution_applies(derived, dry)}.",
             raised=True,
         )
     if state == "elastic":

@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from granudb.errors import ValidationError
-from granudb.output_files import write_bytes, write_text
+from granudb.output_files import clear_unfinished, land_with, write_bytes, write_text
 from granudb.reporting.render import render
 from granudb.reporting.tables import runs_csv
 
@@ -41,11 +41,15 @@ def check_output(path: Path | None, *, force: bool = False) -> None:
         raise ValidationError("--output", str(path), "exists (use --force to overwrite it)")
 
 
+def _figures_folder(path: Path) -> Path:
+    return path.with_name(path.stem + "_figures")
+
+
 def _figure_files(report: dict[str, Any], path: Path, force: bool) -> dict[Path, str]:
     """The Markdown report's SVG files, each checked as the report is: a figures folder
     that is a symbolic link, or a figure file that exists (without ``force``), is refused
     before anything is written."""
-    folder = path.with_name(path.stem + "_figures")
+    folder = _figures_folder(path)
     if not report["figures"]:
         return {}
     if folder.is_symlink() or (folder.exists() and not folder.is_dir()):
@@ -97,6 +101,8 @@ def write_report(
     if path.is_dir() and not path.is_symlink():
         path = path / default_name(report, fmt)
     check_output(path, force=force)
+    if fmt == "md":  # figures of an earlier write of this report that was killed mid-way
+        clear_unfinished(_figures_folder(path), path)
     figures = _figure_files(report, path, force) if fmt == "md" else {}
     beside = _runs_file(report, path, force)
     text = render(report, fmt)
@@ -104,12 +110,14 @@ def write_report(
     made_folder = folder is not None and not folder.exists()
     new_files = [target for target in (*figures, *beside) if not target.exists()]
     try:
-        if folder is not None:
-            folder.mkdir(exist_ok=True)
-        for target, svg in figures.items():
-            write_text(target, svg, replace=force, field="--output")
         for target, payload in beside.items():
             write_bytes(target, payload, replace=force, field="--output")
+        if made_folder and folder is not None:  # a new folder lands with the report
+            svgs = {target.name: svg.encode("utf-8") for target, svg in figures.items()}
+            return land_with(folder, svgs, path, text.encode("utf-8"), replace=force,
+                             field="--output")  # fmt: skip
+        for target, svg in figures.items():
+            write_text(target, svg, replace=force, field="--output")
         return write_text(path, text, replace=force, field="--output")
     except BaseException:
         # all or nothing: a figure or run table written before the failure (disk full) goes

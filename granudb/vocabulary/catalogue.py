@@ -191,7 +191,8 @@ def check_source(values: dict[str, Any]) -> None:
     """The rules of a source's fields, for each field in ``values`` (a field set to
     None is absent, except the citation, which every source has): the key and kind are
     names, the citation and notes free text, the DOI ``10.NNNN/suffix``, the URL an
-    ``http(s)://`` address with a host, the year a whole number in 1600–3000.
+    ``http(s)://`` address with a host, the year a whole number in 1600–3000. Text
+    fields are set to their NFC form in ``values``.
 
     >>> check_source({"doi": "10.1017/S002211200400919X", "url": "https://doi.org"})
     >>> check_source({"doi": "https://doi.org/10.1017/S0022"})
@@ -202,13 +203,14 @@ def check_source(values: dict[str, Any]) -> None:
     """
     for column in ("key", "kind"):
         if column in values:
-            check_name(column, values[column], max_length=SOURCE_LENGTHS[column])
+            values[column] = check_name(column, values[column], max_length=SOURCE_LENGTHS[column])
     if "citation" in values:
         citation = values["citation"]
         if not isinstance(citation, str) or not citation.strip():
             raise ValidationError("citation", repr(citation), "must not be empty")
-        check_text("citation", citation)
-    check_text("notes", values.get("notes"))
+        values["citation"] = check_text("citation", citation)
+    if values.get("notes") is not None:
+        values["notes"] = check_text("notes", values["notes"])
     doi = values.get("doi")
     if doi is not None:
         check_name("doi", doi, max_length=SOURCE_LENGTHS["doi"])

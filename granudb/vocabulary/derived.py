@@ -102,7 +102,8 @@ DERIVED_TERMS: dict[str, Term] = {
         "Restitution model",
         None,
         "e model",
-        "elastic (e_dry) or elastic_plastic (Thornton 1997, past V_y) (§15)",
+        "which e applies: elastic (e_dry: below V_y, or past it below the hand-over speed "
+        "where Thornton's e falls to e_dry) or elastic_plastic (Thornton 1997, above it) (§15)",
     ),
     "contact_radius_ratio": _derived(
         "Contact radius / radius", None, "a/R*", "a/R*, Hertz's small-strain measure (§16)"

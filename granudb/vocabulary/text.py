@@ -7,11 +7,15 @@ bidirectional overrides or zero-width characters (which make two different names
 same, or one name read backwards in a terminal), and at most ``MAX_NAME`` characters.
 Free text (descriptions, notes) may hold line breaks and tabs but no other control
 character, and no bare carriage return (spreadsheets and CSV readers disagree about it).
+Both are normalised to Unicode NFC (a decomposed "é" is stored composed), and names are
+compared case- and normalisation-insensitively (``name_key``), so two names that print
+the same are the same name.
 """
 
 from __future__ import annotations
 
 import re
+import unicodedata
 
 from granudb.errors import ValidationError
 
@@ -38,12 +42,24 @@ def name_key(name: str) -> str:
 
     Computed in Python (``str.casefold``) rather than with SQL ``lower()``, which folds only
     ASCII in SQLite but all of Unicode in PostgreSQL.
+
+    Canonical caseless matching (Unicode §3.13): a name in decomposed form (NFD) has the
+    key of its composed twin.
+
+    >>> name_key("Cafe\u0301") == name_key("CAF\u00c9")
+    True
     """
-    return " ".join(name.split()).casefold()
+    folded = unicodedata.normalize("NFD", " ".join(name.split())).casefold()
+    return unicodedata.normalize("NFC", folded)
+
+
+def nfc(value: str) -> str:
+    """``value`` in Unicode normal form C (composed), as every stored name and text is."""
+    return unicodedata.normalize("NFC", value)
 
 
 def check_name(field: str, value: str, *, max_length: int = MAX_NAME) -> str:
-    """``value`` if it is a valid name, else ``ValidationError`` naming the rule.
+    """``value`` in NFC if it is a valid name, else ``ValidationError`` naming the rule.
 
     >>> check_name("name", "Zerodur")
     'Zerodur'
@@ -56,7 +72,7 @@ def check_name(field: str, value: str, *, max_length: int = MAX_NAME) -> str:
 
 
 def check_text(field: str, value: str | None, *, max_length: int = MAX_TEXT) -> str | None:
-    """``value`` if it is valid free text (``None`` stays ``None``), else
+    """``value`` in NFC if it is valid free text (``None`` stays ``None``), else
     ``ValidationError``."""
     if value is None:
         return None
@@ -78,7 +94,7 @@ def _within(field: str, value: str, max_length: int, forbidden: re.Pattern, note
             f"must not contain {_describe(bad.group())} (control, bidirectional or "
             f"invisible characters{note})",
         )
-    return value
+    return nfc(value)
 
 
 def name_pattern() -> str:

@@ -22,6 +22,14 @@ def upgrade() -> None:
         batch_op.add_column(sa.Column("doi", sa.String(length=200), nullable=True))
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    ("datasets", "doi", "doi IS NOT NULL", "dropped"),
+]
+
+
 def downgrade() -> None:
     with op.batch_alter_table("datasets", schema=None) as batch_op:
         batch_op.drop_column("doi")

@@ -140,6 +140,28 @@ def upgrade() -> None:
         _add_finite(batch, "collisions", [*FLOATS["collisions"], *WALL_VELOCITIES])
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    ("materials", "yield_stress_pa", "yield_stress_pa IS NOT NULL", "dropped"),
+    ("collisions", "wall_v_n_in_m_s", "wall_v_n_in_m_s IS NOT NULL", "dropped"),
+    ("collisions", "wall_v_t_in_m_s", "wall_v_t_in_m_s IS NOT NULL", "dropped"),
+    ("collisions", "wall_omega_in_rad_s", "wall_omega_in_rad_s IS NOT NULL", "dropped"),
+    ("collisions", "wall_v_n_out_m_s", "wall_v_n_out_m_s IS NOT NULL", "dropped"),
+    ("collisions", "wall_v_t_out_m_s", "wall_v_t_out_m_s IS NOT NULL", "dropped"),
+    ("collisions", "wall_omega_out_rad_s", "wall_omega_out_rad_s IS NOT NULL", "dropped"),
+    ("collisions", "omega_in_rad_s", "omega_in_rad_s IS NULL", "not measured, become 0.0"),
+    ("collisions", "omega_out_rad_s", "omega_out_rad_s IS NULL", "not measured, become 0.0"),
+    (
+        "collisions",
+        "nominal_angle_rad",
+        "nominal_angle_rad IS NULL",
+        "not recorded, become the centre's path angle",
+    ),
+]
+
+
 def downgrade() -> None:
     with op.batch_alter_table("collisions") as batch:
         _drop_finite(batch, "collisions", [*FLOATS["collisions"], *WALL_VELOCITIES])

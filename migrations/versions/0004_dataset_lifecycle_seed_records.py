@@ -49,6 +49,17 @@ def upgrade() -> None:
     )
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    ("datasets", "authors", "authors IS NOT NULL", "dropped"),
+    ("datasets", "keywords", "keywords IS NOT NULL", "dropped"),
+    ("datasets", "state", "state <> 'draft'", "dropped (released versions become drafts)"),
+    ("datasets", "released_at", "released_at IS NOT NULL", "dropped"),
+]
+
+
 def downgrade() -> None:
     op.drop_table("seed_records")
     with op.batch_alter_table("datasets") as batch:

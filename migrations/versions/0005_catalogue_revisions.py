@@ -56,6 +56,31 @@ def upgrade() -> None:
             )
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    (
+        "collisions",
+        "v_n_in_m_s",
+        "wall_v_n_in_m_s IS NOT NULL AND (v_n_in_m_s <= 0 OR v_n_out_m_s < 0)",
+        "removed (two-sphere runs the older schema cannot hold)",
+    ),
+    (
+        "materials",
+        "revision_of",
+        "revision_of IS NOT NULL",
+        "dropped (released datasets then read today's values)",
+    ),
+    (
+        "fluids",
+        "revision_of",
+        "revision_of IS NOT NULL",
+        "dropped (released datasets then read today's values)",
+    ),
+]
+
+
 def downgrade() -> None:
     op.execute(
         "DELETE FROM collisions WHERE wall_v_n_in_m_s IS NOT NULL AND "

@@ -64,6 +64,97 @@ def upgrade() -> None:
                 batch.create_check_constraint(op.f(f"ck_{table}_{name}_finite"), finite_check(name))
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    (
+        "materials",
+        "u_density_kg_m3",
+        "u_density_kg_m3 IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "materials",
+        "u_youngs_modulus_pa",
+        "u_youngs_modulus_pa IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "materials",
+        "u_poisson_ratio",
+        "u_poisson_ratio IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "materials",
+        "u_roughness_rms_m",
+        "u_roughness_rms_m IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "materials",
+        "u_correlation_length_m",
+        "u_correlation_length_m IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "materials",
+        "u_shear_modulus_pa",
+        "u_shear_modulus_pa IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "materials",
+        "u_yield_stress_pa",
+        "u_yield_stress_pa IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "fluids",
+        "u_glycerol_mass_fraction",
+        "u_glycerol_mass_fraction IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "fluids",
+        "u_reference_density_kg_m3",
+        "u_reference_density_kg_m3 IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "fluids",
+        "u_reference_viscosity_pa_s",
+        "u_reference_viscosity_pa_s IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "fluids",
+        "u_reference_temperature_c",
+        "u_reference_temperature_c IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "fluids",
+        "u_pressure_viscosity_pa_inv",
+        "u_pressure_viscosity_pa_inv IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "fluid_points",
+        "u_viscosity_pa_s",
+        "u_viscosity_pa_s IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+    (
+        "fluid_points",
+        "u_density_kg_m3",
+        "u_density_kg_m3 IS NOT NULL",
+        "dropped (the standard uncertainty)",
+    ),
+]
+
+
 def downgrade() -> None:
     for table, columns in COLUMNS.items():
         with op.batch_alter_table(table) as batch:

@@ -123,6 +123,20 @@ def upgrade() -> None:
     )
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    ("materials", "dry_restitution", "dry_restitution IS NOT NULL", "dropped"),
+    ("materials", "dry_friction", "dry_friction IS NOT NULL", "dropped"),
+    ("materials", "dry_provenance", "dry_provenance IS NOT NULL", "dropped"),
+    ("materials", "brittleness", "brittleness IS NOT NULL", "dropped"),
+    ("materials", "u_dry_restitution", "u_dry_restitution IS NOT NULL", "dropped"),
+    ("materials", "u_dry_friction", "u_dry_friction IS NOT NULL", "dropped"),
+    ("pair_values", "dry_restitution", "1 = 1", "dropped (the pair values table goes)"),
+]
+
+
 def downgrade() -> None:
     op.drop_table("pair_values")
     with op.batch_alter_table("materials") as batch:

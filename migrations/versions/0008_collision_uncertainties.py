@@ -49,6 +49,61 @@ def upgrade() -> None:
             batch.create_check_constraint(op.f(f"ck_collisions_{name}_finite"), finite_check(name))
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    (
+        "collisions",
+        "u_diameter_m",
+        "u_diameter_m IS NOT NULL",
+        "dropped (the stated standard uncertainty)",
+    ),
+    (
+        "collisions",
+        "u_v_n_in_m_s",
+        "u_v_n_in_m_s IS NOT NULL",
+        "dropped (the stated standard uncertainty)",
+    ),
+    (
+        "collisions",
+        "u_v_t_in_m_s",
+        "u_v_t_in_m_s IS NOT NULL",
+        "dropped (the stated standard uncertainty)",
+    ),
+    (
+        "collisions",
+        "u_omega_in_rad_s",
+        "u_omega_in_rad_s IS NOT NULL",
+        "dropped (the stated standard uncertainty)",
+    ),
+    (
+        "collisions",
+        "u_v_n_out_m_s",
+        "u_v_n_out_m_s IS NOT NULL",
+        "dropped (the stated standard uncertainty)",
+    ),
+    (
+        "collisions",
+        "u_v_t_out_m_s",
+        "u_v_t_out_m_s IS NOT NULL",
+        "dropped (the stated standard uncertainty)",
+    ),
+    (
+        "collisions",
+        "u_omega_out_rad_s",
+        "u_omega_out_rad_s IS NOT NULL",
+        "dropped (the stated standard uncertainty)",
+    ),
+    (
+        "collisions",
+        "u_temperature_c",
+        "u_temperature_c IS NOT NULL",
+        "dropped (the stated standard uncertainty)",
+    ),
+]
+
+
 def downgrade() -> None:
     with op.batch_alter_table("collisions") as batch:
         for name in reversed(COLUMNS):

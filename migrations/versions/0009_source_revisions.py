@@ -51,5 +51,18 @@ def upgrade() -> None:
     )
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    (
+        "source_revisions",
+        "citation",
+        "1 = 1",
+        "dropped (the sources' history; released datasets then read today's sources)",
+    ),
+]
+
+
 def downgrade() -> None:
     op.drop_table("source_revisions")

@@ -33,6 +33,19 @@ def upgrade() -> None:
         batch.alter_column("roughness_rms_m", existing_type=sa.Float(), nullable=True)
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    (
+        "materials",
+        "roughness_rms_m",
+        "roughness_rms_m IS NULL",
+        "not stated, become 0.0 (the older schema needs a number; an upgrade keeps the 0)",
+    ),
+]
+
+
 def downgrade() -> None:
     # the older schema needs a number: a roughness not stated becomes 0.0, which
     # ``granudb db downgrade`` names as a loss and asks before (``_STEP_LOSSES``)

@@ -33,6 +33,15 @@ def upgrade() -> None:
             batch.add_column(sa.Column("conditions", sa.Text(), nullable=True))
 
 
+#: What ``downgrade()`` drops or alters, as (table, column, SQL condition on the rows
+#: that lose something, what happens to them): the only source of what
+#: ``granudb db downgrade`` asks consent for (``granudb.db.migration.downgrade_losses``).
+DOWNGRADE_LOSSES: list[tuple[str, str, str, str]] = [
+    ("materials", "conditions", "conditions IS NOT NULL", "dropped (the values' conditions)"),
+    ("fluids", "conditions", "conditions IS NOT NULL", "dropped (the values' conditions)"),
+]
+
+
 def downgrade() -> None:
     # the stored conditions go; ``granudb db downgrade`` names them and asks (``_STEP_LOSSES``)
     for table in TABLES:

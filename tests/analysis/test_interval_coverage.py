@@ -33,13 +33,21 @@ def test_quick_coverage(name: str) -> None:
 
 
 def test_three_runs_never_give_a_zero_width_interval() -> None:
-    # issue 23: three dry runs, one sticking: μ_f 0.0854 [0.0854, 0.0854], "exact"
+    # issue 23: three dry runs, one sticking: μ_f 0.0854 [0.0854, 0.0854], "exact"; issue 36:
+    # an interval at three runs is the t-interval, of width > 0, or none with the reason
     for seed in range(10):
         [walton] = fits.walton(walton_frame(3, seed=seed))
         for name in ("rotational_restitution", "sliding_friction", "normal_restitution"):
             low, high = walton[f"{name}_low"], walton[f"{name}_high"]
-            assert math.isnan(low) and math.isnan(high), (seed, name)
-        assert "not determined: 3 runs, at least 10 needed" in walton["reason"]
+            method = walton[f"{name}_interval_method"]
+            if math.isnan(low) or math.isnan(high):
+                assert math.isnan(low) and math.isnan(high) and not method, (seed, name)
+            else:
+                assert high > low and method == (
+                    fits.MEAN_METHOD if name == "normal_restitution" else fits.SMALL_N_METHOD
+                ), (seed, name)
+        if math.isfinite(walton["rotational_restitution"]):
+            assert "3 runs cannot test a split" in walton["reason"]
         [restitution] = fits.restitution(restitution_runs(0.97, "threshold", 10.0, n=3, seed=seed))
         assert math.isnan(restitution["parameter_low"]) and math.isnan(restitution["e_dry_low"])
     [gap] = fits.gap_viscosity(sliding_runs(1.6e-3, n=3, seed=1), {})
@@ -84,4 +92,8 @@ def test_three_runs_read_interval_not_determined_in_reports_and_decks(cli, db, t
     )  # fmt: skip
     assert "95 % interval" not in deck or "–" not in deck.split("95 % interval")[1][:30]
     comments = " ".join(deck.replace("\n#", " ").split())  # comments wrap across lines
-    assert "Walton fit, interval not determined (3 runs, at least 10 needed)" in comments
+    # issue 36: one of the three runs sticks by its own kinematics, so no μ_f at all
+    assert "does not determine μ_f (model not determined (1 sticking, 2 sliding runs)" in comments
+    [fit] = granudb.fit_walton(db, as_frame=False, dataset="three")
+    assert fit["model"] is None and math.isnan(fit["sliding_friction"])
+    assert "sticks by its own kinematics" in fit["model_reason"]

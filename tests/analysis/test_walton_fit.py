@@ -110,8 +110,11 @@ def test_interval_coverage_is_roughly_right() -> None:
             (("rotational_restitution", BETA), ("sliding_friction", MU))
         ):
             low, high = fit[f"{name}_low"], fit[f"{name}_high"]
-            if math.isnan(low):
-                assert f"at least {fits.MIN_RUNS_FOR_INTERVAL} needed" in fit["reason"]
+            if math.isnan(low):  # β on fewer than 10 sticking runs of a split (issue 36)
+                assert (
+                    "interval not determined: fewer than 10 runs on the sticking line"
+                    in (fit["reason"])
+                )
                 continue
             given[i] += 1
             hits[i] += low <= truth <= high

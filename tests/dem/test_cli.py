@@ -120,10 +120,14 @@ def test_verify_runs_the_real_code(cli, db: str) -> None:
     lines = [line for line in out.stdout.splitlines() if line.startswith(CODES)]
     assert lines and all(line.startswith("liggghts") for line in lines)
     assert all("not checked" not in line for line in lines)
-    # the issue's matrix: normal at 0.1, 0.3, 0.5 m/s, oblique at 30 and 60 degrees
+    # the issue's matrix: normal at 0.1, 0.3, 0.5 m/s, oblique at 30 and 60 degrees, and
+    # (issue 33) mid sticking branch for a pair with a measured beta
     kinds = {(line.split()[2], line.split()[3], line.split()[4]) for line in lines}
-    assert {("normal", v, "0") for v in ("0.10", "0.30", "0.50")} <= kinds
-    assert {("oblique", "0.30", "30"), ("oblique", "0.30", "60")} <= kinds
+    assert {("normal", v, "0.0") for v in ("0.10", "0.30", "0.50")} <= kinds
+    assert {("oblique", "0.30", a) for a in ("30.0", "60.0", "15.8")} <= kinds
+    # only judged quantities, each with its tolerance and verdict
+    assert {line.split()[5] for line in lines} == {"e", "mu_f", "Psi_out"}
+    assert all(line.split()[9].startswith("±") for line in lines)
 
 
 @pytest.mark.dem_run
@@ -145,7 +149,8 @@ def test_verify_for_scripts_is_json_with_the_verdict(cli, db: str) -> None:
     # steel on Zerodur has a measured beta that LIGGGHTS cannot set: a limit its deck states
     assert checked and {r["verdict"] for r in checked} == {"pass", "stated limit"}
     limited = [r for r in checked if r["verdict"] == "stated limit"]
-    assert [(r["kind"], r["angle_deg"]) for r in limited] == [("oblique", 30.0)]
+    # at 30° and mid sticking branch (15.8°), where dem verify now also checks beta
+    assert [(r["kind"], r["angle_deg"]) for r in limited] == [("oblique", 30.0), ("oblique", 15.8)]
 
 
 @pytest.mark.dem_run
@@ -165,7 +170,9 @@ def test_glycerol_78_verifies_and_a_wrong_deck_exits_non_zero(cli, db: str, monk
     monkeypatch.setitem(dem_verify.WRITERS, "liggghts", type("Wrong", (), {"write": wrong}))
     out = cli(*args, db=db)
     assert out.exit_code == 1
-    assert "FAIL (e " in out.stdout and out.stdout.splitlines()[-1].startswith("FAIL:")
+    failed = [line.split() for line in out.stdout.splitlines() if line.endswith("FAIL")]
+    assert failed and all(row[5] == "e" and row[9] == "±1%" for row in failed)
+    assert out.stdout.splitlines()[-1].startswith("FAIL:")
 
 
 def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
@@ -179,7 +186,10 @@ def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
                               db=db)  # fmt: skip
     comments = " ".join(line.lstrip("# ") for line in text.splitlines() if line.startswith("#"))
     assert "predicted: lubricated μ_f (5.8)" not in comments
-    said = "coefficientFriction = 0.15 (the immersed friction 0.15, measured for glass on Zerodur"
+    said = (
+        "coefficientFriction = 0.15 (the immersed friction 0.15 granudb pair uses, measured for "
+        "glass on Zerodur"
+    )
     assert said in comments and "no sliding speed" in comments
     pair = granudb.pair("glass", "Zerodur", fluid="glycerol-78", diameter="12.7 mm",
                         velocity="0.3 m/s", db=db)  # fmt: skip
@@ -188,9 +198,10 @@ def test_a_dry_fallback_friction_is_not_called_a_prediction(db: str) -> None:
 
 @pytest.mark.parametrize(
     ("fluid", "said"),
-    [(None, "rebounds with beta = 0.34 (joseph-hunt-2004 §3, figure 4: β = 0.34 ± 0.07; "
+    [(None, "rebounds with beta = 0.34 (measured: joseph-hunt-2004 §3, figure 4: β = 0.34 ± 0.07; "
             "± 2u (k = 2, about 95 %), u = 0.07 (the source's ±): 0.2–0.48)"),
-     ("glycerol-37", "rebounds with beta = 0.6 (joseph-hunt-2004 §4, figure 10: β ≈ 0.6)"),
+     ("glycerol-37",
+      "rebounds with beta = 0.6 (measured: joseph-hunt-2004 §4, figure 10: β ≈ 0.6)"),
      ("glycerol-78", "no measured beta for this pair")],
 )  # fmt: skip
 def test_the_published_beta_of_the_pair_and_fluid_is_exported(db: str, fluid, said) -> None:

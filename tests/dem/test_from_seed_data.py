@@ -47,4 +47,11 @@ def test_the_codes_give_the_seed_data_back(db: str, fluid: str | None) -> None:
     assert {r.angle_deg for r in sliding} >= {60.0}
     assert all(abs(r.friction_rel_error) <= 0.03 for r in sliding)
     limited = [r for r in checked if r.verdict == "stated limit"]
-    assert all(r.code != "lammps" and r.angle_deg == 30.0 for r in limited)
+    # a stated limit: LIGGGHTS's and Yade's beta (they cannot set k_t) at 30 degrees and
+    # mid sticking branch; LAMMPS's only below the range its deck states, where the Psi_out
+    # the deck states for that angle is judged instead (issue 33)
+    assert bool(limited) == (fluid in (None, "glycerol-37"))  # where a beta is published
+    assert all(r.angle_deg == 30.0 or r.angle_deg < 20.0 for r in limited)
+    for r in limited:
+        if r.code == "lammps":
+            assert r.angle_deg < 20.0 and abs(r.stated_rel_error) <= 0.10, r

@@ -54,7 +54,10 @@ def test_published_values_give_the_ends_of_their_stated_uncertainty(db: str) -> 
     assert friction_matrix(decks["low"])[0] == pytest.approx(0.104)
     assert friction_matrix(decks["high"])[0] == pytest.approx(0.116)
     comments = " ".join(decks["central"].replace("\n#", " ").split())
-    assert "± 2u (k = 2, about 95 %), u = 0.003 (the source's ±): 0.104–0.116" in comments
+    assert (
+        "± 2u (k = 2, about 95 %), u = 0.003 (the source's ±: joseph-hunt-2004 §3, figure 4: "
+        "μ_f = 0.11 ± 0.003): 0.104–0.116" in comments
+    )
     assert "Parameter set" not in decks["central"]
     assert "Parameter set: HIGH" in decks["high"]
 

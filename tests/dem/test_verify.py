@@ -43,6 +43,39 @@ def test_dry_normal_and_oblique(code: str, tmp_path: Path) -> None:
                 assert r.verdict in ("pass", "stated limit"), r
     if code != "lammps":
         assert "beta NOT reproduced" in dem_verify.WRITERS[code].write(dry_model())
+    # the sticking branch is checked too (issue 33), mid-way to Walton's corner
+    sticking = [r for r in records if r.kind == "oblique" and r.angle_deg < 20.0]
+    assert {r.pair for r in sticking} == {"glass/zerodur", "steel/zerodur"}
+    for r in sticking:
+        assert r.verdict == "stated limit", r
+        if code == "lammps":  # outside its stated range: the Psi_out it states is judged
+            assert r.rebound_limit and "mid sticking branch" in r.rebound_limit
+            assert abs(r.stated_rel_error) <= dem_verify.TOLERANCES["rebound"], r
+
+
+def test_lammps_states_where_beta_holds_and_a_wrong_statement_fails() -> None:
+    """LAMMPS's deck states the angles over which Psi_out follows Walton's relation with
+    beta (steel on Zerodur: from 29°) and the effective beta below (0.719 at 15.8°, as
+    LAMMPS gives it); a run that misses the stated Psi_out there fails."""
+    from granudb.dem import lammps
+    from granudb.dem.runs import Case
+
+    model = dry_model()
+    pair = model.pair("steel", "zerodur")
+    found = lammps.rebound_range(model, pair)
+    assert found is not None and found.lowest_deg == 29.0 and found.checked[0] == 15.8
+    text = lammps.write(model)
+    flat = " ".join(line.removeprefix("#").strip() for line in text.splitlines())
+    assert "for impact angles from 29 deg (from the normal) up" in flat
+    assert f"{found.checked[1]:.3f} at 15.8 deg (mid sticking branch)" in flat
+    case = Case("steel", "zerodur", 0.3, 15.8)
+    stated = lammps.stated_rebound(model, pair, 15.8)
+    for factor, verdict in ((1.0, "stated limit"), (0.5, "fail")):
+        result = (factor * stated * case.v_normal, 0.97 * case.v_normal, 0.0, 0.0)
+        record = dem_verify._record(model, "lammps", case, result, "checked")
+        assert record.verdict == verdict, record
+    table = dem_verify.table([record])
+    assert "Psi_out (as the deck states)" in table and "FAIL" in table
 
 
 def test_absent_code_is_not_checked(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:

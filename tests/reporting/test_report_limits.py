@@ -222,6 +222,7 @@ def _walton_row(**changes):
         "bic_sliding": -10.0,
         "bic_split": math.inf,
         "model_support_sticking": 0.97,
+        "interval_method": "studentized bootstrap (bootstrap-t) over runs",
         "rotational_restitution": 0.34,
         "rotational_restitution_low": 0.31,
         "rotational_restitution_high": 0.37,
@@ -258,7 +259,8 @@ def test_walton_table_says_not_determined_and_labels_the_bound() -> None:
     assert "μ_f ≥ 0.091 (a bound, not a value)" in row[3]
     assert "0.091" not in row[3].split("Lower bound")[0]
     assert "μ_f = 0.11 ± 0.003" in row[6]  # the paper's ± as printed, beside ours
-    assert "95% bootstrap" in table["note"] and "1000 resamples, seed 0" in table["note"]
+    assert "95% intervals, studentized bootstrap (bootstrap-t) over runs" in table["note"]
+    assert "1000 resamples, seed 0" in table["note"]
     assert table["note"].count("1000 resamples") == 1
 
 
@@ -283,9 +285,10 @@ def test_restitution_table_names_e_dry_source_and_fitted_st_c() -> None:
     fit = {"dataset": "d", "particle": "glass", "wall": "Zerodur", "e_dry": 0.968,
            "e_dry_stderr": math.nan, "e_dry_source": "mean e of the group's 10 dry runs (fixed)",
            "parameter": 33.0, "parameter_stderr": 3.0, "n_runs": 10, "reason": "",
-           "stokes_number": "St_n"}  # fmt: skip
+           "stokes_number": "St_n", "model": "threshold",
+           "parameter_name": "fitted_critical_stokes"}  # fmt: skip
     empty = {**fit, "e_dry": math.nan, "parameter": math.nan, "reason": "St_n must take ≥ 2"}
-    table = tables.restitution_table([fit, empty], "e = …", "src")
+    table = tables.restitution_table([fit, empty])
     assert (
         "fitted St_c" in table["columns"]
         and "not the St_c of the rebound verdict" in (table["note"])

@@ -110,6 +110,12 @@ EXPECTED_LOSSES = {
 }
 
 
+def _said(losses: list[str]) -> list[str]:
+    """The losses without the released versions each reaches (tested in
+    test_released_downgrade.py)."""
+    return [line.split(" — changes released versions")[0] for line in losses]
+
+
 @pytest.mark.parametrize("target", ["0003", "0002", "0001", "base"])
 def test_downgrade_to_every_revision_and_back_keeps_every_row_or_asks(db: str, target: str) -> None:
     _with_data(db)
@@ -117,7 +123,7 @@ def test_downgrade_to_every_revision_and_back_keeps_every_row_or_asks(db: str, t
     database = connect(db)
     losses = migration.plan_downgrade(database, target)
     if target == "base":
-        assert losses == [
+        assert _said(losses) == [
             f"table {t}: all {n} rows"
             for t, n in sorted(counts.items())
             if n and t != "seed_records"
@@ -130,14 +136,16 @@ def test_downgrade_to_every_revision_and_back_keeps_every_row_or_asks(db: str, t
             + DRY_LOSSES
             + [line for r in order[: order.index(target) + 1] for line in EXPECTED_LOSSES[r]]
         )
-        assert losses == expected
+        assert _said(losses) == expected
 
     before = dump_hash(db)
     with pytest.raises(ConfirmationNeeded):
         migration.downgrade(database, target)  # not confirmed: refused, nothing changed
+    with pytest.raises(ConfirmationNeeded, match="would change released versions lab@1"):
+        migration.downgrade(database, target, accepted=losses)  # the release not named
     assert dump_hash(db) == before
 
-    migration.downgrade(database, target, accepted=losses)
+    migration.downgrade(database, target, accepted=losses, releases=["lab@1"])
     migration.upgrade(database, "head")
     database.dispose()
     after = _counts(db)
@@ -175,7 +183,7 @@ def test_downgrade_refuses_data_written_after_consent(db: str) -> None:
     execute(db, "UPDATE datasets SET doi = '10.1/x' WHERE name = 'plain'")
     before = dump_hash(db)
     with pytest.raises(ConfirmationNeeded, match="2 values dropped"):
-        migration.downgrade(database, "0001", accepted=losses)
+        migration.downgrade(database, "0001", accepted=losses, releases=["lab@1"])
     database.dispose()
     assert dump_hash(db) == before
 
@@ -183,14 +191,20 @@ def test_downgrade_refuses_data_written_after_consent(db: str) -> None:
 def test_cli_downgrade_says_what_it_loses_and_needs_yes(cli, db: str) -> None:
     _with_data(db)
     before = dump_hash(db)
-    refused = cli("db", "downgrade", "0002", db=db)
+    released = cli("db", "downgrade", "0002", "--yes", db=db)
+    assert released.exit_code == 1
+    assert released.stderr.startswith(
+        "Error: db downgrade 0002: would change released versions lab@1"
+    )
+    assert "--yes is not enough: add --drop-released-values" in released.stderr
+    refused = cli("db", "downgrade", "0002", "--drop-released-values", db=db)
     assert refused.exit_code == 1
     lines = refused.stderr.strip().splitlines()
     assert len(lines) == 1 and "materials.yield_stress_pa: 1 values dropped" in lines[0]
     assert "materials.dry_restitution" in lines[0]
     assert "--yes" in lines[0] and "internal error" not in lines[0]
     assert dump_hash(db) == before
-    done = cli("db", "downgrade", "0002", "--yes", db=db)
+    done = cli("db", "downgrade", "0002", "--yes", "--drop-released-values", db=db)
     assert done.exit_code == 0, done.stderr
     assert "lost collisions.wall_v_n_in_m_s: 1 values dropped" in done.stdout
     assert f"schema: {migration.head_revision()} → 0002" in done.stdout
@@ -206,10 +220,11 @@ def test_cli_downgrade_asks_on_a_terminal(cli, db: str, monkeypatch) -> None:
     monkeypatch.setattr(confirm, "interactive", lambda: True)
     before = dump_hash(db)
     runner = CliRunner()
-    no = runner.invoke(app, ["db", "downgrade", "base", "--db", db], input="n\n")
+    base = ["db", "downgrade", "base", "--drop-released-values", "--db", db]
+    no = runner.invoke(app, base, input="n\n")
     assert no.exit_code == 1 and "not confirmed" in no.stderr
     assert "table collisions: all 3 rows" in no.stderr
     assert dump_hash(db) == before
-    yes = runner.invoke(app, ["db", "downgrade", "base", "--db", db], input="y\n")
+    yes = runner.invoke(app, base, input="y\n")
     assert yes.exit_code == 0, yes.stderr
     assert f"schema: {migration.head_revision()} → empty" in yes.stdout

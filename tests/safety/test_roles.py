@@ -153,3 +153,62 @@ def test_a_bad_account_or_role_is_one_line(cli, db: str) -> None:
     _refused(cli("db", "grant", "lab; DROP TABLE x", "--as", "reader", db=db), "role name")
     result = cli("db", "grant", "lab", "--as", "owner", db=db)
     assert result.exit_code == 2 and "'owner' is not one of" in result.stderr
+
+
+@on_postgresql
+@pytest.mark.parametrize("role", ["reader", "contributor", "curator"])
+def test_a_superuser_cannot_be_made_a_role(cli, db: str, role: str) -> None:
+    """The test server's administrator is a superuser: every privilege check passes, so
+    "reads everything, writes nothing" would be false; refused, saying what it takes."""
+    from sqlalchemy.engine import make_url
+
+    admin = make_url(db).username
+    before = dump_hash(db)
+    line = _refused(
+        cli("db", "grant", admin, "--as", role, db=db),
+        f"db grant: {admin} is a superuser",
+        f"cannot be made a {role}",
+        "not a superuser and does not own the tables",
+    )
+    assert "nothing was changed" in line
+    assert dump_hash(db) == before
+
+
+@on_postgresql
+def test_an_owner_of_the_tables_cannot_be_made_a_reader(cli, db: str) -> None:
+    """An account that owns a granudb table, or belongs to the role that does, keeps
+    every right on it whatever is revoked: refused, and the account can still write (the
+    refusal was true)."""
+    from sqlalchemy import create_engine, text
+    from sqlalchemy.engine import make_url
+
+    tag = uuid.uuid4().hex[:10]
+    owner, member = f"granudb_owner_{tag}", f"granudb_member_{tag}"
+    admin = create_engine(db, isolation_level="AUTOCOMMIT")
+    try:
+        with admin.connect() as connection:
+            connection.execute(text(f'CREATE ROLE "{owner}" LOGIN'))
+            connection.execute(text(f'CREATE ROLE "{member}" LOGIN IN ROLE "{owner}"'))
+            connection.execute(text(f'ALTER TABLE materials OWNER TO "{owner}"'))
+        before = dump_hash(db)
+        for account in (owner, member):
+            _refused(
+                cli("db", "grant", account, "--as", "reader", db=db),
+                f"db grant: {account} owns granudb's tables (materials",
+                "cannot be made a reader",
+            )
+        assert dump_hash(db) == before
+        as_owner = make_url(db).set(username=owner).render_as_string(hide_password=False)
+        owner_engine = create_engine(as_owner)
+        with owner_engine.begin() as connection:  # an owner writes whatever was revoked
+            connection.execute(text(f'REVOKE ALL ON materials FROM "{owner}"'))
+            connection.execute(text(f'GRANT ALL ON materials TO "{owner}"'))
+            assert connection.execute(text("UPDATE materials SET name = name")).rowcount > 0
+        owner_engine.dispose()
+    finally:
+        with admin.connect() as connection:
+            connection.execute(text("ALTER TABLE materials OWNER TO CURRENT_USER"))
+            for name in (member, owner):
+                connection.execute(text(f'DROP OWNED BY "{name}"'))
+                connection.execute(text(f'DROP ROLE "{name}"'))
+        admin.dispose()

@@ -102,10 +102,10 @@ def test_migration_0009_keeps_every_row_and_names_its_downgrade_loss(
     losses = migration.plan_downgrade(database, "0008")
     assert losses[-1] == (
         "source_revisions.citation: 1 values dropped (the sources' history; released "
-        "datasets then read today's sources)"
+        "datasets then read today's sources) — changes released versions rel@1.0.0"
     )  # after the later steps' own (0010: the seeded roughness not stated)
     assert all(line.startswith("materials.roughness_rms_m") for line in losses[:-1])
-    migration.downgrade(database, "0008", accepted=losses)
+    migration.downgrade(database, "0008", accepted=losses, releases=["rel@1.0.0"])
     engine = engine_for(db)
     assert "source_revisions" not in inspect(engine).get_table_names()
     engine.dispose()
