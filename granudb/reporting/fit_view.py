@@ -71,7 +71,7 @@ def _without_interval(fit: Mapping[str, Any], symbol: str) -> str:
     about = [p for p in _about(fit, symbol) if "interval" in p]
     found = [own] if own else [p.split(f"interval of {symbol} ", 1)[-1] for p in about]
     found = found or _parts(fit.get("reason")) or ["the fit gave no bounds"]
-    return "; ".join(p.removeprefix("not determined: ") for p in found)
+    return "; ".join(p.split("not determined: ", 1)[-1] for p in found)
 
 
 def value_line(fit: Mapping[str, Any], quantity: Quantity) -> str:
@@ -115,7 +115,8 @@ def method_line(fit: Mapping[str, Any]) -> str | None:
     if not method:
         return None
     level = fit.get("confidence_level")
-    said = f"{level:.0%} " if is_number(level) and "%" not in method else ""
+    stated = is_number(level) and "%" not in method and "no interval" not in method
+    said = f"{level:.0%} " if stated else ""
     count, seed = fit.get("bootstrap_resamples"), fit.get("bootstrap_seed")
     resampled = is_number(count) and "bootstrap" in method  # a Bayesian fit draws, not resamples
     extra = f", {int(count)} resamples, seed {seed}" if resampled else ""
