@@ -455,8 +455,8 @@ def _particle_pairs(particles: list[Any], on_wall: dict[str, Any]) -> list[Any]:
         for second in particles[i:]:
             e, mu, law, wall = on_wall[first.name]
             note = (
-                f"assumed: no {first.name}/{second.name} measurement; the value of "
-                f"{first.name} on {wall}"
+                f"borrowed from {first.name} on {wall}, assumed for {first.name}/"
+                f"{second.name}: no {first.name}/{second.name} value is stored"
             )
             pairs.append(
                 PairParameters(
