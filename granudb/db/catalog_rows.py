@@ -17,7 +17,7 @@ that both paths give the same records for the same database.
 from __future__ import annotations
 
 import difflib
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, make_dataclass
 from typing import Any
 
 from sqlalchemy import DateTime, column, func, or_, select, table
@@ -27,7 +27,14 @@ from sqlalchemy.sql.expression import TableClause
 from granudb.errors import NotFoundError
 from granudb.vocabulary.catalogue import FLUIDS as FLUID_CATALOGUE
 from granudb.vocabulary.catalogue import MATERIALS as MATERIAL_CATALOGUE
-from granudb.vocabulary.catalogue import PAIR_VALUE_COLUMNS, SOURCE_COLUMNS, Catalogue
+from granudb.vocabulary.catalogue import (
+    PAIR_VALUE_COLUMNS,
+    POINT_COLUMNS,
+    POINT_UNCERTAINTIES,
+    SOURCE_COLUMNS,
+    Catalogue,
+)
+from granudb.vocabulary.terms import keyed, stored
 from granudb.vocabulary.text import name_key
 
 
@@ -42,87 +49,67 @@ class SourceRow:
     notes: str | None
 
 
-@dataclass(frozen=True, slots=True)
-class MaterialRow:
-    name: str
-    description: str | None
-    density_kg_m3: float
-    youngs_modulus_pa: float
-    poisson_ratio: float
-    roughness_rms_m: float | None  # None: not stated
-    correlation_length_m: float | None
-    shear_modulus_pa: float | None
-    yield_stress_pa: float | None
-    u_density_kg_m3: float | None
-    u_youngs_modulus_pa: float | None
-    u_poisson_ratio: float | None
-    u_roughness_rms_m: float | None
-    u_correlation_length_m: float | None
-    u_shear_modulus_pa: float | None
-    u_yield_stress_pa: float | None
-    dry_restitution: float | None
-    dry_friction: float | None
-    dry_provenance: str | None
-    brittleness: str | None
-    conditions: str | None
-    u_dry_restitution: float | None
-    u_dry_friction: float | None
-    source_locator: str | None
-    source: SourceRow | None
-    created_at: Any
-    updated_at: Any
+_PYTHON_TYPES = {"float": float, "text": str, "string": str, "boolean": bool}
 
 
-@dataclass(frozen=True, slots=True)
-class PairValueRow:
-    """Dry values a source measured for one pair (``granudb.db.models.PairValue``), with
-    the two materials' names."""
-
-    particle: str
-    wall: str
-    dry_restitution: float | None
-    dry_friction: float | None
-    immersed_friction: float | None
-    source_locator: str | None
-    notes: str | None
-    source: SourceRow | None
+def _declared_fields(table: str) -> list[tuple[str, Any]]:
+    """The fields of ``table``'s declared columns (``granudb.vocabulary.terms.STORED``),
+    each ``u_`` column after the declared ones: a Core row reads every declared column,
+    as the model stores it."""
+    return [
+        (s.column, _PYTHON_TYPES[s.sql] if not s.nullable else _PYTHON_TYPES[s.sql] | None)
+        for s in stored(table, uncertainties=True)
+    ]
 
 
-@dataclass(frozen=True, slots=True)
-class FluidPointRow:
-    temperature_c: float
-    viscosity_pa_s: float
-    density_kg_m3: float | None
-    u_viscosity_pa_s: float | None
-    u_density_kg_m3: float | None
-    source_locator: str | None
-    source: SourceRow | None
+def _row_type(name: str, head: list[tuple[str, Any]], table: str, tail: list[tuple[str, Any]],
+              doc: str) -> Any:  # fmt: skip
+    made = make_dataclass(name, [*head, *_declared_fields(table), *tail], frozen=True, slots=True)
+    made.__doc__ = doc
+    made.__module__ = __name__
+    return made
 
 
-@dataclass(frozen=True, slots=True)
-class FluidRow:
-    name: str
-    description: str | None
-    glycerol_mass_fraction: float | None
-    reference_density_kg_m3: float
-    reference_viscosity_pa_s: float
-    reference_temperature_c: float
-    pressure_viscosity_pa_inv: float | None
-    u_glycerol_mass_fraction: float | None
-    u_reference_density_kg_m3: float | None
-    u_reference_viscosity_pa_s: float | None
-    u_reference_temperature_c: float | None
-    u_pressure_viscosity_pa_inv: float | None
-    conditions: str | None
-    source_locator: str | None
-    density_locator: str | None
-    pressure_viscosity_locator: str | None
-    source: SourceRow | None
-    density_source: SourceRow | None
-    pressure_viscosity_source: SourceRow | None
-    created_at: Any
-    updated_at: Any
-    points: tuple[FluidPointRow, ...]
+_SOURCE = ("source", SourceRow | None)
+_CREATED = [("created_at", Any), ("updated_at", Any)]
+MaterialRow = _row_type(
+    "MaterialRow",
+    [("name", str), ("description", str | None)],
+    "materials",
+    [("source_locator", str | None), _SOURCE, *_CREATED],
+    "A material as the catalogue stores it (``granudb.db.models.Material``).",
+)
+PairValueRow = _row_type(
+    "PairValueRow",
+    [("particle", str), ("wall", str)],
+    "pair_values",
+    [("source_locator", str | None), ("notes", str | None), _SOURCE],
+    "Dry values a source measured for one pair (``granudb.db.models.PairValue``), with "
+    "the two materials' names.",
+)
+FluidPointRow = _row_type(
+    "FluidPointRow",
+    [],
+    "fluid_points",
+    [("source_locator", str | None), _SOURCE],
+    "One point of a fluid (``granudb.db.models.FluidPoint``).",
+)
+FluidRow = _row_type(
+    "FluidRow",
+    [("name", str), ("description", str | None)],
+    "fluids",
+    [
+        ("source_locator", str | None),
+        ("density_locator", str | None),
+        ("pressure_viscosity_locator", str | None),
+        _SOURCE,
+        ("density_source", SourceRow | None),
+        ("pressure_viscosity_source", SourceRow | None),
+        *_CREATED,
+        ("points", tuple),
+    ],
+    "A fluid with its points (``granudb.db.models.Fluid``).",
+)
 
 
 #: Attributes that are not columns of their own: the cited source (by ``<name>_id``) and
@@ -246,7 +233,7 @@ def _fluids(connection: Connection, name: str | None, live: bool = False) -> dic
     if not found:
         return {}
     points_query = select(*FLUID_POINTS.c).order_by(
-        FLUID_POINTS.c.fluid_id, FLUID_POINTS.c.temperature_c
+        FLUID_POINTS.c.fluid_id, *(FLUID_POINTS.c[c] for c in keyed("fluid_points"))
     )
     if name is not None:
         points_query = points_query.where(FLUID_POINTS.c.fluid_id == found[0]["id"])
@@ -451,16 +438,12 @@ def fluid_record(fluid: Any) -> dict[str, Any]:
 
 
 def point_records(fluid: Any) -> list[dict[str, Any]]:
+    """A fluid's points as records (``POINT_COLUMNS`` and their uncertainties), by
+    temperature."""
+    shown = [c for c in (*POINT_COLUMNS, *POINT_UNCERTAINTIES) if c != "source"]
     return [
-        {
-            "temperature_c": p.temperature_c,
-            "viscosity_pa_s": p.viscosity_pa_s,
-            "density_kg_m3": p.density_kg_m3,
-            "u_viscosity_pa_s": p.u_viscosity_pa_s,
-            "u_density_kg_m3": p.u_density_kg_m3,
-            "source": source_key(p.source),
-        }
-        for p in sorted(fluid.points, key=lambda p: p.temperature_c)
+        {**{c: getattr(p, c) for c in shown}, "source": source_key(p.source)}
+        for p in sorted(fluid.points, key=lambda p: [getattr(p, c) for c in keyed("fluid_points")])
     ]
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from datetime import datetime
+from typing import Any
 
 from sqlalchemy import (
     Boolean,
@@ -31,8 +32,7 @@ from sqlalchemy import (
 from sqlalchemy.orm import Mapped, mapped_column, relationship
 
 from granudb.db.base import Base, Timestamped, add_finite_checks, name_key, utcnow
-from granudb.vocabulary import COLLISION_UNCERTAINTIES
-from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
+from granudb.vocabulary.terms import TABLE_CHECKS, Stored, keyed, stored
 
 
 def _positive_if_given(column: str, name: str) -> CheckConstraint:
@@ -64,13 +64,38 @@ __all__ = [
 ]
 
 
-#: The dry values' ranges, on materials and on pairs alike (migration 0006).
-DRY_VALUE_RULES = {
-    "dry_restitution_range": "dry_restitution IS NULL OR "
-    "(dry_restitution > 0 AND dry_restitution <= 1)",
-    "dry_friction_non_negative": "dry_friction IS NULL OR dry_friction >= 0",
-}
-DRY_VALUE_CHECKS = tuple(CheckConstraint(rule, name=n) for n, rule in DRY_VALUE_RULES.items())
+_SQL_TYPES: dict[str, Any] = {"float": Float, "text": Text, "string": String, "boolean": Boolean}
+
+
+def _mapped(declaration: Stored) -> Any:
+    kind = _SQL_TYPES[declaration.sql]
+    sql_type = kind(declaration.length) if declaration.length else kind()
+    extra = {} if declaration.default is None else {"default": declaration.default}
+    return mapped_column(sql_type, nullable=declaration.nullable, **extra)
+
+
+def declared(table: str) -> type:
+    """A mixin holding ``table``'s declared columns (``granudb.vocabulary.terms.STORED``),
+    each with its ``u_`` column where it has one: a model gets its stored values from its
+    declarations, never by spelling them again. Type checkers see them as ``Any``."""
+    columns = {s.column: _mapped(s) for s in stored(table, uncertainties=True)}
+    return type(f"Declared_{table}", (), columns)
+
+
+def declared_checks(table: str) -> list[CheckConstraint]:
+    """The CHECKs of ``table``'s declared columns (and those across them), by the names
+    the migrations gave them."""
+    declarations = stored(table, uncertainties=True)
+    checks = [
+        CheckConstraint(s.constraint, name=s.check)
+        for s in declarations
+        if s.check is not None and s.constraint is not None
+    ]
+    return checks + [CheckConstraint(sql, name=n) for n, sql in TABLE_CHECKS.get(table, {}).items()]
+
+
+#: The column that orders a fluid's points and keys them within the fluid.
+(_POINT_KEY,) = keyed("fluid_points")
 
 
 # Stable constraint names, so migrations can refer to them on every dialect.
@@ -119,7 +144,7 @@ class SourceRevision(Base):
     reason: Mapped[str] = mapped_column(Text)
 
 
-class Material(Timestamped, Base):
+class Material(Timestamped, declared("materials"), Base):
     """A solid a particle or a wall is made of (Joseph & Hunt 2004, table 1)."""
 
     __tablename__ = "materials"
@@ -128,34 +153,7 @@ class Material(Timestamped, Base):
     name: Mapped[str] = mapped_column(String(200))
     name_key: Mapped[str] = mapped_column(String(200), unique=True)
     description: Mapped[str | None] = mapped_column(Text)
-    density_kg_m3: Mapped[float] = mapped_column(Float)
-    youngs_modulus_pa: Mapped[float] = mapped_column(Float)
-    poisson_ratio: Mapped[float] = mapped_column(Float)
-    #: RMS surface roughness σ; empty: no source states it (σ-dependent outputs say so).
-    roughness_rms_m: Mapped[float | None] = mapped_column(Float)
-    correlation_length_m: Mapped[float | None] = mapped_column(Float)
-    shear_modulus_pa: Mapped[float | None] = mapped_column(Float)
-    #: Yield stress Y in tension (Johnson 1985 §11.4: yield starts at p_max = 1.6 Y);
-    #: empty where not known or for brittle solids, which crack instead.
-    yield_stress_pa: Mapped[float | None] = mapped_column(Float)
-    #: Standard uncertainty of each property (same unit; NULL: not given), ``u_<property>``.
-    u_density_kg_m3: Mapped[float | None] = mapped_column(Float)
-    u_youngs_modulus_pa: Mapped[float | None] = mapped_column(Float)
-    u_poisson_ratio: Mapped[float | None] = mapped_column(Float)
-    u_roughness_rms_m: Mapped[float | None] = mapped_column(Float)
-    u_correlation_length_m: Mapped[float | None] = mapped_column(Float)
-    u_shear_modulus_pa: Mapped[float | None] = mapped_column(Float)
-    u_yield_stress_pa: Mapped[float | None] = mapped_column(Float)
-    #: The material's own dry restitution and friction, and where they come from
-    #: (docs/physics.md §18); empty where not known. Brittleness: "brittle" or "ductile".
-    dry_restitution: Mapped[float | None] = mapped_column(Float)
-    dry_friction: Mapped[float | None] = mapped_column(Float)
-    dry_provenance: Mapped[str | None] = mapped_column(Text)
-    brittleness: Mapped[str | None] = mapped_column(String(20))
-    #: The conditions of the values where the source gives them (temperature, method).
-    conditions: Mapped[str | None] = mapped_column(Text)
-    u_dry_restitution: Mapped[float | None] = mapped_column(Float)
-    u_dry_friction: Mapped[float | None] = mapped_column(Float)
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     #: Set on a revision: the values this material had when a released dataset used it,
@@ -166,23 +164,11 @@ class Material(Timestamped, Base):
 
     __table_args__ = (
         CheckConstraint("length(name) > 0", name="name_not_empty"),
-        CheckConstraint("density_kg_m3 > 0", name="density_positive"),
-        CheckConstraint("youngs_modulus_pa > 0", name="youngs_modulus_positive"),
-        CheckConstraint("poisson_ratio > -1 AND poisson_ratio < 0.5", name="poisson_ratio_range"),
-        CheckConstraint("roughness_rms_m >= 0", name="roughness_non_negative"),  # NULL passes
-        _positive_if_given("correlation_length_m", "correlation_length_positive"),
-        _positive_if_given("shear_modulus_pa", "shear_modulus_positive"),
-        _positive_if_given("yield_stress_pa", "yield_stress_positive"),
-        *_non_negative_if_given(MATERIALS.uncertainties.values()),
-        *DRY_VALUE_CHECKS,
-        CheckConstraint(
-            "brittleness IS NULL OR brittleness IN ('brittle', 'ductile')",
-            name="brittleness_word",
-        ),
+        *declared_checks("materials"),
     )
 
 
-class Fluid(Timestamped, Base):
+class Fluid(Timestamped, declared("fluids"), Base):
     """A liquid the collisions happen in (absent for a dry collision).
 
     ``reference_viscosity_pa_s`` and ``reference_density_kg_m3`` are the fluid at
@@ -198,19 +184,7 @@ class Fluid(Timestamped, Base):
     name: Mapped[str] = mapped_column(String(200))
     name_key: Mapped[str] = mapped_column(String(200), unique=True)
     description: Mapped[str | None] = mapped_column(Text)
-    glycerol_mass_fraction: Mapped[float | None] = mapped_column(Float)
-    reference_density_kg_m3: Mapped[float] = mapped_column(Float)
-    reference_viscosity_pa_s: Mapped[float] = mapped_column(Float)
-    reference_temperature_c: Mapped[float] = mapped_column(Float, default=20.0)
-    pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
-    #: Standard uncertainty of each property (same unit; NULL: not given), ``u_<property>``.
-    u_glycerol_mass_fraction: Mapped[float | None] = mapped_column(Float)
-    u_reference_density_kg_m3: Mapped[float | None] = mapped_column(Float)
-    u_reference_viscosity_pa_s: Mapped[float | None] = mapped_column(Float)
-    u_reference_temperature_c: Mapped[float | None] = mapped_column(Float)
-    u_pressure_viscosity_pa_inv: Mapped[float | None] = mapped_column(Float)
-    #: The conditions of the values where the source gives them (temperature, method).
-    conditions: Mapped[str | None] = mapped_column(Text)
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     density_source_id: Mapped[int | None] = mapped_column(
@@ -234,40 +208,24 @@ class Fluid(Timestamped, Base):
     points: Mapped[list[FluidPoint]] = relationship(
         back_populates="fluid",
         cascade="all, delete-orphan",
-        order_by="FluidPoint.temperature_c",
+        order_by=f"FluidPoint.{_POINT_KEY}",
         lazy="selectin",
     )
 
     __table_args__ = (
         CheckConstraint("length(name) > 0", name="name_not_empty"),
-        CheckConstraint("reference_density_kg_m3 > 0", name="density_positive"),
-        CheckConstraint("reference_viscosity_pa_s > 0", name="viscosity_positive"),
-        CheckConstraint(
-            "glycerol_mass_fraction IS NULL OR "
-            "(glycerol_mass_fraction >= 0 AND glycerol_mass_fraction <= 1)",
-            name="glycerol_mass_fraction_range",
-        ),
-        CheckConstraint(
-            "reference_temperature_c > -273.15", name="reference_temperature_above_zero_k"
-        ),
-        _positive_if_given("pressure_viscosity_pa_inv", "pressure_viscosity_positive"),
-        *_non_negative_if_given(FLUIDS.uncertainties.values()),
+        *declared_checks("fluids"),
     )
 
 
-class FluidPoint(Base):
+class FluidPoint(declared("fluid_points"), Base):
     """One viscosity (and optionally density) of a fluid at one temperature."""
 
     __tablename__ = "fluid_points"
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     fluid_id: Mapped[int] = mapped_column(ForeignKey("fluids.id", ondelete="CASCADE"))
-    temperature_c: Mapped[float] = mapped_column(Float)
-    viscosity_pa_s: Mapped[float] = mapped_column(Float)
-    density_kg_m3: Mapped[float | None] = mapped_column(Float)
-    #: Standard uncertainties of the point's viscosity and density (NULL: not given).
-    u_viscosity_pa_s: Mapped[float | None] = mapped_column(Float)
-    u_density_kg_m3: Mapped[float | None] = mapped_column(Float)
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
 
@@ -275,11 +233,8 @@ class FluidPoint(Base):
     source: Mapped[Source | None] = relationship(lazy="joined")
 
     __table_args__ = (
-        UniqueConstraint("fluid_id", "temperature_c"),
-        CheckConstraint("temperature_c > -273.15", name="temperature_above_zero_k"),
-        CheckConstraint("viscosity_pa_s > 0", name="viscosity_positive"),
-        _positive_if_given("density_kg_m3", "density_positive"),
-        *_non_negative_if_given(["u_viscosity_pa_s", "u_density_kg_m3"]),
+        UniqueConstraint("fluid_id", _POINT_KEY),
+        *declared_checks("fluid_points"),
     )
 
 
@@ -334,7 +289,7 @@ class SeedRecord(Base):
     __table_args__ = (UniqueConstraint("table_name", "seed_key"),)
 
 
-class Collision(Base):
+class Collision(declared("collisions"), Base):
     """One measured impact of a particle on a wall (or a second particle).
 
     Sign convention (Joseph & Hunt 2004 §2, docs/physics.md §5), for the particle's centre of
@@ -368,33 +323,8 @@ class Collision(Base):
     particle_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
     wall_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
     fluid_id: Mapped[int | None] = mapped_column(ForeignKey("fluids.id", ondelete="RESTRICT"))
-    diameter_m: Mapped[float] = mapped_column(Float)
-    wall_diameter_m: Mapped[float | None] = mapped_column(Float)
-    nominal_angle_rad: Mapped[float | None] = mapped_column(Float)
-    v_n_in_m_s: Mapped[float] = mapped_column(Float)
-    v_t_in_m_s: Mapped[float] = mapped_column(Float)
-    omega_in_rad_s: Mapped[float | None] = mapped_column(Float)
-    v_n_out_m_s: Mapped[float] = mapped_column(Float)
-    v_t_out_m_s: Mapped[float] = mapped_column(Float)
-    omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
-    wall_v_n_in_m_s: Mapped[float | None] = mapped_column(Float)
-    wall_v_t_in_m_s: Mapped[float | None] = mapped_column(Float)
-    wall_omega_in_rad_s: Mapped[float | None] = mapped_column(Float)
-    wall_v_n_out_m_s: Mapped[float | None] = mapped_column(Float)
-    wall_v_t_out_m_s: Mapped[float | None] = mapped_column(Float)
-    wall_omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
-    temperature_c: Mapped[float | None] = mapped_column(Float)
     notes: Mapped[str | None] = mapped_column(Text)
-    #: The stated standard uncertainty of each measured value (same unit; NULL: not
-    #: stated), ``u_<column>`` (``granudb.vocabulary.terms.COLLISION_UNCERTAINTIES``).
-    u_diameter_m: Mapped[float | None] = mapped_column(Float)
-    u_v_n_in_m_s: Mapped[float | None] = mapped_column(Float)
-    u_v_t_in_m_s: Mapped[float | None] = mapped_column(Float)
-    u_omega_in_rad_s: Mapped[float | None] = mapped_column(Float)
-    u_v_n_out_m_s: Mapped[float | None] = mapped_column(Float)
-    u_v_t_out_m_s: Mapped[float | None] = mapped_column(Float)
-    u_omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
-    u_temperature_c: Mapped[float | None] = mapped_column(Float)
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
 
     dataset: Mapped[Dataset] = relationship()
     particle: Mapped[Material] = relationship(foreign_keys=[particle_id])
@@ -406,27 +336,7 @@ class Collision(Base):
         Index("ix_collisions_pair_fluid", "particle_id", "wall_id", "fluid_id"),
         Index("ix_collisions_fluid_id", "fluid_id"),
         CheckConstraint("length(run) > 0", name="run_not_empty"),
-        CheckConstraint("diameter_m > 0", name="diameter_positive"),
-        _positive_if_given("wall_diameter_m", "wall_diameter_positive"),
-        CheckConstraint(
-            "nominal_angle_rad IS NULL OR "
-            "(nominal_angle_rad >= 0 AND nominal_angle_rad < 1.5707963267948966)",
-            name="nominal_angle_range",
-        ),
-        # With a free target (its wall_v_n_in given) the rules are on relative velocities:
-        # the particle may start at rest or move on forward (checked on import).
-        CheckConstraint(
-            "v_n_in_m_s > 0 OR wall_v_n_in_m_s IS NOT NULL", name="v_n_in_positive_or_free"
-        ),
-        CheckConstraint("v_t_in_m_s >= 0", name="v_t_in_non_negative"),
-        CheckConstraint(
-            "v_n_out_m_s >= 0 OR wall_v_n_in_m_s IS NOT NULL",
-            name="v_n_out_non_negative_or_free",
-        ),
-        CheckConstraint(
-            "temperature_c IS NULL OR temperature_c > -273.15", name="temperature_above_zero_k"
-        ),
-        *_non_negative_if_given(COLLISION_UNCERTAINTIES),
+        *declared_checks("collisions"),
     )
 
 
@@ -488,7 +398,7 @@ class PublishedValue(Base):
     )
 
 
-class PairValue(Timestamped, Base):
+class PairValue(Timestamped, declared("pair_values"), Base):
     """Dry values a source measured for one pair of materials (either way round: steel
     on Zerodur is Zerodur hit by steel), docs/physics.md §18. They come before the two
     materials' own values; ``created_at`` lets a release read only the pair values that
@@ -499,27 +409,14 @@ class PairValue(Timestamped, Base):
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     particle_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
     wall_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
-    dry_restitution: Mapped[float | None] = mapped_column(Float)
-    dry_friction: Mapped[float | None] = mapped_column(Float)
-    #: Friction of the pair where asperities touch in a liquid (Joseph & Hunt §4: glass on
-    #: Zerodur, 0.15); empty: the dry value is used there.
-    immersed_friction: Mapped[float | None] = mapped_column(Float)
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     notes: Mapped[str | None] = mapped_column(Text)
 
     __table_args__ = (
         UniqueConstraint("particle_id", "wall_id"),
-        CheckConstraint(
-            "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL "
-            "OR immersed_friction IS NOT NULL",
-            name="has_a_value",
-        ),
-        CheckConstraint(
-            "immersed_friction IS NULL OR immersed_friction >= 0",
-            name="immersed_friction_non_negative",
-        ),
-        *(CheckConstraint(rule, name=n) for n, rule in DRY_VALUE_RULES.items()),
+        *declared_checks("pair_values"),
     )
 
 

@@ -21,7 +21,7 @@ from typing import Any
 from urllib.parse import urlsplit
 
 from granudb.errors import ValidationError
-from granudb.vocabulary.terms import TERMS, uncertainty_column
+from granudb.vocabulary.terms import STORED, TERMS, stored, stored_values, uncertainty_column
 from granudb.vocabulary.text import check_name, check_text
 
 #: Text fields every catalogue entry has besides its properties.
@@ -93,83 +93,45 @@ def parameter_of(column: str) -> str:
     return option.removeprefix("--").replace("-", "_") if option else column
 
 
+def declared_catalogue(kind: str, plural: str, **rest: Any) -> Catalogue:
+    """A catalogue whose properties, required properties, defaults, companions, text
+    fields and narrow table come from its table's declarations (``vocabulary.terms``)."""
+    declared = stored(plural)
+    numbers = [s for s in declared if s.sql == "float"]
+    return Catalogue(
+        kind=kind,
+        plural=plural,
+        properties=tuple(s.column for s in numbers),
+        required=tuple(s.column for s in numbers if not s.nullable and s.default is None),
+        narrow=("name", *(s.column for s in numbers if s.listed), *rest.pop("narrow_end")),
+        defaults={s.column: s.default for s in numbers if s.default is not None},
+        companions={s.column: s.companion for s in numbers if s.companion},
+        texts={s.column: s.words for s in declared if s.sql in ("text", "string")},
+        **rest,
+    )
+
+
 #: A material's own dry values (docs/physics.md §18): optional, with where they came from
 #: (``dry_provenance``, set by ``--dry-source``); a pair's measured values are kept apart
 #: (``PAIR_VALUE_COLUMNS``).
-DRY_VALUE_PROPERTIES = ("dry_restitution", "dry_friction")
-#: Brittle solids crack (Hertzian cone cracks) instead of yielding; stored, never guessed.
-BRITTLENESS = ("brittle", "ductile")
-#: The conditions of an entry's values where its source gives them (temperature, method):
-#: free text, one line (issue 27), for materials and fluids alike.
-CONDITIONS: dict[str, tuple[str, ...]] = {"conditions": ()}
+DRY_VALUE_PROPERTIES = tuple(stored_values("materials", "dry"))
 #: Text fields kept to one line (a name's rules: no line break, tab or surrounding
 #: spaces), with their longest length; every door checks them so.
-ONE_LINE_TEXTS: dict[str, int] = {"conditions": 1000}
-MATERIAL_TEXTS: dict[str, tuple[str, ...]] = {
-    "dry_provenance": (),
-    "brittleness": BRITTLENESS,
-    **CONDITIONS,
-}
+ONE_LINE_TEXTS: dict[str, int] = {s.column: s.one_line for s in STORED if s.one_line}
 
-MATERIALS = Catalogue(
-    kind="material",
-    plural="materials",
-    properties=(
-        "density_kg_m3",
-        "youngs_modulus_pa",
-        "poisson_ratio",
-        "roughness_rms_m",
-        "correlation_length_m",
-        "shear_modulus_pa",
-        "yield_stress_pa",
-        *DRY_VALUE_PROPERTIES,
-    ),
-    # the roughness is optional: empty means "not stated" (docs/physics.md §18), never 0
-    required=("density_kg_m3", "youngs_modulus_pa", "poisson_ratio"),
-    narrow=(
-        "name",
-        "density_kg_m3",
-        "youngs_modulus_pa",
-        "poisson_ratio",
-        "roughness_rms_m",
-        "shear_modulus_pa",
-        "source",
-    ),
-    companions={"shear_modulus_pa": "shear_modulus_derived"},
-    texts=MATERIAL_TEXTS,
-)
-
-FLUIDS = Catalogue(
-    kind="fluid",
-    plural="fluids",
-    properties=(
-        "glycerol_mass_fraction",
-        "reference_density_kg_m3",
-        "reference_viscosity_pa_s",
-        "reference_temperature_c",
-        "pressure_viscosity_pa_inv",
-    ),
-    required=("reference_viscosity_pa_s", "reference_density_kg_m3"),
-    narrow=(
-        "name",
-        "glycerol_mass_fraction",
-        "reference_density_kg_m3",
-        "reference_viscosity_pa_s",
-        "reference_temperature_c",
-        "pressure_viscosity_pa_inv",
-        "points",
-        "source",
-    ),
-    defaults={"reference_temperature_c": 20.0},
+MATERIALS = declared_catalogue("material", "materials", narrow_end=("source",))
+FLUIDS = declared_catalogue(
+    "fluid",
+    "fluids",
+    narrow_end=("points", "source"),
     trailing=("density_source", "pressure_viscosity_source", "points"),
     reserved={"dry": "is reserved: 'dry' means no fluid"},
-    texts=CONDITIONS,
 )
 
 #: A fluid's measured point: viscosity (and density) at a temperature.
-POINT_COLUMNS = ["temperature_c", "viscosity_pa_s", "density_kg_m3", "source"]
+POINT_COLUMNS = [*stored_values("fluid_points"), "source"]
 #: The standard uncertainties a point may carry (``"1.31 ± 0.01 cP"``), shown after it.
-POINT_UNCERTAINTIES = [uncertainty_column("viscosity_pa_s"), uncertainty_column("density_kg_m3")]
+POINT_UNCERTAINTIES = [s.uncertainty.column for s in stored("fluid_points") if s.uncertain]
 #: The columns of a source, and those every source has.
 SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
 SOURCE_REQUIRED = ["key", "citation", "kind"]
@@ -240,9 +202,7 @@ def check_source(values: dict[str, Any]) -> None:
 PAIR_VALUE_COLUMNS = [
     "particle",
     "wall",
-    "dry_restitution",
-    "dry_friction",
-    "immersed_friction",
+    *stored_values("pair_values"),
     "source",
     "source_locator",
     "notes",

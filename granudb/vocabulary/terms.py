@@ -8,8 +8,11 @@ labels are all generated from here, so they cannot drift apart.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, replace
+
+from granudb.vocabulary.ranges import ABOVE_ABSOLUTE_ZERO, NON_NEGATIVE, POSITIVE, Rule
 
 
 @dataclass(frozen=True)
@@ -319,39 +322,211 @@ TERMS: dict[str, Term] = {
 }
 
 
+@dataclass(frozen=True)
+class Stored:
+    """How one table stores a term: the one declaration of a stored column.
+
+    From it come the SQLAlchemy column and its CHECK (``granudb.db.models``), the Core
+    row's fields (``granudb.db.catalog_rows``), the rule checked before a write
+    (``granudb.vocabulary.rules.RULES``), the catalogue's properties, listing columns and
+    command options (``granudb.vocabulary.catalogue``) and the Data Package schema
+    (``granudb.io.package_schema``).
+
+    ``sql`` is "float", "text", "string" (``length`` characters) or "boolean";
+    ``nullable`` False makes a value required (unless ``default`` fills it); ``rule`` its
+    range, enforced by the CHECK ``check`` (the constraint's name; ``guarded`` False writes
+    it without ``IS NULL OR``, which NULL passes anyway; ``check_sql`` a CHECK that also
+    reads other columns); ``words`` the words a text takes; ``one_line`` the longest
+    one-line text; ``uncertain`` that a standard uncertainty ``u_<column>`` is stored
+    beside it; ``listed`` that the narrow table for people shows it; ``companion`` a
+    listing column shown right after it; ``group`` a part of the table ("target": a free
+    target sphere's velocities; "dry": a material's own dry values); ``keyed`` that the
+    column is part of the row's key within its parent.
+    """
+
+    column: str
+    table: str
+    sql: str = "float"
+    nullable: bool = True
+    length: int | None = None
+    default: float | None = None
+    rule: Rule | None = None
+    check: str | None = None
+    guarded: bool = True
+    check_sql: str | None = None
+    words: tuple[str, ...] = ()
+    one_line: int | None = None
+    uncertain: bool = False
+    listed: bool = False
+    companion: str | None = None
+    group: str | None = None
+    keyed: bool = False
+
+    @property
+    def constraint(self) -> str | None:
+        """The SQL of the column's CHECK (None: it has none besides finiteness)."""
+        c = self.column
+        if self.check_sql is not None:
+            return self.check_sql
+        if self.words:
+            return f"{c} IS NULL OR {c} IN ({', '.join(repr(w) for w in self.words)})"
+        if self.rule is None:
+            return None
+        rule, parts = self.rule, []
+        if rule.minimum is not None:
+            parts.append(f"{c} {'>=' if rule.min_inclusive else '>'} {_sql_number(rule.minimum)}")
+        if rule.maximum is not None:
+            parts.append(f"{c} {'<=' if rule.max_inclusive else '<'} {_sql_number(rule.maximum)}")
+        body = " AND ".join(parts)
+        if self.nullable and self.guarded:
+            return f"{c} IS NULL OR ({body})" if len(parts) > 1 else f"{c} IS NULL OR {body}"
+        return body
+
+    @property
+    def uncertainty(self) -> Stored:
+        """The declaration of this column's standard uncertainty ``u_<column>``: same
+        unit, never negative, empty when not stated."""
+        u = uncertainty_column(self.column)
+        return Stored(u, self.table, check=f"{u}_non_negative", rule=NON_NEGATIVE)
+
+
+def _sql_number(value: float) -> str:
+    return str(int(value)) if float(value).is_integer() else repr(float(value))
+
+
+_HALF_PI = Rule(0.0, math.pi / 2, max_inclusive=False)
+
+#: Every stored value column of the catalogue, the collisions, the pairs' values and the
+#: reported runs, in the order every door shows them (keys, names, links to other rows
+#: and timestamps are the tables' structure, ``granudb.db.models``).
+STORED: tuple[Stored, ...] = (
+    # materials
+    Stored("density_kg_m3", "materials", nullable=False, rule=POSITIVE,
+           check="density_positive", uncertain=True, listed=True),
+    Stored("youngs_modulus_pa", "materials", nullable=False, rule=POSITIVE,
+           check="youngs_modulus_positive", uncertain=True, listed=True),
+    Stored("poisson_ratio", "materials", nullable=False,
+           rule=Rule(-1.0, 0.5, min_inclusive=False, max_inclusive=False),
+           check="poisson_ratio_range", uncertain=True, listed=True),
+    # the roughness is optional: empty means "not stated" (docs/physics.md §18), never 0
+    Stored("roughness_rms_m", "materials", rule=NON_NEGATIVE, check="roughness_non_negative",
+           guarded=False, uncertain=True, listed=True),
+    Stored("correlation_length_m", "materials", rule=POSITIVE,
+           check="correlation_length_positive", uncertain=True),
+    Stored("shear_modulus_pa", "materials", rule=POSITIVE, check="shear_modulus_positive",
+           uncertain=True, listed=True, companion="shear_modulus_derived"),
+    Stored("yield_stress_pa", "materials", rule=POSITIVE, check="yield_stress_positive",
+           uncertain=True),
+    Stored("dry_restitution", "materials", rule=Rule(0.0, 1.0, min_inclusive=False),
+           check="dry_restitution_range", uncertain=True, group="dry"),
+    Stored("dry_friction", "materials", rule=NON_NEGATIVE, check="dry_friction_non_negative",
+           uncertain=True, group="dry"),
+    Stored("dry_provenance", "materials", sql="text"),
+    Stored("brittleness", "materials", sql="string", length=20, words=("brittle", "ductile"),
+           check="brittleness_word"),
+    Stored("conditions", "materials", sql="text", one_line=1000),
+    # fluids
+    Stored("glycerol_mass_fraction", "fluids", rule=Rule(0.0, 1.0),
+           check="glycerol_mass_fraction_range", uncertain=True, listed=True),
+    Stored("reference_density_kg_m3", "fluids", nullable=False, rule=POSITIVE,
+           check="density_positive", uncertain=True, listed=True),
+    Stored("reference_viscosity_pa_s", "fluids", nullable=False, rule=POSITIVE,
+           check="viscosity_positive", uncertain=True, listed=True),
+    Stored("reference_temperature_c", "fluids", nullable=False, default=20.0,
+           rule=ABOVE_ABSOLUTE_ZERO, check="reference_temperature_above_zero_k",
+           uncertain=True, listed=True),
+    # C = 0 makes Gohar's film (5.6) vanish and the lubricated friction (5.8) infinite;
+    # a fluid whose coefficient is not known leaves it empty.
+    Stored("pressure_viscosity_pa_inv", "fluids", rule=POSITIVE,
+           check="pressure_viscosity_positive", uncertain=True, listed=True),
+    Stored("conditions", "fluids", sql="text", one_line=1000),
+    # fluid points
+    Stored("temperature_c", "fluid_points", nullable=False, rule=ABOVE_ABSOLUTE_ZERO,
+           check="temperature_above_zero_k", keyed=True),
+    Stored("viscosity_pa_s", "fluid_points", nullable=False, rule=POSITIVE,
+           check="viscosity_positive", uncertain=True),
+    Stored("density_kg_m3", "fluid_points", rule=POSITIVE, check="density_positive",
+           uncertain=True),
+    # collisions: the particle's measurements (and the set-up's), in the order of the
+    # content hash, then the free target sphere's velocities. With a free target (its
+    # wall_v_n_in given) the rules are on relative velocities: the particle may start at
+    # rest or move on forward (checked on import).
+    Stored("diameter_m", "collisions", nullable=False, rule=POSITIVE,
+           check="diameter_positive", uncertain=True),
+    Stored("wall_diameter_m", "collisions", rule=POSITIVE, check="wall_diameter_positive"),
+    Stored("nominal_angle_rad", "collisions", rule=_HALF_PI, check="nominal_angle_range"),
+    Stored("v_n_in_m_s", "collisions", nullable=False, rule=POSITIVE,
+           check="v_n_in_positive_or_free",
+           check_sql="v_n_in_m_s > 0 OR wall_v_n_in_m_s IS NOT NULL", uncertain=True),
+    Stored("v_t_in_m_s", "collisions", nullable=False, rule=NON_NEGATIVE,
+           check="v_t_in_non_negative", uncertain=True),
+    Stored("omega_in_rad_s", "collisions", uncertain=True),
+    Stored("v_n_out_m_s", "collisions", nullable=False, rule=NON_NEGATIVE,
+           check="v_n_out_non_negative_or_free",
+           check_sql="v_n_out_m_s >= 0 OR wall_v_n_in_m_s IS NOT NULL", uncertain=True),
+    Stored("v_t_out_m_s", "collisions", nullable=False, uncertain=True),
+    Stored("omega_out_rad_s", "collisions", uncertain=True),
+    Stored("temperature_c", "collisions", rule=ABOVE_ABSOLUTE_ZERO,
+           check="temperature_above_zero_k", uncertain=True),
+    Stored("wall_v_n_in_m_s", "collisions", group="target"),
+    Stored("wall_v_t_in_m_s", "collisions", group="target"),
+    Stored("wall_omega_in_rad_s", "collisions", group="target"),
+    Stored("wall_v_n_out_m_s", "collisions", group="target"),
+    Stored("wall_v_t_out_m_s", "collisions", group="target"),
+    Stored("wall_omega_out_rad_s", "collisions", group="target"),
+    # a pair's measured values (either way round)
+    Stored("dry_restitution", "pair_values", rule=Rule(0.0, 1.0, min_inclusive=False),
+           check="dry_restitution_range"),
+    Stored("dry_friction", "pair_values", rule=NON_NEGATIVE, check="dry_friction_non_negative"),
+    Stored("immersed_friction", "pair_values", rule=NON_NEGATIVE,
+           check="immersed_friction_non_negative"),
+)  # fmt: skip
+
+#: CHECKs that read several declared columns of a table, by table and constraint name.
+TABLE_CHECKS: dict[str, dict[str, str]] = {
+    "pair_values": {
+        "has_a_value": "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL "
+        "OR immersed_friction IS NOT NULL"
+    },
+}
+
+
+def stored(table: str, *, uncertainties: bool = False) -> list[Stored]:
+    """The declared columns of ``table`` in order; with ``uncertainties``, each uncertain
+    column's ``u_`` column follows the declared ones."""
+    declared = [s for s in STORED if s.table == table]
+    extra = [s.uncertainty for s in declared if s.uncertain] if uncertainties else []
+    return [*declared, *extra]
+
+
+def stored_values(table: str, group: str | None = None) -> list[str]:
+    """The names of ``table``'s declared numbers (of ``group`` only, when given)."""
+    return [
+        s.column for s in stored(table) if s.sql == "float" and (group is None or s.group == group)
+    ]
+
+
+def keyed(table: str) -> list[str]:
+    """The declared columns that key a row of ``table`` within its parent (a fluid's
+    points by temperature), which also order the rows."""
+    return [s.column for s in stored(table) if s.keyed]
+
+
+#: The rule of every ruled stored column (one name has one rule in every table).
+STORED_RULES: dict[str, Rule] = {s.column: s.rule for s in STORED if s.rule is not None}
+
 #: The measured columns of a collision, SI, in the order of the content hash and of every
 #: export; the free target sphere's velocities (``COLLISION_TARGET``) come after the
 #: particle's, the stated uncertainties (``COLLISION_UNCERTAINTIES``) last.
-COLLISION_TARGET = [
-    "wall_v_n_in_m_s",
-    "wall_v_t_in_m_s",
-    "wall_omega_in_rad_s",
-    "wall_v_n_out_m_s",
-    "wall_v_t_out_m_s",
-    "wall_omega_out_rad_s",
-]
+COLLISION_TARGET = stored_values("collisions", "target")
 #: The particle's measured columns (and the set-up's), SI, in the order of the hash.
-_PARTICLE_MEASURED = [
-    "diameter_m",
-    "wall_diameter_m",
-    "nominal_angle_rad",
-    "v_n_in_m_s",
-    "v_t_in_m_s",
-    "omega_in_rad_s",
-    "v_n_out_m_s",
-    "v_t_out_m_s",
-    "omega_out_rad_s",
-    "temperature_c",
-]
+_PARTICLE_MEASURED = [c for c in stored_values("collisions") if c not in COLLISION_TARGET]
 #: The measured columns that may carry a stated standard uncertainty (issue 27): the
 #: diameter, the particle's velocities and spins, the bath temperature (not a nominal
-#: angle or a second sphere's size). Their ``u_`` columns (``COLLISION_UNCERTAINTIES``:
-#: ``u_v_n_in_m_s`` is u(v_n,in) in m/s) are stored per run, read from a file's
-#: ``u(v_n_in) [mm/s]`` or ``u_v_n_in_m_s`` columns or filled from a dataset default at
-#: import; empty means not stated, never zero.
-COLLISION_UNCERTAIN = [
-    c for c in _PARTICLE_MEASURED if c not in ("wall_diameter_m", "nominal_angle_rad")
-]
+#: angle or a second sphere's size). Their ``u_`` columns (``COLLISION_UNCERTAINTIES``)
+#: are stored per run, read from a file's ``u(v_n_in) [mm/s]`` or ``u_<column>`` columns
+#: or filled from a dataset default at import; empty means not stated, never zero.
+COLLISION_UNCERTAIN = [s.column for s in stored("collisions") if s.uncertain]
 COLLISION_UNCERTAINTIES = [uncertainty_column(c) for c in COLLISION_UNCERTAIN]
 #: Every stored number of a collision: the measurements (the target sphere's last), then
 #: their stated uncertainties.
@@ -365,11 +540,7 @@ COLLISION_REQUIRED = [
     "run",
     "particle",
     "wall",
-    "diameter_m",
-    "v_n_in_m_s",
-    "v_t_in_m_s",
-    "v_n_out_m_s",
-    "v_t_out_m_s",
+    *(s.column for s in stored("collisions") if not s.nullable),
 ]
 
 TABLES: dict[str, str] = {
