@@ -10,12 +10,11 @@ import numpy as np
 import pytest
 from analysis import coverage
 from analysis.synthetic import walton_frame
-from analysis.test_gap_viscosity import sliding_runs
-from analysis.test_restitution_fit import runs as restitution_runs
 from paper_runs import paper_rows, write_csv
 
 import granudb
 from granudb.analysis import fits, gap_viscosity_fit, intervals
+from granudb.analysis.synthetic import restitution_runs, sliding_runs
 
 SETS, QUICK_BOUND = 60, 0.85  # true coverage 0.93 (0.95): P(< 51 of 60) = 0.8 % (0.07 %)
 

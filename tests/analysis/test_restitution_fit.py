@@ -5,37 +5,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from granudb.analysis import fits, restitution_fit
-
-
-def runs(e_dry: float, model: str, parameter: float, *, n: int = 40, seed: int = 0, dry: int = 0):
-    rng = np.random.default_rng(seed)
-    st = np.geomspace(15, 3000, n)
-    e = fits.restitution_curve(model, st, e_dry, parameter) + rng.normal(0, 0.02, n)
-    immersed = pd.DataFrame(
-        {
-            "dataset": "d",
-            "particle": "steel",
-            "wall": "Zerodur",
-            "fluid": "glycerol-37",
-            "normal_stokes_number": st,
-            "normal_restitution": e,
-        }
-    )
-    dry_runs = pd.DataFrame(
-        {
-            "dataset": "d",
-            "particle": "steel",
-            "wall": "Zerodur",
-            "fluid": None,
-            "normal_stokes_number": np.nan,
-            "normal_restitution": e_dry + rng.normal(0, 0.01, dry),
-        }
-    )
-    return pd.concat([immersed, dry_runs], ignore_index=True) if dry else immersed
+from granudb.analysis.synthetic import restitution_runs as runs
 
 
 @pytest.mark.parametrize("model", ["threshold", "exponential"])

@@ -11,11 +11,11 @@ import numpy as np
 import pandas as pd
 import pytest
 from analysis.synthetic import walton_frame
-from analysis.test_gap_viscosity import sliding_runs
 from scipy import stats
 
 from granudb.analysis import fits, gap_viscosity_fit, intervals
 from granudb.analysis import walton as core
+from granudb.analysis.synthetic import sliding_runs
 
 B = 3.5  # 1 + 1/K², a solid sphere on a wall
 
@@ -178,3 +178,12 @@ def test_gap_viscosity_at_few_sliding_runs_has_a_t_interval_that_covers() -> Non
             assert low < gap["gap_viscosity_pa_s"] < high
             assert gap["interval_method"] == gap_viscosity_fit.SMALL_N_METHOD
     assert given >= 100 and hits >= 0.88 * given, (hits, given)
+
+
+@pytest.mark.parametrize("dof", [1, 2, 3, 4, 7, 8, 19, 120])
+def test_student_t_quantile_matches_scipy(dof: int) -> None:
+    # the report's path keeps scipy out (tests/test_startup.py): a closed-form CDF, bisected
+    for level in (0.9, 0.95, 0.99):
+        assert intervals.student_t(level, dof) == pytest.approx(
+            stats.t.ppf(0.5 + level / 2, dof), rel=1e-10
+        )
