@@ -34,6 +34,7 @@ def main() -> int:
     parser.add_argument("--sets", type=int, default=200)
     parser.add_argument("--sizes", type=int, nargs="+", default=list(SIZES))
     parser.add_argument("--only", default="", help="cases whose name contains this")
+    parser.add_argument("--skip", default="\0", help="leave out cases whose name contains this")
     args = parser.parse_args()
     failed = False
     print(f"coverage of nominal 95 % intervals over {args.sets} synthetic sets; bound ≥ {BOUND}")
@@ -42,7 +43,7 @@ def main() -> int:
     )
     print("(rows marked 'Bayes:' are the Bayesian option, at most their case's most_sets sets)")
     for case in CASES:
-        if args.only not in case.name:
+        if args.only not in case.name or args.skip in case.name:
             continue
         for n in args.sizes:
             start = time.perf_counter()
