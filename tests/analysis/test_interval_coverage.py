@@ -99,3 +99,21 @@ def test_three_runs_read_interval_not_determined_in_reports_and_decks(cli, db, t
     [fit] = granudb.fit_walton(db, as_frame=False, dataset="three")
     assert fit["model"] is None and math.isnan(fit["sliding_friction"])
     assert "sticks by its own kinematics" in fit["model_reason"]
+
+
+def test_the_benchmarks_import_no_test_module() -> None:
+    # issue 36: benchmarks run without the test extras (no pytest, no tests/ on the path)
+    import ast
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2] / "benchmarks"
+    for name in ("fit_coverage.py", "coverage_cases.py", "propagation.py"):
+        tree = ast.parse((root / name).read_text("utf-8"))
+        imported = [
+            n.module if isinstance(n, ast.ImportFrom) else a.name
+            for n in ast.walk(tree)
+            if isinstance(n, ast.Import | ast.ImportFrom)
+            for a in (n.names if isinstance(n, ast.Import) else [n])
+        ]
+        assert not [m for m in imported if m and m.split(".")[0] in {"analysis", "pytest", "tests"}]
+        assert '"tests"' not in (root / name).read_text("utf-8"), name
