@@ -21,7 +21,8 @@ if TYPE_CHECKING:
     # One `from m import (a as a, …)` per module, the explicit re-exports checkers need:
     # isort: off
     # Static type checkers see each public function with its signature (and an unknown
-    # name as an error); at run time the names load on first use (tests/test_typing.py).
+    # name as an error); at run time the names load on first use. Written by
+    # tools/type_exports.py from granudb.api.NAMES.
     from granudb.api import (
         ConfirmationNeeded as ConfirmationNeeded,
         GranudbError as GranudbError,
@@ -52,6 +53,7 @@ if TYPE_CHECKING:
         edit_dataset as edit_dataset,
         export_dataset as export_dataset,
         fit_gap_viscosity as fit_gap_viscosity,
+        fit_reported as fit_reported,
         fit_restitution as fit_restitution,
         fit_walton as fit_walton,
         fluid as fluid,
@@ -61,18 +63,24 @@ if TYPE_CHECKING:
         import_collisions as import_collisions,
         import_dataset as import_dataset,
         import_fluid_points as import_fluid_points,
+        import_reported_runs as import_reported_runs,
         material as material,
         material_history as material_history,
         materials as materials,
         new_dataset_version as new_dataset_version,
         pair as pair,
         pair_values as pair_values,
+        reference_dem as reference_dem,
+        reference_list as reference_list,
+        reference_reproduce as reference_reproduce,
+        reference_show as reference_show,
         release_dataset as release_dataset,
         remove_collisions as remove_collisions,
         remove_dataset as remove_dataset,
         remove_fluid as remove_fluid,
         remove_material as remove_material,
         report as report,
+        reported_runs as reported_runs,
         source as source,
         source_history as source_history,
         sources as sources,

@@ -153,8 +153,8 @@ if TYPE_CHECKING:
     # One `from m import (a as a, …)` per module, the explicit re-exports checkers need:
     # isort: off
     # What static type checkers see: every name of the tables above, with its real
-    # signature (tests/test_typing.py keeps this list and the tables equal). At run time
-    # the names load on first use through ``__getattr__`` below.
+    # signature (tools/type_exports.py writes this list from them). At run time the
+    # names load on first use through ``__getattr__`` below.
     from granudb.api.catalog import (
         fluid as fluid,
         fluid_history as fluid_history,
@@ -262,8 +262,32 @@ if TYPE_CHECKING:
         derived_terms as derived_terms,
         display as display,
         display_uncertain as display_uncertain,
+        fit_people_view as fit_people_view,
         parameter_of as parameter_of,
+        spreadsheet_cell as spreadsheet_cell,
         term as term,
+    )
+    from granudb.api.reference import (
+        DEM_REFERENCE_CODES as DEM_REFERENCE_CODES,
+        REFERENCE_CHECK_COLUMNS as REFERENCE_CHECK_COLUMNS,
+        REFERENCE_CHECK_NARROW as REFERENCE_CHECK_NARROW,
+        REFERENCE_COLUMNS as REFERENCE_COLUMNS,
+        REFERENCE_DEM_COLUMNS as REFERENCE_DEM_COLUMNS,
+        REFERENCE_DEM_NARROW as REFERENCE_DEM_NARROW,
+        REFERENCE_NARROW as REFERENCE_NARROW,
+        REFERENCE_VALUE_COLUMNS as REFERENCE_VALUE_COLUMNS,
+        reference_dem as reference_dem,
+        reference_list as reference_list,
+        reference_reproduce as reference_reproduce,
+        reference_show as reference_show,
+    )
+    from granudb.api.reported import (
+        REPORTED_COLUMNS as REPORTED_COLUMNS,
+        REPORTED_FITS as REPORTED_FITS,
+        REPORTED_NARROW as REPORTED_NARROW,
+        fit_reported as fit_reported,
+        import_reported_runs as import_reported_runs,
+        reported_runs as reported_runs,
     )
     from granudb.api.scenario import (
         pair as pair,
