@@ -35,7 +35,12 @@ from granudb.errors import ConflictError, ValidationError
 from granudb.vocabulary import Catalogue, check_record
 from granudb.vocabulary.catalogue import check_entry, check_words
 from granudb.vocabulary.rules import same_value
+from granudb.vocabulary.terms import stored
 from granudb.vocabulary.text import check_name, name_key
+
+#: What a fluid point stores besides its key (the temperature): its declared values and
+#: their uncertainties.
+_POINT_VALUES = [s.column for s in stored("fluid_points", uncertainties=True) if not s.keyed]
 
 MODELS: dict[str, type] = {"material": Material, "fluid": Fluid}
 
@@ -248,10 +253,8 @@ def add_fluid_points(
         else:
             old = existing.viscosity_pa_s * 1e3
             lines.append(f"replaced {fluid.name} at {t:g} °C: {old:.4g} → {new:.4g} mPa·s")
-        existing.viscosity_pa_s = point["viscosity_pa_s"]
-        existing.density_kg_m3 = point.get("density_kg_m3")
-        existing.u_viscosity_pa_s = point.get("u_viscosity_pa_s")
-        existing.u_density_kg_m3 = point.get("u_density_kg_m3")
+        for column in _POINT_VALUES:  # every declared value of a point but its key
+            setattr(existing, column, point.get(column))
         existing.source_id = source_id
     session.flush()
     return lines

@@ -28,13 +28,22 @@ from sqlalchemy import func, select
 from sqlalchemy.engine import Connection
 
 from granudb.db import catalog_rows
+from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
 from granudb.vocabulary.rules import same_value
+from granudb.vocabulary.terms import keyed, stored, stored_values
 
 #: Listing columns that are not values of their own (derived flags, counts).
 _NOT_COMPARED = {"shear_modulus_derived", "points"}
-_POINT_COLUMNS = ("viscosity_pa_s", "density_kg_m3", "u_viscosity_pa_s", "u_density_kg_m3",
-                  "source")  # fmt: skip
-_PAIR_COLUMNS = ("dry_restitution", "dry_friction", "immersed_friction", "source")
+#: A fluid point's key (its temperature) and what is compared at each key.
+(_POINT_KEY,) = keyed("fluid_points")
+_POINT_COLUMNS = (
+    *(s.column for s in stored("fluid_points", uncertainties=True) if not s.keyed),
+    "source",
+)
+_PAIR_COLUMNS = (*stored_values("pair_values"), "source")
+#: A value shown with a flag saying it was derived (G from E and ν): two derived values
+#: are not stored values, so they are not compared.
+_COMPANIONS = {**MATERIALS.companions, **FLUIDS.companions}
 
 
 def used_rows(connection: Connection, dataset_id: int) -> dict[str, dict[int, int]]:
@@ -63,7 +72,7 @@ def _entry(connection: Connection, kind: str, row_id: int, fluids: dict) -> dict
         row = fluids[row_id]
         record = catalog_rows.fluid_record(row)
         record["points_by_temperature"] = {
-            p["temperature_c"]: p for p in catalog_rows.point_records(row)
+            p[_POINT_KEY]: p for p in catalog_rows.point_records(row)
         }
         return record
     return catalog_rows.material_record(catalog_rows.material_row_by_id(connection, row_id))
@@ -76,11 +85,8 @@ def _compare(kind: str, first: dict, second: dict) -> list[dict[str, Any]]:
     for field in first:
         if field in _NOT_COMPARED or field == "points_by_temperature":
             continue
-        if (
-            field == "shear_modulus_pa"
-            and first.get("shear_modulus_derived")
-            and second.get("shear_modulus_derived")
-        ):
+        companion = _COMPANIONS.get(field)
+        if companion and first.get(companion) and second.get(companion):
             continue  # G = E / (2(1 + ν)) on both: not a stored value; E or ν says it
         if not same_value(first[field], second.get(field)):
             found.append(_record(kind, name, field, first[field], second.get(field)))
@@ -95,8 +101,8 @@ def _compare(kind: str, first: dict, second: dict) -> list[dict[str, Any]]:
 
 
 def _record(kind: str, name: str, field: str, first: Any, second: Any,
-            temperature_c: float | None = None) -> dict[str, Any]:  # fmt: skip
-    return {"kind": kind, "name": name, "field": field, "temperature_c": temperature_c,
+            key: float | None = None) -> dict[str, Any]:  # fmt: skip
+    return {"kind": kind, "name": name, "field": field, _POINT_KEY: key,
             "first": first, "second": second, "revision": None, "kept_at": None}  # fmt: skip
 
 

@@ -12,7 +12,6 @@ tables; ``tests/db/test_migrations.py`` proves the two agree.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
 from datetime import datetime
 from typing import Any
 
@@ -33,17 +32,6 @@ from sqlalchemy.orm import Mapped, mapped_column, relationship
 
 from granudb.db.base import Base, Timestamped, add_finite_checks, name_key, utcnow
 from granudb.vocabulary.terms import TABLE_CHECKS, Stored, keyed, stored
-
-
-def _positive_if_given(column: str, name: str) -> CheckConstraint:
-    """The rule of an optional positive value: ``column`` NULL (not given) or > 0."""
-    return CheckConstraint(f"{column} IS NULL OR {column} > 0", name=name)
-
-
-def _non_negative_if_given(columns: Iterable[str]) -> list[CheckConstraint]:
-    """The rule of optional standard uncertainties: each column NULL (not stated) or ≥ 0."""
-    return [CheckConstraint(f"{c} IS NULL OR {c} >= 0", name=f"{c}_non_negative") for c in columns]
-
 
 __all__ = [
     "Base",
@@ -420,16 +408,7 @@ class PairValue(Timestamped, declared("pair_values"), Base):
     )
 
 
-#: A reported run's quantities and their standard uncertainties (migration 0012).
-REPORTED_QUANTITIES = (
-    "incidence_angle_rad",
-    "normal_restitution",
-    "tangential_restitution",
-    "omega_out_rad_s",
-)
-
-
-class ReportedRun(Base):
+class ReportedRun(declared("reported_runs"), Base):
     """One run as a paper reports it: the quantities it states (e, e_t, ω_out, an
     incidence angle), never velocities it did not measure (docs/reference/index.md).
 
@@ -448,16 +427,7 @@ class ReportedRun(Base):
     particle_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
     wall_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
     fluid_id: Mapped[int | None] = mapped_column(ForeignKey("fluids.id", ondelete="RESTRICT"))
-    diameter_m: Mapped[float | None] = mapped_column(Float)
-    incidence_angle_rad: Mapped[float | None] = mapped_column(Float)
-    normal_restitution: Mapped[float | None] = mapped_column(Float)
-    tangential_restitution: Mapped[float | None] = mapped_column(Float)
-    omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
-    u_incidence_angle_rad: Mapped[float | None] = mapped_column(Float)
-    u_normal_restitution: Mapped[float | None] = mapped_column(Float)
-    u_tangential_restitution: Mapped[float | None] = mapped_column(Float)
-    u_omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
-    no_spin_in: Mapped[bool] = mapped_column(Boolean, default=False)
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     notes: Mapped[str | None] = mapped_column(Text)
@@ -466,21 +436,7 @@ class ReportedRun(Base):
         UniqueConstraint("collection", "run"),
         CheckConstraint("length(collection) > 0", name="collection_not_empty"),
         CheckConstraint("length(run) > 0", name="run_not_empty"),
-        _positive_if_given("diameter_m", "diameter_positive"),
-        CheckConstraint(
-            "normal_restitution IS NOT NULL OR tangential_restitution IS NOT NULL",
-            name="states_a_restitution",
-        ),
-        CheckConstraint(
-            "incidence_angle_rad IS NULL OR "
-            "(incidence_angle_rad >= 0 AND incidence_angle_rad < 1.5707963267948966)",
-            name="incidence_angle_range",
-        ),
-        CheckConstraint(
-            "normal_restitution IS NULL OR normal_restitution >= 0",
-            name="normal_restitution_non_negative",
-        ),
-        *_non_negative_if_given(f"u_{q}" for q in REPORTED_QUANTITIES),
+        *declared_checks("reported_runs"),
     )
 
 

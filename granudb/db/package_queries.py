@@ -20,6 +20,7 @@ from granudb.db.catalogue_differences import sources_read
 from granudb.db.content_hash import export_hash
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
 from granudb.vocabulary.listings import DATASET_DESCRIPTION
+from granudb.vocabulary.terms import keyed
 
 
 @dataclass(frozen=True)
@@ -131,7 +132,7 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
                 {**_values(p), "fluid": fluid_names[p.fluid_id], "source": key(p.source_id)}
                 for p in points
             ),
-            key=lambda r: (r["fluid"], r["temperature_c"]),
+            key=lambda r: (r["fluid"], *(r[c] for c in keyed("fluid_points"))),
         ),
         "sources": [
             {**_values(s), **catalog_rows.source_record(as_released[s.key])} for s in sources

@@ -30,7 +30,11 @@ from granudb.db.models import Dataset, Fluid, FluidPoint, Material, Source, name
 from granudb.db.roles import require_curator
 from granudb.errors import ConflictError
 from granudb.vocabulary.rules import same_value
+from granudb.vocabulary.terms import stored as declared
 from granudb.vocabulary.text import MAX_NAME
+
+#: Every column a fluid point stores (its key, values and their uncertainties).
+_POINT_STORED = [s.column for s in declared("fluid_points", uncertainties=True)]
 
 FLUID_SOURCES = {
     "source": "source_id",
@@ -103,8 +107,7 @@ def _differences(existing: dict[str, Any], incoming: dict[str, Any]) -> list[str
 
 
 def _point_differences(existing: Fluid, points: list[dict[str, Any]]) -> list[str]:
-    names = ("temperature_c", "viscosity_pa_s", "density_kg_m3", "u_viscosity_pa_s",
-             "u_density_kg_m3")  # fmt: skip
+    names = _POINT_STORED
     here = sorted(tuple(getattr(p, n) for n in names) for p in existing.points)
     there = sorted(tuple(p.get(n) for n in names) for p in points)
     if len(here) == len(there) and not any(
@@ -225,11 +228,7 @@ class Merger:
                 self.session.add(
                     FluidPoint(
                         fluid_id=added.id,
-                        temperature_c=point["temperature_c"],
-                        viscosity_pa_s=point["viscosity_pa_s"],
-                        density_kg_m3=point["density_kg_m3"],
-                        u_viscosity_pa_s=point.get("u_viscosity_pa_s"),
-                        u_density_kg_m3=point.get("u_density_kg_m3"),
+                        **{c: point.get(c) for c in _POINT_STORED},
                         source_id=self._source(point["source"]),
                         source_locator=point["source_locator"],
                     )

@@ -12,9 +12,10 @@ from granudb.db import catalog_rows
 from granudb.db.models import PairValue
 from granudb.errors import ConflictError, ValidationError
 from granudb.vocabulary import check_record
+from granudb.vocabulary.terms import stored_values
 
 #: The numbers a pair's row may hold.
-PAIR_NUMBERS = ("dry_restitution", "dry_friction", "immersed_friction")
+PAIR_NUMBERS = tuple(stored_values("pair_values"))
 
 
 def add_pair_value(
@@ -31,10 +32,9 @@ def add_pair_value(
     refuses a pair that has values already
     (either way round), a pair without a value, and values that break a rule."""
     if not any(values.get(c) is not None for c in PAIR_NUMBERS):
+        first, *others = PAIR_NUMBERS
         raise ValidationError(
-            "dry_restitution",
-            "(missing)",
-            "or dry_friction or immersed_friction is needed to add a pair's values",
+            first, "(missing)", f"or {' or '.join(others)} is needed to add a pair's values"
         )
     check_record(values)
     connection = session.connection()

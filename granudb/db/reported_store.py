@@ -16,19 +16,11 @@ from sqlalchemy.orm import Session, aliased
 from granudb.db import catalog_rows
 from granudb.db.models import Fluid, Material, ReportedRun, Source
 from granudb.errors import ValidationError
+from granudb.vocabulary.terms import stored
 
 #: The stored columns a row may set, besides the names.
 STORED = (
-    "diameter_m",
-    "incidence_angle_rad",
-    "normal_restitution",
-    "tangential_restitution",
-    "omega_out_rad_s",
-    "u_incidence_angle_rad",
-    "u_normal_restitution",
-    "u_tangential_restitution",
-    "u_omega_out_rad_s",
-    "no_spin_in",
+    *(s.column for s in stored("reported_runs", uncertainties=True)),
     "source_locator",
     "notes",
 )

@@ -35,6 +35,10 @@ from granudb.db.models import (
 from granudb.db.upsert import Change
 from granudb.errors import ValidationError
 from granudb.vocabulary.rules import same_value
+from granudb.vocabulary.terms import keyed
+
+#: What keys a fluid point within its fluid (its temperature).
+_POINT_KEYS = keyed("fluid_points")
 
 
 class _Resolver:
@@ -131,8 +135,8 @@ def apply_seed(session: Session, data: Any, *, overwrite_edits: bool = False) ->
             fluid = row.pop("fluid")
             fluid_id = resolve.named(Fluid, fluid, "fluid_points.csv fluid")
             row["source_id"] = resolve.source(row.pop("source"), "fluid_points.csv")
-            key = {"fluid_id": fluid_id, "temperature_c": row.pop("temperature_c")}
-            label = f"fluid point {fluid} at {key['temperature_c']:g} °C"
+            key = {"fluid_id": fluid_id, **{c: row.pop(c) for c in _POINT_KEYS}}
+            label = f"fluid point {fluid} at {key[_POINT_KEYS[0]]:g} °C"
             changes.append(upsert(session, FluidPoint, key, row, label)[1])
 
     for row in (dict(r) for r in data.published):

@@ -10,7 +10,10 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from granudb.vocabulary.derived import term
-from granudb.vocabulary.terms import COLLISION_MEASURED
+from granudb.vocabulary.terms import COLLISION_ANGLE, COLLISION_LISTED, COLLISION_MEASURED
+
+#: The particle's size, shown first of the measurements.
+_SIZE = COLLISION_MEASURED[0]
 
 #: What ``collisions list`` shows by default, in every format: one line per run.
 COLLISION_NARROW = [
@@ -18,7 +21,7 @@ COLLISION_NARROW = [
     "particle",
     "wall",
     "fluid",
-    "v_n_in_m_s",
+    *COLLISION_LISTED,
     "normal_restitution",
     "rotational_restitution",
     "effective_incidence",
@@ -35,10 +38,10 @@ COLLISION_WIDE = [
     "particle",
     "wall",
     "fluid",
-    "diameter_m",
+    _SIZE,
     "incidence_angle_rad",
-    "nominal_angle_rad",
-    *[c for c in COLLISION_MEASURED if c not in ("diameter_m", "nominal_angle_rad")],
+    *COLLISION_ANGLE,
+    *[c for c in COLLISION_MEASURED if c not in (_SIZE, *COLLISION_ANGLE)],
     "viscosity_pa_s",
     "normal_restitution",
     "rotational_restitution",
@@ -72,7 +75,7 @@ REPORT_RUN_COLUMNS = [
     "particle",
     "wall",
     "fluid",
-    "v_n_in_m_s",
+    *COLLISION_LISTED,
     "effective_incidence",
     "normal_restitution",
     "rotational_restitution",

@@ -21,7 +21,6 @@ __all__ = ["NON_NEGATIVE", "POSITIVE", "RULES", "Rule", "check_record", "check_v
 #: the quantities below are not stored but are checked as they are typed.
 RULES: dict[str, Rule] = {
     **STORED_RULES,
-    "incidence_angle_rad": Rule(0.0, math.pi / 2, max_inclusive=False),
     "impact_speed_m_s": POSITIVE,
     # No rebound below St_c: a threshold of the verdict, positive and finite.
     "critical_stokes": POSITIVE,

@@ -454,10 +454,12 @@ STORED: tuple[Stored, ...] = (
     Stored("diameter_m", "collisions", nullable=False, rule=POSITIVE,
            check="diameter_positive", uncertain=True),
     Stored("wall_diameter_m", "collisions", rule=POSITIVE, check="wall_diameter_positive"),
-    Stored("nominal_angle_rad", "collisions", rule=_HALF_PI, check="nominal_angle_range"),
+    Stored("nominal_angle_rad", "collisions", rule=_HALF_PI, check="nominal_angle_range",
+           group="angle"),
     Stored("v_n_in_m_s", "collisions", nullable=False, rule=POSITIVE,
            check="v_n_in_positive_or_free",
-           check_sql="v_n_in_m_s > 0 OR wall_v_n_in_m_s IS NOT NULL", uncertain=True),
+           check_sql="v_n_in_m_s > 0 OR wall_v_n_in_m_s IS NOT NULL", uncertain=True,
+           listed=True),
     Stored("v_t_in_m_s", "collisions", nullable=False, rule=NON_NEGATIVE,
            check="v_t_in_non_negative", uncertain=True),
     Stored("omega_in_rad_s", "collisions", uncertain=True),
@@ -480,6 +482,16 @@ STORED: tuple[Stored, ...] = (
     Stored("dry_friction", "pair_values", rule=NON_NEGATIVE, check="dry_friction_non_negative"),
     Stored("immersed_friction", "pair_values", rule=NON_NEGATIVE,
            check="immersed_friction_non_negative"),
+    # a run as a paper reports it: the quantities it states, never a velocity
+    Stored("diameter_m", "reported_runs", rule=POSITIVE, check="diameter_positive"),
+    Stored("incidence_angle_rad", "reported_runs", rule=_HALF_PI, check="incidence_angle_range",
+           uncertain=True),
+    Stored("normal_restitution", "reported_runs", check="normal_restitution_non_negative",
+           check_sql="normal_restitution IS NULL OR normal_restitution >= 0", uncertain=True),
+    Stored("tangential_restitution", "reported_runs", uncertain=True),
+    Stored("omega_out_rad_s", "reported_runs", uncertain=True),
+    # the paper states the sphere arrives without spin (Walton's Ψ then follows)
+    Stored("no_spin_in", "reported_runs", sql="boolean", nullable=False, default=False),
 )  # fmt: skip
 
 #: CHECKs that read several declared columns of a table, by table and constraint name.
@@ -487,6 +499,10 @@ TABLE_CHECKS: dict[str, dict[str, str]] = {
     "pair_values": {
         "has_a_value": "dry_restitution IS NOT NULL OR dry_friction IS NOT NULL "
         "OR immersed_friction IS NOT NULL"
+    },
+    "reported_runs": {
+        "states_a_restitution": "normal_restitution IS NOT NULL "
+        "OR tangential_restitution IS NOT NULL"
     },
 }
 
@@ -531,6 +547,11 @@ COLLISION_UNCERTAINTIES = [uncertainty_column(c) for c in COLLISION_UNCERTAIN]
 #: Every stored number of a collision: the measurements (the target sphere's last), then
 #: their stated uncertainties.
 COLLISION_MEASURED = [*_PARTICLE_MEASURED, *COLLISION_TARGET, *COLLISION_UNCERTAINTIES]
+#: The stored columns a one-line listing of runs shows (``collisions list``, a report).
+COLLISION_LISTED = [s.column for s in stored("collisions") if s.listed]
+#: The set-up's nominal angle, shown beside the incidence angle derived from the
+#: velocities.
+COLLISION_ANGLE = stored_values("collisions", "angle")
 #: The text columns of a collision as people and files name them.
 COLLISION_TEXT = ["run", "particle", "wall", "fluid", "notes"]
 #: What every collision row must have (a file's rows, a package's table). Empty spin cells

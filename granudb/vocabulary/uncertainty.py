@@ -22,8 +22,12 @@ from granudb.vocabulary.terms import (
     COLLISION_UNCERTAIN,
     TERMS,
     Term,
+    stored,
     uncertainty_column,
 )
+
+#: A fluid point's values that carry a standard uncertainty.
+POINT_UNCERTAIN = [s.column for s in stored("fluid_points") if s.uncertain]
 
 
 def _uncertainty_term(column: str, term: Term, role: str) -> Term:
@@ -41,7 +45,7 @@ def _uncertainty_term(column: str, term: Term, role: str) -> Term:
 #: The stored uncertainty columns of the catalogue, by the property they belong to.
 STORED_UNCERTAINTIES: dict[str, str] = {
     column: uncertainty_column(column)
-    for column in (*MATERIALS.properties, *FLUIDS.properties, "viscosity_pa_s")
+    for column in (*MATERIALS.properties, *FLUIDS.properties, *POINT_UNCERTAIN)
 }
 
 #: Derived quantities that get a standard uncertainty (the continuous ones a scenario

@@ -1,0 +1,131 @@
+"""Each stored column is declared once (issue 34): its name is spelled in one file of
+``granudb/db/`` and ``granudb/vocabulary/``, its declaration (``vocabulary/terms.py``,
+``STORED``), and everything else (the model's column and CHECK, the Core row, the rule, the
+catalogue, the Data Package schema, listings and options) is generated from it.
+
+Code that *uses* a value for a computation may name it: those uses are listed below, each
+with what it computes. A docstring is prose and is not counted; identifiers and every other
+string literal (SQL included) are.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from collections import defaultdict
+from pathlib import Path
+
+import granudb
+from granudb.vocabulary.terms import STORED, stored
+
+PACKAGE = Path(granudb.__file__).parent
+DECLARING = "vocabulary/terms.py"
+#: The tables whose every stored value column is declared in ``STORED``.
+TABLES = ("materials", "fluids", "fluid_points", "collisions", "pair_values", "reported_runs")
+
+#: file → the declared names it may spell because it computes with the value (or names a
+#: derived quantity of the same name), each with what it does.
+USES: dict[str, set[str]] = {
+    # a point is matched by its temperature and reported in mPa·s
+    "db/catalog_changes.py": {"temperature_c", "viscosity_pa_s"},
+    # G = E / (2(1 + ν)) where no shear modulus is stored
+    "db/catalog_rows.py": {"poisson_ratio", "shear_modulus_pa", "youngs_modulus_pa"},
+    # a run's temperature must lie within its fluid's points (or be its reference)
+    "db/collision_store.py": {"reference_temperature_c", "temperature_c"},
+    "db/package_store.py": {"temperature_c"},
+    # the Poisson ratio E and G imply must lie in (−1, 0.5)
+    "vocabulary/catalogue.py": {"shear_modulus_pa", "youngs_modulus_pa"},
+    # the derived quantities a reported run states (ζ_in, e) and the fluid's viscosity at a
+    # run's temperature: derived columns of the same names, declared as derived terms
+    "vocabulary/derived.py": {"incidence_angle_rad", "normal_restitution"},
+    "vocabulary/listings.py": {"incidence_angle_rad", "normal_restitution", "viscosity_pa_s"},
+    "vocabulary/uncertainty.py": {"incidence_angle_rad", "normal_restitution"},
+}
+
+
+def _docstrings(tree: ast.AST) -> set[int]:
+    found = set()
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if isinstance(body, list) and body and isinstance(body[0], ast.Expr):
+            value = body[0].value
+            if isinstance(value, ast.Constant) and isinstance(value.value, str):
+                found.add(id(value))
+    return found
+
+
+def spellings(path: Path) -> list[str]:
+    """Every identifier and (non-docstring) string literal of a module."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    skip = _docstrings(tree)
+    words: list[str] = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Name):
+            words.append(node.id)
+        elif isinstance(node, ast.Attribute):
+            words.append(node.attr)
+        elif isinstance(node, ast.arg | ast.keyword) and node.arg:
+            words.append(node.arg)
+        elif isinstance(node, ast.FunctionDef | ast.ClassDef | ast.AsyncFunctionDef):
+            words.append(node.name)
+        elif isinstance(node, ast.alias):
+            words.append(node.asname or node.name)
+        elif (
+            isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in skip
+        ):
+            words.append(node.value)
+    return words
+
+
+def declared_names() -> set[str]:
+    return {s.column for table in TABLES for s in stored(table, uncertainties=True)}
+
+
+def test_every_stored_column_is_spelled_in_its_declaration_only() -> None:
+    names = declared_names()
+    pattern = re.compile(r"\b(" + "|".join(sorted(names, key=len, reverse=True)) + r")\b")
+    spelled: dict[str, set[str]] = defaultdict(set)
+    for folder in ("db", "vocabulary"):
+        for path in sorted((PACKAGE / folder).rglob("*.py")):
+            where = path.relative_to(PACKAGE).as_posix()
+            for word in spellings(path):
+                for name in pattern.findall(word):
+                    spelled[name].add(where)
+    elsewhere = {
+        name: sorted(f for f in files if f != DECLARING and name not in USES.get(f, set()))
+        for name, files in spelled.items()
+    }
+    assert {n: f for n, f in elsewhere.items() if f} == {}
+    # the declaration is found (a ``u_`` column is made from its column's name, unspelled)
+    assert {s.column for s in STORED} <= set(spelled)
+    assert all(spelled[s.column] >= {DECLARING} for s in STORED)
+
+
+def test_the_declared_tables_have_no_undeclared_value_column() -> None:
+    from sqlalchemy import Float
+
+    from granudb.db.models import Base
+
+    names = declared_names()
+    for table in TABLES:
+        numbers = {c.name for c in Base.metadata.tables[table].columns if isinstance(c.type, Float)}
+        assert numbers <= names, table
+    assert {s.table for s in STORED} <= set(TABLES)
+
+
+def test_the_core_rows_read_every_column_of_their_tables() -> None:
+    """The other direction of ``test_catalog_rows``: a model column missing from the Core
+    row would never be read."""
+    from granudb.db import catalog_rows
+    from granudb.db.models import Base
+
+    unread = {"pair_values": {"updated_at"}}  # a pair's values are never changed
+    for clause in (
+        catalog_rows.MATERIALS,
+        catalog_rows.FLUIDS,
+        catalog_rows.FLUID_POINTS,
+        catalog_rows.PAIR_VALUES,
+        catalog_rows.SOURCES,
+    ):
+        model = set(Base.metadata.tables[clause.name].c.keys())
+        assert model - set(clause.c.keys()) == unread.get(clause.name, set()), clause.name
