@@ -2,7 +2,10 @@
 
 Every column holds an SI value and its name says the unit (``density_kg_m3``,
 ``youngs_modulus_pa``); the same names are granudb's public vocabulary in JSON, CSV, data
-packages and reports. CHECK constraints refuse unphysical rows even when something bypasses
+packages and reports. The stored values of materials, fluids, fluid points, collisions,
+pair values and reported runs, with their CHECKs, are generated from their declarations
+(``granudb.vocabulary.terms.STORED``, mixed in by ``declared``); the classes here add keys,
+names, links and relationships. CHECK constraints refuse unphysical rows even when something bypasses
 the validation layer, and every published number points to a ``Source`` plus the table or
 figure it was printed in (``source_locator``).
 

@@ -1,8 +1,9 @@
 """The catalogue's two kinds of entry, materials and fluids, as one specification each.
 
-Everything that differs between a material and a fluid is written here once: the stored
-properties in the order every door shows them, which are needed to add one, defaults,
-the columns a narrow table shows, and names that are reserved. Everything else — the
+Everything that differs between a material and a fluid is written once: the stored
+properties in the order every door shows them, which are needed to add one, defaults and
+the columns a narrow table shows come from each column's declaration
+(``granudb.vocabulary.terms.STORED``); the names that are reserved are here. Everything else — the
 Python functions ``granudb.add_material`` / ``add_fluid`` …, the command-line options
 (``--density``, ``--reference-viscosity``), the listing columns of JSON, CSV and tables,
 the seed files' columns, the checks before a write — is generated from these two

@@ -129,3 +129,97 @@ def test_the_core_rows_read_every_column_of_their_tables() -> None:
     ):
         model = set(Base.metadata.tables[clause.name].c.keys())
         assert model - set(clause.c.keys()) == unread.get(clause.name, set()), clause.name
+
+
+#: A throw-away column, declared as the recipe says (CONTRIBUTING.md, "A new stored
+#: column"): its term and its declaration, in a copy of the package.
+_TERM = '    "hardness_pa": Term("Hardness", "Pa", "Vickers hardness H.", option="--hardness"),\n'
+_DECLARATION = (
+    '    Stored("hardness_pa", "materials", rule=POSITIVE, check="hardness_positive",\n'
+    "           uncertain=True, listed=True),\n"
+)
+_OUTPUTS = """
+import json, sys
+from dataclasses import fields
+from sqlalchemy import CheckConstraint
+from alembic.autogenerate import compare_metadata
+from alembic.runtime.migration import MigrationContext
+from granudb.api.database import connect
+from granudb.db.catalog_rows import MaterialRow
+from granudb.db.models import Base, Material
+from granudb.io.package_schema import table_schema
+from granudb.vocabulary.catalogue import MATERIALS, parameter_of
+from granudb.vocabulary.rules import RULES
+
+table = Material.__table__
+checks = [c for c in table.constraints if isinstance(c, CheckConstraint)]
+database = connect(sys.argv[1])
+with database.engine.connect() as connection:
+    context = MigrationContext.configure(connection, opts={"compare_type": True})
+    added = [d[3].name for d in compare_metadata(context, Base.metadata)]
+database.dispose()
+print(json.dumps({
+    "model": [c.name for c in table.c if "hardness" in c.name],
+    "checks": sorted(str(c.sqltext) for c in checks if str(c.name).endswith("hardness_positive")),
+    "row": [f.name for f in fields(MaterialRow) if "hardness" in f.name],
+    "schema": [(f["name"], f.get("constraints")) for f in table_schema("materials")["fields"]
+               if "hardness" in f["name"] or f["name"] == "yield_stress_pa"],
+    "listing": [c for c in MATERIALS.columns if "hardness" in c],
+    "narrow": "hardness_pa" in MATERIALS.narrow,
+    "rule": RULES["hardness_pa"].text,
+    "parameter": parameter_of("hardness_pa"),
+    "migration": added,
+}))
+"""
+
+
+def test_the_recipe_a_declaration_reaches_every_output(tmp_path: Path, db: str) -> None:
+    """Adding a stored column is its declaration, a migration and tests: a copy of the
+    package with one more declaration carries the column into the model and its CHECK,
+    the Core row, the rule, the Data Package schema, the listing and the option; the
+    database still lacks it, and Alembic's comparison names exactly what the migration
+    must add."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    root = PACKAGE.parent
+    ignore = shutil.ignore_patterns("__pycache__")
+    shutil.copytree(PACKAGE, tmp_path / "granudb", ignore=ignore)
+    for shipped in ("migrations", "seed_data"):
+        shutil.copytree(root / shipped, tmp_path / shipped, ignore=ignore)
+    terms = tmp_path / "granudb" / DECLARING
+    text = terms.read_text(encoding="utf-8")
+    for anchor, line in (("TERMS: dict[str, Term] = {\n", _TERM),
+                         ("STORED: tuple[Stored, ...] = (\n", _DECLARATION)):  # fmt: skip
+        assert text.count(anchor) == 1
+        text = text.replace(anchor, anchor + line)
+    terms.write_text(text, encoding="utf-8")
+    env = {**os.environ, "PYTHONPATH": str(tmp_path)}
+    done = subprocess.run(
+        [sys.executable, "-c", _OUTPUTS, db], capture_output=True, text=True, env=env,
+        cwd=tmp_path,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr[-3000:]
+    import json
+
+    seen = json.loads(done.stdout.strip().splitlines()[-1])
+    both = ["hardness_pa", "u_hardness_pa"]
+    assert sorted(seen["model"]) == both
+    assert seen["checks"] == ["hardness_pa IS NULL OR hardness_pa > 0"]
+    assert seen["row"] == both
+    schema = dict(seen["schema"])
+    assert [name for name in schema if "hardness" in name] == both
+    # the same rule as the yield stress (> 0, optional): the same field constraints
+    assert schema["hardness_pa"] == schema["yield_stress_pa"]
+    assert schema["hardness_pa"] is not None
+    assert seen["listing"] == both and seen["narrow"]
+    assert seen["rule"] == "must be > 0"
+    assert seen["parameter"] == "hardness"
+    assert sorted(seen["migration"]) == both
+    help_text = subprocess.run(
+        [sys.executable, "-m", "granudb", "materials", "add", "--help"],
+        capture_output=True, text=True, env={**env, "COLUMNS": "200"}, cwd=tmp_path,
+    ).stdout  # fmt: skip
+    assert "--hardness" in help_text
