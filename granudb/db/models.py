@@ -5,9 +5,9 @@ Every column holds an SI value and its name says the unit (``density_kg_m3``,
 packages and reports. The stored values of materials, fluids, fluid points, collisions,
 pair values and reported runs, with their CHECKs, are generated from their declarations
 (``granudb.vocabulary.terms.STORED``, mixed in by ``declared``); the classes here add keys,
-names, links and relationships. CHECK constraints refuse unphysical rows even when something bypasses
-the validation layer, and every published number points to a ``Source`` plus the table or
-figure it was printed in (``source_locator``).
+names, links and relationships. CHECK constraints refuse unphysical rows even when
+something bypasses the validation layer, and every published number points to a
+``Source`` plus the table or figure it was printed in (``source_locator``).
 
 Alembic's first revision (``migrations/versions/0001_initial.py``) creates exactly these
 tables; ``tests/db/test_migrations.py`` proves the two agree.
