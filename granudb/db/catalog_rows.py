@@ -17,7 +17,7 @@ that both paths give the same records for the same database.
 from __future__ import annotations
 
 import difflib
-from dataclasses import dataclass, fields, make_dataclass
+from dataclasses import fields, make_dataclass
 from typing import Any
 
 from sqlalchemy import DateTime, column, func, or_, select, table
@@ -37,19 +37,7 @@ from granudb.vocabulary.catalogue import (
 from granudb.vocabulary.terms import keyed, stored
 from granudb.vocabulary.text import name_key
 
-
-@dataclass(frozen=True, slots=True)
-class SourceRow:
-    key: str
-    citation: str
-    doi: str | None
-    url: str | None
-    year: int | None
-    kind: str
-    notes: str | None
-
-
-_PYTHON_TYPES = {"float": float, "text": str, "string": str, "boolean": bool}
+_PYTHON_TYPES = {"float": float, "integer": int, "text": str, "string": str, "boolean": bool}
 
 
 def _declared_fields(table: str) -> list[tuple[str, Any]]:
@@ -70,6 +58,9 @@ def _row_type(name: str, head: list[tuple[str, Any]], table: str, tail: list[tup
     return made
 
 
+SourceRow = _row_type(
+    "SourceRow", [], "sources", [], "A source as stored (``granudb.db.models.Source``)."
+)
 _SOURCE = ("source", SourceRow | None)
 _CREATED = [("created_at", Any), ("updated_at", Any)]
 MaterialRow = _row_type(

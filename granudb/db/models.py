@@ -55,22 +55,34 @@ __all__ = [
 ]
 
 
-_SQL_TYPES: dict[str, Any] = {"float": Float, "text": Text, "string": String, "boolean": Boolean}
+_SQL_TYPES: dict[str, Any] = {
+    "float": Float,
+    "integer": Integer,
+    "text": Text,
+    "string": String,
+    "boolean": Boolean,
+}
 
 
-def _mapped(declaration: Stored) -> Any:
+def _mapped(declaration: Stored, kept: bool) -> Any:
     kind = _SQL_TYPES[declaration.sql]
     sql_type = kind(declaration.length) if declaration.length else kind()
-    extra = {} if declaration.default is None else {"default": declaration.default}
+    extra: dict[str, Any] = {}
+    if declaration.default is not None and not kept:
+        extra["default"] = declaration.default
+    if declaration.unique and not kept:
+        extra["unique"] = True
     return mapped_column(sql_type, nullable=declaration.nullable, **extra)
 
 
-def declared(table: str) -> type:
+def declared(table: str, *, kept: bool = False) -> type:
     """A mixin holding ``table``'s declared columns (``granudb.vocabulary.terms.STORED``),
     each with its ``u_`` column where it has one: a model gets its stored values from its
-    declarations, never by spelling them again. Type checkers see them as ``Any``."""
-    columns = {s.column: _mapped(s) for s in stored(table, uncertainties=True)}
-    return type(f"Declared_{table}", (), columns)
+    declarations, never by spelling them again. ``kept``: the columns of a kept copy (a
+    source's revision), without uniqueness or defaults. Type checkers see them as
+    ``Any``."""
+    columns = {s.column: _mapped(s, kept) for s in stored(table, uncertainties=True)}
+    return type(f"Declared_{table}{'_kept' if kept else ''}", (), columns)
 
 
 def declared_checks(table: str) -> list[CheckConstraint]:
@@ -90,7 +102,7 @@ def declared_checks(table: str) -> list[CheckConstraint]:
 
 
 # Stable constraint names, so migrations can refer to them on every dialect.
-class Source(Base):
+class Source(declared("sources"), Base):
     """A publication, correlation or measurement campaign that numbers come from.
 
     Where in it a number was printed (``table 1``, ``figure 4``, ``§3``) is stored beside the
@@ -100,21 +112,12 @@ class Source(Base):
     __tablename__ = "sources"
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    key: Mapped[str] = mapped_column(String(100), unique=True)
-    citation: Mapped[str] = mapped_column(Text)
-    doi: Mapped[str | None] = mapped_column(String(200))
-    url: Mapped[str | None] = mapped_column(String(500))
-    year: Mapped[int | None] = mapped_column(Integer)
-    kind: Mapped[str] = mapped_column(String(40), default="publication")
-    notes: Mapped[str | None] = mapped_column(Text)
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
 
-    __table_args__ = (
-        CheckConstraint("length(key) > 0", name="key_not_empty"),
-        CheckConstraint("year IS NULL OR (year >= 1600 AND year <= 3000)", name="year_range"),
-    )
+    __table_args__ = tuple(declared_checks("sources"))
 
 
-class SourceRevision(Base):
+class SourceRevision(declared("sources", kept=True), Base):
     """A source's values before one change (a re-seed that changed its citation, DOI, …),
     with when and why it changed. A released dataset reads each source as it was when the
     dataset was released: the first revision kept after that, or the live row when none
@@ -124,13 +127,7 @@ class SourceRevision(Base):
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     source_id: Mapped[int] = mapped_column(ForeignKey("sources.id", ondelete="CASCADE"))
-    key: Mapped[str] = mapped_column(String(100))
-    citation: Mapped[str] = mapped_column(Text)
-    doi: Mapped[str | None] = mapped_column(String(200))
-    url: Mapped[str | None] = mapped_column(String(500))
-    year: Mapped[int | None] = mapped_column(Integer)
-    kind: Mapped[str] = mapped_column(String(40))
-    notes: Mapped[str | None] = mapped_column(Text)
+    # the source's declared columns, as they were (``granudb.vocabulary.terms.STORED``)
     kept_at: Mapped[datetime] = mapped_column(DateTime(timezone=True), default=utcnow)
     reason: Mapped[str] = mapped_column(Text)
 

@@ -22,7 +22,14 @@ from typing import Any
 from urllib.parse import urlsplit
 
 from granudb.errors import ValidationError
-from granudb.vocabulary.terms import STORED, TERMS, stored, stored_values, uncertainty_column
+from granudb.vocabulary.terms import (
+    SOURCE_YEARS,
+    STORED,
+    TERMS,
+    stored,
+    stored_values,
+    uncertainty_column,
+)
 from granudb.vocabulary.text import check_name, check_text
 
 #: Text fields every catalogue entry has besides its properties.
@@ -134,17 +141,15 @@ POINT_COLUMNS = [*stored_values("fluid_points"), "source"]
 #: The standard uncertainties a point may carry (``"1.31 ± 0.01 cP"``), shown after it.
 POINT_UNCERTAINTIES = [s.uncertainty.column for s in stored("fluid_points") if s.uncertain]
 #: The columns of a source, and those every source has.
-SOURCE_COLUMNS = ["key", "citation", "doi", "url", "year", "kind", "notes"]
-SOURCE_REQUIRED = ["key", "citation", "kind"]
+SOURCE_COLUMNS = [s.column for s in stored("sources")]
+SOURCE_REQUIRED = [s.column for s in stored("sources") if not s.nullable]
 #: The fields a user sets (``sources add|update`` options, ``add_source`` keywords): all
 #: but the key, which names the source.
 SOURCE_FIELDS = [c for c in SOURCE_COLUMNS if c != "key"]
 #: What a table of sources shows.
 SOURCE_NARROW = ["key", "year", "kind", "citation", "doi"]
 #: The longest text each column of a source holds (``granudb.db.models.Source``).
-SOURCE_LENGTHS = {"key": 100, "doi": 200, "url": 500, "kind": 40}
-#: The years a source may carry (the table's check constraint).
-SOURCE_YEARS = (1600, 3000)
+SOURCE_LENGTHS = {s.column: s.length for s in stored("sources") if s.length}
 #: A DOI: "10.", the registrant's number, "/", a suffix without spaces (DOI Handbook §2.2;
 #: stored without "https://doi.org/", which the reports add).
 _DOI = re.compile(r"10\.[0-9]{4,9}(?:\.[0-9]+)*/\S+")

@@ -332,7 +332,8 @@ class Stored:
     command options (``granudb.vocabulary.catalogue``) and the Data Package schema
     (``granudb.io.package_schema``).
 
-    ``sql`` is "float", "text", "string" (``length`` characters) or "boolean";
+    ``sql`` is "float", "integer", "text", "string" (``length`` characters) or "boolean";
+    ``unique`` that no two rows share the value (a source's key);
     ``nullable`` False makes a value required (unless ``default`` fills it); ``rule`` its
     range, enforced by the CHECK ``check`` (the constraint's name; ``guarded`` False writes
     it without ``IS NULL OR``, which NULL passes anyway; ``check_sql`` a CHECK that also
@@ -349,7 +350,8 @@ class Stored:
     sql: str = "float"
     nullable: bool = True
     length: int | None = None
-    default: float | None = None
+    default: float | str | None = None
+    unique: bool = False
     rule: Rule | None = None
     check: str | None = None
     guarded: bool = True
@@ -395,6 +397,8 @@ def _sql_number(value: float) -> str:
 
 
 _HALF_PI = Rule(0.0, math.pi / 2, max_inclusive=False)
+#: The years a source may carry (the table's check constraint).
+SOURCE_YEARS = (1600, 3000)
 
 #: Every stored value column of the catalogue, the collisions, the pairs' values and the
 #: reported runs, in the order every door shows them (keys, names, links to other rows
@@ -482,6 +486,17 @@ STORED: tuple[Stored, ...] = (
     Stored("dry_friction", "pair_values", rule=NON_NEGATIVE, check="dry_friction_non_negative"),
     Stored("immersed_friction", "pair_values", rule=NON_NEGATIVE,
            check="immersed_friction_non_negative"),
+    # sources: every stored number points to one (a released dataset keeps each as it was:
+    # the revisions hold the same columns, without the key's uniqueness or a default)
+    Stored("key", "sources", sql="string", length=100, nullable=False, unique=True,
+           check="key_not_empty", check_sql="length(key) > 0"),
+    Stored("citation", "sources", sql="text", nullable=False),
+    Stored("doi", "sources", sql="string", length=200),
+    Stored("url", "sources", sql="string", length=500),
+    Stored("year", "sources", sql="integer", check="year_range",
+           check_sql="year IS NULL OR (year >= {} AND year <= {})".format(*SOURCE_YEARS)),
+    Stored("kind", "sources", sql="string", length=40, nullable=False, default="publication"),
+    Stored("notes", "sources", sql="text"),
     # a run as a paper reports it: the quantities it states, never a velocity
     Stored("diameter_m", "reported_runs", rule=POSITIVE, check="diameter_positive"),
     Stored("incidence_angle_rad", "reported_runs", rule=_HALF_PI, check="incidence_angle_range",

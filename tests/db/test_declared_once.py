@@ -20,7 +20,10 @@ from granudb.vocabulary.terms import STORED, stored
 
 PACKAGE = Path(granudb.__file__).parent
 DECLARING = "vocabulary/terms.py"
-#: The tables whose every stored value column is declared in ``STORED``.
+#: The tables whose stored value columns are counted: every column of theirs declared in
+#: ``STORED``. A source's columns are declared there too (the model, its revisions and
+#: the Core row come from them), but their names (key, kind, doi, year, notes) are
+#: everyday words of the code and are not counted; datasets are not declared yet.
 TABLES = ("materials", "fluids", "fluid_points", "collisions", "pair_values", "reported_runs")
 
 #: file → the declared names it may spell because it computes with the value (or names a
@@ -78,6 +81,7 @@ def spellings(path: Path) -> list[str]:
 
 
 def declared_names() -> set[str]:
+    """The declared columns counted (with their ``u_`` columns)."""
     return {s.column for table in TABLES for s in stored(table, uncertainties=True)}
 
 
@@ -97,8 +101,9 @@ def test_every_stored_column_is_spelled_in_its_declaration_only() -> None:
     }
     assert {n: f for n, f in elsewhere.items() if f} == {}
     # the declaration is found (a ``u_`` column is made from its column's name, unspelled)
-    assert {s.column for s in STORED} <= set(spelled)
-    assert all(spelled[s.column] >= {DECLARING} for s in STORED)
+    counted = [s for s in STORED if s.table in TABLES]
+    assert {s.column for s in counted} <= set(spelled)
+    assert all(spelled[s.column] >= {DECLARING} for s in counted)
 
 
 def test_the_declared_tables_have_no_undeclared_value_column() -> None:
@@ -110,7 +115,7 @@ def test_the_declared_tables_have_no_undeclared_value_column() -> None:
     for table in TABLES:
         numbers = {c.name for c in Base.metadata.tables[table].columns if isinstance(c.type, Float)}
         assert numbers <= names, table
-    assert {s.table for s in STORED} <= set(TABLES)
+    assert {s.table for s in STORED} <= {*TABLES, "sources"}
 
 
 def test_the_core_rows_read_every_column_of_their_tables() -> None:
