@@ -242,7 +242,9 @@ if TYPE_CHECKING:
         derived_terms as derived_terms,
         display as display,
         display_uncertain as display_uncertain,
+        fit_people_view as fit_people_view,
         parameter_of as parameter_of,
+        spreadsheet_cell as spreadsheet_cell,
         term as term,
     )
     from granudb.api.scenario import (

@@ -129,7 +129,7 @@ def _materials_u(result: Any, column: str, value: float) -> tuple[float | None, 
     if column == "dry_restitution" or len(known) == 1:
         chosen = next((m for m in known if m[column] == value), None)
         u = None if chosen is None else chosen.get(f"u_{column}")
-        if not u:
+        if chosen is None or not u:
             return None, ""
         return u, f"(the stated u of {chosen['name']}'s {column.replace('_', ' ')})"
     if any(not m.get(f"u_{column}") for m in known):
@@ -378,7 +378,7 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
     for name, given in (("diameter", diameter), ("velocity", velocity)):
         if given is None:
             raise inputs.missing(name)
-    scenario = {
+    scenario: dict[str, Any] = {  # neither is None: both were required above
         "diameter_m": inputs.quantity(diameter, "diameter_m", "diameter"),
         "speed_m_s": inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
     }
@@ -390,7 +390,9 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
             announce_pinned(session, pinned, f"{row.name}@{row.version}")
         fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(session, fluid, pinned)
         state = fluid_state(fluid_row) if fluid_row else None
-        types, pairs, taken = [], [], set()
+        types: list[ParticleType] = []
+        pairs: list[PairParameters] = []
+        taken: set[str] = set()
         for name in particles:
             m = catalog_rows.get_material_row(session, name, pinned)
             types.append(
@@ -416,7 +418,7 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
                     material=m.name,
                 )
             )
-        on_first_wall = {}
+        on_first_wall: dict[str, tuple[Any, Any, Any, str]] = {}
         for particle in [t for t in types if not t.is_wall]:
             for wall in [t for t in types if t.is_wall]:
                 e, mu, law, beta = _pair_values(
@@ -494,7 +496,7 @@ def dem_export(
     >>> "Parameter set: LOW" in low and "the low end of the ± 2u" in low
     True
     """
-    writer = WRITERS.get(inputs.choice(code, DEM_CODES, "code"))
+    writer = WRITERS[inputs.choice(code, DEM_CODES, "code")]
     target = None if output is None else Path(inputs.path(output, "output"))
     if target is not None and (target.exists() or target.is_symlink()):
         raise ValidationError(

@@ -95,6 +95,7 @@ def quantity(value: Any, column: str, parameter: str, *, check: bool = True) -> 
     """
     if value is None:
         return None
+    result: float | None
     try:
         if isinstance(value, str):
             result = parse_quantity(value, unit_of_column(column), parameter)

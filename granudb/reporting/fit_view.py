@@ -80,8 +80,8 @@ def value_line(fit: Mapping[str, Any], quantity: Quantity) -> str:
     value = fit.get(quantity.key)
     unit = f" {quantity.unit}" if quantity.unit else ""
     if not is_number(value):
-        why = _about(fit, quantity.symbol) or _parts(fit.get("reason"))
-        return "not determined: " + ("; ".join(why) or "the fit gave no value")
+        reasons = _about(fit, quantity.symbol) or _parts(fit.get("reason"))
+        return "not determined: " + ("; ".join(reasons) or "the fit gave no value")
     low, high = fit.get(quantity.low), fit.get(quantity.high)
     scaled = [float(v) * quantity.scale if is_number(v) else v for v in (value, low, high)]
     if is_number(low) and is_number(high):

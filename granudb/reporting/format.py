@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 import numbers
 import re
-from typing import Any
+from typing import Any, TypeGuard
 
 from granudb.vocabulary.units import unit_of_column
 
@@ -189,7 +189,7 @@ def interval(value: Any, low: Any, high: Any) -> str:
     )
 
 
-def is_number(value: Any) -> bool:
+def is_number(value: Any) -> TypeGuard[float]:
     """True for a finite real number (numpy's included); False for NaN, ±inf, a bool,
     ``None`` or text.
 
