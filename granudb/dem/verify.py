@@ -254,7 +254,8 @@ def _record(
 
 def _verdict(fields: dict[str, object]) -> dict[str, str]:
     """Pass, fail or stated limit against ``TOLERANCES``, with the failures said."""
-    failures, limits = [], []
+    failures: list[str] = []
+    limits: list[str] = []
     limit = fields.get("rebound_limit")
     rebound_error = fields.get("rebound_rel_error")
     if rebound_error is not None and not abs(float(rebound_error)) <= TOLERANCES["rebound"]:  # type: ignore[arg-type]

@@ -120,13 +120,13 @@ def stated_uncertainties(given: dict[str, str] | str | None) -> dict[str, tuple[
                     "must be 'column=± u', e.g. 'v_n_in=± 3 %'",
                     parameter=True,
                 )
-        given = [(name.strip(), text.strip()) for name, _, text in pairs]
+        items = [(name.strip(), text.strip()) for name, _, text in pairs]
     else:
-        given = list(given.items())
+        items = list(given.items())
     by_base = {base_name(c): c for c in COLLISION_UNCERTAIN}
     stated: dict[str, tuple[float, bool]] = {}
     named: dict[str, str] = {}
-    for name, text in given:
+    for name, text in items:
         column = name if name in COLLISION_UNCERTAIN else by_base.get(name.strip().lower())
         if column is None:
             raise ValidationError(
@@ -286,8 +286,8 @@ def check_values(rows: Rows) -> None:
         with np.errstate(invalid="ignore"):
             fast = np.abs(columns[column]) > MAX_SPEED_M_S
         shown = lambda pos, h=header: rows.cell(h, pos)  # noqa: E731
-        rule = f"is faster than {MAX_SPEED_M_S:g} m/s (beyond any impact apparatus)"
-        rows.refuse(fast, rows.at(header, shown, rule))
+        too_fast = f"is faster than {MAX_SPEED_M_S:g} m/s (beyond any impact apparatus)"
+        rows.refuse(fast, rows.at(header, shown, too_fast))
     v_n_in, v_n_out = columns["v_n_in_m_s"], columns["v_n_out_m_s"]
     if free is not None and free.any():
         v_n_in, v_n_out = _relative(rows, free)

@@ -294,7 +294,8 @@ def stored_blocks(name: str, path: Path) -> Iterator[Any]:
     """The rows of a validated resource as the SI blocks validation checked, one block of
     ``BLOCK_ROWS`` at a time, for an import that never holds the whole table: memory is
     bounded by a block, whatever the row count."""
-    found, bad = _Findings(), {}
+    found = _Findings()
+    bad: dict[str, tuple[str, str]] = {}
     rows = 0
     with _csv_blocks(path) as reader:
         for frame in reader:

@@ -56,11 +56,11 @@ PUBLISHED_TEXT = [
 
 def read_table(path: Path, numeric: list[str], text: list[str]) -> list[dict[str, Any]]:
     """A seed CSV as SI records (``None`` for empty cells)."""
-    text = read_text_file(path)  # bounded; a binary file refused as such
-    if not text.strip():
+    content = read_text_file(path)  # bounded; a binary file refused as such
+    if not content.strip():
         raise ValidationError("FILE", path.name, "is empty")
     try:
-        raw = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False)
+        raw = pd.read_csv(io.StringIO(content), dtype=str, keep_default_na=False)
     except pd.errors.ParserError as exc:
         first = str(exc).splitlines()[0]
         raise ValidationError("FILE", path.name, f"is not a well-formed CSV ({first})") from None

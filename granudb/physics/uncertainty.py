@@ -300,7 +300,7 @@ def sensitivities(
     # E* alone: E* is one source for those (its u from the four), expanded where needed.
     e_sources = s_e
     if s_e:
-        scaled[E_STAR] = _norm(s_e, scaled)
+        scaled[E_STAR] = np.asarray(_norm(s_e, scaled))
         s_e = {E_STAR: 1.0}
 
     s: dict[str, Sens] = {
