@@ -52,8 +52,8 @@ from granudb.dem import (
     predicted_wet_restitution,
     yade,
 )
-from granudb.dem.spec import COVERAGE_FACTOR, identifier
-from granudb.dem.verify import TOLERANCES, Record, judged, passed, summary, table, verify
+from granudb.dem.spec import COVERAGE_FACTOR, TOLERANCES, identifier
+from granudb.dem.verify import Record, judged, passed, summary, table, verify
 from granudb.errors import ValidationError
 from granudb.output_files import write_text
 from granudb.reporting.pinned import announce_pinned
@@ -84,7 +84,7 @@ PUBLISHED_QUANTITIES = {
 }
 
 
-def _is_immersed(row: dict) -> bool:
+def _is_immersed(row: dict[str, Any]) -> bool:
     return row["fluid"] is not None or (row["label"] or "").startswith("immersed")
 
 
@@ -102,7 +102,7 @@ def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dic
     return found
 
 
-def _printed(row: dict) -> str:
+def _printed(row: dict[str, Any]) -> str:
     return f"{row['source']} {row['source_locator']}: {row['value_as_printed']}"
 
 
@@ -139,7 +139,7 @@ def _materials_u(result: Any, column: str, value: float) -> tuple[float | None, 
 
 
 def _predicted(
-    session: Any, particle: str, wall: str, fluid: str | None, scenario: dict, pinned: Any
+    session: Any, particle: str, wall: str, fluid: str | None, scenario: dict[str, Any], pinned: Any
 ) -> Any:
     return derive_pair(session, particle, wall, fluid=fluid, dataset_id=pinned, **scenario)
 
@@ -213,7 +213,7 @@ def _pair_values(
     particle: Any,
     wall: str,
     fluid: Any,
-    scenario: dict,
+    scenario: dict[str, Any],
     values: str,
     dataset: Any,
     pinned: int | None = None,
@@ -262,7 +262,7 @@ def _pair_values(
 
 
 def _wet_restitution(
-    particle: Any, fluid: Any, scenario: dict, dry: Value, result: Any, parameter_set: str
+    particle: Any, fluid: Any, scenario: dict[str, Any], dry: Value, result: Any, parameter_set: str
 ) -> tuple[Value, Any]:
     """The predicted e_wet (``predicted_wet_restitution``, the one ``pair`` makes) with the
     interval ± 2u, u by GUM from the dry e's u and the u ``pair`` propagates from the
@@ -329,7 +329,7 @@ def _dataset_values(
     return friction, dry, beta
 
 
-def _fitted(fit: dict, name: str, what: str, dataset: str, value: Any = None) -> Value:
+def _fitted(fit: dict[str, Any], name: str, what: str, dataset: str, value: Any = None) -> Value:
     """A fitted value (``fit[name]``, or ``value``) with its 95 % bootstrap interval
     (``name``_low/_high), or the fit's reason why it has none."""
     central = float(fit[name] if value is None else value)
@@ -502,7 +502,7 @@ def dem_export(
         raise ValidationError(
             "output", str(target), "exists already (choose a new file)", parameter=True
         )
-    text = writer.write(dem_model(particles, walls, db=db, **options), clamp=clamp)
+    text: str = writer.write(dem_model(particles, walls, db=db, **options), clamp=clamp)
     if target is not None:
         write_text(target, text, field="output")
     return text

@@ -44,7 +44,7 @@ def shows_keywords(defaults: Mapping[str, Any]) -> Callable[[F], F]:
     return decorate
 
 
-def known_options(given: Mapping[str, Any], allowed: Iterable[str], what: str) -> dict:
+def known_options(given: Mapping[str, Any], allowed: Iterable[str], what: str) -> dict[str, Any]:
     """``given`` (a public function's ``**options``) if each is one of ``allowed``, else
     ``ValidationError`` naming it, ``what`` it is not, and the nearest name."""
     allowed = list(allowed)

@@ -543,7 +543,7 @@ def contact_speed_uncertainty(
     return np.where(given, np.sqrt(total), np.nan)
 
 
-def _sum_norm(factor: Any, parts: tuple, scaled: Arrays, variance: Any) -> Any:
+def _sum_norm(factor: Any, parts: tuple[Any, ...], scaled: Arrays, variance: Any) -> Any:
     """u(Q)/|Q| of sensitivities factor × Σ coefficient × part (``sensitivities``' sums):
     from the parts' variances where no two parts share a given source, else from the
     combined sensitivities; ``variance`` gives (and caches) a part's."""
@@ -597,7 +597,8 @@ def normal_cdf(z: np.ndarray | float) -> np.ndarray:
     poly *= t_arg
     poly *= 0.5  # Φ(−|z|) = erfc(|z|/√2)/2
     # z > 0: 1 − Φ(−z); NaN stays NaN (the polynomial of NaN is NaN)
-    return np.where(z > 0, 1.0 - poly, poly)
+    probability: np.ndarray = np.where(z > 0, 1.0 - poly, poly)
+    return probability
 
 
 def exceedance(ratio: Any, u_relative: Any) -> np.ndarray:

@@ -136,4 +136,5 @@ def same_value(old: Any, new: Any) -> bool:
     """
     if isinstance(old, float) and isinstance(new, float | int):
         return math.isclose(old, float(new), rel_tol=1e-12, abs_tol=0.0)
-    return old == new
+    equal: bool = old == new
+    return equal

@@ -86,7 +86,7 @@ def check_text(field: str, value: str | None, *, max_length: int = MAX_TEXT) -> 
     return _within(field, value, max_length, _TEXT_FORBIDDEN, "; line breaks are \\n")
 
 
-def _within(field: str, value: str, max_length: int, forbidden: re.Pattern, note: str) -> str:
+def _within(field: str, value: str, max_length: int, forbidden: re.Pattern[str], note: str) -> str:
     """``value`` if it is at most ``max_length`` long and holds no ``forbidden`` character
     (``note`` ends the message), else ``ValidationError``."""
     if len(value) > max_length:
