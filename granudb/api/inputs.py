@@ -38,6 +38,7 @@ def shows_keywords(defaults: Mapping[str, Any]) -> Callable[[F], F]:
             for name, default in defaults.items()
         ]
         keywords = [p for p in own if p.kind is p.KEYWORD_ONLY]
+        # mypy has no attribute __signature__ on a function; inspect.signature reads it
         function.__signature__ = signature.replace(parameters=[*positional, *shown, *keywords])  # type: ignore[attr-defined]
         return function
 

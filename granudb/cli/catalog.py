@@ -69,6 +69,7 @@ def _changing(catalogue: Any, function: str, adding: bool) -> Callable[..., None
         result = getattr(api, function)(given.pop("name"), **given)
         say(f"added {catalogue.kind} {result['name']}" if adding else str(result))
 
+    # mypy has no attribute __signature__ on a function; inspect.signature reads it
     command.__signature__ = inspect.Signature([name, *options, db])  # type: ignore[attr-defined]
     if adding:
         needed = ", ".join(option_name(p) for p in keywords if p in required)

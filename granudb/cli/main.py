@@ -133,6 +133,7 @@ def _missing_as_usage(command: click.Command) -> None:
                 raise
             raise click.exceptions.MissingParameter(ctx=ctx, param=param) from None
 
+    # replaced on this one command object (module docstring: why not a subclass)
     command.invoke = invoke  # type: ignore[method-assign]
 
 

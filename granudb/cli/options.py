@@ -119,6 +119,7 @@ def option_group(
             group = {p.name: given.pop(p.name) for p in added}
             command(**given, **{keyword: {k: v for k, v in group.items() if v is not None}})
 
+        # mypy has no attribute __signature__ on a function; inspect.signature reads it
         grouped.__signature__ = signature.replace(parameters=[*own, *added])  # type: ignore[attr-defined]
         grouped.__annotations__ = {}
         return grouped
@@ -150,6 +151,7 @@ def wraps(function: str) -> Callable[[Callable[..., None]], Callable[..., None]]
     (tests/test_one_door.py walks the commands and checks every one names one)."""
 
     def mark(command: Callable[..., None]) -> Callable[..., None]:
+        # a mark on the function object, read by tests/test_one_door.py
         command.api_function = function  # type: ignore[attr-defined]
         return command
 
