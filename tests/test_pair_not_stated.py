@@ -8,7 +8,10 @@ from __future__ import annotations
 import json
 import math
 
+import numpy as np
+
 import granudb
+from granudb.physics.derive import derive
 
 SCENARIO = ("glass", "Zerodur", "--fluid", "water", "--diameter", "12.7 mm")
 
@@ -53,3 +56,23 @@ def test_an_input_stated_exact_gives_zero_where_it_reaches(cli, db: str) -> None
 def test_the_table_shows_no_plus_minus_when_nothing_is_stated(cli, db: str) -> None:
     out = cli("pair", *SCENARIO, "--velocity", "0.3 m/s", db=db)
     assert out.exit_code == 0 and "±" not in out.stdout
+
+
+def test_a_table_of_runs_gives_no_u_where_its_row_states_none() -> None:
+    """Runs where one input's u is stated for some rows only: the others' rows have no u
+    (NaN, not the 0 their missing u would add), the stated rows have it."""
+    materials = {
+        f"{side}_{name}": value
+        for side, values in (("particle", (2540.0, 60e9, 0.23, 130e-9)),
+                             ("wall", (2540.0, 91e9, 0.24, 15e-9)))
+        for name, value in zip(("density_kg_m3", "youngs_modulus_pa", "poisson_ratio",
+                                "roughness_rms_m"), values, strict=True)
+    }  # fmt: skip
+    out = derive(
+        diameter_m=np.array([12.7e-3, 12.7e-3]), v_n_in_m_s=0.3, v_t_in_m_s=0.0,
+        viscosity_pa_s=1e-3, fluid_density_kg_m3=998.0, **materials,
+        uncertainties={"u_diameter_m": np.array([1e-5, np.nan])},
+    )  # fmt: skip
+    for name in ("u_effective_radius_m", "u_normal_stokes_number", "u_impact_load_n"):
+        assert out[name][0] > 0 and math.isnan(out[name][1]), name
+    assert np.isnan(out["u_reduced_modulus_pa"]).all()  # the diameter does not reach E*

@@ -266,6 +266,12 @@ def derive_pair(
     cited = dry.keys() | {
         key for row in (first, second) for key in provenance_keys(row.dry_provenance, sources)
     }
+    if fluid_row is not None:  # the fluid's density and C may cite sources of their own
+        cited |= {
+            source.key
+            for source in (fluid_row.density_source, fluid_row.pressure_viscosity_source)
+            if source is not None
+        }
     citations.update({key: sources[key].citation for key in sorted(cited) if key in sources})
     cited_sources = {key: sources.get(key, text) for key, text in citations.items()}
     return PairResult(

@@ -77,6 +77,15 @@ NAMES: dict[str, str] = {
     "import_dataset": "packages",
     "datasette_metadata": "datasette",
     "database_file": "datasette",
+    # the reference library of published collision data
+    "reference_list": "reference",
+    "reference_show": "reference",
+    "reference_reproduce": "reference",
+    "reference_dem": "reference",
+    # runs as papers report them
+    "import_reported_runs": "reported",
+    "reported_runs": "reported",
+    "fit_reported": "reported",
     # DEM
     "dem_export": "dem",
     "dem_verify": "dem",
@@ -125,6 +134,17 @@ FACE: dict[str, str] = {
     "parameter_of": "presentation",
     "dataset_ref": "inputs",
     "load_seed": "schema",
+    "REFERENCE_COLUMNS": "reference",
+    "REFERENCE_CHECK_COLUMNS": "reference",
+    "REFERENCE_CHECK_NARROW": "reference",
+    "REFERENCE_NARROW": "reference",
+    "REFERENCE_DEM_COLUMNS": "reference",
+    "REFERENCE_DEM_NARROW": "reference",
+    "DEM_REFERENCE_CODES": "reference",
+    "REPORTED_COLUMNS": "reported",
+    "REPORTED_NARROW": "reported",
+    "REPORTED_FITS": "reported",
+    "REFERENCE_VALUE_COLUMNS": "reference",
 }
 
 __all__ = sorted({**NAMES, **FACE, "DATABASE_ENV_VAR": ""})
@@ -246,6 +266,28 @@ if TYPE_CHECKING:
         parameter_of as parameter_of,
         spreadsheet_cell as spreadsheet_cell,
         term as term,
+    )
+    from granudb.api.reference import (
+        DEM_REFERENCE_CODES as DEM_REFERENCE_CODES,
+        REFERENCE_CHECK_COLUMNS as REFERENCE_CHECK_COLUMNS,
+        REFERENCE_CHECK_NARROW as REFERENCE_CHECK_NARROW,
+        REFERENCE_COLUMNS as REFERENCE_COLUMNS,
+        REFERENCE_DEM_COLUMNS as REFERENCE_DEM_COLUMNS,
+        REFERENCE_DEM_NARROW as REFERENCE_DEM_NARROW,
+        REFERENCE_NARROW as REFERENCE_NARROW,
+        REFERENCE_VALUE_COLUMNS as REFERENCE_VALUE_COLUMNS,
+        reference_dem as reference_dem,
+        reference_list as reference_list,
+        reference_reproduce as reference_reproduce,
+        reference_show as reference_show,
+    )
+    from granudb.api.reported import (
+        REPORTED_COLUMNS as REPORTED_COLUMNS,
+        REPORTED_FITS as REPORTED_FITS,
+        REPORTED_NARROW as REPORTED_NARROW,
+        fit_reported as fit_reported,
+        import_reported_runs as import_reported_runs,
+        reported_runs as reported_runs,
     )
     from granudb.api.scenario import (
         pair as pair,

@@ -138,6 +138,12 @@ def _materials_u(result: Any, column: str, value: float) -> tuple[float | None, 
     return value * relative, "(GUM, from the stated u of both materials' dry friction)"
 
 
+def _stated(u: Any) -> float:
+    """A propagated u as a number: 0 where ``pair`` states none (None or NaN: no input
+    that reaches it carries one)."""
+    return float(u) if u is not None and math.isfinite(float(u)) and u > 0 else 0.0
+
+
 def _predicted(
     session: Any, particle: str, wall: str, fluid: str | None, scenario: dict[str, Any], pinned: Any
 ) -> Any:
@@ -173,7 +179,7 @@ def _friction(session: Any, result: Any, material: str, wall: str, fluid: Any) -
             u_mu, stated = _source_u(session, (material, wall), "sliding_friction", used, in_liquid)
         elif basis == "materials":
             u_mu, stated = _materials_u(result, "dry_friction", used)
-    propagated = derived.get("u_friction_coefficient_used")
+    propagated = _stated(derived.get("u_friction_coefficient_used"))
     if u_mu is None and propagated:
         u_mu, stated = float(propagated), "(propagated, GUM, as granudb pair gives it)"
     other = _published(session, material, wall, fluid.name if fluid else None).get(
@@ -277,7 +283,7 @@ def _wet_restitution(
     u_dry = None  # the dry e's u: half the wider side of its interval (one side may be cut)
     if dry.high is not None and dry.low is not None:
         u_dry = max(dry.value - dry.low, dry.high - dry.value) / COVERAGE_FACTOR
-    u_flow = float(result.derived.get("u_predicted_restitution") or 0.0)
+    u_flow = _stated(result.derived.get("u_predicted_restitution"))
     share = 0.0 if u_dry is None else restitution.value / dry.value * u_dry
     if share or u_flow:  # e_wet ∝ e_dry: GUM's sum of the two contributions
         parts = [f"{share:.2g} from the dry e's u"] if share else []
@@ -316,17 +322,27 @@ def _dataset_values(
             )
         mu = fit.get("sliding_friction")
         if mu is not None and mu == mu:
-            friction = _fitted(fit, "sliding_friction", "Walton fit", dataset)
+            friction = _instead(_fitted(fit, "sliding_friction", "Walton fit", dataset), friction)
         elif fit.get("reason"):
-            friction = Value(
-                friction.value,
-                f"{friction.provenance}; dataset {dataset} does not determine μ_f "
+            friction = replace(
+                friction,
+                provenance=f"{friction.provenance}; dataset {dataset} does not determine μ_f "
                 f"({fit['reason']})",
             )
         e = fit.get("normal_restitution_mean")
         if e is not None and e == e and fluid is None:
-            dry = _fitted(fit, "normal_restitution", "mean e of the dry runs", dataset, e)
+            fitted = _fitted(fit, "normal_restitution", "mean e of the dry runs", dataset, e)
+            dry = _instead(fitted, dry)
     return friction, dry, beta
+
+
+def _instead(fitted: Value, record: Value) -> Value:
+    """A dataset's fitted value, saying which value of ``granudb pair`` it replaces."""
+    return replace(
+        fitted,
+        provenance=f"{fitted.provenance}; --values dataset: instead of the {record.value:g} "
+        "granudb pair uses",
+    )
 
 
 def _fitted(fit: dict[str, Any], name: str, what: str, dataset: str, value: Any = None) -> Value:
@@ -441,8 +457,8 @@ def _particle_pairs(particles: list[Any], on_wall: dict[str, Any]) -> list[Any]:
         for second in particles[i:]:
             e, mu, law, wall = on_wall[first.name]
             note = (
-                f"assumed: no {first.name}/{second.name} measurement; the value of "
-                f"{first.name} on {wall}"
+                f"borrowed from {first.name} on {wall}, assumed for {first.name}/"
+                f"{second.name}: no {first.name}/{second.name} value is stored"
             )
             pairs.append(
                 PairParameters(

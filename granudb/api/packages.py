@@ -3,7 +3,10 @@ are ``export_dataset``, ``validate_dataset`` and ``import_dataset``.
 
 A package holds ``datapackage.json``, ``data/*.csv`` (collisions, materials, fluids,
 fluid_points, sources) with Table Schemas, a README and a CITATION.cff; README "Sharing
-datasets" says what is checked on the way in.
+datasets" says what is checked on the way in. A round trip is lossless (docs/sharing.md):
+the descriptor carries the dataset as stored (``granudb:status``, ``granudb:title``,
+``granudb:description``, ``granudb:authors``, ``granudb:keywords``, ``granudb:source``),
+so export → import → export gives the same bytes, and a release imported stays a release.
 """
 
 from __future__ import annotations

@@ -91,6 +91,16 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
         "app",
         "Schema migrations (Alembic) and the shipped seed data.",
     ),
+    "reported": (
+        "granudb.cli.reported",
+        "app",
+        "Runs as papers report them (e, e_t, ω_out, angle): import, list, fit.",
+    ),
+    "reference": (
+        "granudb.cli.reference",
+        "app",
+        "Published collision data shipped as datasets, and their reproduction by granudb.",
+    ),
     "dem": (
         "granudb.cli.dem",
         "app",

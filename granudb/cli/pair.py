@@ -113,12 +113,10 @@ def print_pair(document: dict[str, Any]) -> None:
     values = Table(title="Dry values of the pair", title_justify="left")
     for heading in ("value", "", "basis", "source"):
         values.add_column(heading, overflow="fold")
-    for which, symbol in (("restitution", "e_dry"), ("friction", "μ_dry")):
+    for name, symbol in (("dry_restitution", "e_dry"), ("dry_friction", "μ_dry"),
+                         ("immersed_friction", "μ immersed")):  # fmt: skip
         values.add_row(
-            symbol,
-            f"{dry[f'dry_{which}']:.4g}",
-            dry[f"dry_{which}_basis"],
-            Text(dry[f"dry_{which}_source"]),
+            symbol, f"{dry[name]:.4g}", dry[f"{name}_basis"], Text(dry[f"{name}_source"])
         )
     out.print(values)
 

@@ -21,7 +21,15 @@ from sqlalchemy.orm import Session
 from granudb.db import catalog_rows
 from granudb.db.catalog_revisions import keep_for_releases, revisions
 from granudb.db.content_hash import rehash_drafts_naming
-from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, PublishedValue
+from granudb.db.models import (
+    Collision,
+    Dataset,
+    Fluid,
+    FluidPoint,
+    Material,
+    PublishedValue,
+    ReportedRun,
+)
 from granudb.db.upsert import Change
 from granudb.errors import ConflictError, ValidationError
 from granudb.vocabulary import Catalogue, check_record
@@ -171,6 +179,16 @@ def _unused(session: Session, catalogue: Catalogue, name: str) -> Any:
     )
     if published:
         uses.append(f"{published} published values")
+    reported = (
+        (ReportedRun.particle_id, ReportedRun.wall_id)
+        if catalogue.kind == "material"
+        else (ReportedRun.fluid_id,)
+    )
+    runs = session.scalar(
+        select(func.count()).select_from(ReportedRun).where(or_(*(c == row.id for c in reported)))
+    )
+    if runs:
+        uses.append(f"{runs} runs as reported (granudb reported list)")
     if uses:
         raise ConflictError(
             f"{catalogue.kind}: {row.name!r} is still used by {'; '.join(uses)}; remove those first"

@@ -94,11 +94,16 @@ def content_hash(
             for rows in batches
         )  # fmt: skip
     if not spelled:
+        keys: dict[str | None, str | None] = {None: None}  # a handful of names, a key each
+
+        def key(name: str | None) -> str | None:
+            if name not in keys:
+                keys[name] = name_key(name)  # type: ignore[arg-type]
+            return keys[name]
+
         batches = (
-            [(r[0], name_key(r[1]), name_key(r[2]), r[3] and name_key(r[3]), *r[4:])
-             for r in rows]
-            for rows in batches
-        )  # fmt: skip
+            [(r[0], key(r[1]), key(r[2]), key(r[3]), *r[4:]) for r in rows] for rows in batches
+        )
     return hash_rows(batches)
 
 

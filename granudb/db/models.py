@@ -16,6 +16,7 @@ from collections.abc import Iterable
 from datetime import datetime
 
 from sqlalchemy import (
+    Boolean,
     CheckConstraint,
     DateTime,
     Float,
@@ -54,6 +55,7 @@ __all__ = [
     "Material",
     "PairValue",
     "PublishedValue",
+    "ReportedRun",
     "SeedRecord",
     "Source",
     "SourceRevision",
@@ -518,6 +520,70 @@ class PairValue(Timestamped, Base):
             name="immersed_friction_non_negative",
         ),
         *(CheckConstraint(rule, name=n) for n, rule in DRY_VALUE_RULES.items()),
+    )
+
+
+#: A reported run's quantities and their standard uncertainties (migration 0012).
+REPORTED_QUANTITIES = (
+    "incidence_angle_rad",
+    "normal_restitution",
+    "tangential_restitution",
+    "omega_out_rad_s",
+)
+
+
+class ReportedRun(Base):
+    """One run as a paper reports it: the quantities it states (e, e_t, ω_out, an
+    incidence angle), never velocities it did not measure (docs/reference/index.md).
+
+    ``collection`` names the runs a person imported together (a paper, a figure). Each
+    quantity is NULL when the paper does not state it; ``u_<quantity>`` its standard
+    uncertainty (NULL: not stated). ``no_spin_in`` is true when the paper states the
+    sphere arrives without spin: only then do e_t and θ give Walton's Ψ by the exact
+    relations of ``granudb.physics.reported``.
+    """
+
+    __tablename__ = "reported_runs"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    collection: Mapped[str] = mapped_column(String(200))
+    run: Mapped[str] = mapped_column(String(200))
+    particle_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    wall_id: Mapped[int] = mapped_column(ForeignKey("materials.id", ondelete="RESTRICT"))
+    fluid_id: Mapped[int | None] = mapped_column(ForeignKey("fluids.id", ondelete="RESTRICT"))
+    diameter_m: Mapped[float | None] = mapped_column(Float)
+    incidence_angle_rad: Mapped[float | None] = mapped_column(Float)
+    normal_restitution: Mapped[float | None] = mapped_column(Float)
+    tangential_restitution: Mapped[float | None] = mapped_column(Float)
+    omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
+    u_incidence_angle_rad: Mapped[float | None] = mapped_column(Float)
+    u_normal_restitution: Mapped[float | None] = mapped_column(Float)
+    u_tangential_restitution: Mapped[float | None] = mapped_column(Float)
+    u_omega_out_rad_s: Mapped[float | None] = mapped_column(Float)
+    no_spin_in: Mapped[bool] = mapped_column(Boolean, default=False)
+    source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
+    source_locator: Mapped[str | None] = mapped_column(String(200))
+    notes: Mapped[str | None] = mapped_column(Text)
+
+    __table_args__ = (
+        UniqueConstraint("collection", "run"),
+        CheckConstraint("length(collection) > 0", name="collection_not_empty"),
+        CheckConstraint("length(run) > 0", name="run_not_empty"),
+        _positive_if_given("diameter_m", "diameter_positive"),
+        CheckConstraint(
+            "normal_restitution IS NOT NULL OR tangential_restitution IS NOT NULL",
+            name="states_a_restitution",
+        ),
+        CheckConstraint(
+            "incidence_angle_rad IS NULL OR "
+            "(incidence_angle_rad >= 0 AND incidence_angle_rad < 1.5707963267948966)",
+            name="incidence_angle_range",
+        ),
+        CheckConstraint(
+            "normal_restitution IS NULL OR normal_restitution >= 0",
+            name="normal_restitution_non_negative",
+        ),
+        *_non_negative_if_given(f"u_{q}" for q in REPORTED_QUANTITIES),
     )
 
 

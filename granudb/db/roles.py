@@ -35,7 +35,7 @@ from granudb.errors import DatabaseAccessError, ValidationError
 
 ROLES = ("reader", "contributor", "curator")
 #: The tables a contributor writes: a dataset's own rows, never the catalogue.
-DATASET_TABLES = ("datasets", "collisions", "collision_imports")
+DATASET_TABLES = ("datasets", "collisions", "collision_imports", "reported_runs")
 #: The table whose UPDATE privilege marks a curator (the catalogue's central table).
 CURATOR_MARK = "materials"
 #: A PostgreSQL role name granudb creates or grants (no quoting games).

@@ -8,7 +8,8 @@ bytes: the authors with their ORCID and affiliation, the keywords, the dataset's
 source, its licence and DOI, a release as a release, its creation time, and a
 placeholder title or description (``null`` here) kept a placeholder. A package without
 these fields (an older granudb's, or another tool's) reads as before: the descriptor's
-``title`` and ``description``, a draft, no authors or keywords.
+``title`` and ``description`` (an older granudb's placeholders — the name, "granudb
+dataset NAME" — read as none), a draft, no authors or keywords.
 """
 
 from __future__ import annotations
@@ -45,7 +46,7 @@ def _text(descriptor: dict[str, Any], key: str, fallback: str, problems: list[st
     null), else the descriptor's standard field."""
     own = f"granudb:{key}"
     value = descriptor[own] if own in descriptor else descriptor.get(fallback)
-    if value is None:
+    if value is None or (own not in descriptor and value in _placeholders(descriptor)):
         return None
     if not isinstance(value, str):
         problems.append(f"{_WHERE}{own}: must be text or null, not {type(value).__name__}")
@@ -56,6 +57,13 @@ def _text(descriptor: dict[str, Any], key: str, fallback: str, problems: list[st
         except ValidationError as exc:
             problems.append(str(exc))
     return value
+
+
+def _placeholders(descriptor: dict[str, Any]) -> set[str]:
+    """What an older granudb wrote for a dataset without a title or description (its name;
+    "granudb dataset NAME"): placeholders, not metadata."""
+    name = descriptor.get("granudb:dataset")
+    return {name, f"granudb dataset {name}"} if isinstance(name, str) else set()
 
 
 def _listed(descriptor: dict[str, Any], key: str, check: Any, problems: list[str]) -> Any:

@@ -421,39 +421,28 @@ def propagate(
         scaled["vn"] = scaled["vn"] / p["v_n"]  # relative to the approach speed v_N > 0
     sens = sensitivities(x, (p, h, f, lub), scaled, correlated, one_speed)
     sums = sens.pop("_sums")
-    squares = {source: value * value for source, value in scaled.items()}
-    variances: dict[int, Any] = {}  # each set of sensitivities once (x₁ and h_m share one)
-    norms: dict[int, Any] = {}
-
-    def variance(value: Sens) -> Any:
-        if id(value) not in variances:
-            variances[id(value)] = _variance(value, scaled, squares)
-        return variances[id(value)]
-
-    relative: dict[str, Any] = {}
-    for name, value in sens.items():
-        if name not in sums and (name in columns or name == "_yield_ratio"):
-            if id(value) not in norms:
-                total = variance(value)
-                norms[id(value)] = np.nan if total is None else np.sqrt(total)
-            relative[name] = norms[id(value)]
-    for name, (factor, parts) in sums.items():
-        relative[name] = _sum_norm(factor, parts, scaled, variance)
     lubricated = (tan["mu_used"] == lub["mu_lub"]) & np.isfinite(lub["mu_lub"])
-    # the dry or immersed μ used otherwise is a stored value: its u is not propagated here
-    relative["friction_coefficient_used"] = np.where(
-        lubricated, relative["lubricated_friction"], np.nan
-    )
-    if lubricated.all():
-        friction = sens["lubricated_friction"]
-    else:
-        friction = _scale(lubricated.astype(float), sens["lubricated_friction"])
-    friction = expand_e_star(friction, sens["_e_star_sources"])
-    relative["maw_psi_in"] = _norm(
-        _lin((1, sens["maw_chi"]), (1, sens["tangential_speed_m_s"]),
-             (-1, sens["normal_speed_m_s"]), (-1, friction)),
-        scaled, squares,
-    )  # fmt: skip
+    relative = _relatives(sens, sums, scaled, columns, lubricated)
+    # A source stated for some rows only (a table of runs): a row none of whose reaching
+    # sources is stated has no u (NaN), not the 0 its unstated rows' zeros would give.
+    partial = _partly_stated(u, scaled)
+    if partial:
+        stated: dict[str, np.ndarray | float] = {
+            k: partial.get(k, 1.0) for k in scaled if k != E_STAR
+        }
+        if E_STAR in scaled:
+            stated[E_STAR] = _reach(sens["_e_star_sources"], stated)
+        for name in relative:
+            if name in sums:
+                reach = _any_of([_reach(part, stated) for _, part in sums[name][1]])
+            elif name == "maw_psi_in":
+                reach = _any_of([_reach(sens[k], stated) for k in (
+                    "maw_chi", "tangential_speed_m_s", "normal_speed_m_s", "lubricated_friction"
+                )])  # fmt: skip
+            else:
+                reach = _reach(sens["lubricated_friction" if name ==
+                                    "friction_coefficient_used" else name], stated)  # fmt: skip
+            relative[name] = np.where(reach > 0, relative[name], np.nan)
     out: Arrays = {}
     for name in (name for name in columns if name in relative):
         if name == "incidence_angle_rad":  # absolute already; NaN where the angle is
@@ -655,3 +644,75 @@ def certainty(probability: float) -> str:
     ('likely', 'likely', 'uncertain')
     """
     return "likely" if probability >= LIKELY or probability <= UNLIKELY else "uncertain"
+
+
+def _reach(sens: Sens, stated: dict[str, np.ndarray | float]) -> Any:
+    """1.0 in the rows where a source of ``sens`` is stated (``stated``: 1.0/0.0 by row,
+    or 1.0 for every row), else 0.0: whether a stated input reaches the quantity at all,
+    whatever its sensitivity's value."""
+    return _any_of([stated[k] for k in sens if k in stated])
+
+
+def _any_of(masks: list[Any]) -> Any:
+    """The largest of 1.0/0.0 masks (scalars or arrays), row by row; 0.0 for none."""
+    out: Any = 0.0
+    for mask in masks:
+        out = np.maximum(out, mask)
+    return out
+
+
+def _partly_stated(u: Arrays, scaled: Arrays) -> Arrays:
+    """Each given source stated for some rows only: 1.0 where stated, 0.0 where not."""
+    out: Arrays = {}
+    for source in scaled:
+        given = u.get(source)
+        if given is None:
+            continue
+        stated = ~np.isnan(np.asarray(given, dtype=float))
+        if stated.ndim and not stated.all():
+            out[source] = stated.astype(float)
+    return out
+
+
+def _relatives(
+    sens: dict[str, Sens],
+    sums: dict[str, Any],
+    scaled: Arrays,
+    columns: Arrays,
+    lubricated: np.ndarray,
+) -> dict[str, Any]:
+    """u(Q)/|Q| of every propagated column from the sensitivities and the sources'
+    scaled uncertainties (NaN where no given source reaches Q): ``propagate``'s sum."""
+    squares = {source: value * value for source, value in scaled.items()}
+    variances: dict[int, Any] = {}  # each set of sensitivities once (x₁ and h_m share one)
+    norms: dict[int, Any] = {}
+
+    def variance(value: Sens) -> Any:
+        if id(value) not in variances:
+            variances[id(value)] = _variance(value, scaled, squares)
+        return variances[id(value)]
+
+    relative: dict[str, Any] = {}
+    for name, value in sens.items():
+        if name not in sums and (name in columns or name == "_yield_ratio"):
+            if id(value) not in norms:
+                total = variance(value)
+                norms[id(value)] = np.nan if total is None else np.sqrt(total)
+            relative[name] = norms[id(value)]
+    for name, (factor, parts) in sums.items():
+        relative[name] = _sum_norm(factor, parts, scaled, variance)
+    # the dry or immersed μ used otherwise is a stored value: its u is not propagated here
+    relative["friction_coefficient_used"] = np.where(
+        lubricated, relative["lubricated_friction"], np.nan
+    )
+    if lubricated.all():
+        friction = sens["lubricated_friction"]
+    else:
+        friction = _scale(lubricated.astype(float), sens["lubricated_friction"])
+    friction = expand_e_star(friction, sens["_e_star_sources"])
+    relative["maw_psi_in"] = _norm(
+        _lin((1, sens["maw_chi"]), (1, sens["tangential_speed_m_s"]),
+             (-1, sens["normal_speed_m_s"]), (-1, friction)),
+        scaled, squares,
+    )  # fmt: skip
+    return relative

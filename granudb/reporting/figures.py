@@ -268,8 +268,9 @@ def band_caption(count: int) -> str:
     if not count:
         return ""
     return (
-        " Shaded around a line: its 95 % band, the 2.5–97.5 percentiles of the line at each "
-        "abscissa over the fit's bootstrap parameter sets (the resamples of its intervals): "
+        f" Shaded around a line: its {bands.LEVEL:.0%} band, the "
+        f"{50 * (1 - bands.LEVEL):g}–{100 - 50 * (1 - bands.LEVEL):g} percentiles of the line at "
+        "each abscissa over the fit's bootstrap parameter sets (the resamples of its intervals): "
         "the uncertainty of the fitted line, not the scatter of single runs (drawn only "
         "where the fit gives the parameter's interval)."
     )

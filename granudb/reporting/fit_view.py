@@ -71,7 +71,7 @@ def _without_interval(fit: Mapping[str, Any], symbol: str) -> str:
     about = [p for p in _about(fit, symbol) if "interval" in p]
     found = [own] if own else [p.split(f"interval of {symbol} ", 1)[-1] for p in about]
     found = found or _parts(fit.get("reason")) or ["the fit gave no bounds"]
-    return "; ".join(p.removeprefix("not determined: ") for p in found)
+    return "; ".join(p.split("not determined: ", 1)[-1] for p in found)
 
 
 def value_line(fit: Mapping[str, Any], quantity: Quantity) -> str:
@@ -115,9 +115,12 @@ def method_line(fit: Mapping[str, Any]) -> str | None:
     if not method:
         return None
     level = fit.get("confidence_level")
-    said = f"{level:.0%} " if is_number(level) else ""
+    stated = is_number(level) and "%" not in method and "no interval" not in method
+    said = f"{level:.0%} " if stated else ""
     count, seed = fit.get("bootstrap_resamples"), fit.get("bootstrap_seed")
-    extra = f", {count} resamples, seed {seed}" if count else ""
+    extra = ""
+    if is_number(count) and "bootstrap" in method:  # a Bayesian fit draws, not resamples
+        extra = f", {int(count)} resamples, seed {seed}"
     return f"{said}{method}{extra}"
 
 
@@ -144,9 +147,12 @@ def restitution_lines(fit: Mapping[str, Any]) -> list[tuple[str, str]]:
     symbol = {"fitted_critical_stokes": "St_c"}.get(name, name)
     lines = [("model", f"{_said(fit.get('model'))}: {_said(fit.get('formula'))}")]
     e_dry = Quantity("e_dry (dry restitution)", "e_dry", "e_dry_low", "e_dry_high", "e_dry")
-    text = value_line(fit, e_dry)
-    if _said(fit.get("e_dry_source")):
-        text += f"; e_dry: {_said(fit.get('e_dry_source'))}"
+    source = _said(fit.get("e_dry_source"))
+    fixed = "(fixed)" in source and not is_number(fit.get("e_dry_low"))
+    if fixed and is_number(fit.get("e_dry")):  # not fitted: no interval of the fit's own
+        text = f"{float(fit['e_dry']):.3g} (interval not determined: not fitted, {source})"
+    else:
+        text = value_line(fit, e_dry) + (f"; e_dry: {source}" if source else "")
     lines.append((e_dry.label, text))
     lines.append((symbol, value_line(fit, Quantity(symbol, "parameter", "parameter_low",
                                                    "parameter_high", symbol))))  # fmt: skip
@@ -174,8 +180,8 @@ def people_view(kind: str, fit: Mapping[str, Any]) -> tuple[str, list[tuple[str,
     Bayesian fit's record says whether its chain converged."""
     lines = LINES[kind](fit)
     method = method_line(fit)
+    if method:
+        lines.append(("intervals", method))
     if "converged" in fit and fit.get("converged") is not None:
         lines.append(("chain converged", "yes" if fit.get("converged") is True else "no"))
-    elif method:
-        lines.append(("intervals", method))
     return _group(fit), lines

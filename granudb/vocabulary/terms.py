@@ -385,6 +385,8 @@ TABLES: dict[str, str] = {
     "collision_imports": "Every file imported into a dataset, by sha256, so none is imported "
     "twice.",
     "published_values": "Numbers exactly as a source printed them, with table or figure.",
+    "reported_runs": "Runs as papers report them: the restitution coefficients, spin and "
+    "incidence angle a paper states per run, never a velocity it did not measure.",
 }
 
 

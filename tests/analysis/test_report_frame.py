@@ -102,5 +102,6 @@ def test_restitution_groups_are_those_of_a_groupby(model: str) -> None:
     assert len(got) == 2 and [r["n_dry_runs"] for r in got] == [r["n_dry_runs"] for r in expected]
     for row, want in zip(got, expected, strict=True):
         assert row.pop("fit_method") == "bootstrap"  # set by restitution() over every group
+        assert row.pop("model_reason") == "as asked"  # restitution_model's, with the form
         assert row.keys() == want.keys()
         assert all(_same(row[k], want[k]) for k in row), row["dataset"]

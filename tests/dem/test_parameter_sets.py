@@ -83,6 +83,11 @@ def test_dataset_sets_are_the_walton_fits_interval(cli, db: str, tmp_path) -> No
     assert got["low"] == pytest.approx(fit["sliding_friction_low"], rel=1e-9)
     assert got["central"] == pytest.approx(fit["sliding_friction"], rel=1e-9)
     assert got["high"] == pytest.approx(fit["sliding_friction_high"], rel=1e-9)
+    # the deck says which of granudb pair's values the dataset's fit replaces (issue 33)
+    model = dem_model(["steel"], ["Zerodur"], values="dataset", dataset="sens", db=db, **STEEL)
+    friction = model.pair("steel", "Zerodur_wall").friction
+    assert friction.provenance.startswith("dataset sens: Walton fit")
+    assert "--values dataset: instead of the 0.11 granudb pair uses" in friction.provenance
 
 
 def test_a_wet_restitution_follows_the_dry_e_of_its_set(db: str) -> None:

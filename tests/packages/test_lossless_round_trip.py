@@ -132,3 +132,24 @@ def test_a_bad_dataset_record_is_refused_by_name(cli, db: str, new_db: str, tmp_
         assert part in said, (part, said)
     assert cli("dataset", "import", str(folder), db=new_db).exit_code != 0
     assert "ex" not in {d["name"] for d in granudb.datasets(db=new_db, as_frame=False)}
+
+
+def test_an_older_package_reads_as_before_with_placeholders_kept(
+    cli, db: str, new_db: str, tmp_path: Path
+) -> None:
+    """A package without the dataset record (an older granudb's) imports as a draft; its
+    descriptor's placeholder title and description (the name) are not taken as metadata."""
+    _dataset(cli, db)
+    folder = tmp_path / "pkg"
+    _export(cli, db, folder)
+    path = folder / "datapackage.json"
+    descriptor = json.loads(path.read_text("utf-8"))
+    older = {k: v for k, v in descriptor.items() if k.removeprefix("granudb:") not in
+             {"status", "title", "description", "authors", "keywords", "source"}}  # fmt: skip
+    older["description"] = "granudb dataset ex"  # what an older export wrote
+    path.write_text(json.dumps(older, indent=2), "utf-8")
+    done = cli("dataset", "import", str(folder), db=new_db)
+    assert done.exit_code == 0, done.stderr
+    record = granudb.dataset("ex", db=new_db)
+    assert record["state"] == "draft" and record["title"] is None
+    assert record["description"] is None and record["license"] == "CC-BY-4.0"

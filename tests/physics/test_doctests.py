@@ -18,6 +18,7 @@ MODULES = [
     "pair",
     "limits",
     "arguments",
+    "reported",
 ]
 
 

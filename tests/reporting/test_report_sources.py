@@ -8,7 +8,9 @@ themselves, not from the report's dict."""
 
 from __future__ import annotations
 
+import csv
 import html as htmllib
+import io
 import json
 import re
 from pathlib import Path
@@ -144,6 +146,14 @@ def test_pair_report_cites_what_the_catalogue_says(cli, ptfe_db, tmp_path, fmt) 
         fluid_block = blocks["Fluid: water"]
         where = f"{fluid['source']}, {fluid['source_locator']}"
         assert fluid_block["reference_viscosity_pa_s"][1] == where
+        # the pair's CSV carries the same record as the report's table
+        out = cli("pair", particle, wall, "--fluid", "water", "--diameter", "12.7 mm",
+                  "--velocity", "0.3 m/s", "--format", "csv", db=ptfe_db)  # fmt: skip
+        [row] = list(csv.DictReader(io.StringIO(out.stdout)))
+        used = blocks[f"Dry values used for the pair: {particle} on {wall}"]
+        for name in ("dry_restitution", "dry_friction", "immersed_friction"):
+            basis, source = row[f"dry_values_{name}_basis"], row[f"dry_values_{name}_source"]
+            assert used[name][1] == f"{basis}: {source}"
         if particle == "glass":
             # glass's own dry values are Nijssen et al.'s, and the pair's are not its own
             keys.add("nijssen-ottens-padding-2022")
