@@ -94,11 +94,13 @@ def content_hash(
             for rows in batches
         )  # fmt: skip
     if not spelled:
-        keys: dict[str | None, str | None] = {None: None}  # a handful of names, a key each
+        keys: dict[str, str] = {}  # a handful of names, a key each
 
         def key(name: str | None) -> str | None:
+            if name is None:
+                return None
             if name not in keys:
-                keys[name] = name_key(name)  # type: ignore[arg-type]
+                keys[name] = name_key(name)
             return keys[name]
 
         batches = (
