@@ -21,7 +21,8 @@ if TYPE_CHECKING:
     # One `from m import (a as a, …)` per module, the explicit re-exports checkers need:
     # isort: off
     # Static type checkers see each public function with its signature (and an unknown
-    # name as an error); at run time the names load on first use (tests/test_typing.py).
+    # name as an error); at run time the names load on first use. Written by
+    # tools/type_exports.py from granudb.api.NAMES.
     from granudb.api import (
         ConfirmationNeeded as ConfirmationNeeded,
         GranudbError as GranudbError,

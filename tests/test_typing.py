@@ -44,7 +44,7 @@ def _type_checking_imports(path: Path) -> dict[str, str]:
 def test_api_type_checking_imports_equal_the_tables() -> None:
     seen = _type_checking_imports(PACKAGE / "api" / "__init__.py")
     expected = {name: f"granudb.api.{module}" for name, module in {**api.NAMES, **api.FACE}.items()}
-    assert seen == expected
+    assert seen == expected, "run: python -m tools.type_exports"
 
 
 def test_package_type_checking_imports_equal_the_public_names() -> None:

@@ -101,9 +101,13 @@ def restitution_band(frame: Any, row: Mapping[str, Any], grid: np.ndarray):
     speeds = resampling.stated_speeds(frame)  # as the fit's resamples perturb them
     stated = None if speeds is None else tuple(r[mine][immersed] for r in speeds)
     stated = stated if stated is not None and any(r.any() for r in stated) else None
+    dry = e[
+        (frame["fluid"].isna().to_numpy()[mine] if "fluid" in frame else False) & np.isfinite(e)
+    ]
     (a, _), (p, _) = restitution_fit.bootstrap_sets(
         model, st[immersed], e[immersed], fit, row["n_dry_runs"] > 0,
         min(BAND_SETS, int(row["bootstrap_resamples"])), int(row["bootstrap_seed"]), stated,
+        dry if row["n_dry_runs"] > 0 else None,
     )  # fmt: skip
     curves = restitution_fit.restitution_curve(model, grid[None, :], a[:, None], p[:, None])
     return curve_band(curves)

@@ -45,9 +45,20 @@ RESAMPLES = resampling.DEFAULT_RESAMPLES
 SEED = 0
 LEVEL = 0.95
 LOG_BOUNDS = (math.log(1e-6), math.log(10.0))  # μ₀ search range [Pa·s] of the fallback
-#: Sliding runs below which μ₀ gets no interval: the bootstrap-t interval covered 0.81 at
-#: n = 5 and 0.89 at n = 10 (benchmarks/fit_coverage.py, 100 sets).
+#: Sliding runs below which μ₀'s interval is the t-interval (SMALL_N_METHOD), not the
+#: bootstrap: the bootstrap-t interval covered 0.81 at n = 5 and 0.89 at n = 10
+#: (benchmarks/fit_coverage.py, 100 sets); the t-interval 0.956, 0.913, 0.937 and 0.940 at
+#: n = 3, 5, 10, 19 (200 sets, issue 36).
 MIN_RUNS_FOR_INTERVAL = 20
+#: The interval below MIN_RUNS_FOR_INTERVAL sliding runs (issue 36).
+SMALL_N_METHOD = (
+    f"{intervals.T_METHOD} of q = μ₀^(2/7) (μ_f = q g is a line through the origin; "
+    f"standard error the larger of least squares' and the sandwich's, HC1), mapped to "
+    f"μ₀ = q^(7/2); the sliding runs of the Walton fit held (fewer than "
+    f"{MIN_RUNS_FOR_INTERVAL} sliding runs)"
+)
+#: What SMALL_N_METHOD adds when the runs state a u.
+STATED_SMALL_N = "; the runs' stated u is not redrawn: it is in the per-run values' scatter"
 METHOD = (
     "least squares of (5.8) (Hertz load of m*, R*) against μ_f (2.9) of the runs on the "
     "measured sliding line"
@@ -192,6 +203,15 @@ def _sliding_runs(group: Any) -> tuple[Any, np.ndarray, str, tuple]:
         return None, np.empty(0), reason, everything
     fit = core.decide(np.ones((1, len(x))), x, y, c, e)
     k = int(fit.split[0])
+    # the Walton fit's sliding line leaves out runs that stick by their own kinematics
+    moved, _ = (0, "") if k == len(x) else core.kinematic_sticking(x, y, c, k)
+    k += moved
+    if moved and min(k, len(x) - k) < core.MIN_RUNS_PER_LINE:
+        reason = (
+            f"no sliding line: the Walton fit's model is not determined ({k} runs stick by "
+            f"their own kinematics or with them, {len(x) - k} slide)"
+        )
+        return None, np.empty(0), reason, everything
     if len(x) - k < core.MIN_RUNS_FOR_PARAMETER:
         what = "all runs stick" if k == len(x) else f"{len(x) - k} sliding runs (< 3)"
         return None, np.empty(0), f"no sliding line: the Walton fit finds {what}", everything
@@ -242,8 +262,28 @@ def _fit_group(key: tuple, group: Any, model: Any, asked: int | None, seed: int)
     if not math.isfinite(viscosity):
         row["reason"] = row["note"] = "the sliding runs' μ_f give no positive μ₀"
         return row
-    interval_reason = intervals.too_few(len(measured), MIN_RUNS_FOR_INTERVAL)
-    if g is not None and not interval_reason:
+    interval_reason = ""
+    if g is not None and len(measured) < MIN_RUNS_FOR_INTERVAL:
+        # few runs: μ_f,i = q g_i is a line through the origin, so q's t-interval on the
+        # sliding runs is exact under normal scatter; mapped to μ₀ = q^{7/2} (monotone)
+        q = viscosity ** (2 / 7)
+        residual = float(np.sum((measured - q * g) ** 2))
+        se = float(core.standard_error(residual, len(g), float(g @ g)))
+        # the scatter of μ_f grows with Ψ (speeds measured to a relative u): the larger of
+        # the least-squares and the sandwich (HC1) standard error
+        m = len(g)
+        sandwich = math.sqrt(m / (m - 1) * float(np.sum((g * (measured - q * g)) ** 2))) / float(
+            g @ g
+        )
+        se = max(se, sandwich)
+        found = intervals.t_interval(q, se, len(g), bounds=(0.0, math.inf), level=LEVEL)
+        interval_reason = found.reason
+        row["interval_method"] = SMALL_N_METHOD + (STATED_SMALL_N if stated is not None else "")
+        if not interval_reason:
+            row.update(gap_viscosity_low_pa_s=found.low**3.5)
+            row.update(gap_viscosity_high_pa_s=found.high**3.5)
+            row["gap_viscosity_std_pa_s"] = 3.5 * q**2.5 * se
+    elif g is not None:
         x, y, c, e, order, smooth = everything
         if stated is None:
             g_all = model_friction(group.iloc[order], 1.0)

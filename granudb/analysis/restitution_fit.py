@@ -241,7 +241,7 @@ def refit(
     a_tol, p_tol = (TOLERANCE * v if math.isfinite(v) and v > 0 else 0.0 for v in scale)
     u = 1.0 / np.asarray(st, dtype=float)
     m = len(w)
-    a = np.full((m, 1), float(start[0]))
+    a = np.array(np.broadcast_to(np.asarray(start[0], dtype=float), (m,)))[:, None]
     p = np.full((m, 1), float(start[1]))
 
     def sse(a, p):
@@ -296,20 +296,22 @@ def refit(
 
 def one_step(
     model: str, st: np.ndarray, e: np.ndarray, w: np.ndarray, start: tuple, fixed: bool,
-    series: np.ndarray | None = None,
+    series: np.ndarray | None = None, shift: np.ndarray | None = None,
 ):  # fmt: skip
     """``refit`` by one Gauss–Newton step from ``start`` with the Jacobian of the fit (the
     one-step bootstrap of large groups: the fit's residuals and Jacobian are shared by all
     resamples, so each costs a few weighted sums). ``series``: ``one_step_series`` of the
-    same arguments, computed once for every batch of resamples."""
+    same arguments, computed once for every batch of resamples. ``shift``: with ``fixed``,
+    each resample's e_dry − start's (the Gauss–Newton step in the parameter given it)."""
     if series is None:
         series = one_step_series(model, st, e, start)
     a0, p0 = (float(v) for v in start)
     sums = w @ series
     ga, gp, aa, ap, pp, rr, count = sums.T
     with np.errstate(invalid="ignore", divide="ignore"):
-        if fixed:
-            da, dp, det = np.zeros(len(w)), gp / pp, pp
+        if fixed:  # e_dry held, or moved by ``shift`` (a resample's redrawn dry mean)
+            da = np.zeros(len(w)) if shift is None else np.asarray(shift, dtype=float)
+            dp, det = (gp - ap * da) / pp, pp
         else:
             det = aa * pp - ap * ap
             da, dp = (pp * ga - ap * gp) / det, (aa * gp - ap * ga) / det
@@ -332,15 +334,36 @@ def one_step_series(model: str, st: np.ndarray, e: np.ndarray, start: tuple) -> 
     return np.stack([ja * r, jp * r, ja * ja, ja * jp, jp * jp, r * r, np.ones_like(r)], axis=1)
 
 
+def dry_means(dry: np.ndarray | None, resamples: int, seed: int) -> np.ndarray | None:
+    """Each resample's e_dry: the mean of the group's dry runs drawn with replacement (their
+    own bootstrap, from a generator of its own so the immersed runs' draws are unchanged),
+    at most E_DRY_MAX; None with fewer than two dry runs (nothing to redraw)."""
+    if dry is None or len(dry) < 2:
+        return None
+    rng = np.random.default_rng([seed, DRY_STREAM])
+    drawn = rng.integers(0, len(dry), size=(resamples, len(dry)))
+    return np.minimum(np.asarray(dry, dtype=float)[drawn].mean(axis=1), E_DRY_MAX)
+
+
+#: The generator stream of the dry runs' redraws (``dry_means``).
+DRY_STREAM = 1
+#: What ``interval_method`` adds when the dry runs' mean is redrawn in every resample.
+DRY_METHOD = ", the dry runs' mean e_dry redrawn in every resample (the dry runs resampled)"
+
+
 def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
-                   resamples: int, seed: int, stated: tuple | None = None) -> tuple:  # fmt: skip
+                   resamples: int, seed: int, stated: tuple | None = None,
+                   dry: np.ndarray | None = None) -> tuple:  # fmt: skip
     """The bootstrap's parameter sets ((e_dry, se), (parameter, se)), arrays over resamples,
     refitted from ``fit`` = (e_dry, e_dry_se, parameter, parameter_se): the sets behind
     ``bootstrap_intervals`` and the report's band of the fitted curve. ``stated``: the
     runs' relative standard uncertainties of v_n,in and v_n,out
     (``resampling.stated_speeds``); each resample then also perturbs every run's measured
-    speeds by them (``perturbed``)."""
+    speeds by them (``perturbed``). ``dry``: the dry runs' e when e_dry is their mean
+    (``fixed``): each resample then holds its own redrawn mean (``dry_means``), so e_dry's
+    uncertainty enters the parameter's interval (issue 36)."""
     n = len(st)
+    a_all = dry_means(dry, resamples, seed) if fixed else None
     rng = np.random.default_rng(seed)
     large = n > resampling.RULE_RUNS
     batch = max(1, resampling.BATCH_CELLS // (n if large else 8 * n))
@@ -355,25 +378,28 @@ def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed:
             w = resampling.draw_counts(rng, min(batch, resamples - start), n, n, weights)
         else:
             w = next(plain)
+        a0 = fit[0] if a_all is None else a_all[start : start + len(w)]
         if stated is not None:
             st_b, e_b = resampling.perturbed(rng, len(w), st, e, stated)
-            parts.append(refit(model, st_b, e_b, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
+            parts.append(refit(model, st_b, e_b, w, (a0, fit[2]), fixed, (fit[1], fit[3])))
         elif large:
-            parts.append(one_step(model, st, e, w, (fit[0], fit[2]), fixed, series))
+            shift = None if a_all is None else a0 - fit[0]
+            parts.append(one_step(model, st, e, w, (fit[0], fit[2]), fixed, series, shift))
         else:
-            parts.append(refit(model, st, e, w, (fit[0], fit[2]), fixed, (fit[1], fit[3])))
+            parts.append(refit(model, st, e, w, (a0, fit[2]), fixed, (fit[1], fit[3])))
     return tuple(
         tuple(np.concatenate([part[i][j] for part in parts]) for j in range(2)) for i in range(2)
     )
 
 
 def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
-                        resamples: int, seed: int,
-                        stated: tuple | None = None) -> dict[str, intervals.Interval]:  # fmt: skip
-    """Studentized bootstrap intervals of e_dry (unless ``fixed``) and the parameter, from
+                        resamples: int, seed: int, stated: tuple | None = None,
+                        dry: np.ndarray | None = None) -> dict:  # fmt: skip
+    """{name: intervals.Interval}: studentized bootstrap intervals of e_dry (unless ``fixed``)
+    and the parameter, from
     ``fit`` = (e_dry, e_dry_se, parameter, parameter_se), and the runs' ``stated``
     uncertainties (``bootstrap_sets``)."""
-    (a, a_se), (p, p_se) = bootstrap_sets(model, st, e, fit, fixed, resamples, seed, stated)
+    (a, a_se), (p, p_se) = bootstrap_sets(model, st, e, fit, fixed, resamples, seed, stated, dry)
     found = {"parameter": intervals.studentized(fit[2], fit[3], p, p_se, bounds=(0.0, math.inf))}
     if not fixed:
         found["e_dry"] = intervals.studentized(fit[0], fit[1], a, a_se, bounds=(0.0, E_DRY_MAX))
@@ -402,7 +428,8 @@ def _group_row(
         "e_dry": math.nan,
         "e_dry_stderr": math.nan,
         "e_dry_source": (
-            f"mean e of the group's {dry_e.size} dry run{'s' if dry_e.size != 1 else ''} (fixed)"
+            f"mean e of the group's {dry_e.size} dry run{'s' if dry_e.size != 1 else ''} "
+            + ("(fixed in the fit, redrawn in the bootstrap)" if dry_e.size >= 2 else "(fixed)")
             if fixed is not None
             else "fitted, bounded 0 ≤ e_dry ≤ 1"
         ),
@@ -438,14 +465,20 @@ def _group_row(
         except (RuntimeError, ValueError) as exc:
             row["reason"] = f"least squares did not converge ({type(exc).__name__})"
         else:
-            _intervals(row, model, st, e, fixed is not None, stated)
+            _intervals(row, model, st, e, fixed is not None, stated, dry_e)
     if model == "threshold":
         row["fitted_critical_stokes"] = row["parameter"]
     return row
 
 
 def _intervals(
-    row: dict, model: str, st: np.ndarray, e: np.ndarray, fixed: bool, stated: tuple | None = None
+    row: dict,
+    model: str,
+    st: np.ndarray,
+    e: np.ndarray,
+    fixed: bool,
+    stated: tuple | None = None,
+    dry: np.ndarray | None = None,
 ) -> None:
     """The bootstrap-t intervals into ``row``, or why there are none (``interval_reason``)."""
     refused = intervals.too_few(len(st), MIN_RUNS_FOR_INTERVAL)
@@ -453,7 +486,11 @@ def _intervals(
         row["interval_reason"] = refused
         return
     fit = (row["e_dry"], row["e_dry_stderr"], row["parameter"], row["parameter_stderr"])
-    found = bootstrap_intervals(model, st, e, fit, fixed, row["bootstrap_resamples"], SEED, stated)
+    found = bootstrap_intervals(
+        model, st, e, fit, fixed, row["bootstrap_resamples"], SEED, stated, dry
+    )
+    if fixed and dry is not None and len(dry) >= 2:
+        row["interval_method"] += DRY_METHOD
     reasons = []
     for name, got in found.items():
         row[f"{name}_low"], row[f"{name}_high"] = got.low, got.high

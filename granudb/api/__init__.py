@@ -153,8 +153,8 @@ if TYPE_CHECKING:
     # One `from m import (a as a, …)` per module, the explicit re-exports checkers need:
     # isort: off
     # What static type checkers see: every name of the tables above, with its real
-    # signature (tests/test_typing.py keeps this list and the tables equal). At run time
-    # the names load on first use through ``__getattr__`` below.
+    # signature (tools/type_exports.py writes this list from them). At run time the
+    # names load on first use through ``__getattr__`` below.
     from granudb.api.catalog import (
         fluid as fluid,
         fluid_history as fluid_history,

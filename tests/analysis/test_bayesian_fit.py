@@ -11,12 +11,12 @@ import math
 import numpy as np
 import pytest
 from analysis.synthetic import walton_frame
-from analysis.test_restitution_fit import runs as restitution_runs
 from paper_runs import paper_rows, write_csv
 
 import granudb
 from granudb.analysis import bayesian, fits
 from granudb.analysis.groups import walton_arrays
+from granudb.analysis.synthetic import restitution_runs
 from granudb.errors import ValidationError
 
 WALTON = {

@@ -6,74 +6,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from granudb.analysis import fits
-from granudb.physics import contact, lubrication
+from granudb.analysis.synthetic import (
+    GLASS,
+    sliding_runs,
+)
 from granudb.physics.viscosity import GlycerolWater
-
-E_STAR = 65.6e9  # steel on Zerodur (Joseph & Hunt table 1)
-STEEL = 7780.0
-GLASS = 2540.0
-ETA_HAT = 375e-12  # C = 6e-9 Pa⁻¹ (glycerol), η̂ = C/16
-
-
-def sliding_runs(
-    viscosity: float,
-    *,
-    n: int = 300,
-    density: float = STEEL,
-    radius: float = 6.35e-3,
-    equivalent_density: float | None = None,
-    eta_hat: float = ETA_HAT,
-    noise: float = 0.02,
-    seed: int = 0,
-    fluid: str = "glycerol-37",
-) -> pd.DataFrame:
-    """Runs whose μ_f is (5.10) at gap viscosity ``viscosity``, all in gross slip, with
-    every measured velocity scattered by ``noise`` (relative). ``equivalent_density`` is the
-    density of a sphere of radius R* with mass m* (two spheres: 4ρ_p for equal spheres)."""
-    rng = np.random.default_rng(seed)
-    rho = density if equivalent_density is None else equivalent_density
-    vn = rng.uniform(0.1, 0.4, n)
-    x = rng.uniform(0.4, 1.5, n)  # Ψ_in: well above the sticking crossing
-    u = x * vn
-    load = contact.hertz_impact_load(radius, E_STAR, rho, vn)
-    a = contact.max_contact_radius(radius, load, E_STAR)
-    integral = lubrication.friction_integral(eta_hat * contact.max_pressure(load, a))
-    mu = lubrication.lubricated_friction_dimensionless(
-        viscosity, u, E_STAR, radius, eta_hat, rho, vn, integral
-    )
-    e = rng.uniform(0.75, 0.9, n)
-    y = x - mu * (1 + e) * 3.5
-    scatter = lambda v: v * (1 + rng.normal(0, noise, n))  # noqa: E731
-    vn_in, vt_in, vn_out, vt_out = scatter(vn), scatter(u), scatter(e * vn), scatter(y * vn)
-    psi_in, psi_out = vt_in / vn_in, vt_out / vn_in
-    e_m = vn_out / vn_in
-    mass = rho * 4 / 3 * np.pi * radius**3
-    return pd.DataFrame(
-        {
-            "dataset": "synthetic",
-            "particle": "steel",
-            "wall": "Zerodur",
-            "fluid": fluid,
-            "v_n_in_m_s": vn_in,
-            "tangential_speed_m_s": vt_in,
-            "effective_incidence": psi_in,
-            "effective_rebound": psi_out,
-            "normal_restitution": e_m,
-            "sliding_friction": (psi_in - psi_out) / ((1 + e_m) * 3.5),
-            "effective_radius_m": radius,
-            "effective_mass_kg": mass,
-            "reduced_modulus_pa": E_STAR,
-            "eta_hat_pa_inv": eta_hat,
-            "particle_density_kg_m3": density,
-            "viscosity_pa_s": 3e-3,
-            "tangential_regime": "gross_slip",
-            "roughness_exceeds_gap": False,
-        }
-    )
 
 
 @pytest.mark.parametrize(

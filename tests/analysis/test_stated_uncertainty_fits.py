@@ -8,45 +8,13 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 import pytest
-from analysis.synthetic import walton_measured, with_stated_u
-from analysis.test_gap_viscosity import sliding_runs
+from analysis.synthetic import walton_measured
 
 import granudb
 from granudb.analysis import bands, fits
 from granudb.analysis import walton_bootstrap as resampling
-
-TRUTH = {"e_dry": 0.95, "parameter": 35.0}
-#: The relative standard uncertainty of each measured speed (a high-speed camera's few %).
-U_REL = 0.04
-
-
-def measured(seed: int, *, n: int = 20, stated: bool = True) -> pd.DataFrame:
-    """Runs whose true St_n and e follow the exponential law, measured through speeds with
-    U_REL relative noise: St_n ∝ v_n,in and e = v_n,out / v_n,in carry it."""
-    rng = np.random.default_rng(seed)
-    st_true = np.geomspace(15, 3000, n)
-    v_in_true = st_true * 1e-3  # m/s; St_n ∝ v_n,in at a fixed sphere and fluid
-    e_true = fits.restitution_curve("exponential", st_true, *TRUTH.values())
-    v_in = v_in_true * (1 + U_REL * rng.standard_normal(n))
-    v_out = e_true * v_in_true * (1 + U_REL * rng.standard_normal(n))
-    frame = pd.DataFrame(
-        {
-            "dataset": "d",
-            "particle": "steel",
-            "wall": "Zerodur",
-            "fluid": "glycerol-37",
-            "v_n_in_m_s": v_in,
-            "v_n_out_m_s": v_out,
-            "normal_stokes_number": st_true * v_in / v_in_true,
-            "normal_restitution": v_out / v_in,
-        }
-    )
-    if stated:
-        frame["u_v_n_in_m_s"] = U_REL * v_in
-        frame["u_v_n_out_m_s"] = U_REL * v_out
-    return frame
+from granudb.analysis.synthetic import TRUTH, measured, sliding_measured
 
 
 def test_stated_velocity_uncertainties_widen_the_intervals() -> None:
@@ -100,18 +68,6 @@ def _same(a: dict, b: dict) -> bool:
     return a.keys() == b.keys() and all(
         a[k] == b[k] or (isinstance(a[k], float) and np.isnan(a[k]) and np.isnan(b[k])) for k in a
     )
-
-
-def sliding_measured(seed: int, *, n: int = 40, stated: bool = True) -> pd.DataFrame:
-    """Gap-viscosity runs (1.6 mPa·s) whose four speeds carry 2 % relative noise, that u
-    stated per run when ``stated``."""
-    runs = sliding_runs(1.6e-3, n=n, seed=seed)
-    if not stated:
-        return runs
-    vn, e = runs["v_n_in_m_s"], runs["normal_restitution"]
-    t_out = runs["effective_rebound"] * vn
-    u = 0.02
-    return with_stated_u(runs, u * vn, u * e * vn, u * runs["tangential_speed_m_s"], u * t_out)
 
 
 def test_walton_intervals_widen_with_stated_speed_uncertainties() -> None:

@@ -8,11 +8,11 @@ import math
 import numpy as np
 import pytest
 from analysis.synthetic import walton_frame
-from analysis.test_gap_viscosity import sliding_runs
 
 from granudb.analysis import fits, groups
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as fast
+from granudb.analysis.synthetic import sliding_runs
 
 BETA, MU = 0.34, 0.11
 CASES = [
