@@ -11,6 +11,9 @@ never markup: whatever it holds, each output shows it as the text it is.
   ``@``) broken, so ``<img onerror=…>`` or ``https://evil.example`` in a name reads as
   that text. An address is percent-encoded inside its ``<…>`` (no ``<``, ``>``, space,
   quote or backslash survives), so it cannot end the link or start an element.
+- **A terminal** (tables, ``display``): ``shown_text``: a control, bidirectional or
+  invisible character (which text stored before the text rules could hold) is shown as
+  its escape (``\\x1b``, ``\\u202e``), never sent to the terminal to act.
 - **CSV bound for spreadsheets** (listings with ``--format csv``, the runs beside a report,
   posterior draws): ``spreadsheet_cell``: a text cell that a spreadsheet would run as a
   formula (starting ``=``, ``+``, ``-``, ``@``, tab or carriage return) is prefixed with
@@ -23,6 +26,8 @@ from __future__ import annotations
 import re
 from typing import Any
 from urllib.parse import quote
+
+from granudb.vocabulary.text import text_forbidden_pattern
 
 #: A text cell a spreadsheet would run as a formula starts with one of these (OWASP's CSV
 #: injection advice); numbers are written as numbers and never start with them as text.
@@ -131,3 +136,17 @@ def doi_address(doi: str) -> str:
     """The https://doi.org/ address of a DOI, its suffix percent-encoded (DOI Handbook
     §2.5.2.4: characters outside the URI set are encoded)."""
     return "https://doi.org/" + quote(doi, safe="/:;()._-~!*+,=@$&")
+
+
+_UNSHOWABLE = re.compile(text_forbidden_pattern())
+
+
+def shown_text(value: str) -> str:
+    """``value`` for a person's screen: every character the text rules forbid (controls
+    but line feed and tab, bidirectional and invisible marks) written as its escape, so
+    stored text cannot clear a screen, set a window title or read backwards.
+
+    >>> shown_text("a\\x1b[2Jb\\u202ec")
+    'a\\\\x1b[2Jb\\\\u202ec'
+    """
+    return _UNSHOWABLE.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), value)
