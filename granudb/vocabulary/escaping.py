@@ -59,9 +59,11 @@ def spreadsheet_frame(frame: Any) -> Any:
         if series.dtype.kind not in "OSU" and str(series.dtype) not in ("string", "str"):
             continue
         text = series.astype("string")
-        formula = text.str.startswith(FORMULA_STARTS).fillna(False).astype(bool)
+        formula = text.str.startswith(FORMULA_STARTS).fillna(False).astype(bool).to_numpy()
         if formula.any():
-            out[column] = series.where(~formula, "'" + text.astype(object))
+            values = series.to_numpy(dtype=object, copy=True)
+            values[formula] = ["'" + str(v) for v in values[formula]]
+            out[column] = type(series)(values, index=series.index, name=column).astype(series.dtype)
     return out
 
 

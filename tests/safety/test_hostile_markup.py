@@ -165,3 +165,29 @@ def test_the_runs_csv_beside_a_report_carries_no_formula() -> None:
         "'" + x if x.startswith(FORMULA_STARTS) else x for x in labels
     ]
     assert {row[1] for row in rows[1:]} == {"-3.5"}
+
+
+def test_spreadsheet_frame_keeps_numbers_and_missing_values() -> None:
+    """The one rule of spreadsheet-bound CSV (``--format csv``, runs, ``--draws``) on a
+    frame of every column kind: text prefixed where a spreadsheet would run it, the rest
+    as it was."""
+    import numpy as np
+    import pandas as pd
+
+    from granudb.vocabulary.escaping import spreadsheet_cell, spreadsheet_frame
+
+    frame = pd.DataFrame({
+        "group": ['=HYPERLINK("https://evil.example","x")', "steel on glass", None],
+        "arrow": pd.array(["@SUM(1)", "ok", None], dtype="string[pyarrow]"),
+        "chain": [0, 1, 2],
+        "value": [-1.5, np.nan, 2.0],
+    })  # fmt: skip
+    out = spreadsheet_frame(frame)
+    for column in ("group", "arrow"):  # missing values stay missing
+        assert out[column].isna().tolist() == [False, False, True]
+        assert out[column].dtype == frame[column].dtype
+    assert list(out["group"][:2]) == ["'" + frame["group"][0], "steel on glass"]
+    assert list(out["arrow"][:2]) == ["'@SUM(1)", "ok"]
+    assert out["chain"].tolist() == [0, 1, 2] and out["value"].equals(frame["value"])
+    assert frame["group"][0].startswith("=")  # the caller's frame is not changed
+    assert [spreadsheet_cell(v) for v in ("-x", -1.0, None)] == ["'-x", -1.0, ""]
