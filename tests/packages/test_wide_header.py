@@ -60,5 +60,5 @@ def test_a_million_column_header_is_refused_within_200_mb(package: Path) -> None
         "(a header has at most 200 columns)"
     ]
     assert wide["peak_mb"] < 200, (wide, plain)
-    # no more than validating the unchanged package costs (its imports are the floor)
-    assert wide["peak_mb"] < plain["peak_mb"] * 1.2, (wide, plain)
+    # less than validating the unchanged package: refused before pandas is imported
+    assert wide["peak_mb"] < plain["peak_mb"], (wide, plain)
