@@ -71,13 +71,15 @@ def spreadsheet_frame(frame: Any) -> Any:
 # start markup is escaped, so the source stays readable ("(σ > x₁/3)", not "\\(σ \\> x₁/3\\)"):
 # emphasis and code (* `, and _ unless inside a word, where it cannot open or close
 # emphasis), links and images ([), raw HTML and autolinks (< before a letter, / ! ?),
-# entities (& of "&name;" or "&#…;"), strikethrough (~~), table cells (|), a backslash
+# entities (& of "&name;" or "&#…;"), strikethrough (~, which GFM reads single too),
+# table cells (|), a backslash
 # before punctuation, and a block marker at the start of the text (# > - + = or "1." "1)").
 # GitHub's autolinks need "scheme://", "www." or a dot between letters (a bare domain, as
-# markdown-it's linkify reads it): ":" before "//" and "." before a letter are escaped.
+# markdown-it's linkify reads it, and "//host" too): ":" and "/" before "/", "." before
+# a letter and after "www" are escaped.
 _MD_INLINE = re.compile(
-    r"[*`\[|]|(?<![^\W_])_|_(?![^\W_])|<(?=[A-Za-z/!?])|&(?=#?\w+;)|~(?=~)|(?<=~)~"
-    r"|\\(?=[!-/:-@\[-`{-~]|$)|:(?=//)|\.(?=[^\W\d_])"
+    r"[*`\[|~]|(?<![^\W_])_|_(?![^\W_])|<(?=[A-Za-z/!?])|&(?=#?\w+;)"
+    r"|\\(?=[!-/:-@\[-`{-~]|$)|:(?=//)|/(?=/)|\.(?=[^\W\d_])|(?<=[wW]{3})\."
 )
 _MD_BLOCK = re.compile(
     r"^(?:#{1,6}(?=\s|$)|>|[-+*](?=\s|$)|\d{1,9}(?=[.)](?:\s|$))|[-=_*](?=[-=_*\s]*$))"
@@ -96,7 +98,7 @@ def markdown_text(value: Any) -> str:
     >>> markdown_text("σ > x₁/3 (Λ < 1), St_n = 2·v_N,in; *bold* [link] <b>")
     'σ > x₁/3 (Λ < 1), St_n = 2·v_N,in; \\\\*bold\\\\* \\\\[link] \\\\<b>'
     >>> markdown_text("see https://www.evil.example")
-    'see https\\\\://www\\\\.evil\\\\.example'
+    'see https\\\\:\\\\//www\\\\.evil\\\\.example'
     """
     text = "" if value is None else str(value)
     text = " ".join(text.split())  # newlines would break tables and lists

@@ -18,6 +18,8 @@ from pathlib import Path
 import cmarkgfm
 import pytest
 from cmarkgfm.cmark import Options
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from markdown_it import MarkdownIt
 
 import granudb
@@ -87,6 +89,70 @@ def test_escaped_text_is_text_in_every_renderer(renderer: str, text: str) -> Non
             (t, ()) for t in ("p", "table", "thead", "tbody", "tr", "th", "td")
         }
         assert addresses == []
+
+
+#: Text built from the pieces of markup, links and autolinks.
+PIECES = st.lists(
+    st.sampled_from(
+        [
+            "<",
+            ">",
+            "img",
+            "script",
+            " ",
+            "src=x",
+            "on",
+            "=",
+            '"',
+            "'",
+            "/",
+            "https",
+            "http",
+            ":",
+            "//",
+            "www",
+            ".",
+            "evil",
+            "com",
+            "@",
+            "a",
+            "mailto",
+            "[",
+            "]",
+            "(",
+            ")",
+            "!",
+            "*",
+            "_",
+            "`",
+            "|",
+            "~",
+            "#",
+            "-",
+            "1",
+            "&",
+            ";",
+            "#60",
+            "lt",
+            "\\",
+            "javascript",
+            "\n",
+            "\t",
+        ]
+    ),  # fmt: skip
+    max_size=25,
+).map("".join)
+
+
+@settings(max_examples=300, deadline=None)
+@given(PIECES)
+def test_any_text_stays_text(text: str) -> None:
+    for render in RENDERERS.values():
+        for markdown in (markdown_text(text), f"| h |\n|---|\n| {markdown_text(text)} |"):
+            elements, addresses = _shape(render(markdown))
+            allowed = {(t, ()) for t in ("p", "table", "thead", "tbody", "tr", "th", "td")}
+            assert set(elements) <= allowed, (text, markdown, elements)
+            assert addresses == [], (text, markdown)
 
 
 @pytest.mark.parametrize("renderer", sorted(RENDERERS))
