@@ -552,4 +552,6 @@ def _uncertainty(u_text: str, unit: Unit, field: str, text: str) -> tuple[float,
         u, relative = magnitude * abs(scale), False
     if not math.isfinite(u):
         raise ValidationError(field, text, "needs a finite uncertainty")
+    if magnitude != 0 and u < _TINY:  # 5e-324 mm/s is 0 in m/s: not what was written
+        raise ValidationError(field, text, f"has an uncertainty that {TINY_RULE}")
     return u, relative

@@ -61,6 +61,12 @@ class Rule:
         return ok
 
 
+#: No speed (or speed uncertainty) may be larger than this, in m/s, from a CSV cell, a
+#: package cell or an option alike: above any impact apparatus (light-gas guns reach
+#: about 8 km/s); every derived quantity squares the speed, and a value like 1e300 m/s
+#: would turn them into overflows, not numbers.
+MAX_SPEED_M_S = 1e4
+
 POSITIVE = Rule(minimum=0.0, min_inclusive=False)
 NON_NEGATIVE = Rule(minimum=0.0)
 ABOVE_ABSOLUTE_ZERO = Rule(minimum=-273.15, min_inclusive=False)
