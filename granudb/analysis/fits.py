@@ -379,7 +379,7 @@ def _walton_group(
     row["normal_restitution_std"] = float(np.std(e, ddof=1))
     row["interval_method"] = _joined_method(row)
     said = [
-        f"interval of {symbol} {why}"
+        f"interval of {symbol} {why.removeprefix('interval ')}"
         for symbol, why in (("β", why_beta), ("μ_f", why_mu), ("ē", why_e))
         if why
     ]
