@@ -3,7 +3,10 @@
 ``granudb`` and ``granudb.api`` load their names lazily at run time (``__getattr__`` over the
 tables ``granudb.api.NAMES`` and ``FACE``); under ``TYPE_CHECKING`` they import each name
 explicitly, so mypy and pyright see real signatures and refuse unknown names. These tests
-keep the explicit imports and the tables equal, and ask mypy itself when it is installed.
+keep the explicit imports and the tables equal, and ask mypy itself when it is installed;
+the last one runs ``mypy granudb`` with the repository's configuration (pyproject.toml,
+``[tool.mypy]``: strict for ``api``, ``physics`` and ``vocabulary``) and wants no error, so
+a type error fails here, locally, as well as in ``.ci/run``.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ import granudb
 from granudb import api
 
 PACKAGE = Path(granudb.__file__).parent
+ROOT = Path(__file__).resolve().parents[1]  # the repository: pyproject.toml and granudb/
 
 
 def _type_checking_imports(path: Path) -> dict[str, str]:
@@ -86,3 +90,17 @@ def test_mypy_sees_signatures_and_refuses_unknown_names(tmp_path: Path) -> None:
         "def (particle: str, wall: str" in revealed
     ), revealed
     assert any('has no attribute "no_such_function"' in line for line in lines), lines
+
+
+def test_mypy_finds_no_error_in_the_package(tmp_path: Path) -> None:
+    """``mypy granudb`` as ``.ci/run`` runs it (the checked-out source, the pyproject
+    configuration); its cache goes to a temporary folder, not the repository."""
+    result = subprocess.run(
+        [sys.executable, "-m", "mypy", "--cache-dir", str(tmp_path / "cache"), "granudb"],
+        capture_output=True,
+        text=True,
+        check=False,
+        cwd=ROOT,
+    )
+    assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-2000:]
+    assert result.stdout.startswith("Success: no issues found"), result.stdout

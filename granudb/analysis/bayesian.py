@@ -218,6 +218,7 @@ def _gaussian(residual: np.ndarray, log_sigma: np.ndarray | None, sigma: np.ndar
     """Σ log N(residual | 0, σ) over runs (the last axis), up to a constant."""
     if sigma is not None:
         return -0.5 * np.sum((residual / sigma) ** 2, axis=-1)
+    assert log_sigma is not None  # σ is either stated (sigma) or a parameter (log_sigma)
     n = residual.shape[-1]
     return -0.5 * np.sum(residual**2, axis=-1) * np.exp(-2 * log_sigma) - n * log_sigma
 
@@ -470,5 +471,5 @@ def restitution_row(
     log_sigma = posterior.summary("log_sigma")[0] if sigma is None else math.nan
     row["sigma"] = math.exp(log_sigma) if math.isfinite(log_sigma) else math.nan
     row["interval_reason"] = posterior.reason
-    key = {k: row[k] for k in ("dataset", "particle", "wall", "model")}
-    return posterior.draws(key)
+    group = {k: row[k] for k in ("dataset", "particle", "wall", "model")}
+    return posterior.draws(group)

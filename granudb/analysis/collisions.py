@@ -216,10 +216,11 @@ def _derive_stored(
     in presentation order (no DataFrame per chunk: pandas would turn every text column into
     Arrow strings, to be turned back when the chunk is kept). ``uncertain``: some run read
     states an uncertainty, so every chunk carries the u columns (``_stated``)."""
-    c = {name: _floats(stored, name) for name in COLLISION_MEASURED}
+    # dict[str, Any]: spread into derive's keywords, whose other parameters are not arrays
+    c: dict[str, Any] = {name: _floats(stored, name) for name in COLLISION_MEASURED}
     fluid_ids = np.nan_to_num(_floats(stored, "fluid_id"), nan=-1).astype(int)
     viscosity, density, reason = fluid_states_per_row(fluids, fluid_ids, c["temperature_c"])
-    props = {
+    props: dict[str, Any] = {
         f"{p}_{name}": _floats(stored, f"{p}_{name}")
         for p in ("particle", "wall")
         for name in _MATERIAL
@@ -230,8 +231,8 @@ def _derive_stored(
         for p in ("particle", "wall")
         for name in DRY_VALUE_PROPERTIES
     }
-    names = (np.asarray(stored[k], dtype=object) for k in ("particle", "wall"))
-    dry_e, dry_mu, wet_mu = dry_values.per_run(*names, own, measured)
+    particles, walls = (np.asarray(stored[k], dtype=object) for k in ("particle", "wall"))
+    dry_e, dry_mu, wet_mu = dry_values.per_run(particles, walls, own, measured)
     stated = _stated(c) if uncertain else None
     with physics_refusal():
         result = derive(

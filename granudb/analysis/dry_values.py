@@ -34,6 +34,10 @@ from granudb.db.catalog_rows import MaterialRow
 from granudb.lazy import pandas as pd
 from granudb.physics.derive import DRY_FRICTION, DRY_RESTITUTION
 
+#: A material as ``resolve`` reads it: a Core row, or the stand-in ``per_run`` builds from
+#: a run's own columns (name, dry_restitution, dry_friction, dry_provenance).
+Material = MaterialRow | SimpleNamespace
+
 #: What a value borrowed from the global default says.
 BORROWED = "borrowed: steel on Zerodur, Joseph & Hunt 2004 §3"
 #: The bases, in the order they are tried.
@@ -122,8 +126,8 @@ def _joined(keys: Any) -> str | None:
 #: The source key of the borrowed values.
 BORROWED_KEY = "joseph-hunt-2004"
 BORROWED_VALUES = DryValues(
-    DRY_RESTITUTION, *("borrowed", BORROWED), *(DRY_FRICTION, "borrowed", BORROWED) * 2,
-    *(BORROWED_KEY,) * 3,
+    DRY_RESTITUTION, "borrowed", BORROWED, DRY_FRICTION, "borrowed", BORROWED,
+    DRY_FRICTION, "borrowed", BORROWED, BORROWED_KEY, BORROWED_KEY, BORROWED_KEY,
 )  # fmt: skip
 #: What the immersed friction says when the pair has no measured value of its own.
 NO_IMMERSED = "the dry value (no immersed value measured for the pair): "
@@ -143,14 +147,14 @@ def _cited(row: catalog_rows.PairValueRow, where_measured: str = "") -> str:
     return f"{pair} ({key}{where})"
 
 
-def _own(material: MaterialRow, column: str) -> float | None:
+def _own(material: Material, column: str) -> float | None:
     value = getattr(material, column)
     return None if value is None or not math.isfinite(value) else float(value)
 
 
 def _from_materials(
-    first: MaterialRow, second: MaterialRow, column: str
-) -> tuple[float, str, list[MaterialRow]] | None:
+    first: Material, second: Material, column: str
+) -> tuple[float, str, list[Material]] | None:
     """The combination rule (module doc) for ``column`` of the two materials, or None;
     with the materials whose value it uses."""
     bodies = (first,) if first.name == second.name else (first, second)
@@ -173,8 +177,8 @@ def _from_materials(
 
 
 def resolve(
-    first: MaterialRow,
-    second: MaterialRow,
+    first: Material,
+    second: Material,
     measured: list[catalog_rows.PairValueRow],
     sources: Mapping[str, Any] | None = None,
 ) -> DryValues:
@@ -197,7 +201,7 @@ def resolve(
             keys[column] = BORROWED_KEY
     e, mu = chosen["dry_restitution"], chosen["dry_friction"]
     wet = next((r for r in measured if r.immersed_friction is not None), None)
-    if wet is not None:
+    if wet is not None and wet.immersed_friction is not None:
         immersed = (float(wet.immersed_friction), "pair", _cited(wet, "in a liquid"))
         wet_keys = _joined([catalog_rows.source_key(wet.source)])
     else:

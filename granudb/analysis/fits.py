@@ -179,7 +179,9 @@ MEAN_METHOD = (
 STATED_SMALL_N = "; the runs' stated u is not redrawn: it is in the per-run values' scatter"
 
 
-def _interval(row: dict, name: str, values: tuple, point: tuple, runs: int, how=None) -> str:
+def _interval(
+    row: dict, name: str, values: tuple, point: tuple[float, float], runs: int, how=None
+) -> str:
     """Put the interval of ``name`` into ``row``, its method under ``name + '_interval_method'``;
     the reason when there is none. ``how``: {"boot": the bootstrap's method, "small": the
     small-n interval at any n, "refuse": why the small-n interval is refused, "stated": the
@@ -309,7 +311,7 @@ def _walton_group(
     row.update(
         {f"model_support_{m}": float(np.mean(boot.model == i)) for i, m in enumerate(core.MODELS)}
     )
-    ranked = sorted(bic, key=bic.get)
+    ranked = sorted(bic, key=lambda m: bic[m])
     row["model_reason"] = (
         f"{model}: smallest BIC {bic[model]:.4g} (next {ranked[1]} {bic[ranked[1]]:.4g}; "
         "BIC = n ln(S/n) + p ln n, p = 2 sticking, 2 sliding, 4 split)"
@@ -377,7 +379,7 @@ def _walton_group(
     row["normal_restitution_std"] = float(np.std(e, ddof=1))
     row["interval_method"] = _joined_method(row)
     said = [
-        f"interval of {symbol} {why}"
+        f"interval of {symbol} {why.removeprefix('interval ')}"
         for symbol, why in (("β", why_beta), ("μ_f", why_mu), ("ē", why_e))
         if why
     ]

@@ -12,7 +12,7 @@ naming the range that is covered.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -40,7 +40,7 @@ class FluidState:
 def fluid_model(fluid: Fluid | FluidRow) -> TabulatedViscosity | ReferencedViscosity | None:
     """The fluid's viscosity–temperature model (None with fewer than two points), anchored
     to the printed reference value when the reference temperature lies inside the data."""
-    points = sorted(fluid.points, key=lambda p: p.temperature_c)
+    points: list[Any] = sorted(fluid.points, key=lambda p: p.temperature_c)  # ORM or Core
     if len(points) < 2:
         return None
     densities = [p.density_kg_m3 if p.density_kg_m3 is not None else np.nan for p in points]
@@ -168,7 +168,7 @@ def fluid_states_per_row(
                 for t in temperatures[outside]
             ]
         inside = measured & ~outside
-        if inside.any():
+        if model is not None and inside.any():  # without a model every measured is outside
             viscosity[inside] = model.viscosity(temperatures[inside])
             if _has_density(model):
                 density[inside] = model.density(temperatures[inside])
@@ -245,9 +245,9 @@ def _from_points(fluid: Fluid | FluidRow, state: FluidState) -> float | None:
     """u(μ) at the state's temperature from the points' stated uncertainties: their
     relative u interpolated linearly in temperature (None when no point states one)."""
     stated = sorted(
-        (p.temperature_c, p.u_viscosity_pa_s / p.viscosity_pa_s)
+        (p.temperature_c, u / p.viscosity_pa_s)
         for p in fluid.points
-        if getattr(p, "u_viscosity_pa_s", None) is not None
+        if (u := getattr(p, "u_viscosity_pa_s", None)) is not None
     )
     if not stated:
         return None

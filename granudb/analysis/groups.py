@@ -49,7 +49,9 @@ def group_frames(
         yield key, pd.DataFrame({name: frame[name].take(at) for name in names}, copy=False)
 
 
-def walton_arrays(group: Any) -> tuple[np.ndarray, ...]:
+def walton_arrays(
+    group: Any,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int, np.ndarray, np.ndarray]:
     """Folded, Ψ_in-sorted (x, y, c = (1+e)B, e, n_folded, order) of one group's finite runs;
     ``order`` indexes the group's rows."""
     psi_in = group["effective_incidence"].to_numpy(dtype=float)

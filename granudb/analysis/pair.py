@@ -176,7 +176,11 @@ def derive_pair(
     connection = reader if isinstance(reader, Connection) else reader.connection()
     first = catalog_rows.get_material_row(connection, particle, dataset_id)
     second = catalog_rows.get_material_row(connection, wall, dataset_id)
-    fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(connection, fluid, dataset_id)
+    fluid_row = (
+        None
+        if fluid is None or is_dry(fluid)
+        else catalog_rows.get_fluid_row(connection, fluid, dataset_id)
+    )
     state = fluid_state(fluid_row, temperature_c, viscosity_pa_s) if fluid_row else None
     u_viscosity, u_density = (
         state_uncertainty(

@@ -216,7 +216,7 @@ def vssuq(name: str, rows: list[dict]) -> dict[str, Any]:
     """Mean and sample standard deviation of each pair's per-collision values against the
     ones VSSUQ prints."""
     checks, summary = [], []
-    groups: dict[str, list[float]] = {}
+    groups: dict[tuple[str, str], list[float]] = {}
     printed = {}
     for r in rows:
         stem = r["point"].rsplit("-", 1)[0]

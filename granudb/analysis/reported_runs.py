@@ -14,8 +14,8 @@ from typing import Any
 import numpy as np
 
 from granudb.analysis import fits
+from granudb.analysis.intervals import t_interval
 from granudb.lazy import pandas as pd
-from granudb.lazy import scipy_stats
 from granudb.physics import reported
 
 #: How each derived quantity is obtained, in words (listings and fits say it).
@@ -103,11 +103,15 @@ def restitution(records: list[dict[str, Any]]) -> list[dict[str, Any]]:
         row.update(n_runs=n, model="constant e", normal_restitution_mean=float(e.mean()))
         row["normal_restitution_std"] = float(e.std(ddof=1)) if n > 1 else math.nan
         if n > 1:
-            half = float(scipy_stats.t.ppf(0.5 + CONFIDENCE_LEVEL / 2, n - 1)) * (
-                row["normal_restitution_std"] / math.sqrt(n)
+            # the fits' own t-interval: one rule for a mean of per-run values
+            interval = t_interval(
+                row["normal_restitution_mean"],
+                row["normal_restitution_std"] / math.sqrt(n),
+                n,
+                level=CONFIDENCE_LEVEL,
             )
-            row["normal_restitution_low"] = row["normal_restitution_mean"] - half
-            row["normal_restitution_high"] = row["normal_restitution_mean"] + half
+            row["normal_restitution_low"] = interval.low
+            row["normal_restitution_high"] = interval.high
             row["reason"] = f"t interval of the mean ({CONFIDENCE_LEVEL:.0%}, {n - 1} d.o.f.)"
         else:
             row["normal_restitution_low"] = row["normal_restitution_high"] = math.nan

@@ -283,14 +283,14 @@ def refit(
     count = w.sum(axis=1)
     dof = count - (1 if fixed else 2)
     with np.errstate(invalid="ignore", divide="ignore"):
-        scale = np.where(dof > 0, current / dof, np.nan)
+        variance = np.where(dof > 0, current / dof, np.nan)
         pp = np.einsum("ij,ij->i", w * jp, jp)
         if fixed:
-            a_se, p_se = np.full(m, np.nan), np.sqrt(scale / pp)
+            a_se, p_se = np.full(m, np.nan), np.sqrt(variance / pp)
         else:
             aa, ap = np.einsum("ij,ij->i", w * ja, ja), np.einsum("ij,ij->i", w * ja, jp)
             det = aa * pp - ap * ap
-            a_se, p_se = np.sqrt(scale * pp / det), np.sqrt(scale * aa / det)
+            a_se, p_se = np.sqrt(variance * pp / det), np.sqrt(variance * aa / det)
     return (a[:, 0], a_se), (p[:, 0], p_se)
 
 

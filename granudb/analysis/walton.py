@@ -110,7 +110,9 @@ def misses_origin(sums: tuple, beta: np.ndarray, stick: np.ndarray, scale: np.nd
     return (beta < 0) & (count >= MIN_RUNS_FOR_PARAMETER) & ((ratio > ORIGIN_TEST) | unexplained)
 
 
-def standard_error(sse: np.ndarray, count: np.ndarray, sum_squares: np.ndarray) -> np.ndarray:
+def standard_error(
+    sse: np.ndarray | float, count: np.ndarray | int, sum_squares: np.ndarray | float
+) -> np.ndarray:
     """√(S/(n−1)/Σu²): the least-squares standard error of a one-parameter line through the
     origin (NaN with fewer than two runs or no spread)."""
     with np.errstate(invalid="ignore", divide="ignore"):

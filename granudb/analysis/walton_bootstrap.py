@@ -220,7 +220,7 @@ def resample_count(n: int) -> int:
     return max(MIN_RESAMPLES, min(DEFAULT_RESAMPLES, CELL_BUDGET // n))
 
 
-def _parts(p: np.ndarray, full: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, ...]:
+def _parts(p: np.ndarray, full: np.ndarray) -> tuple[np.ndarray, ...]:
     """(S_stick, S_slide, β, μ_f) at prefix sums ``p`` (..., SERIES) given the totals."""
     rest = full[..., CC] - p[..., CC], full[..., DC] - p[..., DC], full[..., DD] - p[..., DD]
     return core.lines(p[..., XX], p[..., XY], p[..., YY], *rest)
@@ -576,7 +576,7 @@ def batches(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, resample
     batch = max(1, BATCH_CELLS // size)
     parts, start = [], 0
     for counts in count_batches(seed, resamples, n, size, batch):
-        if kept is None:
+        if runs is not None:  # nothing kept: decide
             parts.append(decide_blocks(runs, counts))
         yield counts, parts[-1] if kept is None else _rows(kept, start, start + len(counts))
         start += len(counts)

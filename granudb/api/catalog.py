@@ -23,6 +23,7 @@ from granudb.vocabulary.catalogue import SOURCE_COLUMNS
 
 def entry(catalogue: Catalogue, name: str, database: Any) -> dict[str, Any]:
     """One material or fluid as ``material``/``fluid`` return it."""
+    row: catalog_rows.MaterialRow | catalog_rows.FluidRow
     with database.reading() as connection:
         if catalogue is MATERIALS:
             row = catalog_rows.get_material_row(connection, name)

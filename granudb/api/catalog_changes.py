@@ -98,7 +98,9 @@ def _takes(catalogue: Catalogue) -> Callable[[F], F]:
     return inputs.shows_keywords(dict.fromkeys(catalogue.parameters))
 
 
-def _add(catalogue: Catalogue, name: str, source: str | None, db: Any, given: dict) -> dict:
+def _add(
+    catalogue: Catalogue, name: str, source: str | None, db: Any, given: dict[str, Any]
+) -> dict[str, Any]:
     _required(catalogue, given)
     values = _values(catalogue, given)
     name = inputs.text(name, "name")
@@ -109,7 +111,12 @@ def _add(catalogue: Catalogue, name: str, source: str | None, db: Any, given: di
 
 
 def _update(
-    catalogue: Catalogue, name: str, source: str | None, rename: str | None, db: Any, given: dict
+    catalogue: Catalogue,
+    name: str,
+    source: str | None,
+    rename: str | None,
+    db: Any,
+    given: dict[str, Any],
 ) -> Update:
     values = _values(catalogue, given)
     with opened(db) as database, database.session(write=True) as session:
@@ -310,7 +317,7 @@ def import_fluid_points(
 
 
 def _add_points(
-    name: str, points: list[dict], source: str | None, replace: bool, db: Any
+    name: str, points: list[dict[str, Any]], source: str | None, replace: bool, db: Any
 ) -> list[str]:
     with opened(db) as database, database.session(write=True) as session:
         return catalog_changes.add_fluid_points(

@@ -67,7 +67,7 @@ def collision_query(**filters: Any) -> CollisionQuery:
     return query
 
 
-def natural_key(label: object) -> tuple:
+def natural_key(label: object) -> tuple[Any, ...]:
     """Sort run labels as people count: run-2 before run-10."""
     parts = re.split(r"(\d+)", str(label))
     return tuple((0, int(p), "") if p.isdigit() else (1, 0, p.casefold()) for p in parts)

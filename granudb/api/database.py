@@ -13,7 +13,7 @@ import logging
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from granudb import api
 from granudb.db import roles
@@ -50,20 +50,20 @@ def connect(url: str | Path | None = None) -> Database:
 
 
 @contextmanager
-def opened(db: object = None) -> Iterator[Database]:
+def opened(db: Database | str | Path | None = None) -> Iterator[Database]:
     """The ``Database`` for ``db`` (an opened one is used as it is; a URL or path is opened
     and closed again afterwards)."""
     if isinstance(db, Database):
         yield db
         return
-    database = connect(db)  # type: ignore[arg-type]
+    database = connect(db)
     try:
         yield database
     finally:
         database.dispose()
 
 
-def grant_role(account: str, *, role: str, db: object = None) -> list[str]:
+def grant_role(account: str, *, role: str, db: Any = None) -> list[str]:
     """Make the PostgreSQL login ``account`` (created if new, without a password) a
     ``role`` of this database: "reader" (reads everything), "contributor" (also imports
     into, edits and removes drafts) or "curator" (also the catalogue, releases and

@@ -52,8 +52,8 @@ from granudb.dem import (
     predicted_wet_restitution,
     yade,
 )
-from granudb.dem.spec import COVERAGE_FACTOR, identifier
-from granudb.dem.verify import TOLERANCES, Record, judged, passed, summary, table, verify
+from granudb.dem.spec import COVERAGE_FACTOR, TOLERANCES, identifier
+from granudb.dem.verify import Record, judged, passed, summary, table, verify
 from granudb.errors import ValidationError
 from granudb.output_files import write_text
 from granudb.reporting.pinned import announce_pinned
@@ -84,7 +84,7 @@ PUBLISHED_QUANTITIES = {
 }
 
 
-def _is_immersed(row: dict) -> bool:
+def _is_immersed(row: dict[str, Any]) -> bool:
     return row["fluid"] is not None or (row["label"] or "").startswith("immersed")
 
 
@@ -102,7 +102,7 @@ def _published(session: Any, particle: str, wall: str, fluid: str | None) -> dic
     return found
 
 
-def _printed(row: dict) -> str:
+def _printed(row: dict[str, Any]) -> str:
     return f"{row['source']} {row['source_locator']}: {row['value_as_printed']}"
 
 
@@ -129,7 +129,7 @@ def _materials_u(result: Any, column: str, value: float) -> tuple[float | None, 
     if column == "dry_restitution" or len(known) == 1:
         chosen = next((m for m in known if m[column] == value), None)
         u = None if chosen is None else chosen.get(f"u_{column}")
-        if not u:
+        if chosen is None or not u:
             return None, ""
         return u, f"(the stated u of {chosen['name']}'s {column.replace('_', ' ')})"
     if any(not m.get(f"u_{column}") for m in known):
@@ -145,7 +145,7 @@ def _stated(u: Any) -> float:
 
 
 def _predicted(
-    session: Any, particle: str, wall: str, fluid: str | None, scenario: dict, pinned: Any
+    session: Any, particle: str, wall: str, fluid: str | None, scenario: dict[str, Any], pinned: Any
 ) -> Any:
     return derive_pair(session, particle, wall, fluid=fluid, dataset_id=pinned, **scenario)
 
@@ -219,7 +219,7 @@ def _pair_values(
     particle: Any,
     wall: str,
     fluid: Any,
-    scenario: dict,
+    scenario: dict[str, Any],
     values: str,
     dataset: Any,
     pinned: int | None = None,
@@ -268,7 +268,7 @@ def _pair_values(
 
 
 def _wet_restitution(
-    particle: Any, fluid: Any, scenario: dict, dry: Value, result: Any, parameter_set: str
+    particle: Any, fluid: Any, scenario: dict[str, Any], dry: Value, result: Any, parameter_set: str
 ) -> tuple[Value, Any]:
     """The predicted e_wet (``predicted_wet_restitution``, the one ``pair`` makes) with the
     interval ± 2u, u by GUM from the dry e's u and the u ``pair`` propagates from the
@@ -345,7 +345,7 @@ def _instead(fitted: Value, record: Value) -> Value:
     )
 
 
-def _fitted(fit: dict, name: str, what: str, dataset: str, value: Any = None) -> Value:
+def _fitted(fit: dict[str, Any], name: str, what: str, dataset: str, value: Any = None) -> Value:
     """A fitted value (``fit[name]``, or ``value``) with its 95 % bootstrap interval
     (``name``_low/_high), or the fit's reason why it has none."""
     central = float(fit[name] if value is None else value)
@@ -394,7 +394,7 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
     for name, given in (("diameter", diameter), ("velocity", velocity)):
         if given is None:
             raise inputs.missing(name)
-    scenario = {
+    scenario: dict[str, Any] = {  # neither is None: both were required above
         "diameter_m": inputs.quantity(diameter, "diameter_m", "diameter"),
         "speed_m_s": inputs.quantity(velocity, "impact_speed_m_s", "velocity"),
     }
@@ -406,7 +406,9 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
             announce_pinned(session, pinned, f"{row.name}@{row.version}")
         fluid_row = None if is_dry(fluid) else catalog_rows.get_fluid_row(session, fluid, pinned)
         state = fluid_state(fluid_row) if fluid_row else None
-        types, pairs, taken = [], [], set()
+        types: list[ParticleType] = []
+        pairs: list[PairParameters] = []
+        taken: set[str] = set()
         for name in particles:
             m = catalog_rows.get_material_row(session, name, pinned)
             types.append(
@@ -432,7 +434,7 @@ def dem_model(particles: list[str], walls: list[str], *, db: Any = None, **optio
                     material=m.name,
                 )
             )
-        on_first_wall = {}
+        on_first_wall: dict[str, tuple[Any, Any, Any, str]] = {}
         for particle in [t for t in types if not t.is_wall]:
             for wall in [t for t in types if t.is_wall]:
                 e, mu, law, beta = _pair_values(
@@ -510,13 +512,13 @@ def dem_export(
     >>> "Parameter set: LOW" in low and "the low end of the ± 2u" in low
     True
     """
-    writer = WRITERS.get(inputs.choice(code, DEM_CODES, "code"))
+    writer = WRITERS[inputs.choice(code, DEM_CODES, "code")]
     target = None if output is None else Path(inputs.path(output, "output"))
     if target is not None and (target.exists() or target.is_symlink()):
         raise ValidationError(
             "output", str(target), "exists already (choose a new file)", parameter=True
         )
-    text = writer.write(dem_model(particles, walls, db=db, **options), clamp=clamp)
+    text: str = writer.write(dem_model(particles, walls, db=db, **options), clamp=clamp)
     if target is not None:
         write_text(target, text, field="output")
     return text

@@ -201,7 +201,7 @@ def derive(frame: Any, **options: Any) -> Any:
             f"lacks the required input column(s) {', '.join(missing)}",
             parameter=True,
         )
-    checked = _options(options)
+    checked: dict[str, Any] = _options(options)
     arrays = {}
     for column in INPUTS:
         if column in columns:

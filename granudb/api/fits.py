@@ -42,12 +42,14 @@ def _method(method: str | None, draws: Any) -> str:
     return chosen
 
 
-def _fit(db: Any, filters: dict[str, Any], as_frame: bool, run: Callable, draws: Any = None) -> Any:
+def _fit(
+    db: Any, filters: dict[str, Any], as_frame: bool, run: Callable[..., Any], draws: Any = None
+) -> Any:
     """Run a fit on the selected runs; with a ``draws`` list in ``run``'s closure, the
     posterior draws go to ``frame.attrs["draws"]`` and, when ``draws`` is a path, to that
     CSV file (a new file: an existing one is refused)."""
     query = collision_query(**filters)
-    found: list = []
+    found: list[Any] = []
     with opened(db) as database, database.session() as session:
         rows = run(session, select_collisions(session, query), found)
     table = pd.concat(found, ignore_index=True) if found else None
@@ -140,7 +142,7 @@ def fit_gap_viscosity(db: Any = None, *, as_frame: bool = True, **filters: Any) 
     True
     """
 
-    def run(session: Any, frame: Any, _draws: list) -> Any:
+    def run(session: Any, frame: Any, _draws: list[Any]) -> Any:
         rows = catalog_rows.fluid_rows(session.connection())
         return fits.gap_viscosity(frame, {f.name: fluid_model(f) for f in rows})
 

@@ -18,6 +18,7 @@ from typing import Any, TypeVar
 from granudb.errors import MissingInput, ValidationError
 from granudb.io.units import parse_quantity, parse_uncertain_quantity
 from granudb.vocabulary import check_value, unit_of_column
+from granudb.vocabulary.rules import MAX_SPEED_M_S
 from granudb.vocabulary.text import MAX_NAME, MAX_TEXT, check_name, check_text
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -38,13 +39,14 @@ def shows_keywords(defaults: Mapping[str, Any]) -> Callable[[F], F]:
             for name, default in defaults.items()
         ]
         keywords = [p for p in own if p.kind is p.KEYWORD_ONLY]
+        # mypy has no attribute __signature__ on a function; inspect.signature reads it
         function.__signature__ = signature.replace(parameters=[*positional, *shown, *keywords])  # type: ignore[attr-defined]
         return function
 
     return decorate
 
 
-def known_options(given: Mapping[str, Any], allowed: Iterable[str], what: str) -> dict:
+def known_options(given: Mapping[str, Any], allowed: Iterable[str], what: str) -> dict[str, Any]:
     """``given`` (a public function's ``**options``) if each is one of ``allowed``, else
     ``ValidationError`` naming it, ``what`` it is not, and the nearest name."""
     allowed = list(allowed)
@@ -95,6 +97,7 @@ def quantity(value: Any, column: str, parameter: str, *, check: bool = True) -> 
     """
     if value is None:
         return None
+    result: float | None
     try:
         if isinstance(value, str):
             result = parse_quantity(value, unit_of_column(column), parameter)
@@ -130,9 +133,31 @@ def uncertain_quantity(
         result, u = parse_uncertain_quantity(value, unit_of_column(column), parameter)
         if check:
             check_value(column, result, field=parameter, shown=value)
+        _bounded_uncertainty(column, result, u, parameter, value)
     except ValidationError as exc:
         raise _as_parameter(exc, parameter) from None
     return result, u
+
+
+#: A standard uncertainty more than this many times its (non-zero) value says nothing
+#: about the value, and its square would overflow the propagation long before 1e308.
+MAX_RELATIVE_U = 1000.0
+
+
+def _bounded_uncertainty(
+    column: str, value: float, u: float | None, field: str, shown: str
+) -> None:
+    """The bounds a ``u_…`` cell has, for a u given with its value: a speed's u at most
+    ``MAX_SPEED_M_S`` (as a CSV cell's), and any u at most ``MAX_RELATIVE_U`` times a
+    non-zero value."""
+    if u is None:
+        return
+    if unit_of_column(column).suffix == "m_s" and u > MAX_SPEED_M_S:
+        rule = f"has an uncertainty faster than {MAX_SPEED_M_S:g} m/s (beyond any impact apparatus)"
+        raise ValidationError(field, shown, rule)
+    if value != 0 and u > MAX_RELATIVE_U * abs(value):
+        rule = f"has an uncertainty more than {MAX_RELATIVE_U:g} times the value"
+        raise ValidationError(field, shown, rule)
 
 
 def angle(value: Any, parameter: str = "angle") -> float:

@@ -59,11 +59,7 @@ def report(
     """
     fmt = inputs.choice(format, REPORT_FORMATS, "format")
     if title is not None:
-        title = inputs.text(title, "title")
-        if len(title) > 300 or any(ord(c) < 32 for c in title):
-            raise ValidationError(
-                "title", title[:40], "must be ≤ 300 printable characters", parameter=True
-            )
+        title = inputs.name(title, "title", max_length=300)  # the shared name rules
     destination = None if output is None else Path(inputs.path(output, "output"))
     check_output(destination, force=force)
     query = collision_query(**filters)

@@ -130,4 +130,7 @@ def import_dataset(
     if as_name is not None:
         as_name = inputs.text(as_name, "as_name")
     with opened(db) as database:
-        return import_package(database, target, as_name=as_name, rename_conflicts=rename_conflicts)
+        imported: PackageImport = import_package(
+            database, target, as_name=as_name, rename_conflicts=rename_conflicts
+        )
+        return imported

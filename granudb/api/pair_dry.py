@@ -71,7 +71,11 @@ def add_pair_value(
         "dry_friction": dry_friction,
         "immersed_friction": immersed_friction,
     }
-    values = {c: inputs.quantity(v, c, c) for c, v in given.items() if v is not None}
+    values: dict[str, float] = {}
+    for column, value in given.items():
+        quantity = inputs.quantity(value, column, column)
+        if quantity is not None:
+            values[column] = quantity
     texts = {
         name: check_text(name, inputs.text(given, name))
         for name, given in (("source_locator", source_locator), ("notes", notes))

@@ -173,10 +173,10 @@ def reference_dem(
     measured = reference_checks.figure_points(rows, "et")
     known = [p["point"] for p in measured]
     if points:
-        for point in points:
-            if point not in known:
+        for given in points:
+            if given not in known:
                 raise ValidationError(
-                    "points", point, f"is not one of {', '.join(known)}", parameter=True
+                    "points", given, f"is not one of {', '.join(known)}", parameter=True
                 )
         measured = [p for p in measured if p["point"] in points]
     angles = [math.degrees(p["theta"]) for p in measured]

@@ -58,7 +58,7 @@ def _cell(text: str, column: str, unit: str | None, field: str, row: int) -> Any
         value = inputs.quantity(spelled, base, field, check=column == base)
     except ValidationError as exc:
         raise ValidationError(field, exc.value, exc.rule, row=row) from None
-    if column != base and not (math.isfinite(value) and value >= 0):
+    if column != base and not (value is not None and math.isfinite(value) and value >= 0):
         raise ValidationError(field, text, "must be a finite number ≥ 0", row=row)
     return value
 

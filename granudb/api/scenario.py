@@ -77,7 +77,7 @@ def pair(particle: str, wall: str, *, db: Any = None, **scenario: Any) -> dict[s
     speed, u_speed = inputs.uncertain_quantity(velocity, "impact_speed_m_s", "velocity")
     t, u_t = inputs.uncertain_quantity(temperature, "temperature_c", "temperature")
     mu, u_mu = inputs.uncertain_quantity(viscosity, "viscosity_pa_s", "viscosity")
-    values = {
+    values: dict[str, Any] = {
         "diameter_m": d,
         "speed_m_s": speed,
         "angle_rad": inputs.angle(0.0 if angle is None else angle),

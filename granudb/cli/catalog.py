@@ -18,7 +18,15 @@ import typer
 
 from granudb import api
 from granudb.cli.confirm import asker
-from granudb.cli.options import DbOption, Format, FormatOption, YesOption, option_name, text, wraps
+from granudb.cli.options import (
+    DbOption,
+    Format,
+    FormatOption,
+    YesOption,
+    option_name,
+    text_option,
+    wraps,
+)
 from granudb.cli.output import emit, emit_one, say
 
 #: The options ``add``/``update`` take besides the properties, with their help.
@@ -61,6 +69,7 @@ def _changing(catalogue: Any, function: str, adding: bool) -> Callable[..., None
         result = getattr(api, function)(given.pop("name"), **given)
         say(f"added {catalogue.kind} {result['name']}" if adding else str(result))
 
+    # mypy has no attribute __signature__ on a function; inspect.signature reads it
     command.__signature__ = inspect.Signature([name, *options, db])  # type: ignore[attr-defined]
     if adding:
         needed = ", ".join(option_name(p) for p in keywords if p in required)
@@ -146,9 +155,9 @@ Replace = Annotated[
 @wraps("add_fluid_point")
 def add_point(
     name: FluidName,
-    temperature: text('e.g. "30 degC"') = None,
-    viscosity: text('At that temperature, "2.1 cP"') = None,
-    density: text('At that temperature, "1085 kg/m^3"') = None,
+    temperature: Annotated[str | None, text_option('e.g. "30 degC"')] = None,
+    viscosity: Annotated[str | None, text_option('At that temperature, "2.1 cP"')] = None,
+    density: Annotated[str | None, text_option('At that temperature, "1085 kg/m^3"')] = None,
     source: PointSource = None,
     replace: Replace = False,
     db: DbOption = None,

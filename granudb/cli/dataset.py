@@ -11,7 +11,7 @@ import typer
 from granudb import api
 from granudb.cli import collisions
 from granudb.cli.confirm import asker
-from granudb.cli.options import DbOption, Format, FormatOption, YesOption, text, wraps
+from granudb.cli.options import DbOption, Format, FormatOption, YesOption, text_option, wraps
 from granudb.cli.output import emit, emit_one, note, say
 
 app = typer.Typer(
@@ -188,8 +188,8 @@ def edit(
     dataset: Ref,
     title: Annotated[str | None, typer.Option("--title")] = None,
     description: Annotated[str | None, typer.Option("--description")] = None,
-    license: text('SPDX id, e.g. "CC-BY-4.0".') = None,
-    doi: text("The dataset's own DOI.") = None,
+    license: Annotated[str | None, text_option('SPDX id, e.g. "CC-BY-4.0".')] = None,
+    doi: Annotated[str | None, text_option("The dataset's own DOI.")] = None,
     author: Annotated[
         list[str] | None,
         typer.Option(
@@ -198,7 +198,10 @@ def edit(
             "each; replaces the list).",
         ),
     ] = None,
-    authors_json: text('JSON list of {"given_names","family_names","orcid","affiliation"}.') = None,
+    authors_json: Annotated[
+        str | None,
+        text_option('JSON list of {"given_names","family_names","orcid","affiliation"}.'),
+    ] = None,
     keyword: Annotated[
         list[str] | None, typer.Option("--keyword", help="Repeat for each; replaces the list.")
     ] = None,
@@ -236,7 +239,7 @@ def release(dataset: Ref, db: DbOption = None) -> None:
 @wraps("new_dataset_version")
 def new_version(
     dataset: Ref,
-    version: text("The new version, e.g. 1.1.0.") = None,
+    version: Annotated[str | None, text_option("The new version, e.g. 1.1.0.")] = None,
     db: DbOption = None,
 ) -> None:
     """Copy a version (metadata and runs) as a new draft version to change."""

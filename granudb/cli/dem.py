@@ -86,8 +86,8 @@ def verify(
     against achieved e, μ_f on the sliding branch and Ψ_out against Walton's relation with
     a measured β, each judged against its tolerance (e 1 %, μ_f 3 %, Ψ_out 10 %). Exits 1
     when a run fails or nothing could be checked; codes not installed are "not checked"."""
-    codes = tuple(codes) if codes else None
-    records = api.dem_verify(particle, wall, codes=codes, clamp=clamp, db=db, **model or {})
+    chosen = tuple(codes) if codes else None
+    records = api.dem_verify(particle, wall, codes=chosen, clamp=clamp, db=db, **model or {})
     json_wanted = fmt is Format.json
     typer.echo(to_json(api.verify_document(records)) if json_wanted else api.verify_table(records))
     if not api.verify_passed(records):

@@ -8,6 +8,18 @@ Sub-commands load lazily: ``granudb --help`` lists every command from the one-li
 imports ``granudb.cli.materials`` only (tests/test_startup.py checks the one-line help here
 matches each module's own). The root help is plain Click text rather than Rich, because
 importing Rich costs several times Python's own start-up; sub-command help keeps Rich.
+
+Why ``typer._click`` and a replaced ``invoke`` (issue 34, measured with typer 0.28): since
+0.26 Typer ships its own copy of Click under ``typer._click`` and exposes publicly only
+``Context``, ``BadParameter``, ``Exit`` and ``Abort``. The refusals Typer's parser raises
+(``UsageError``, ``NoArgsIsHelpError``, ``MissingParameter``) and the ``Command`` and
+``HelpFormatter`` types exist only there; the separate ``click`` package is a different
+copy (``click.UsageError is typer._click.exceptions.UsageError`` is False), so catching
+its classes would miss every usage error. pyproject pins ``typer>=0.26,<0.29`` so a
+release that moves them fails the tests, not a user. ``invoke`` is replaced on each leaf
+command (``_missing_as_usage``) because Typer builds the leaf commands of a sub-app
+itself, with no app-wide command class; the alternative, ``cls=`` on every
+``@app.command()``, repeats the same wiring in every command module.
 """
 
 from __future__ import annotations
@@ -131,6 +143,7 @@ def _missing_as_usage(command: click.Command) -> None:
                 raise
             raise click.exceptions.MissingParameter(ctx=ctx, param=param) from None
 
+    # replaced on this one command object (module docstring: why not a subclass)
     command.invoke = invoke  # type: ignore[method-assign]
 
 
@@ -196,7 +209,7 @@ class GranudbGroup(TyperGroup):
             return exc.render(spelled[exc.field])
         return exc.as_option()
 
-    def invoke(self, ctx: typer.Context) -> Any:
+    def invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
         except api.GranudbError as exc:

@@ -43,12 +43,20 @@ FormatOption = Annotated[
 YesOption = Annotated[bool, typer.Option("--yes", "-y", help="Do it without asking (for scripts).")]
 
 
+def text_option(help: str) -> Any:
+    """The metadata of an optional option taking text (a number with its unit, a name),
+    ``None`` when not given; its flag is the parameter's name with dashes, as Typer makes it
+    (``wall_diameter`` → ``--wall-diameter``). Use:
+    ``diameter: Annotated[str | None, text_option('Particle diameter, "12.7 mm".')] = None``
+    (the type is written out so a type checker reads it)."""
+    return typer.Option(help=help)
+
+
 def text(help: str) -> Any:
-    """An optional option taking text (a number with its unit, a name), ``None`` when not
-    given; its flag is the parameter's name with dashes, as Typer makes it (``wall_diameter``
-    → ``--wall-diameter``). Use: ``diameter: Annotated[str | None, …]`` written once,
-    ``Diameter = text('Particle diameter, "12.7 mm".')``."""
-    return Annotated[str | None, typer.Option(help=help)]
+    """``Annotated[str | None, text_option(help)]`` as a value, for the option tables that
+    build a command's signature (``text_options``, ``keyword_option``); in a ``def`` write
+    the ``Annotated`` out (``text_option``)."""
+    return Annotated[str | None, text_option(help)]
 
 
 #: The collision filters (``granudb.api.COLLISION_FILTERS``) as options, with their help.
@@ -111,6 +119,7 @@ def option_group(
             group = {p.name: given.pop(p.name) for p in added}
             command(**given, **{keyword: {k: v for k, v in group.items() if v is not None}})
 
+        # mypy has no attribute __signature__ on a function; inspect.signature reads it
         grouped.__signature__ = signature.replace(parameters=[*own, *added])  # type: ignore[attr-defined]
         grouped.__annotations__ = {}
         return grouped
@@ -142,6 +151,7 @@ def wraps(function: str) -> Callable[[Callable[..., None]], Callable[..., None]]
     (tests/test_one_door.py walks the commands and checks every one names one)."""
 
     def mark(command: Callable[..., None]) -> Callable[..., None]:
+        # a mark on the function object, read by tests/test_one_door.py
         command.api_function = function  # type: ignore[attr-defined]
         return command
 

@@ -8,7 +8,7 @@ from typing import Annotated
 import typer
 
 from granudb import api
-from granudb.cli.options import DbOption, Format, FormatOption, text, wraps
+from granudb.cli.options import DbOption, Format, FormatOption, text_option, wraps
 from granudb.cli.output import emit, emit_one, say
 
 app = typer.Typer(
@@ -32,7 +32,9 @@ def list_(db: DbOption = None, fmt: FormatOption = Format.table) -> None:
 def show(
     particle: Particle,
     wall: Wall,
-    dataset: text("NAME or NAME@VERSION: as that dataset uses them.") = None,
+    dataset: Annotated[
+        str | None, text_option("NAME or NAME@VERSION: as that dataset uses them.")
+    ] = None,
     db: DbOption = None,
     fmt: FormatOption = Format.table,
 ) -> None:
@@ -46,12 +48,16 @@ def show(
 def add(
     particle: Particle,
     wall: Wall,
-    dry_restitution: text('Dry restitution, e.g. "0.97".') = None,
-    dry_friction: text('Dry friction, e.g. "0.11".') = None,
-    immersed_friction: text('Friction with asperities in a liquid, "0.15".') = None,
-    source: text("Key of a source (granudb sources list), or use --notes.") = None,
-    source_locator: text('Where in the source, e.g. "§3".') = None,
-    notes: text("Free text.") = None,
+    dry_restitution: Annotated[str | None, text_option('Dry restitution, e.g. "0.97".')] = None,
+    dry_friction: Annotated[str | None, text_option('Dry friction, e.g. "0.11".')] = None,
+    immersed_friction: Annotated[
+        str | None, text_option('Friction with asperities in a liquid, "0.15".')
+    ] = None,
+    source: Annotated[
+        str | None, text_option("Key of a source (granudb sources list), or use --notes.")
+    ] = None,
+    source_locator: Annotated[str | None, text_option('Where in the source, e.g. "§3".')] = None,
+    notes: Annotated[str | None, text_option("Free text.")] = None,
     db: DbOption = None,
 ) -> None:
     """Store the dry values a source measured for a pair (never changed once stored)."""

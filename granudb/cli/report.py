@@ -24,22 +24,34 @@ PairOption = Annotated[
 
 
 def _scenario(option: str, text: str) -> Any:
-    return Annotated[str | None, typer.Option(option, help=f"Pair: {text}")]
+    """The metadata of a scenario option: ``Annotated[str | None, _scenario(...)]``."""
+    return typer.Option(option, help=f"Pair: {text}")
 
 
 @collision_filters
 @wraps("report")
 def report(
     pair: PairOption = None,
-    diameter: _scenario("--diameter", 'particle diameter, "12.7 mm" (assumed if omitted).') = None,
-    velocity: _scenario("--velocity", 'impact speed, "0.3 m/s" (assumed if omitted).') = None,
-    angle: _scenario("--angle", 'incidence angle, "30 deg" (default 0°).') = None,
-    temperature: _scenario("--temperature", "fluid temperature.") = None,
-    viscosity: _scenario("--viscosity", "override the fluid viscosity.") = None,
-    wall_diameter: _scenario(
-        "--wall-diameter", "diameter of a second sphere, free unless --target fixed."
-    ) = None,
-    target: _scenario("--target", "wall, fixed or free (a second sphere's default).") = None,
+    diameter: Annotated[
+        str | None, _scenario("--diameter", 'particle diameter, "12.7 mm" (assumed if omitted).')
+    ] = None,
+    velocity: Annotated[
+        str | None, _scenario("--velocity", 'impact speed, "0.3 m/s" (assumed if omitted).')
+    ] = None,
+    angle: Annotated[
+        str | None, _scenario("--angle", 'incidence angle, "30 deg" (default 0°).')
+    ] = None,
+    temperature: Annotated[str | None, _scenario("--temperature", "fluid temperature.")] = None,
+    viscosity: Annotated[
+        str | None, _scenario("--viscosity", "override the fluid viscosity.")
+    ] = None,
+    wall_diameter: Annotated[
+        str | None,
+        _scenario("--wall-diameter", "diameter of a second sphere, free unless --target fixed."),
+    ] = None,
+    target: Annotated[
+        str | None, _scenario("--target", "wall, fixed or free (a second sphere's default).")
+    ] = None,
     fmt: Annotated[str, typer.Option("--format", "-f", help="html or md.")] = "html",
     output: Annotated[
         Path | None,

@@ -30,7 +30,7 @@ from granudb.db.models import (
 #: Separates a revision's name key from its number: a control character, which no name
 #: may contain, so no lookup by name ever finds a revision.
 REVISION_MARK = "\x1f"
-_MODELS = {"material": Material, "fluid": Fluid}
+_MODELS: dict[str, type[Material] | type[Fluid]] = {"material": Material, "fluid": Fluid}
 _RUN_COLUMNS = {
     "material": (Collision.particle_id, Collision.wall_id),
     "fluid": (Collision.fluid_id,),
@@ -54,8 +54,9 @@ def keep_for_releases(session: Session, kind: str, row: Any) -> Any | None:
     if not used:
         return None
     model = _MODELS[kind]
-    number = 1 + session.scalar(
-        select(func.count()).select_from(model).where(model.revision_of == row.id)
+    number = 1 + (
+        session.scalar(select(func.count()).select_from(model).where(model.revision_of == row.id))
+        or 0
     )
     values = {
         c.key: getattr(row, c.key) for c in model.__table__.columns if c.key not in _NOT_COPIED

@@ -154,12 +154,14 @@ def _collision_select(
         .join(first, runs.particle_id == first.c.id)
         .join(second, runs.wall_id == second.c.id)
     )
-    if filters.get("dataset") is not None:
-        chosen = lookup_rows.dataset_row(connection, filters["dataset"], filters.get("version"))
+    dataset = filters.get("dataset")
+    if dataset is not None:
+        chosen = lookup_rows.dataset_row(connection, dataset, filters.get("version"))
         query = query.where(runs.dataset_id == chosen.id)
     for role in ("particle", "wall"):
-        if filters.get(role) is not None:
-            ids = catalog_rows.entry_ids(connection, "material", filters[role])
+        material = filters.get(role)
+        if material is not None:
+            ids = catalog_rows.entry_ids(connection, "material", material)
             query = query.where(_one_of(runs[f"{role}_id"], ids))
     fluid = filters.get("fluid")
     if fluid is not None:

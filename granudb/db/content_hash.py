@@ -25,9 +25,10 @@ inserts, from the constants below (tests hold the two equal).
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from typing import Any
 
-from sqlalchemy import select
+from sqlalchemy import ColumnElement, select
 from sqlalchemy.orm import Session, aliased
 
 from granudb.db.models import Collision, Dataset, Fluid, Material
@@ -84,7 +85,7 @@ def content_hash(
         .order_by(Collision.run.collate(collation)),
         execution_options={"yield_per": 20_000},
     )
-    batches = result.partitions()
+    batches: Iterator[Sequence[Sequence[Any]]] = result.partitions()
     if renamed:
         materials, fluids = renamed
         batches = (
@@ -93,11 +94,13 @@ def content_hash(
             for rows in batches
         )  # fmt: skip
     if not spelled:
-        keys: dict[str | None, str | None] = {None: None}  # a handful of names, a key each
+        keys: dict[str, str] = {}  # a handful of names, a key each
 
         def key(name: str | None) -> str | None:
+            if name is None:
+                return None
             if name not in keys:
-                keys[name] = name_key(name)  # type: ignore[arg-type]
+                keys[name] = name_key(name)
             return keys[name]
 
         batches = (
@@ -150,6 +153,7 @@ def rehash_drafts_naming(session: Session, kind: str, entry_id: int) -> list[str
     reads today, so ``dataset show`` and its export agree. A released version keeps the
     name it was released with (``keep_for_releases``) and its hash. Returns the drafts'
     labels (NAME@VERSION)."""
+    naming: ColumnElement[bool]
     if kind == "material":
         naming = (Collision.particle_id == entry_id) | (Collision.wall_id == entry_id)
     else:

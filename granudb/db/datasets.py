@@ -86,7 +86,7 @@ def ensure_editable(dataset: Dataset) -> None:
         )
 
 
-def _counts(session: Session, model: type, dataset: Dataset) -> int:
+def _counts(session: Session, model: type[Any], dataset: Dataset) -> int:
     query = select(func.count()).select_from(model).where(model.dataset_id == dataset.id)
     return session.scalar(query) or 0
 

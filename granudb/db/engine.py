@@ -306,6 +306,7 @@ class Database:
         ``write=True`` takes SQLite's write lock at the start (``BEGIN IMMEDIATE``), so a
         write either waits for another writer and then runs whole, or does not start.
         """
+        bind: Engine
         if write:
             bind = self.engine.execution_options(sqlite_begin="IMMEDIATE")
         else:

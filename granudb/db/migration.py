@@ -274,7 +274,7 @@ def _released(connection: Connection, table: str, condition: str) -> list[str]:
 
 def _steps(connection: Connection, current: str | None, target: str) -> list[str] | None:
     """The revisions whose downgrades run, newest first; None for "all of them" (base)."""
-    order = [r["revision"] for r in reversed(history())]
+    order = [str(r["revision"]) for r in reversed(history())]  # a revision always has one
     if current is None:
         return []
     if target == "base":

@@ -113,7 +113,7 @@ def export_data(session: Session, name: str, version: str | None = None) -> Expo
                 **_values(c),
                 "particle": names[c.particle_id],
                 "wall": names[c.wall_id],
-                "fluid": fluid_names.get(c.fluid_id),
+                "fluid": None if c.fluid_id is None else fluid_names.get(c.fluid_id),
             }
             for c in collisions
         ],

@@ -111,7 +111,7 @@ def _point_differences(existing: Fluid, points: list[dict[str, Any]]) -> list[st
     here = sorted(tuple(getattr(p, n) for n in names) for p in existing.points)
     there = sorted(tuple(p.get(n) for n in names) for p in points)
     if len(here) == len(there) and not any(
-        _differences(dict(enumerate(a)), dict(enumerate(b)))
+        _differences(dict(zip(names, a, strict=True)), dict(zip(names, b, strict=True)))
         for a, b in zip(here, there, strict=True)
     ):
         return []
@@ -150,7 +150,7 @@ class Merger:
         self.result = PackageImport("", "", 0, "")
         self.source_ids: dict[str, int] = {}
 
-    def _renamed(self, model: type, name: str) -> str:
+    def _renamed(self, model: type[Any], name: str) -> str:
         candidate = renamed(name, self.package)
         number = 2
         while self.session.scalars(
@@ -180,7 +180,7 @@ class Merger:
         return None if key is None else self.source_ids[key]
 
     def _match(
-        self, kind: str, model: type, name: str, values: dict[str, Any], points: Any
+        self, kind: str, model: type[Any], name: str, values: dict[str, Any], points: Any
     ) -> tuple[int | None, str | None]:
         """(id of an identical row, None) or (None, the name to add the row under)."""
         existing = self.session.scalars(select(model).filter_by(name_key=name_key(name))).first()
@@ -203,7 +203,7 @@ class Merger:
     def named(
         self,
         kind: str,
-        model: type,
+        model: type[Any],
         rows: list[dict[str, Any]],
         references: dict[str, str],
         points: dict[str, list[dict[str, Any]]] | None,
@@ -371,12 +371,13 @@ def _check_declared(
     package hashed under the first definition (names as spelled, before they were
     canonical) is checked under it, and its hash is kept when the names are this
     database's: a release keeps the hash it was published with."""
-    own = []
-    for model, by_name in zip((Material, Fluid), ids, strict=True):
+    own: list[dict[str, str]] = []
+    models: tuple[type[Material] | type[Fluid], ...] = (Material, Fluid)
+    for model, by_name in zip(models, ids, strict=True):
         here = dict(session.execute(select(model.id, model.name).where(
             model.id.in_(sorted(set(by_name.values()))))).all())  # fmt: skip
         own.append({here[i]: name for name, i in by_name.items() if here[i] != name})
-    renamed = tuple(own) if any(own) else None
+    renamed = (own[0], own[1]) if any(own) else None
     computed = stored if renamed is None else content_hash(session, dataset, renamed)
     if computed == declared:
         return stored

@@ -42,10 +42,10 @@ def add_pair_value(
     wall_id = catalog_rows.entry_id(connection, "material", wall)
     existing = catalog_rows.pair_value_rows(connection, particle, wall)
     if existing:
-        row = existing[0]
+        present = existing[0]
         raise ConflictError(
-            f"pair {row.particle} on {row.wall}: already has dry values "
-            f"({catalog_rows.source_key(row.source)}); a pair's values are never changed, "
+            f"pair {present.particle} on {present.wall}: already has dry values "
+            f"({catalog_rows.source_key(present.source)}); a pair's values are never changed, "
             "as released datasets read them"
         )
     row = PairValue(

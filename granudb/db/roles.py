@@ -115,7 +115,7 @@ def grant(connection: Connection, account: str, role: str) -> list[str]:
         )
     preparer = connection.dialect.identifier_preparer
     who = preparer.quote(account)
-    database = preparer.quote(connection.execute(text("SELECT current_database()")).scalar())
+    database = preparer.quote(connection.execute(text("SELECT current_database()")).scalar_one())
     done = []
     exists = connection.execute(
         text("SELECT 1 FROM pg_roles WHERE rolname = :name"), {"name": account}

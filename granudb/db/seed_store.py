@@ -55,7 +55,7 @@ class _Resolver:
             raise ValidationError(where, key, "names no source in sources.toml")
         return found
 
-    def named(self, model: type, name: str | None, where: str) -> int | None:
+    def named(self, model: type[Any], name: str | None, where: str) -> int | None:
         if name is None:
             return None
         found = self.session.scalars(select(model.id).filter_by(name_key=name_key(name)))
@@ -66,7 +66,7 @@ class _Resolver:
             raise ValidationError(where, name, f"names no {model.__tablename__[:-1]}")
         return row
 
-    def _renamed(self, model: type, name: str) -> int | None:
+    def _renamed(self, model: type[Any], name: str) -> int | None:
         """The id of a seeded row the user renamed since (its seed record remembers it)."""
         record = self.session.scalars(
             select(SeedRecord).filter_by(
@@ -88,7 +88,7 @@ def apply_seed(session: Session, data: Any, *, overwrite_edits: bool = False) ->
     changes: list[Change] = []
 
     def upsert(
-        session: Session, model: type, key: dict[str, Any], values: dict[str, Any], label: str
+        session: Session, model: type[Any], key: dict[str, Any], values: dict[str, Any], label: str
     ) -> tuple[None, Change]:
         return None, _seed_row(session, model, key, values, label, overwrite_edits)
 
@@ -98,7 +98,7 @@ def apply_seed(session: Session, data: Any, *, overwrite_edits: bool = False) ->
         existing = session.scalars(select(Source).filter_by(key=entry["key"])).one_or_none()
         before = None if existing is None else source_record(existing)
         change = upsert(session, Source, {"key": entry["key"]}, values, f"source {entry['key']}")[1]
-        if before is not None and change.action in ("updated", "reverted"):
+        if existing is not None and before is not None and change.action in ("updated", "reverted"):
             reason = {"updated": "db seed: the seed's sources changed",
                       "reverted": "db seed --overwrite-edits: a user's edit reverted to the "
                                   "seed"}[change.action]  # fmt: skip
@@ -166,13 +166,13 @@ def apply_seed(session: Session, data: Any, *, overwrite_edits: bool = False) ->
     return summarize(changes)
 
 
-def _seed_key(model: type, key: dict[str, Any]) -> str:
+def _seed_key(model: type[Any], key: dict[str, Any]) -> str:
     return json.dumps([key[k] for k in sorted(key)], ensure_ascii=False)
 
 
 def _seed_row(
     session: Session,
-    model: type,
+    model: type[Any],
     key: dict[str, Any],
     values: dict[str, Any],
     label: str,
@@ -255,7 +255,7 @@ def summarize(changes: list[Change]) -> list[str]:
     return lines
 
 
-def _keep_for_releases(session: Session, model: type, key: dict[str, Any], row: Any) -> None:
+def _keep_for_releases(session: Session, model: type[Any], key: dict[str, Any], row: Any) -> None:
     """Before the seed changes a material, a fluid or a fluid's points, keep what a
     release used (``granudb.db.catalog_revisions``)."""
     if model is Material and row is not None:

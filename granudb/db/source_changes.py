@@ -48,7 +48,7 @@ def update_source(session: Session, key: str, values: dict[str, Any], reason: st
     cannot be); the source as it was is kept first as a revision, with ``reason``.
     Returns what changed, field by field (nothing kept when nothing changes)."""
     check_source(values)
-    row = session.get(Source, catalog_rows.source_id(session.connection(), key))
+    row = session.get_one(Source, catalog_rows.source_id(session.connection(), key))
     before = catalog_rows.source_record(row)
     diffs = [(c, before[c], new) for c, new in values.items() if not same_value(before[c], new)]
     label = f"source {key}"

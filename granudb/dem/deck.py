@@ -211,10 +211,12 @@ def rebound_limit(code: str, stiffness: str) -> str:
 
 def rebound_lines(model: DemModel, limit: str) -> list[str]:
     """The deck's statement of ``limit`` for the pairs that have a measured β."""
-    pairs = [p for p in model.pairs if p.rotational_restitution is not None]
-    if not pairs:
+    measured = [(p, p.rotational_restitution) for p in model.pairs]
+    said = ", ".join(
+        f"{pair_label(p)} {describe(beta)}" for p, beta in measured if beta is not None
+    )
+    if not said:
         return []
-    said = ", ".join(f"{pair_label(p)} {describe(p.rotational_restitution)}" for p in pairs)
     return comment(f"beta NOT reproduced ({said}): {limit}")
 
 

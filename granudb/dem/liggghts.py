@@ -200,7 +200,7 @@ def _matrix(
     n = len(model.types)
     lines = [""]
     for a, b, pair in deck.ordered_pairs(model):
-        value: object = getattr(pair, attribute)
+        value: deck.Value | None = getattr(pair, attribute)
         limited = values[pair.key]
         shown = (
             deck.describe(value) if value is not None else "not known: 0 (no rolling resistance)"
@@ -227,11 +227,11 @@ def _matrix(
     for a in model.types:
         row = []
         for b in model.types:
-            pair = model.pair(a.name, b.name)
-            if pair is None:
+            between = model.pair(a.name, b.name)
+            if between is None:
                 row.append(deck.num(0.5 if attribute == "restitution" else 0.0))
             else:
-                row.append(deck.num(values[pair.key].value))
+                row.append(deck.num(values[between.key].value))
         rows.append(" ".join(row))
     if any(model.pair(a.name, b.name) is None for a in model.types for b in model.types):
         lines += deck.comment(f"wall/wall entries: {WALL_PLACEHOLDER}")

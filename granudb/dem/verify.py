@@ -29,6 +29,7 @@ from collections.abc import Iterable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from granudb.dem import deck, lammps, liggghts, runs, yade
 from granudb.dem.runs import Case
@@ -183,7 +184,7 @@ def _record(
     assert pair is not None
     wall = model.type(case.target).is_wall
     kind = "sphere-sphere" if not wall else ("oblique" if case.angle_deg else "normal")
-    base = dict(
+    base: dict[str, Any] = dict(
         code=code,
         pair=f"{case.particle}/{case.target}",
         kind=kind,
@@ -192,10 +193,10 @@ def _record(
         target_e=pair.restitution.value,
     )
     if result is None:
-        return Record(status=status, note=note, **base)  # type: ignore[arg-type]
+        return Record(status=status, note=note, **base)
     vx1, vz1, wy1, vz2 = result
     e = (vz1 - vz2) / case.v_normal  # relative normal velocity out over in (docs/physics.md §9)
-    fields: dict[str, object] = dict(
+    fields: dict[str, Any] = dict(
         achieved_e=e, e_rel_error=e / pair.restitution.value - 1.0, seconds=seconds
     )
     if pair.wet is not None:  # St ∝ V: the law's St at this impact's normal speed
@@ -249,32 +250,33 @@ def _record(
             note="" if regime == GROSS_SLIP else "not on the sliding branch: mu_f is a bound",
         )
     fields.update(_verdict(fields))
-    return Record(status=status, **base, **fields)  # type: ignore[arg-type]
+    return Record(status=status, **base, **fields)
 
 
-def _verdict(fields: dict[str, object]) -> dict[str, str]:
+def _verdict(fields: dict[str, Any]) -> dict[str, str]:
     """Pass, fail or stated limit against ``TOLERANCES``, with the failures said."""
-    failures, limits = [], []
+    failures: list[str] = []
+    limits: list[str] = []
     limit = fields.get("rebound_limit")
     rebound_error = fields.get("rebound_rel_error")
-    if rebound_error is not None and not abs(float(rebound_error)) <= TOLERANCES["rebound"]:  # type: ignore[arg-type]
+    if rebound_error is not None and not abs(float(rebound_error)) <= TOLERANCES["rebound"]:
         said = (
             f"Psi_out {rebound_error:+.2%} from Walton's with beta (tolerance "
             f"±{TOLERANCES['rebound']:.0%})"
         )
         (limits if limit else failures).append(said + (": stated in the deck" if limit else ""))
     stated = fields.get("stated_rel_error")
-    if stated is not None and not abs(float(stated)) <= TOLERANCES["rebound"]:  # type: ignore[arg-type]
+    if stated is not None and not abs(float(stated)) <= TOLERANCES["rebound"]:
         failures.append(  # the deck states what its code gives here: that claim is judged
-            f"Psi_out {float(stated):+.2%} from the Psi_out the deck states for this angle "  # type: ignore[arg-type]
+            f"Psi_out {float(stated):+.2%} from the Psi_out the deck states for this angle "
             f"(tolerance ±{TOLERANCES['rebound']:.0%})"
         )
-    e_error = float(fields["e_rel_error"])  # type: ignore[arg-type]
+    e_error = float(fields["e_rel_error"])
     if not abs(e_error) <= TOLERANCES["restitution"]:
         failures.append(f"e {e_error:+.2%} (tolerance ±{TOLERANCES['restitution']:.0%})")
     mu_error = fields.get("friction_rel_error")
     sliding = fields.get("regime") == TANGENTIAL_REGIME_NAMES[GROSS_SLIP]
-    if sliding and not abs(float(mu_error)) <= TOLERANCES["friction"]:  # type: ignore[arg-type]
+    if sliding and mu_error is not None and not abs(float(mu_error)) <= TOLERANCES["friction"]:
         failures.append(f"mu_f {mu_error:+.2%} (tolerance ±{TOLERANCES['friction']:.0%})")
     verdict = FAIL if failures else (LIMIT if limits else PASS)
     return {"verdict": verdict, "reason": "; ".join(failures + limits)}

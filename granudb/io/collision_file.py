@@ -50,7 +50,7 @@ from granudb.vocabulary import (
     uncertainty_column,
     unit_of_column,
 )
-from granudb.vocabulary.rules import RULES
+from granudb.vocabulary.rules import MAX_SPEED_M_S, RULES
 from granudb.vocabulary.text import (
     MAX_NAME,
     MAX_TEXT,
@@ -78,10 +78,7 @@ RELATIVE_RULES = ("v_n_in_m_s", "v_n_out_m_s")
 #: set to about ±1°. Their sum rounds up to 3°; a difference larger than that is a wrong
 #: column or a wrong unit (the physics review found one of tens of degrees), not noise.
 ANGLE_TOLERANCE_RAD = math.radians(3.0)
-#: No speed in a collision file may be larger than this, in m/s: above any impact
-#: apparatus (light-gas guns reach about 8 km/s); every derived quantity squares the
-#: speed, and a value like 1e300 m/s would turn them into overflows, not numbers.
-MAX_SPEED_M_S = 1e4
+#: The speed columns: none may be faster than ``MAX_SPEED_M_S`` (``vocabulary.rules``).
 SPEEDS = [c for c in NUMERIC if c.endswith("_m_s")]
 #: Rows checked and inserted at a time. About three chunks are in memory at once (one
 #: read ahead, one being read, one being written): 50,000 rather than 100,000 took the
@@ -120,13 +117,13 @@ def stated_uncertainties(given: dict[str, str] | str | None) -> dict[str, tuple[
                     "must be 'column=± u', e.g. 'v_n_in=± 3 %'",
                     parameter=True,
                 )
-        given = [(name.strip(), text.strip()) for name, _, text in pairs]
+        items = [(name.strip(), text.strip()) for name, _, text in pairs]
     else:
-        given = list(given.items())
+        items = list(given.items())
     by_base = {base_name(c): c for c in COLLISION_UNCERTAIN}
     stated: dict[str, tuple[float, bool]] = {}
     named: dict[str, str] = {}
-    for name, text in given:
+    for name, text in items:
         column = name if name in COLLISION_UNCERTAIN else by_base.get(name.strip().lower())
         if column is None:
             raise ValidationError(
@@ -286,8 +283,8 @@ def check_values(rows: Rows) -> None:
         with np.errstate(invalid="ignore"):
             fast = np.abs(columns[column]) > MAX_SPEED_M_S
         shown = lambda pos, h=header: rows.cell(h, pos)  # noqa: E731
-        rule = f"is faster than {MAX_SPEED_M_S:g} m/s (beyond any impact apparatus)"
-        rows.refuse(fast, rows.at(header, shown, rule))
+        too_fast = f"is faster than {MAX_SPEED_M_S:g} m/s (beyond any impact apparatus)"
+        rows.refuse(fast, rows.at(header, shown, too_fast))
     v_n_in, v_n_out = columns["v_n_in_m_s"], columns["v_n_out_m_s"]
     if free is not None and free.any():
         v_n_in, v_n_out = _relative(rows, free)

@@ -294,7 +294,8 @@ def stored_blocks(name: str, path: Path) -> Iterator[Any]:
     """The rows of a validated resource as the SI blocks validation checked, one block of
     ``BLOCK_ROWS`` at a time, for an import that never holds the whole table: memory is
     bounded by a block, whatever the row count."""
-    found, bad = _Findings(), {}
+    found = _Findings()
+    bad: dict[str, tuple[str, str]] = {}
     rows = 0
     with _csv_blocks(path) as reader:
         for frame in reader:
@@ -315,10 +316,6 @@ def _read_table(
     bad: dict[str, tuple[str, str]] = {}
     kept, key_hashes = [], []
     rows = 0
-    bound = _header_bound(name, path)
-    if bound is not None:  # before pandas reads a line of unbounded width
-        problems.append(bound)
-        return None, 0
     try:
         with _csv_blocks(path) as reader:
             for frame in reader:
@@ -558,8 +555,16 @@ def validate_root(root: Path, *, keep_collisions: bool = True) -> Validated:
     counts: dict[str, int] = {}
     files: dict[str, Path] = {}
     found = _resources(descriptor, problems)
+    checked = {name: _resource_file(root, name, found[name], problems) for name in found}
+    # every header bounded before pandas (or Pint, for the schemas) is even imported: a
+    # million-column header costs what reading 16 KiB costs
+    bounds = [_header_bound(name, file) for name, file in checked.items() if file is not None]
+    if any(bounds):
+        problems += [b for b in bounds if b is not None]
+        _check_metadata(descriptor, problems)
+        return Validated(descriptor, {}, problems, {}, {})
     for name in sorted(found, key=READ_ORDER.index):
-        file = _resource_file(root, name, found[name], problems)
+        file = checked[name]
         if file is None:
             continue
         check_schema(name, found[name], problems)

@@ -107,8 +107,9 @@ def _reference(source: dict[str, Any]) -> dict[str, Any]:
         "title": title or source["citation"],
         "authors": people or [{"name": source["citation"][:200]}],
     }
-    if year or source.get("year"):
-        reference["year"] = int(source.get("year") or year)
+    stated_year = source.get("year") or year
+    if stated_year:
+        reference["year"] = int(stated_year)
     if source.get("doi"):
         reference["doi"] = source["doi"]
     elif source.get("url"):

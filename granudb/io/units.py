@@ -226,10 +226,10 @@ def _fast_conversion(spelled: str, to: Unit) -> tuple[float, float] | None:
         raise UnitSyntaxError(f"is not {to.dimension} (expected a unit like '{to.example}')")
     source, goal = value.temperature, target.temperature
     if source is not None and goal is not None and source.offset != goal.offset:
-        # through kelvin, as Pint converts offset units (K = x·factor + offset)
-        zero, one = (
-            (x * source.factor + source.offset - goal.offset) / goal.factor for x in (0.0, 1.0)
-        )
+        # through kelvin, as Pint converts offset units (K = x·factor + offset); a
+        # temperature unit always has an offset (0 for K)
+        shift = (source.offset or 0.0) - (goal.offset or 0.0)
+        zero, one = ((x * source.factor + shift) / goal.factor for x in (0.0, 1.0))
     else:
         zero, one = 0.0, value.factor / target.factor
     scale = one - zero
@@ -486,7 +486,7 @@ def parse_uncertain_quantity(
         split = split_uncertain(text) if isinstance(text, str) else None
     except ValidationError as exc:
         raise ValidationError(field, exc.value, exc.rule) from None
-    if split is None:
+    if split is None or not isinstance(text, str):  # a number: no uncertainty in it
         return parse_quantity(text, unit, field), None
     value_text, u_text = split
     value = parse_quantity(value_text, unit, field)
@@ -552,4 +552,6 @@ def _uncertainty(u_text: str, unit: Unit, field: str, text: str) -> tuple[float,
         u, relative = magnitude * abs(scale), False
     if not math.isfinite(u):
         raise ValidationError(field, text, "needs a finite uncertainty")
+    if magnitude != 0 and u < _TINY:  # 5e-324 mm/s is 0 in m/s: not what was written
+        raise ValidationError(field, text, f"has an uncertainty that {TINY_RULE}")
     return u, relative

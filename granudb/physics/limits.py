@@ -303,4 +303,5 @@ def names(states: tuple[str, ...], code: Numeric) -> np.ndarray:
     >>> names(ELASTIC_STATES, np.array([0, 2])).tolist()
     ['elastic', 'unknown']
     """
-    return np.asarray(states, dtype=object)[np.asarray(code)]
+    named: np.ndarray = np.asarray(states, dtype=object)[np.asarray(code)]
+    return named

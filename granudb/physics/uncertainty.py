@@ -300,7 +300,7 @@ def sensitivities(
     # E* alone: E* is one source for those (its u from the four), expanded where needed.
     e_sources = s_e
     if s_e:
-        scaled[E_STAR] = _norm(s_e, scaled)
+        scaled[E_STAR] = np.asarray(_norm(s_e, scaled))
         s_e = {E_STAR: 1.0}
 
     s: dict[str, Sens] = {
@@ -427,7 +427,9 @@ def propagate(
     # sources is stated has no u (NaN), not the 0 its unstated rows' zeros would give.
     partial = _partly_stated(u, scaled)
     if partial:
-        stated = {k: partial.get(k, 1.0) for k in scaled if k != E_STAR}
+        stated: dict[str, np.ndarray | float] = {
+            k: partial.get(k, 1.0) for k in scaled if k != E_STAR
+        }
         if E_STAR in scaled:
             stated[E_STAR] = _reach(sens["_e_star_sources"], stated)
         for name in relative:
@@ -530,7 +532,7 @@ def contact_speed_uncertainty(
     return np.where(given, np.sqrt(total), np.nan)
 
 
-def _sum_norm(factor: Any, parts: tuple, scaled: Arrays, variance: Any) -> Any:
+def _sum_norm(factor: Any, parts: tuple[Any, ...], scaled: Arrays, variance: Any) -> Any:
     """u(Q)/|Q| of sensitivities factor × Σ coefficient × part (``sensitivities``' sums):
     from the parts' variances where no two parts share a given source, else from the
     combined sensitivities; ``variance`` gives (and caches) a part's."""
@@ -584,7 +586,8 @@ def normal_cdf(z: np.ndarray | float) -> np.ndarray:
     poly *= t_arg
     poly *= 0.5  # Φ(−|z|) = erfc(|z|/√2)/2
     # z > 0: 1 − Φ(−z); NaN stays NaN (the polynomial of NaN is NaN)
-    return np.where(z > 0, 1.0 - poly, poly)
+    probability: np.ndarray = np.where(z > 0, 1.0 - poly, poly)
+    return probability
 
 
 def exceedance(ratio: Any, u_relative: Any) -> np.ndarray:
@@ -643,14 +646,14 @@ def certainty(probability: float) -> str:
     return "likely" if probability >= LIKELY or probability <= UNLIKELY else "uncertain"
 
 
-def _reach(sens: Sens, stated: Arrays) -> Any:
+def _reach(sens: Sens, stated: dict[str, np.ndarray | float]) -> Any:
     """1.0 in the rows where a source of ``sens`` is stated (``stated``: 1.0/0.0 by row,
     or 1.0 for every row), else 0.0: whether a stated input reaches the quantity at all,
     whatever its sensitivity's value."""
     return _any_of([stated[k] for k in sens if k in stated])
 
 
-def _any_of(masks: list) -> Any:
+def _any_of(masks: list[Any]) -> Any:
     """The largest of 1.0/0.0 masks (scalars or arrays), row by row; 0.0 for none."""
     out: Any = 0.0
     for mask in masks:
@@ -672,7 +675,11 @@ def _partly_stated(u: Arrays, scaled: Arrays) -> Arrays:
 
 
 def _relatives(
-    sens: dict[str, Sens], sums: dict, scaled: Arrays, columns: Arrays, lubricated: np.ndarray
+    sens: dict[str, Sens],
+    sums: dict[str, Any],
+    scaled: Arrays,
+    columns: Arrays,
+    lubricated: np.ndarray,
 ) -> dict[str, Any]:
     """u(Q)/|Q| of every propagated column from the sensitivities and the sources'
     scaled uncertainties (NaN where no given source reaches Q): ``propagate``'s sum."""

@@ -317,14 +317,7 @@ class ReferencedViscosity:
         low = float(self.viscosity(self.high_c))
         high = float(self.viscosity(self.low_c))
         _check_range("viscosity_pa_s", np.atleast_1d(mu), low, high)
-        return self.model.temperature_for_viscosity(
-            np.clip(
-                mu / self.scale,
-                *sorted(
-                    (
-                        float(self.model.viscosity(self.high_c)),
-                        float(self.model.viscosity(self.low_c)),
-                    )
-                ),
-            )
+        floor, ceiling = sorted(
+            (float(self.model.viscosity(self.high_c)), float(self.model.viscosity(self.low_c)))
         )
+        return self.model.temperature_for_viscosity(np.clip(mu / self.scale, floor, ceiling))

@@ -212,13 +212,14 @@ def derived_rows(derived: dict[str, Any]) -> list[dict[str, Any]]:
 def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, Any]]:
     """The scenario's inputs, each marked given or assumed (not given: a default)."""
     rows = []
-    for name, label, column in (
+    scenario: tuple[tuple[str, str, str | None], ...] = (
         ("diameter_m", "Particle diameter", "diameter_m"),
         ("wall_diameter_m", "Second sphere diameter", "diameter_m"),
         ("target", "Target", None),
         ("impact_speed_m_s", "Impact speed", "impact_speed_m_s"),
         ("incidence_angle_rad", "Incidence angle", "incidence_angle_rad"),
-    ):
+    )
+    for name, label, column in scenario:
         value = inputs.get(name)
         if value is None and name == "wall_diameter_m":
             continue
@@ -231,7 +232,7 @@ def scenario_rows(inputs: dict[str, Any], assumed: set[str]) -> list[dict[str, A
                 "label": label,
                 "name": name,
                 "unit": "",
-                "value": TARGET_WORDS[value] if name == "target" else display(value, column),
+                "value": TARGET_WORDS[str(value)] if column is None else display(value, column),
                 "relation": how,
             }  # fmt: skip
         )

@@ -117,9 +117,11 @@ def pair_report(
     """
     assumed = set(assumed or ())
     if diameter_m is None:
-        diameter_m, _ = DEFAULT_DIAMETER_M, assumed.add("diameter_m")
+        diameter_m = DEFAULT_DIAMETER_M
+        assumed.add("diameter_m")
     if speed_m_s is None:
-        speed_m_s, _ = DEFAULT_SPEED_M_S, assumed.add("impact_speed_m_s")
+        speed_m_s = DEFAULT_SPEED_M_S
+        assumed.add("impact_speed_m_s")
     if target is None and wall_diameter_m is not None:
         assumed.add("target")  # a second sphere is free and at rest unless said fixed
     result = derive_pair(

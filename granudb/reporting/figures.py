@@ -46,7 +46,7 @@ def _regime_grid(materials: tuple[dict, dict], *scenario: float) -> dict[str, An
     viscosity = np.geomspace(lowest_viscosity, 1.0, 100)
     v_grid, mu_grid = np.meshgrid(velocity, viscosity)
     # a roughness not stated is NaN: the map then shades it "not determined"
-    inputs = {
+    inputs: dict[str, Any] = {
         f"{side}_{k}": np.nan if record[k] is None else record[k]
         for side, record in (("particle", particle), ("wall", wall))
         for k in _MATERIAL_KEYS
@@ -340,8 +340,8 @@ WET_COLUMNS = (
 def _errors(frame: Any, x: str, y: str) -> tuple[Any, Any] | None:
     """(u of ``x``, u of ``y``) by run where the frame has them and any run states one,
     else None (no bars)."""
-    found = tuple(frame[f"u_{c}"].to_numpy(float) if f"u_{c}" in frame else None for c in (x, y))
-    return found if plots.has_errors(*found) else None
+    u_x, u_y = (frame[f"u_{c}"].to_numpy(float) if f"u_{c}" in frame else None for c in (x, y))
+    return (u_x, u_y) if plots.has_errors(u_x, u_y) else None
 
 
 def predicted_curves(frame: Any, labels: Sequence[str], critical_stokes: float) -> list[dict]:

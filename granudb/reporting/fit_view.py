@@ -80,8 +80,8 @@ def value_line(fit: Mapping[str, Any], quantity: Quantity) -> str:
     value = fit.get(quantity.key)
     unit = f" {quantity.unit}" if quantity.unit else ""
     if not is_number(value):
-        why = _about(fit, quantity.symbol) or _parts(fit.get("reason"))
-        return "not determined: " + ("; ".join(why) or "the fit gave no value")
+        reasons = _about(fit, quantity.symbol) or _parts(fit.get("reason"))
+        return "not determined: " + ("; ".join(reasons) or "the fit gave no value")
     low, high = fit.get(quantity.low), fit.get(quantity.high)
     scaled = [float(v) * quantity.scale if is_number(v) else v for v in (value, low, high)]
     if is_number(low) and is_number(high):
@@ -118,8 +118,9 @@ def method_line(fit: Mapping[str, Any]) -> str | None:
     stated = is_number(level) and "%" not in method and "no interval" not in method
     said = f"{level:.0%} " if stated else ""
     count, seed = fit.get("bootstrap_resamples"), fit.get("bootstrap_seed")
-    resampled = is_number(count) and "bootstrap" in method  # a Bayesian fit draws, not resamples
-    extra = f", {int(count)} resamples, seed {seed}" if resampled else ""
+    extra = ""
+    if is_number(count) and "bootstrap" in method:  # a Bayesian fit draws, not resamples
+        extra = f", {int(count)} resamples, seed {seed}"
     return f"{said}{method}{extra}"
 
 

@@ -9,8 +9,9 @@ from __future__ import annotations
 import math
 import numbers
 import re
-from typing import Any
+from typing import Any, TypeGuard
 
+from granudb.vocabulary.escaping import shown_text
 from granudb.vocabulary.units import unit_of_column
 
 _PREFIXES = {-15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G", 12: "T"}
@@ -55,7 +56,7 @@ def display(value: Any, column: str, digits: int = 4) -> str:
     if hasattr(value, "item") and not isinstance(value, str):
         value = value.item()  # a numpy scalar
     if not isinstance(value, int | float):
-        return str(value)
+        return shown_text(str(value))  # a stored control character shown, never acted on
     if isinstance(value, float) and math.isnan(value):
         return EMPTY_WORDS.get(column, "—")
     unit = unit_of_column(column)
@@ -189,7 +190,7 @@ def interval(value: Any, low: Any, high: Any) -> str:
     )
 
 
-def is_number(value: Any) -> bool:
+def is_number(value: Any) -> TypeGuard[float]:
     """True for a finite real number (numpy's included); False for NaN, ±inf, a bool,
     ``None`` or text.
 

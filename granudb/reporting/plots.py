@@ -144,7 +144,8 @@ def walton_plot(
                 ylabel="Ψ_out = v_T,out / v_N,in  (–)")  # fmt: skip
     for line in lines:  # bands first: behind the runs and the lines
         if line.get("band") is not None:
-            plot.band(line["x"], *line["band"], Style(colours[line["label"]], alpha=BAND_ALPHA))
+            low, high = line["band"]
+            plot.band(line["x"], low, high, Style(colours[line["label"]], alpha=BAND_ALPHA))
     scatter_groups(plot, np.asarray(psi_in, float), np.asarray(psi_out, float), groups, colours,
                    errors)  # fmt: skip
     for line in lines:

@@ -477,12 +477,14 @@ def _layer(plot: Plot, kind: str, data: Any, style: Style | None, px: Any, py: A
            box: tuple[float, float, float, float]) -> str:  # fmt: skip
     left, top, width, height = box
     if kind == "cells":
-        return _cells(*data, px, py)
+        x_edges, y_edges, codes, colours = data
+        return _cells(x_edges, y_edges, codes, colours, px, py)
     assert style is not None
     if kind == "errorbars":
         return _errorbars(plot, data, style, px, py, box)
     if kind == "band":
-        return _band(*data, style, px, py)
+        x, low, high = data
+        return _band(x, low, high, style, px, py)
     if kind == "points":
         x, y = data
         ok = plot.x.visible(x) & plot.y.visible(y)

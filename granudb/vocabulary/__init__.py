@@ -32,12 +32,12 @@ from granudb.vocabulary.terms import (
     TERMS,
     Term,
     plain_uncertainty_header,
+    uncertainty_column,
 )
 from granudb.vocabulary.uncertainty import (
     PROBABILITY_TERMS,
     UNCERTAIN_DERIVED,
     UNCERTAINTY_TERMS,
-    uncertainty_column,
 )
 from granudb.vocabulary.units import UNITS, Unit, unit_of_column
 

@@ -11,6 +11,9 @@ never markup: whatever it holds, each output shows it as the text it is.
   ``@``) broken, so ``<img onerror=…>`` or ``https://evil.example`` in a name reads as
   that text. An address is percent-encoded inside its ``<…>`` (no ``<``, ``>``, space,
   quote or backslash survives), so it cannot end the link or start an element.
+- **A terminal** (tables, ``display``): ``shown_text``: a control, bidirectional or
+  invisible character (which text stored before the text rules could hold) is shown as
+  its escape (``\\x1b``, ``\\u202e``), never sent to the terminal to act.
 - **CSV bound for spreadsheets** (listings with ``--format csv``, the runs beside a report,
   posterior draws): ``spreadsheet_cell``: a text cell that a spreadsheet would run as a
   formula (starting ``=``, ``+``, ``-``, ``@``, tab or carriage return) is prefixed with
@@ -23,6 +26,8 @@ from __future__ import annotations
 import re
 from typing import Any
 from urllib.parse import quote
+
+from granudb.vocabulary.text import text_forbidden_pattern
 
 #: A text cell a spreadsheet would run as a formula starts with one of these (OWASP's CSV
 #: injection advice); numbers are written as numbers and never start with them as text.
@@ -54,9 +59,11 @@ def spreadsheet_frame(frame: Any) -> Any:
         if series.dtype.kind not in "OSU" and str(series.dtype) not in ("string", "str"):
             continue
         text = series.astype("string")
-        formula = text.str.startswith(FORMULA_STARTS).fillna(False).astype(bool)
+        formula = text.str.startswith(FORMULA_STARTS).fillna(False).astype(bool).to_numpy()
         if formula.any():
-            out[column] = series.where(~formula, "'" + text.astype(object))
+            values = series.to_numpy(dtype=object, copy=True)
+            values[formula] = ["'" + str(v) for v in values[formula]]
+            out[column] = type(series)(values, index=series.index, name=column).astype(series.dtype)
     return out
 
 
@@ -64,13 +71,15 @@ def spreadsheet_frame(frame: Any) -> Any:
 # start markup is escaped, so the source stays readable ("(σ > x₁/3)", not "\\(σ \\> x₁/3\\)"):
 # emphasis and code (* `, and _ unless inside a word, where it cannot open or close
 # emphasis), links and images ([), raw HTML and autolinks (< before a letter, / ! ?),
-# entities (& of "&name;" or "&#…;"), strikethrough (~~), table cells (|), a backslash
+# entities (& of "&name;" or "&#…;"), strikethrough (~, which GFM reads single too),
+# table cells (|), a backslash
 # before punctuation, and a block marker at the start of the text (# > - + = or "1." "1)").
 # GitHub's autolinks need "scheme://", "www." or a dot between letters (a bare domain, as
-# markdown-it's linkify reads it): ":" before "//" and "." before a letter are escaped.
+# markdown-it's linkify reads it, and "//host" too): ":" and "/" before "/", "." before
+# a letter and after "www" are escaped.
 _MD_INLINE = re.compile(
-    r"[*`\[|]|(?<![^\W_])_|_(?![^\W_])|<(?=[A-Za-z/!?])|&(?=#?\w+;)|~(?=~)|(?<=~)~"
-    r"|\\(?=[!-/:-@\[-`{-~]|$)|:(?=//)|\.(?=[^\W\d_])"
+    r"[*`\[|~]|(?<![^\W_])_|_(?![^\W_])|<(?=[A-Za-z/!?])|&(?=#?\w+;)"
+    r"|\\(?=[!-/:-@\[-`{-~]|$)|:(?=//)|/(?=/)|\.(?=[^\W\d_])|(?<=[wW]{3})\."
 )
 _MD_BLOCK = re.compile(
     r"^(?:#{1,6}(?=\s|$)|>|[-+*](?=\s|$)|\d{1,9}(?=[.)](?:\s|$))|[-=_*](?=[-=_*\s]*$))"
@@ -89,7 +98,7 @@ def markdown_text(value: Any) -> str:
     >>> markdown_text("σ > x₁/3 (Λ < 1), St_n = 2·v_N,in; *bold* [link] <b>")
     'σ > x₁/3 (Λ < 1), St_n = 2·v_N,in; \\\\*bold\\\\* \\\\[link] \\\\<b>'
     >>> markdown_text("see https://www.evil.example")
-    'see https\\\\://www\\\\.evil\\\\.example'
+    'see https\\\\:\\\\//www\\\\.evil\\\\.example'
     """
     text = "" if value is None else str(value)
     text = " ".join(text.split())  # newlines would break tables and lists
@@ -131,3 +140,17 @@ def doi_address(doi: str) -> str:
     """The https://doi.org/ address of a DOI, its suffix percent-encoded (DOI Handbook
     §2.5.2.4: characters outside the URI set are encoded)."""
     return "https://doi.org/" + quote(doi, safe="/:;()._-~!*+,=@$&")
+
+
+_UNSHOWABLE = re.compile(text_forbidden_pattern())
+
+
+def shown_text(value: str) -> str:
+    """``value`` for a person's screen: every character the text rules forbid (controls
+    but line feed and tab, bidirectional and invisible marks) written as its escape, so
+    stored text cannot clear a screen, set a window title or read backwards.
+
+    >>> shown_text("a\\x1b[2Jb\\u202ec")
+    'a\\\\x1b[2Jb\\\\u202ec'
+    """
+    return _UNSHOWABLE.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), value)

@@ -15,7 +15,21 @@ from granudb.errors import ValidationError
 from granudb.vocabulary.ranges import NON_NEGATIVE, POSITIVE, Rule
 from granudb.vocabulary.terms import STORED_RULES
 
-__all__ = ["NON_NEGATIVE", "POSITIVE", "RULES", "Rule", "check_record", "check_value"]
+__all__ = [
+    "MAX_SPEED_M_S",
+    "NON_NEGATIVE",
+    "POSITIVE",
+    "RULES",
+    "Rule",
+    "check_record",
+    "check_value",
+]
+
+#: No speed (or speed uncertainty) may be larger than this, in m/s, from a CSV cell, a
+#: package cell or an option alike: above any impact apparatus (light-gas guns reach
+#: about 8 km/s); every derived quantity squares the speed, and a value like 1e300 m/s
+#: would turn them into overflows, not numbers.
+MAX_SPEED_M_S = 1e4
 
 #: Each stored column's rule comes from its declaration (``granudb.vocabulary.terms``);
 #: the quantities below are not stored but are checked as they are typed.
@@ -65,4 +79,5 @@ def same_value(old: Any, new: Any) -> bool:
     """
     if isinstance(old, float) and isinstance(new, float | int):
         return math.isclose(old, float(new), rel_tol=1e-12, abs_tol=0.0)
-    return old == new
+    equal: bool = old == new
+    return equal

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import re
 import unicodedata
+from typing import overload
 
 from granudb.errors import ValidationError
 
@@ -71,6 +72,12 @@ def check_name(field: str, value: str, *, max_length: int = MAX_NAME) -> str:
     return _within(field, value, max_length, _NAME_FORBIDDEN, "")
 
 
+@overload
+def check_text(field: str, value: str, *, max_length: int = ...) -> str: ...
+@overload
+def check_text(field: str, value: None, *, max_length: int = ...) -> None: ...
+@overload
+def check_text(field: str, value: str | None, *, max_length: int = ...) -> str | None: ...
 def check_text(field: str, value: str | None, *, max_length: int = MAX_TEXT) -> str | None:
     """``value`` in NFC if it is valid free text (``None`` stays ``None``), else
     ``ValidationError``."""
@@ -79,7 +86,7 @@ def check_text(field: str, value: str | None, *, max_length: int = MAX_TEXT) -> 
     return _within(field, value, max_length, _TEXT_FORBIDDEN, "; line breaks are \\n")
 
 
-def _within(field: str, value: str, max_length: int, forbidden: re.Pattern, note: str) -> str:
+def _within(field: str, value: str, max_length: int, forbidden: re.Pattern[str], note: str) -> str:
     """``value`` if it is at most ``max_length`` long and holds no ``forbidden`` character
     (``note`` ends the message), else ``ValidationError``."""
     if len(value) > max_length:

@@ -18,6 +18,8 @@ from pathlib import Path
 import cmarkgfm
 import pytest
 from cmarkgfm.cmark import Options
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from markdown_it import MarkdownIt
 
 import granudb
@@ -87,6 +89,70 @@ def test_escaped_text_is_text_in_every_renderer(renderer: str, text: str) -> Non
             (t, ()) for t in ("p", "table", "thead", "tbody", "tr", "th", "td")
         }
         assert addresses == []
+
+
+#: Text built from the pieces of markup, links and autolinks.
+PIECES = st.lists(
+    st.sampled_from(
+        [
+            "<",
+            ">",
+            "img",
+            "script",
+            " ",
+            "src=x",
+            "on",
+            "=",
+            '"',
+            "'",
+            "/",
+            "https",
+            "http",
+            ":",
+            "//",
+            "www",
+            ".",
+            "evil",
+            "com",
+            "@",
+            "a",
+            "mailto",
+            "[",
+            "]",
+            "(",
+            ")",
+            "!",
+            "*",
+            "_",
+            "`",
+            "|",
+            "~",
+            "#",
+            "-",
+            "1",
+            "&",
+            ";",
+            "#60",
+            "lt",
+            "\\",
+            "javascript",
+            "\n",
+            "\t",
+        ]
+    ),  # fmt: skip
+    max_size=25,
+).map("".join)
+
+
+@settings(max_examples=300, deadline=None)
+@given(PIECES)
+def test_any_text_stays_text(text: str) -> None:
+    for render in RENDERERS.values():
+        for markdown in (markdown_text(text), f"| h |\n|---|\n| {markdown_text(text)} |"):
+            elements, addresses = _shape(render(markdown))
+            allowed = {(t, ()) for t in ("p", "table", "thead", "tbody", "tr", "th", "td")}
+            assert set(elements) <= allowed, (text, markdown, elements)
+            assert addresses == [], (text, markdown)
 
 
 @pytest.mark.parametrize("renderer", sorted(RENDERERS))
@@ -165,3 +231,29 @@ def test_the_runs_csv_beside_a_report_carries_no_formula() -> None:
         "'" + x if x.startswith(FORMULA_STARTS) else x for x in labels
     ]
     assert {row[1] for row in rows[1:]} == {"-3.5"}
+
+
+def test_spreadsheet_frame_keeps_numbers_and_missing_values() -> None:
+    """The one rule of spreadsheet-bound CSV (``--format csv``, runs, ``--draws``) on a
+    frame of every column kind: text prefixed where a spreadsheet would run it, the rest
+    as it was."""
+    import numpy as np
+    import pandas as pd
+
+    from granudb.vocabulary.escaping import spreadsheet_cell, spreadsheet_frame
+
+    frame = pd.DataFrame({
+        "group": ['=HYPERLINK("https://evil.example","x")', "steel on glass", None],
+        "arrow": pd.array(["@SUM(1)", "ok", None], dtype="string[pyarrow]"),
+        "chain": [0, 1, 2],
+        "value": [-1.5, np.nan, 2.0],
+    })  # fmt: skip
+    out = spreadsheet_frame(frame)
+    for column in ("group", "arrow"):  # missing values stay missing
+        assert out[column].isna().tolist() == [False, False, True]
+        assert out[column].dtype == frame[column].dtype
+    assert list(out["group"][:2]) == ["'" + frame["group"][0], "steel on glass"]
+    assert list(out["arrow"][:2]) == ["'@SUM(1)", "ok"]
+    assert out["chain"].tolist() == [0, 1, 2] and out["value"].equals(frame["value"])
+    assert frame["group"][0].startswith("=")  # the caller's frame is not changed
+    assert [spreadsheet_cell(v) for v in ("-x", -1.0, None)] == ["'-x", -1.0, ""]
