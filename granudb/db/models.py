@@ -61,13 +61,16 @@ _SQL_TYPES: dict[str, Any] = {
     "text": Text,
     "string": String,
     "boolean": Boolean,
+    "datetime": DateTime(timezone=True),
 }
 
 
 def _mapped(declaration: Stored, kept: bool) -> Any:
     kind = _SQL_TYPES[declaration.sql]
-    sql_type = kind(declaration.length) if declaration.length else kind()
+    sql_type = kind(declaration.length) if declaration.length else kind
     extra: dict[str, Any] = {}
+    if declaration.server_default is not None and not kept:
+        extra["server_default"] = declaration.server_default
     if declaration.default is not None and not kept:
         extra["default"] = declaration.default
     if declaration.unique and not kept:
@@ -226,7 +229,7 @@ class FluidPoint(declared("fluid_points"), Base):
     )
 
 
-class Dataset(Timestamped, Base):
+class Dataset(Timestamped, declared("datasets"), Base):
     """A named, versioned, curated collection of collisions.
 
     ``content_hash`` is a sha256 over the dataset's collisions in a canonical form (see
@@ -237,28 +240,16 @@ class Dataset(Timestamped, Base):
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     name: Mapped[str] = mapped_column(String(200))
-    version: Mapped[str] = mapped_column(String(50), default="1.0.0")
-    title: Mapped[str | None] = mapped_column(Text)
     description: Mapped[str | None] = mapped_column(Text)
-    license: Mapped[str | None] = mapped_column(String(200))
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
-    content_hash: Mapped[str | None] = mapped_column(String(80))
-    #: The dataset's own DOI (e.g. a Zenodo version DOI), once it has been published.
-    doi: Mapped[str | None] = mapped_column(String(200))
-    #: JSON list of people: {"given_names", "family_names", "orcid", "affiliation"}.
-    authors: Mapped[str | None] = mapped_column(Text)
-    #: JSON list of keywords.
-    keywords: Mapped[str | None] = mapped_column(Text)
-    #: draft (editable) → released (immutable) → superseded (a newer version was released).
-    state: Mapped[str] = mapped_column(String(20), default="draft", server_default="draft")
-    released_at: Mapped[datetime | None] = mapped_column(DateTime(timezone=True))
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
 
     source: Mapped[Source | None] = relationship(lazy="joined")
 
     __table_args__ = (
-        UniqueConstraint("name", "version"),
+        UniqueConstraint("name", *keyed("datasets")),
         CheckConstraint("length(name) > 0", name="name_not_empty"),
-        CheckConstraint("state IN ('draft', 'released', 'superseded')", name="state_known"),
+        *declared_checks("datasets"),
     )
 
 

@@ -332,7 +332,8 @@ class Stored:
     command options (``granudb.vocabulary.catalogue``) and the Data Package schema
     (``granudb.io.package_schema``).
 
-    ``sql`` is "float", "integer", "text", "string" (``length`` characters) or "boolean";
+    ``sql`` is "float", "integer", "text", "string" (``length`` characters), "boolean" or
+    "datetime" (with time zone); ``server_default`` what the database itself fills in;
     ``unique`` that no two rows share the value (a source's key);
     ``nullable`` False makes a value required (unless ``default`` fills it); ``rule`` its
     range, enforced by the CHECK ``check`` (the constraint's name; ``guarded`` False writes
@@ -351,6 +352,7 @@ class Stored:
     nullable: bool = True
     length: int | None = None
     default: float | str | None = None
+    server_default: str | None = None
     unique: bool = False
     rule: Rule | None = None
     check: str | None = None
@@ -371,7 +373,8 @@ class Stored:
         if self.check_sql is not None:
             return self.check_sql
         if self.words:
-            return f"{c} IS NULL OR {c} IN ({', '.join(repr(w) for w in self.words)})"
+            words = f"{c} IN ({', '.join(repr(w) for w in self.words)})"
+            return f"{c} IS NULL OR {words}" if self.nullable and self.guarded else words
         if self.rule is None:
             return None
         rule, parts = self.rule, []
@@ -497,6 +500,22 @@ STORED: tuple[Stored, ...] = (
            check_sql="year IS NULL OR (year >= {} AND year <= {})".format(*SOURCE_YEARS)),
     Stored("kind", "sources", sql="string", length=40, nullable=False, default="publication"),
     Stored("notes", "sources", sql="text"),
+    # datasets: named, versioned collections of runs (a name's versions are its key)
+    Stored("version", "datasets", sql="string", length=50, nullable=False, default="1.0.0",
+           keyed=True),
+    Stored("title", "datasets", sql="text"),
+    Stored("license", "datasets", sql="string", length=200),
+    Stored("content_hash", "datasets", sql="string", length=80),
+    # the dataset's own DOI (e.g. a Zenodo version DOI), once it has been published
+    Stored("doi", "datasets", sql="string", length=200),
+    # JSON lists: people {"given_names", "family_names", "orcid", "affiliation"}; keywords
+    Stored("authors", "datasets", sql="text"),
+    Stored("keywords", "datasets", sql="text"),
+    # draft (editable) → released (immutable) → superseded (a newer version was released)
+    Stored("state", "datasets", sql="string", length=20, nullable=False, default="draft",
+           server_default="draft", words=("draft", "released", "superseded"),
+           check="state_known"),
+    Stored("released_at", "datasets", sql="datetime"),
     # a run as a paper reports it: the quantities it states, never a velocity
     Stored("diameter_m", "reported_runs", rule=POSITIVE, check="diameter_positive"),
     Stored("incidence_angle_rad", "reported_runs", rule=_HALF_PI, check="incidence_angle_range",
