@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import difflib
 from dataclasses import fields, make_dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sqlalchemy import DateTime, column, func, or_, select, table
 from sqlalchemy.engine import Connection
@@ -58,49 +58,73 @@ def _row_type(name: str, head: list[tuple[str, Any]], table: str, tail: list[tup
     return made
 
 
-SourceRow = _row_type(
-    "SourceRow", [], "sources", [], "A source as stored (``granudb.db.models.Source``)."
-)
-_SOURCE = ("source", SourceRow | None)
-_CREATED = [("created_at", Any), ("updated_at", Any)]
-MaterialRow = _row_type(
-    "MaterialRow",
-    [("name", str), ("description", str | None)],
-    "materials",
-    [("source_locator", str | None), _SOURCE, *_CREATED],
-    "A material as the catalogue stores it (``granudb.db.models.Material``).",
-)
-PairValueRow = _row_type(
-    "PairValueRow",
-    [("particle", str), ("wall", str)],
-    "pair_values",
-    [("source_locator", str | None), ("notes", str | None), _SOURCE],
-    "Dry values a source measured for one pair (``granudb.db.models.PairValue``), with "
-    "the two materials' names.",
-)
-FluidPointRow = _row_type(
-    "FluidPointRow",
-    [],
-    "fluid_points",
-    [("source_locator", str | None), _SOURCE],
-    "One point of a fluid (``granudb.db.models.FluidPoint``).",
-)
-FluidRow = _row_type(
-    "FluidRow",
-    [("name", str), ("description", str | None)],
-    "fluids",
-    [
-        ("source_locator", str | None),
-        ("density_locator", str | None),
-        ("pressure_viscosity_locator", str | None),
-        _SOURCE,
-        ("density_source", SourceRow | None),
-        ("pressure_viscosity_source", SourceRow | None),
-        *_CREATED,
-        ("points", tuple),
-    ],
-    "A fluid with its points (``granudb.db.models.Fluid``).",
-)
+class _Generated:
+    """What a type checker sees of a generated row: any attribute, ``Any`` (the fields
+    come from ``granudb.vocabulary.terms.STORED`` at import)."""
+
+    if TYPE_CHECKING:
+
+        def __init__(self, *values: Any, **named: Any) -> None: ...
+
+        def __getattr__(self, name: str) -> Any: ...
+
+
+if TYPE_CHECKING:
+
+    class SourceRow(_Generated): ...
+
+    class MaterialRow(_Generated): ...
+
+    class PairValueRow(_Generated): ...
+
+    class FluidPointRow(_Generated): ...
+
+    class FluidRow(_Generated): ...
+
+else:
+    SourceRow = _row_type(
+        "SourceRow", [], "sources", [], "A source as stored (``granudb.db.models.Source``)."
+    )
+    _SOURCE = ("source", SourceRow | None)
+    _CREATED = [("created_at", Any), ("updated_at", Any)]
+    MaterialRow = _row_type(
+        "MaterialRow",
+        [("name", str), ("description", str | None)],
+        "materials",
+        [("source_locator", str | None), _SOURCE, *_CREATED],
+        "A material as the catalogue stores it (``granudb.db.models.Material``).",
+    )
+    PairValueRow = _row_type(
+        "PairValueRow",
+        [("particle", str), ("wall", str)],
+        "pair_values",
+        [("source_locator", str | None), ("notes", str | None), _SOURCE],
+        "Dry values a source measured for one pair (``granudb.db.models.PairValue``), with "
+        "the two materials' names.",
+    )
+    FluidPointRow = _row_type(
+        "FluidPointRow",
+        [],
+        "fluid_points",
+        [("source_locator", str | None), _SOURCE],
+        "One point of a fluid (``granudb.db.models.FluidPoint``).",
+    )
+    FluidRow = _row_type(
+        "FluidRow",
+        [("name", str), ("description", str | None)],
+        "fluids",
+        [
+            ("source_locator", str | None),
+            ("density_locator", str | None),
+            ("pressure_viscosity_locator", str | None),
+            _SOURCE,
+            ("density_source", SourceRow | None),
+            ("pressure_viscosity_source", SourceRow | None),
+            *_CREATED,
+            ("points", tuple),
+        ],
+        "A fluid with its points (``granudb.db.models.Fluid``).",
+    )
 
 
 #: Attributes that are not columns of their own: the cited source (by ``<name>_id``) and

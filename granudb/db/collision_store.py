@@ -168,8 +168,8 @@ class FluidRanges:
             for fluid_id, low, high, count in session.execute(
                 select(
                     FluidPoint.fluid_id,
-                    func.min(FluidPoint.temperature_c),
-                    func.max(FluidPoint.temperature_c),
+                    func.min(FluidPoint.__table__.c.temperature_c),
+                    func.max(FluidPoint.__table__.c.temperature_c),
                     func.count(),
                 ).group_by(FluidPoint.fluid_id)
             )
@@ -177,7 +177,7 @@ class FluidRanges:
         self.fluids = {
             name_key(name): (name, reference, *spans.get(fluid_id, (None, None, 0)))
             for fluid_id, name, reference in session.execute(
-                select(Fluid.id, Fluid.name, Fluid.reference_temperature_c).where(
+                select(Fluid.id, Fluid.name, Fluid.__table__.c.reference_temperature_c).where(
                     Fluid.revision_of.is_(None)
                 )
             )

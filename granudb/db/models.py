@@ -16,7 +16,7 @@ tables; ``tests/db/test_migrations.py`` proves the two agree.
 from __future__ import annotations
 
 from datetime import datetime
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sqlalchemy import (
     Boolean,
@@ -100,12 +100,43 @@ def declared_checks(table: str) -> list[CheckConstraint]:
     return checks + [CheckConstraint(sql, name=n) for n, sql in TABLE_CHECKS.get(table, {}).items()]
 
 
+class _Declared:
+    """What a type checker sees of a model's declared columns: any attribute, ``Any``
+    (they are generated from ``granudb.vocabulary.terms.STORED`` at import)."""
+
+    if TYPE_CHECKING:
+
+        def __getattr__(self, name: str) -> Any: ...
+
+
+if TYPE_CHECKING:
+    _Sources = _Declared
+    _SourcesKept = _Declared
+    _Materials = _Declared
+    _Fluids = _Declared
+    _FluidPoints = _Declared
+    _Datasets = _Declared
+    _Collisions = _Declared
+    _PairValues = _Declared
+    _ReportedRuns = _Declared
+else:
+    _Sources = declared("sources")
+    _SourcesKept = declared("sources", kept=True)
+    _Materials = declared("materials")
+    _Fluids = declared("fluids")
+    _FluidPoints = declared("fluid_points")
+    _Datasets = declared("datasets")
+    _Collisions = declared("collisions")
+    _PairValues = declared("pair_values")
+    _ReportedRuns = declared("reported_runs")
+
+
 #: The column that orders a fluid's points and keys them within the fluid.
 (_POINT_KEY,) = keyed("fluid_points")
 
 
 # Stable constraint names, so migrations can refer to them on every dialect.
-class Source(declared("sources"), Base):
+class Source(_Sources, Base):
     """A publication, correlation or measurement campaign that numbers come from.
 
     Where in it a number was printed (``table 1``, ``figure 4``, ``§3``) is stored beside the
@@ -115,12 +146,15 @@ class Source(declared("sources"), Base):
     __tablename__ = "sources"
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin;
+    # what queries name at class level, for type checkers:
+    if TYPE_CHECKING:
+        key: Mapped[str]
 
     __table_args__ = tuple(declared_checks("sources"))
 
 
-class SourceRevision(declared("sources", kept=True), Base):
+class SourceRevision(_SourcesKept, Base):
     """A source's values before one change (a re-seed that changed its citation, DOI, …),
     with when and why it changed. A released dataset reads each source as it was when the
     dataset was released: the first revision kept after that, or the live row when none
@@ -135,7 +169,7 @@ class SourceRevision(declared("sources", kept=True), Base):
     reason: Mapped[str] = mapped_column(Text)
 
 
-class Material(Timestamped, declared("materials"), Base):
+class Material(Timestamped, _Materials, Base):
     """A solid a particle or a wall is made of (Joseph & Hunt 2004, table 1)."""
 
     __tablename__ = "materials"
@@ -159,7 +193,7 @@ class Material(Timestamped, declared("materials"), Base):
     )
 
 
-class Fluid(Timestamped, declared("fluids"), Base):
+class Fluid(Timestamped, _Fluids, Base):
     """A liquid the collisions happen in (absent for a dry collision).
 
     ``reference_viscosity_pa_s`` and ``reference_density_kg_m3`` are the fluid at
@@ -209,7 +243,7 @@ class Fluid(Timestamped, declared("fluids"), Base):
     )
 
 
-class FluidPoint(declared("fluid_points"), Base):
+class FluidPoint(_FluidPoints, Base):
     """One viscosity (and optionally density) of a fluid at one temperature."""
 
     __tablename__ = "fluid_points"
@@ -229,7 +263,7 @@ class FluidPoint(declared("fluid_points"), Base):
     )
 
 
-class Dataset(Timestamped, declared("datasets"), Base):
+class Dataset(Timestamped, _Datasets, Base):
     """A named, versioned, curated collection of collisions.
 
     ``content_hash`` is a sha256 over the dataset's collisions in a canonical form (see
@@ -242,7 +276,13 @@ class Dataset(Timestamped, declared("datasets"), Base):
     name: Mapped[str] = mapped_column(String(200))
     description: Mapped[str | None] = mapped_column(Text)
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
-    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin
+    # the declared columns (``granudb.vocabulary.terms.STORED``) come from the mixin;
+    # what queries name at class level, for type checkers:
+    if TYPE_CHECKING:
+        version: Mapped[str]
+        state: Mapped[str]
+        content_hash: Mapped[str | None]
+        released_at: Mapped[datetime | None]
 
     source: Mapped[Source | None] = relationship(lazy="joined")
 
@@ -268,7 +308,7 @@ class SeedRecord(Base):
     __table_args__ = (UniqueConstraint("table_name", "seed_key"),)
 
 
-class Collision(declared("collisions"), Base):
+class Collision(_Collisions, Base):
     """One measured impact of a particle on a wall (or a second particle).
 
     Sign convention (Joseph & Hunt 2004 §2, docs/physics.md §5), for the particle's centre of
@@ -377,7 +417,7 @@ class PublishedValue(Base):
     )
 
 
-class PairValue(Timestamped, declared("pair_values"), Base):
+class PairValue(Timestamped, _PairValues, Base):
     """Dry values a source measured for one pair of materials (either way round: steel
     on Zerodur is Zerodur hit by steel), docs/physics.md §18. They come before the two
     materials' own values; ``created_at`` lets a release read only the pair values that
@@ -399,7 +439,7 @@ class PairValue(Timestamped, declared("pair_values"), Base):
     )
 
 
-class ReportedRun(declared("reported_runs"), Base):
+class ReportedRun(_ReportedRuns, Base):
     """One run as a paper reports it: the quantities it states (e, e_t, ω_out, an
     incidence angle), never velocities it did not measure (docs/reference/index.md).
 

@@ -112,7 +112,7 @@ def declared_catalogue(kind: str, plural: str, **rest: Any) -> Catalogue:
         properties=tuple(s.column for s in numbers),
         required=tuple(s.column for s in numbers if not s.nullable and s.default is None),
         narrow=("name", *(s.column for s in numbers if s.listed), *rest.pop("narrow_end")),
-        defaults={s.column: s.default for s in numbers if s.default is not None},
+        defaults={s.column: float(s.default) for s in numbers if s.default is not None},
         companions={s.column: s.companion for s in numbers if s.companion},
         texts={s.column: s.words for s in declared if s.sql in ("text", "string")},
         **rest,
