@@ -11,6 +11,7 @@ so export → import → export gives the same bytes, and a release imported sta
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -20,6 +21,7 @@ from granudb.api.database import opened
 from granudb.db import datasets as store
 from granudb.db.package_queries import export_data
 from granudb.db.package_store import PackageImport
+from granudb.errors import ValidationError
 from granudb.io.package_export import build_package, write_package
 from granudb.io.package_import import import_package, validate_package
 from granudb.reporting.pinned import pinned_notes
@@ -127,6 +129,14 @@ def import_dataset(
     12
     """
     target = Path(inputs.path(path, "path"))
+    described = target / "datapackage.json" if target.is_dir() else target
+    if described.name == "datapackage.json" and described.is_file():
+        kind = json.loads(described.read_text(encoding="utf-8")).get("granudb_reference", {})
+        if kind.get("kind") == "reported values":
+            raise ValidationError(
+                "path", str(target), "is a reference package of reported values: import it "
+                f"with `granudb reference import {described.parent.name}`", parameter=True,
+            )  # fmt: skip
     if as_name is not None:
         as_name = inputs.text(as_name, "as_name")
     with opened(db) as database:

@@ -31,6 +31,9 @@ STORED = (
     "no_spin_in",
     "source_locator",
     "notes",
+    "digitiser",
+    "licence",
+    "reference_package",
 )
 
 
@@ -91,6 +94,14 @@ def read(session: Session, collection: str | None = None) -> list[dict[str, Any]
         record["source"] = source_key
         out.append(record)
     return out
+
+
+def packages(session: Session) -> dict[str, str]:
+    """The reference packages ("NAME VERSION") imported, each with its collection."""
+    query = select(ReportedRun.reference_package, ReportedRun.collection).where(
+        ReportedRun.reference_package.is_not(None)
+    )
+    return {str(package): collection for package, collection in session.execute(query)}
 
 
 def collections(session: Session) -> list[str]:
