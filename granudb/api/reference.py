@@ -238,14 +238,16 @@ def reference_import(
     materials: dict[str, str] | None = None,
     db: Any = None,
 ) -> dict[str, Any]:
-    """Import reference dataset ``name`` into the database as reported runs (collection
-    ``collection``, the dataset's name when None): one run per point that states a
-    measured e or e_t, each with its u, source (the package, added as a source citing the
-    publication), locator, digitiser, licence and the package's name and version; list and
-    fit them with ``reported_runs`` and ``fit_reported``. ``materials`` maps a particle or
-    wall name of the package to a material of the database ("aluminium oxide" →
-    "alumina"). The same version imported twice is refused in one line, nothing stored.
-    Returns the collection, the number of runs and the quantities left in the package.
+    """Import reference dataset ``name`` (a shipped one, or the folder of a lab's own
+    package written as ``tools/build_reference.py`` writes them) into the database as
+    reported runs (collection ``collection``, the dataset's name when None): one run per
+    point that states a measured e or e_t, each with its u, source (the package, added as
+    a source citing the publication), locator, digitiser, licence and the package's name
+    and version; list and fit them with ``reported_runs`` and ``fit_reported``.
+    ``materials`` maps a particle or wall name of the package to a material of the
+    database ("aluminium oxide" → "alumina"). The same version imported twice is refused
+    in one line, nothing stored. Returns the collection, the number of runs and the
+    quantities left in the package.
 
     Examples
     --------
@@ -257,11 +259,13 @@ def reference_import(
     >>> done["runs"], done["version"]
     (11, '1.0.0')
     """
-    meta = reference_library.descriptor(name)
+    given = inputs.text(name, "name")
+    meta = reference_library.descriptor(given)
+    name = meta["name"]
     chosen = check_text("collection", inputs.text(collection or name, "collection"))
     mapping = {inputs.text(k, "materials"): inputs.text(v, "materials")
                for k, v in (materials or {}).items()}  # fmt: skip
-    runs, left = reference_library.reported_runs(name)
+    runs, left = reference_library.reported_runs(given)
     if not runs:
         raise ValidationError(
             "name", name, "states no run with a measured e or e_t (its values are conditions, "

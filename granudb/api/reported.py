@@ -43,7 +43,7 @@ YES, NO = ("yes", "true", "1", "y"), ("no", "false", "0", "n", "")
 def _cell(text: str, column: str, unit: str | None, field: str, row: int) -> Any:
     if column in ("run", "particle", "wall", "fluid"):
         return text or None
-    if column in ("source_locator", "notes"):
+    if column in ("source_locator", "digitiser", "licence", "notes"):
         return check_text(column, text) if text else None
     if column == "no_spin_in":
         if text.lower() in YES:

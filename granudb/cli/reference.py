@@ -99,7 +99,13 @@ def dem(
 @app.command("import")
 @wraps("reference_import")
 def import_(
-    name: ReferenceName,
+    name: Annotated[
+        str,
+        typer.Argument(
+            help="Reference dataset (kharaz-gorham-salman-2001) or the folder of your own "
+            "package of reported values."
+        ),
+    ],
     collection: Annotated[
         str | None, typer.Option("--as", help="Collection to store the runs in (default: NAME).")
     ] = None,

@@ -35,8 +35,12 @@ def names() -> list[str]:
 
 
 def package_dir(name: str) -> Path:
-    """The folder of reference dataset ``name``; ``ValidationError`` naming the nearest."""
+    """The folder of reference dataset ``name`` (a shipped one, or the folder of a package
+    of reported values written as ``tools/build_reference.py`` writes them, a lab's own);
+    ``ValidationError`` naming the nearest shipped one."""
     known = names()
+    if name not in known and _own_package(Path(name)):
+        return Path(name)
     if name not in known:
         near = difflib.get_close_matches(str(name), known, n=1)
         rule = "is not a reference dataset" + (
@@ -44,6 +48,19 @@ def package_dir(name: str) -> Path:
         )
         raise ValidationError("name", name, rule, parameter=True)
     return library_dir() / name
+
+
+def _own_package(folder: Path) -> bool:
+    """Whether ``folder`` holds a package of reported values (``granudb_reference``)."""
+    described = folder / "datapackage.json"
+    if not described.is_file():
+        return False
+    try:
+        meta = json.loads(described.read_text(encoding="utf-8"))
+    except (ValueError, OSError):
+        return False
+    kind = meta.get("granudb_reference") if isinstance(meta, dict) else None
+    return isinstance(kind, dict) and kind.get("kind") == "reported values"
 
 
 def descriptor(name: str) -> dict[str, Any]:

@@ -12,6 +12,9 @@ import csv
 import io
 import json
 import math
+import shutil
+import sys
+from pathlib import Path
 
 import pytest
 from support import dump_hash
@@ -164,3 +167,38 @@ def test_the_downgrade_names_the_provenance_it_drops(cli, db: str) -> None:
     refused = cli("db", "downgrade", "0012", db=db)
     assert refused.exit_code != 0
     assert "reported_runs.digitiser: 11 values" in refused.stdout + refused.stderr
+
+
+def test_the_reference_page_s_examples_print_what_it_shows() -> None:
+    """docs/reference/index.md is not among the pages tests/test_docs_examples.py runs;
+    its console blocks (a reference import and its fit, a lab's own CSV with digitiser
+    and licence) run here, in the same fixture."""
+    repo = Path(__file__).resolve().parents[2]
+    if str(repo) not in sys.path:
+        sys.path.insert(0, str(repo))
+    from tools import docs_examples
+
+    page = repo / "docs" / "reference" / "index.md"
+    result = docs_examples.check_page(page)
+    assert result.commands >= 5
+    assert not result.differences and not result.errors, docs_examples.report([result])
+
+
+def test_a_lab_s_own_package_imports_from_its_folder(cli, db: str, tmp_path: Path) -> None:
+    """A package of reported values outside the shipped library (a copy of VSSUQ's under
+    another name and version) imports from its folder, as a shipped one does."""
+    own = tmp_path / "our lab"
+    shutil.copytree(reference_library.package_dir("vssuq-dry-collisions"), own)
+    described = own / "datapackage.json"
+    meta = json.loads(described.read_text(encoding="utf-8"))
+    meta.update(name="our-lab-2026", version="0.1.0")
+    described.write_text(json.dumps(meta), encoding="utf-8")
+    _prepare(db)
+    done = cli("reference", "import", str(own), db=db)
+    assert done.exit_code == 0, done.stderr
+    assert "of our-lab-2026 0.1.0 in collection 'our-lab-2026'" in done.stdout
+    runs = granudb.reported_runs("our-lab-2026", db=db)
+    assert len(runs) == len(_runs_in("vssuq-dry-collisions"))
+    assert {r["reference_package"] for r in runs} == {"our-lab-2026 0.1.0"}
+    refused = cli("dataset", "import", str(own), db=db)
+    assert refused.exit_code == 1 and f"granudb reference import {own}" in refused.stderr
