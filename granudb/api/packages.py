@@ -11,7 +11,6 @@ so export → import → export gives the same bytes, and a release imported sta
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -21,8 +20,6 @@ from granudb.api.database import opened
 from granudb.db import datasets as store
 from granudb.db.package_queries import export_data
 from granudb.db.package_store import PackageImport
-from granudb.errors import ValidationError
-from granudb.io import reference_library
 from granudb.io.package_export import build_package, write_package
 from granudb.io.package_import import import_package, validate_package
 from granudb.reporting.pinned import pinned_notes
@@ -110,13 +107,6 @@ def validate_dataset(path: str | Path) -> Validation:
     return Validation(target, list(result.problems), dict(result.counts))
 
 
-def _reference_name(folder: Path) -> str:
-    """What ``granudb reference import`` takes for the package in ``folder``: its name if
-    granudb ships it, else the folder."""
-    shipped = reference_library.library_dir() / folder.name
-    return folder.name if shipped.resolve() == folder.resolve() else str(folder)
-
-
 def import_dataset(
     path: str | Path,
     *,
@@ -137,17 +127,6 @@ def import_dataset(
     12
     """
     target = Path(inputs.path(path, "path"))
-    described = target / "datapackage.json" if target.is_dir() else target
-    if described.name == "datapackage.json" and described.is_file():
-        kind = json.loads(described.read_text(encoding="utf-8")).get("granudb_reference", {})
-        if kind.get("kind") == "reported values":
-            door = f"granudb reference import {_reference_name(described.parent)}"
-            raise ValidationError(
-                "path",
-                str(target),
-                f"is a package of reported values: import it with `{door}`",
-                parameter=True,
-            )
     if as_name is not None:
         as_name = inputs.text(as_name, "as_name")
     with opened(db) as database:

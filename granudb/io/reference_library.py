@@ -57,7 +57,7 @@ def _own_package(folder: Path) -> bool:
         return False
     try:
         meta = json.loads(described.read_text(encoding="utf-8"))
-    except (ValueError, OSError):
+    except (ValueError, OSError, RecursionError):
         return False
     kind = meta.get("granudb_reference") if isinstance(meta, dict) else None
     return isinstance(kind, dict) and kind.get("kind") == "reported values"

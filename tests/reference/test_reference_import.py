@@ -152,13 +152,22 @@ def test_a_second_import_and_an_unmapped_material_are_refused(cli, db: str) -> N
         granudb.reference_import("kharaz-gorham-salman-2001", materials=MAPPED, db=db)
 
 
-def test_dataset_import_points_a_reference_package_to_its_door(cli, db: str) -> None:
+def test_dataset_import_points_a_reference_package_to_its_door(
+    cli, db: str, tmp_path: Path
+) -> None:
     before = dump_hash(db)
     path = reference_library.package_dir("vssuq-dry-collisions")
     for given in (path, path / "datapackage.json"):
         refused = cli("dataset", "import", str(given), db=db)
         assert refused.exit_code == 1 and refused.stderr.count("\n") == 1
         assert "granudb reference import vssuq-dry-collisions" in refused.stderr
+    zipped = Path(shutil.make_archive(str(tmp_path / "vssuq"), "zip", path))
+    for command in ("import", "validate"):  # the zip too, and validation says the same
+        refused = cli(
+            "dataset", command, str(zipped), **({"db": db} if command == "import" else {})
+        )
+        assert refused.exit_code == 1
+        assert "granudb reference import vssuq-dry-collisions" in refused.stdout + refused.stderr
     assert dump_hash(db) == before
 
 
@@ -201,4 +210,5 @@ def test_a_lab_s_own_package_imports_from_its_folder(cli, db: str, tmp_path: Pat
     assert len(runs) == len(_runs_in("vssuq-dry-collisions"))
     assert {r["reference_package"] for r in runs} == {"our-lab-2026 0.1.0"}
     refused = cli("dataset", "import", str(own), db=db)
-    assert refused.exit_code == 1 and f"granudb reference import {own}" in refused.stderr
+    assert refused.exit_code == 1
+    assert "granudb reference import FOLDER (the package's folder" in refused.stderr
