@@ -90,6 +90,10 @@ def test_each_package_imports_lists_with_provenance_and_fits(cli, db: str, name:
     rows = list(table)
     assert {r["run"] for r in rows} == expected
     assert all(r[k] for r in rows for k in PROVENANCE)
+    shown = cli("reported", "list", "--collection", name, db=db).stdout  # the table says it too
+    for run in listed:
+        said = f"{name}: reference package {name} {version}; source {name}; digitiser "
+        assert said + f"{run['digitiser']}; licence {run['licence']}" in shown.replace("\n", "")
     source = json.loads(cli("sources", "show", name, "--format", "json", db=db).stdout)
     cited = "; ".join(s["title"] for s in reference_library.descriptor(name)["sources"])
     assert source["citation"].rstrip(".") in cited
