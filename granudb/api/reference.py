@@ -263,8 +263,12 @@ def reference_import(
     meta = reference_library.descriptor(given)
     name = meta["name"]
     chosen = check_text("collection", inputs.text(collection or name, "collection"))
-    mapping = {inputs.text(k, "materials"): inputs.text(v, "materials")
-               for k, v in (materials or {}).items()}  # fmt: skip
+    mapping = {}
+    for package_name, ours in (materials or {}).items():
+        if not str(package_name).strip() or not str(ours).strip():
+            rule = "must be PACKAGE=DATABASE, both names given"
+            raise ValidationError("materials", f"{package_name}={ours}", rule, parameter=True)
+        mapping[inputs.text(package_name, "materials")] = inputs.text(ours, "materials")
     runs, left = reference_library.reported_runs(given)
     if not runs:
         raise ValidationError(

@@ -144,6 +144,11 @@ def test_a_second_import_and_an_unmapped_material_are_refused(cli, db: str) -> N
     assert unmapped.exit_code == 1 and unmapped.stderr.count("\n") == 1
     assert "aluminium oxide" in unmapped.stderr and "--material" in unmapped.stderr
     assert dump_hash(db) == before
+    for bad in ("aluminium oxide", "=alumina", "aluminium oxide="):
+        refused = cli("reference", "import", "kharaz-gorham-salman-2001", "--material", bad,
+                      db=db)  # fmt: skip
+        assert refused.exit_code == 1 and "must be PACKAGE=DATABASE" in refused.stderr
+    assert dump_hash(db) == before
     assert _import(cli, db, "kharaz-gorham-salman-2001").exit_code == 0
     imported = dump_hash(db)
     again = cli("reference", "import", "kharaz-gorham-salman-2001", "--as", "other",
