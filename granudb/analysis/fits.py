@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import bayesian, intervals
+from granudb.analysis import asymptotic, bayesian, intervals
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
@@ -191,6 +191,9 @@ def _interval(
     small = how.get("small", False) or runs < MIN_RUNS_FOR_INTERVAL
     if small and how.get("refuse"):
         found, method = intervals.Interval(math.nan, math.nan, 0.0, how["refuse"]), ""
+    elif how.get("asymptotic"):
+        found = asymptotic.interval(*point, bounds=BOUNDS[name], level=CONFIDENCE_LEVEL)
+        method = how["asymptotic"]
     elif small:
         found = intervals.t_interval(*point, runs, bounds=BOUNDS[name], level=CONFIDENCE_LEVEL)
         method = MEAN_METHOD if name == "normal_restitution" else SMALL_N_METHOD
@@ -272,7 +275,12 @@ def _joined_method(row: dict) -> str:
 
 
 def _walton_group(
-    key: tuple, group: Any, asked: int | None, seed: int, sets: dict | None = None
+    key: tuple,
+    group: Any,
+    asked: int | None,
+    seed: int,
+    sets: dict | None = None,
+    switch: int = asymptotic.ASYMPTOTIC_FROM,
 ) -> dict[str, Any]:
     arrays = walton_arrays(group)
     x, y, c, e, folded, _, factor = arrays
@@ -301,16 +309,22 @@ def _walton_group(
         row["reason"] = f"{n} runs: a Walton fit needs at least {core.MIN_RUNS_FOR_PARAMETER}"
         return row
     fit = core.decide(np.ones((1, n)), x, y, c, e)
-    boot = resampling.bootstrap(x, y, c, e, resamples, seed, stated)
-    if sets is not None:  # the report's bands reuse them (granudb.analysis.bands)
-        sets[tuple(key)] = boot
     model = core.MODELS[int(fit.model[0])]
     k = int(fit.split[0])
+    # large n: the asymptotic interval where every line of the model is large too
+    large = asymptotic.uses(n, asked, switch) and all(
+        m == 0 or m >= switch // asymptotic.LINE_SHARE for m in (k, n - k)
+    )
+    boot = None if large else resampling.bootstrap(x, y, c, e, resamples, seed, stated)
+    if sets is not None and boot is not None:  # the report's bands reuse them (bands.py)
+        sets[tuple(key)] = boot
+    if large:
+        row.update(bootstrap_resamples=0, bootstrap_rule=asymptotic.rule(switch))
     bic = dict(zip(core.MODELS, fit.bic[0].tolist(), strict=True))
     row.update({f"bic_{name}": value for name, value in bic.items()})
-    row.update(
-        {f"model_support_{m}": float(np.mean(boot.model == i)) for i, m in enumerate(core.MODELS)}
-    )
+    if boot is not None:
+        support = {m: float(np.mean(boot.model == i)) for i, m in enumerate(core.MODELS)}
+        row.update({f"model_support_{m}": share for m, share in support.items()})
     ranked = sorted(bic, key=lambda m: bic[m])
     row["model_reason"] = (
         f"{model}: smallest BIC {bic[model]:.4g} (next {ranked[1]} {bic[ranked[1]]:.4g}; "
@@ -349,11 +363,16 @@ def _walton_group(
         )
         model = "split"
     how = {"boot": boot_method, "small": bool(moved), "stated": stated is not None}
+    errors = (math.nan,) * 3
+    if large:
+        how["asymptotic"] = asymptotic.method(switch, stated is not None)
+        errors = asymptotic.walton_errors(x, y, c, e, k)
+        boot = core.Decision(*([np.array([])] * 9))  # no resamples: the values are unused
     row["model"] = model
     row.update(n_sticking=k, n_sliding=n - k)
     row["split_effective_incidence"] = float(x[k]) if model == "split" else math.nan
     row["rotational_restitution"] = float(fit.beta[0])
-    beta = (float(fit.beta[0]), float(fit.beta_se[0]))
+    beta = (float(fit.beta[0]), errors[0] if large else float(fit.beta_se[0]))
     why_beta = _interval(
         row,
         "rotational_restitution",
@@ -363,7 +382,7 @@ def _walton_group(
         {**how, "refuse": _beta_refusal(model, n)},
     )
     row["sliding_friction"] = float(fit.friction[0])
-    friction = (float(fit.friction[0]), float(fit.friction_se[0]))
+    friction = (float(fit.friction[0]), errors[1] if large else float(fit.friction_se[0]))
     why_mu = _interval(
         row, "sliding_friction", (boot.friction, boot.friction_se), friction, n - k, how
     )
@@ -372,12 +391,14 @@ def _walton_group(
         bound = float((1 + row["rotational_restitution"]) * x[-1] / c[-1])
     row["sliding_friction_lower_bound"] = bound
     row["normal_restitution_mean"] = float(np.mean(e))
-    mean = (float(fit.restitution[0]), float(fit.restitution_se[0]))
+    mean = (float(fit.restitution[0]), errors[2] if large else float(fit.restitution_se[0]))
     why_e = _interval(
         row, "normal_restitution", (boot.restitution, boot.restitution_se), mean, n, how
     )
     row["normal_restitution_std"] = float(np.std(e, ddof=1))
     row["interval_method"] = _joined_method(row)
+    if large and sets is not None:  # the band of each line from the same normal law
+        sets[tuple(key)] = asymptotic.normal_sets(row, seed)
     said = [
         f"interval of {symbol} {why}"
         for symbol, why in (("β", why_beta), ("μ_f", why_mu), ("ē", why_e))
@@ -396,6 +417,7 @@ def walton(
     settings: bayesian.Settings = bayesian.DEFAULT,
     draws: list | None = None,
     sets: dict | None = None,
+    asymptotic_from: int = asymptotic.ASYMPTOTIC_FROM,
 ) -> list[dict[str, Any]]:
     """β, μ_f and ē per group with model selection and bootstrap intervals (Joseph & Hunt
     figures 4, 6, 9). Keys: ``WALTON_KEYS``. ``resamples`` None follows
@@ -404,12 +426,14 @@ def walton(
     (``bayesian.walton_row``, sampler ``settings``), each group's draws appended to
     ``draws`` when a list is given. ``sets``: a dict that receives each fitted group's
     bootstrap parameter sets (a ``walton.Decision``) under its (dataset, particle, wall,
-    fluid), for the bands of its lines (``bands.walton_sets`` makes the same anew)."""
+    fluid), for the bands of its lines (``bands.walton_sets`` makes the same anew).
+    ``asymptotic_from``: the group size from which, with no count asked for, the intervals
+    are asymptotic (``granudb.analysis.asymptotic``) instead of bootstrapped."""
     bayesian.check_method(method)
     rows = []
     with resampling.one_thread():
         for key, group in _groups(frame):
-            row = _walton_group(key, group, resamples, seed, sets)
+            row = _walton_group(key, group, resamples, seed, sets, asymptotic_from)
             row["fit_method"] = method
             if method == bayesian.METHOD:
                 arrays = walton_arrays(group)
