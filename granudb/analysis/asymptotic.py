@@ -27,6 +27,7 @@ import numpy as np
 
 from granudb.analysis import intervals
 from granudb.analysis import walton as core
+from granudb.analysis import walton_bootstrap as resampling
 
 #: Runs in a group from which the asymptotic interval replaces the bootstrap.
 ASYMPTOTIC_FROM = 10_000
@@ -138,3 +139,58 @@ def normal_sets(row: dict, seed: int, count: int = SETS) -> core.Decision:
         full.copy(),
         full.copy(),
     )
+
+
+#: Perturbed copies of all the runs that estimate the stated u's bias (``stated_shift``).
+SHIFT_DRAWS = 16
+#: What the method adds when the runs' stated u corrects the interval's centre.
+STATED_SHIFT = (
+    "; centred on θ̂ − b̂, b̂ the mean shift of θ over {draws} copies of all the runs with "
+    "every measured speed perturbed by its stated u (normal), the runs re-sorted and the "
+    "model and split re-decided in each; se² plus the copies' variance v (as the perturbed "
+    "bootstrap adds it) and b̂'s own variance v/{draws}"
+)
+
+
+def stated_method(switch: int, of: str = "") -> str:
+    """The method's words when the runs state a u (``stated_shift`` corrects the centre)."""
+    return METHOD.format(switch=switch, of=of) + STATED_SHIFT.format(draws=SHIFT_DRAWS)
+
+
+def stated_se(se: float, spread: float, draws: int = SHIFT_DRAWS) -> float:
+    """The standard error with the runs' stated u: √(se² + v + v/draws) (``STATED_SHIFT``)."""
+    return math.sqrt(se**2 + spread + spread / draws)
+
+
+def stated_shift(x, y, e, stated: tuple, point, seed: int, draws: int = SHIFT_DRAWS):
+    """(b̂, v) of (β, μ_f, ē), arrays of 3: the bias that the runs' measurement error
+    puts into a Walton fit, estimated as the perturbed bootstrap estimates it (its pivot
+    centres the interval on θ̂ − b̂): ``draws`` copies of all the runs, every speed drawn
+    again from its stated u (``walton_bootstrap.perturbed_runs``), re-sorted and re-decided
+    (``walton_bootstrap.decide_blocks``, the block search equal to ``walton.decide``);
+    ``point`` the fit's (β̂, μ̂_f, ē) on the runs ``x``, ``y``, ``e``
+    (sorted by Ψ_in, ``stated`` as ``walton_bootstrap.stated_inputs`` gives it); b̂ the
+    mean of θ_copy − θ̂, v their variance (b̂'s own is v / draws). NaN where fewer than half the
+    copies determine θ."""
+    b, u = stated
+    n = len(x)
+    point = np.asarray(point, dtype=float)
+    rng = np.random.default_rng(seed)
+    found = []
+    for _ in range(draws):  # one copy at a time: the block search needs one order
+        x_b, y_b, e_b, _f = (a[0] for a in resampling.perturbed_runs(rng, 1, x, y, e, u))
+        order = np.argsort(x_b, kind="stable")
+        x_b, y_b, e_b = x_b[order], y_b[order], e_b[order]
+        runs = resampling.Sorted(x_b, y_b, (1.0 + e_b) * b[order], e_b)
+        weights = np.zeros((1, runs.size))
+        weights[0, :n] = 1.0
+        got = resampling.decide_blocks(runs, weights)
+        found.append([got.beta[0], got.friction[0], got.restitution[0]])
+    shifts = np.array(found) - point
+    shift, spread = np.full(3, math.nan), np.full(3, math.nan)
+    for i in range(3):
+        ok = np.isfinite(shifts[:, i])
+        if ok.sum() >= max(2, draws // 2):
+            shift[i] = float(np.mean(shifts[ok, i]))
+            spread[i] = float(np.var(shifts[ok, i], ddof=1))
+    return shift, spread

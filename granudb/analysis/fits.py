@@ -363,16 +363,22 @@ def _walton_group(
         )
         model = "split"
     how = {"boot": boot_method, "small": bool(moved), "stated": stated is not None}
-    errors = (math.nan,) * 3
+    errors = centre = (math.nan,) * 3
     if large:
-        how["asymptotic"] = asymptotic.method(switch, stated is not None)
+        how["asymptotic"] = asymptotic.method(switch, False)
         errors = asymptotic.walton_errors(x, y, c, e, k)
+        centre = (float(fit.beta[0]), float(fit.friction[0]), float(fit.restitution[0]))
+        if stated is not None:  # the measurement error's bias, as the bootstrap's pivot
+            how["asymptotic"] = asymptotic.stated_method(switch)
+            shift, spread = asymptotic.stated_shift(x, y, e, stated, centre, seed)
+            centre = tuple(float(v) for v in np.asarray(centre) - shift)
+            errors = tuple(asymptotic.stated_se(*pair) for pair in zip(errors, spread, strict=True))
         boot = core.Decision(*([np.array([])] * 9))  # no resamples: the values are unused
     row["model"] = model
     row.update(n_sticking=k, n_sliding=n - k)
     row["split_effective_incidence"] = float(x[k]) if model == "split" else math.nan
     row["rotational_restitution"] = float(fit.beta[0])
-    beta = (float(fit.beta[0]), errors[0] if large else float(fit.beta_se[0]))
+    beta = (centre[0], errors[0]) if large else (float(fit.beta[0]), float(fit.beta_se[0]))
     why_beta = _interval(
         row,
         "rotational_restitution",
@@ -382,7 +388,9 @@ def _walton_group(
         {**how, "refuse": _beta_refusal(model, n)},
     )
     row["sliding_friction"] = float(fit.friction[0])
-    friction = (float(fit.friction[0]), errors[1] if large else float(fit.friction_se[0]))
+    friction = (
+        (centre[1], errors[1]) if large else (float(fit.friction[0]), float(fit.friction_se[0]))
+    )
     why_mu = _interval(
         row, "sliding_friction", (boot.friction, boot.friction_se), friction, n - k, how
     )
@@ -391,7 +399,7 @@ def _walton_group(
         bound = float((1 + row["rotational_restitution"]) * x[-1] / c[-1])
     row["sliding_friction_lower_bound"] = bound
     row["normal_restitution_mean"] = float(np.mean(e))
-    mean = (float(fit.restitution[0]), errors[2] if large else float(fit.restitution_se[0]))
+    mean = (centre[2], errors[2]) if large else (float(fit.restitution[0]), fit.restitution_se[0])
     why_e = _interval(
         row, "normal_restitution", (boot.restitution, boot.restitution_se), mean, n, how
     )
