@@ -42,6 +42,11 @@ METHOD = (
 STATED = "; the runs' stated u is not redrawn: it is in the per-run values' scatter"
 #: Parameter sets drawn from the asymptotic normal law, for a band (``normal_sets``).
 SETS = 1000
+#: What a band made from ``normal_sets`` is drawn over (the report's captions say it).
+BAND_SETS_WORDS = (
+    f"{SETS:,} parameter sets drawn from the normal law of its asymptotic interval "
+    "(estimate, standard error)"
+)
 
 
 def method(switch: int, stated: bool, of: str = "") -> str:

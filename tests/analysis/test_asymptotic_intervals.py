@@ -12,7 +12,7 @@ import pytest
 
 from granudb.analysis import asymptotic, bands, fits
 from granudb.analysis.synthetic import sliding_runs, walton_frame, walton_measured
-from granudb.reporting import tables
+from granudb.reporting import figures, tables
 
 N, SWITCH, SETS, QUICK_BOUND = 2000, 1000, 50, 0.84  # true 0.95: P(< 42 of 50) ≈ 0.2 %
 TRUTH = {"rotational_restitution": 0.34, "sliding_friction": 0.11, "normal_restitution": 0.97}
@@ -85,3 +85,11 @@ def test_the_report_note_and_the_bands_follow_the_record() -> None:
     assert np.array_equal(anew.friction, sets[key].friction)
     # the band's sets are the interval's normal law: their spread is the record's se
     assert math.isclose(np.std(sets[key].beta), row["rotational_restitution_stderr"], rel_tol=0.1)
+
+
+def test_the_band_caption_says_which_sets_the_band_is_drawn_over() -> None:
+    said = figures.band_caption(2, 2)
+    assert asymptotic.BAND_SETS_WORDS in said and "bootstrap" not in said
+    mixed = figures.band_caption(2, 1)
+    assert asymptotic.BAND_SETS_WORDS in mixed and "bootstrap parameter sets" in mixed
+    assert asymptotic.BAND_SETS_WORDS not in figures.band_caption(2)
