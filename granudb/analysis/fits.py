@@ -185,7 +185,9 @@ def _interval(
     """Put the interval of ``name`` into ``row``, its method under ``name + '_interval_method'``;
     the reason when there is none. ``how``: {"boot": the bootstrap's method, "small": the
     small-n interval at any n, "refuse": why the small-n interval is refused, "stated": the
-    runs state a u}. Below MIN_RUNS_FOR_INTERVAL runs the t-interval of the per-run values
+    runs state a u, "asymptotic": the large-n interval's method words}. With "asymptotic",
+    θ̂ ± z se (``asymptotic.interval``; ``point`` its centre and se); else below
+    MIN_RUNS_FOR_INTERVAL runs the t-interval of the per-run values
     (``intervals.t_interval``), else the bootstrap-t."""
     how = how or {}
     small = how.get("small", False) or runs < MIN_RUNS_FOR_INTERVAL
