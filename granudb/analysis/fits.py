@@ -62,7 +62,8 @@ WALTON_KEYS = {
     "determined) with fewer than 3 runs or too few runs on a line to choose",
     "model_reason": "the BIC values behind the choice, or why none was chosen, in words",
     "bic_sticking, bic_sliding, bic_split": "BIC = n ln(S/n) + p ln n, p = 2, 2, 4",
-    "model_support_sticking, _sliding, _split": "share of bootstrap resamples choosing it",
+    "model_support_sticking, _sliding, _split": "share of bootstrap resamples choosing it "
+    "(NaN with the asymptotic interval: no resamples)",
     "n_sticking, n_sliding": "runs on each line of the chosen model",
     "split_effective_incidence": "folded Ψ_in of the first sliding run of a split, else NaN",
     "rotational_restitution": "β from the sticking line (NaN unless it has ≥ 3 runs)",
@@ -83,7 +84,8 @@ WALTON_KEYS = {
     "MIN_RUNS_FOR_INTERVAL runs, the t-interval of the mean from 2), s/√n, share determined",
     "normal_restitution_std": "standard deviation of e over the runs",
     "walton_factor": "mean B used (7/2 unless the frame has walton_factor)",
-    "confidence_level, bootstrap_resamples, bootstrap_seed": "how the intervals were made",
+    "confidence_level, bootstrap_resamples, bootstrap_seed": "how the intervals were made "
+    "(bootstrap_resamples 0: the asymptotic interval, from asymptotic_from runs in the group)",
     "bootstrap_rule": "how the resample count was chosen (resampling.RESAMPLE_RULE, or "
     "'as asked' when the caller gave one)",
     "reason": "why β or μ_f is absent ('' when both are given)",
