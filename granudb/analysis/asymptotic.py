@@ -21,7 +21,9 @@ and, for the Walton fit, every line of the chosen model with at least
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from statistics import NormalDist
+from typing import Any
 
 import numpy as np
 
@@ -116,7 +118,7 @@ def walton_errors(x, y, c, e, k: int) -> tuple[float, float, float]:
     return beta_se, mu_se, float(fit.restitution_se[0])
 
 
-def normal_sets(row: dict, seed: int, count: int = SETS) -> core.Decision:
+def normal_sets(row: Mapping[str, Any], seed: int, count: int = SETS) -> core.Decision:
     """``count`` parameter sets (β, μ_f, ē) drawn independently from the asymptotic normal
     law of a Walton row (its values and ``_stderr``), seeded: the band of its lines when the
     interval is asymptotic (granudb.analysis.bands)."""

@@ -367,7 +367,8 @@ def _walton_group(
         )
         model = "split"
     how = {"boot": boot_method, "small": bool(moved), "stated": stated is not None}
-    errors = centre = (math.nan,) * 3
+    errors: tuple[float, ...] = (math.nan,) * 3
+    centre: tuple[float, ...] = errors
     if large:
         how["asymptotic"] = asymptotic.method(switch, False)
         errors = asymptotic.walton_errors(x, y, c, e, k)
@@ -378,6 +379,7 @@ def _walton_group(
             centre = tuple(float(v) for v in np.asarray(centre) - shift)
             errors = tuple(asymptotic.stated_se(*pair) for pair in zip(errors, spread, strict=True))
         boot = core.Decision(*([np.array([])] * 9))  # no resamples: the values are unused
+    assert boot is not None  # drawn above unless the interval is asymptotic
     row["model"] = model
     row.update(n_sticking=k, n_sliding=n - k)
     row["split_effective_incidence"] = float(x[k]) if model == "split" else math.nan

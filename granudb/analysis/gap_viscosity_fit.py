@@ -275,7 +275,7 @@ def _fit_group(
         return row
     interval_reason = ""
     large = g is not None and asymptotic.uses(len(measured), asked, switch)
-    if large:
+    if large and g is not None:
         q = viscosity ** (2 / 7)
         se = asymptotic.line_se(g, measured - q * g)
         found = asymptotic.interval(q, se, bounds=(0.0, math.inf), level=LEVEL)
