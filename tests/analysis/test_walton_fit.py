@@ -112,7 +112,7 @@ def test_interval_coverage_is_roughly_right() -> None:
             low, high = fit[f"{name}_low"], fit[f"{name}_high"]
             if math.isnan(low):  # β on fewer than 10 sticking runs of a split (issue 36)
                 assert (
-                    "interval not determined: fewer than 10 runs on the sticking line"
+                    "interval of β not determined: fewer than 10 runs on the sticking line"
                     in (fit["reason"])
                 )
                 continue
