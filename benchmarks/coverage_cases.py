@@ -338,6 +338,8 @@ def short_method(row: dict, low_key: str) -> str:
     ``_interval_method`` (the Walton fit's parameters) or the row's ``interval_method``."""
     said = str(row.get(low_key.replace("_low", "_interval_method").replace("_mean", ""))
                or row.get("interval_method") or "")  # fmt: skip
+    if said.startswith("asymptotic"):
+        return "asymptotic"
     if "t-interval" in said:
         return "small-n t"
     if "posterior" in said or "credible" in said or "emcee" in said:

@@ -8,8 +8,10 @@ defaults (resample rule, seed), and the share of sets whose interval holds the t
 printed with the bound 0.90, the share of sets given a value and an interval, and the
 reason when the interval was refused. An n at which the fit refuses every interval (below
 its stated minimum) is "refused", not a failure. Each row names the method(s) that gave
-its intervals (bootstrap-t, small-n t, Bayes). n = 10,000 is not in the default sizes
-(``--sizes 10000`` runs it; a few minutes a cell). Exit status 1 when any coverage is below
+its intervals (bootstrap-t, small-n t, Bayes, asymptotic). n = 10,000 is not in the default
+sizes (``--sizes 10000`` runs it): there the Walton and gap-viscosity fits give the
+asymptotic interval (``granudb.analysis.asymptotic``, from 10,000 runs; seconds a cell),
+the restitution fits the bootstrap (minutes a cell). Exit status 1 when any coverage is below
 the bound, or an interval has zero width. The Bayesian option's rows ("Bayes: …", posterior
 credible intervals by emcee) run at most ``coverage.BAYES_SETS`` sets per cell: a posterior
 costs about a second a set.

@@ -42,8 +42,9 @@ FLOOR = "import sqlalchemy, pandas, jinja2"
 MEMORY_BOUND_MB = 600
 
 
-def timed(argv: list[str], source: Path | None = None) -> tuple[float, float]:
-    """(seconds, peak memory in MB) of one child process (its own rusage, from wait4);
+def timed(argv: list[str], source: Path | None = None) -> tuple[float, float, float]:
+    """(seconds, peak memory in MB, CPU seconds) of one child process (its own rusage, from
+    wait4);
     ``source``: run granudb from that source tree (first on the path, and the working
     directory, which ``python -m`` puts first)."""
     env = None if source is None else {**os.environ, "PYTHONPATH": str(source)}
@@ -56,7 +57,7 @@ def timed(argv: list[str], source: Path | None = None) -> tuple[float, float]:
     if os.waitstatus_to_exitcode(status) != 0:
         raise SystemExit(f"{argv[:4]} failed: {child.stderr.read().decode()[-2000:]}")
     child.stderr.close()
-    return seconds, usage.ru_maxrss / 1024
+    return seconds, usage.ru_maxrss / 1024, usage.ru_utime + usage.ru_stime
 
 
 def bound_s(rows: int) -> float:
@@ -92,7 +93,7 @@ def main() -> None:
         source = None if args.baseline_src is None else args.baseline_src.resolve()
         for _ in range(args.runs):
             runs.append(timed(argv))
-            floors.append(timed([sys.executable, "-c", FLOOR])[0])
+            floors.append(timed([sys.executable, "-c", FLOOR]))
             if source is not None:
                 baseline.append(timed(argv, source))
         size_mb = out.stat().st_size / 1e6
@@ -109,20 +110,28 @@ def main() -> None:
             finally:
                 profiler.disable()
             pstats.Stats(profiler).sort_stats("cumulative").print_stats(30)
-    times = [t for t, _ in runs]
-    peak_mb = max(m for _, m in runs)
+    times = [t for t, _, _ in runs]
+    cpu = statistics.median(c for _, _, c in runs)
+    peak_mb = max(m for _, m, _ in runs)
     median = statistics.median(times)
     limit = bound_s(args.rows)
-    floor = statistics.median(floors)
+    floor = statistics.median(t for t, _, _ in floors)
+    floor_cpu = statistics.median(c for _, _, c in floors)
     print(f"load average at the end: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print(f"report on {args.rows:,} runs: median {median:.2f} s of {args.runs} ({times})")
     print(f"import floor (same run): median {floor:.2f} s; report = {median / floor:.1f}× floor")
+    print(
+        f"CPU time: report median {cpu:.2f} s, floor {floor_cpu:.2f} s "
+        f"({cpu / floor_cpu:.1f}× floor)"
+    )
     if baseline:
-        before = statistics.median(t for t, _ in baseline)
+        before = statistics.median(t for t, _, _ in baseline)
+        before_cpu = statistics.median(c for _, _, c in baseline)
         print(
-            f"baseline {args.baseline_src} (same run): median {before:.2f} s, peak "
-            f"{max(m for _, m in baseline):,.0f} MB; this version takes {median / before:.2f}× "
-            f"its time ({before / median:.1f}× faster)"
+            f"baseline {args.baseline_src} (same run): median {before:.2f} s (CPU "
+            f"{before_cpu:.2f} s), peak {max(m for _, m, _ in baseline):,.0f} MB; this version "
+            f"takes {median / before:.2f}× its time ({before / median:.1f}× faster; CPU "
+            f"{cpu / before_cpu:.2f}×)"
         )
     print(f"HTML {size_mb:.1f} MB; peak memory of the report process {peak_mb:,.0f} MB")
     print(

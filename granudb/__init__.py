@@ -71,6 +71,7 @@ if TYPE_CHECKING:
         pair as pair,
         pair_values as pair_values,
         reference_dem as reference_dem,
+        reference_import as reference_import,
         reference_list as reference_list,
         reference_reproduce as reference_reproduce,
         reference_show as reference_show,

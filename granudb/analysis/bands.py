@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import restitution_fit
+from granudb.analysis import asymptotic, restitution_fit
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
@@ -58,6 +58,9 @@ def walton_sets(frame: Any, walton: list[Mapping[str, Any]]) -> dict[tuple, core
     for key, group in group_frames(frame, GROUP, runs, fill={"fluid": "dry"}):
         row = rows.get(tuple(key))
         if row is None:
+            continue
+        if row.get("bootstrap_resamples") == 0:  # asymptotic: the same normal law's sets
+            found[tuple(key)] = asymptotic.normal_sets(row, int(row["bootstrap_seed"]))
             continue
         arrays = walton_arrays(group)
         x, y, c, e = arrays[:4]

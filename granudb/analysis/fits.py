@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import bayesian, intervals
+from granudb.analysis import asymptotic, bayesian, intervals
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
@@ -62,7 +62,8 @@ WALTON_KEYS = {
     "determined) with fewer than 3 runs or too few runs on a line to choose",
     "model_reason": "the BIC values behind the choice, or why none was chosen, in words",
     "bic_sticking, bic_sliding, bic_split": "BIC = n ln(S/n) + p ln n, p = 2, 2, 4",
-    "model_support_sticking, _sliding, _split": "share of bootstrap resamples choosing it",
+    "model_support_sticking, _sliding, _split": "share of bootstrap resamples choosing it "
+    "(NaN with the asymptotic interval: no resamples)",
     "n_sticking, n_sliding": "runs on each line of the chosen model",
     "split_effective_incidence": "folded Ψ_in of the first sliding run of a split, else NaN",
     "rotational_restitution": "β from the sticking line (NaN unless it has ≥ 3 runs)",
@@ -83,7 +84,8 @@ WALTON_KEYS = {
     "MIN_RUNS_FOR_INTERVAL runs, the t-interval of the mean from 2), s/√n, share determined",
     "normal_restitution_std": "standard deviation of e over the runs",
     "walton_factor": "mean B used (7/2 unless the frame has walton_factor)",
-    "confidence_level, bootstrap_resamples, bootstrap_seed": "how the intervals were made",
+    "confidence_level, bootstrap_resamples, bootstrap_seed": "how the intervals were made "
+    "(bootstrap_resamples 0: the asymptotic interval, from asymptotic_from runs in the group)",
     "bootstrap_rule": "how the resample count was chosen (resampling.RESAMPLE_RULE, or "
     "'as asked' when the caller gave one)",
     "reason": "why β or μ_f is absent ('' when both are given)",
@@ -185,12 +187,17 @@ def _interval(
     """Put the interval of ``name`` into ``row``, its method under ``name + '_interval_method'``;
     the reason when there is none. ``how``: {"boot": the bootstrap's method, "small": the
     small-n interval at any n, "refuse": why the small-n interval is refused, "stated": the
-    runs state a u}. Below MIN_RUNS_FOR_INTERVAL runs the t-interval of the per-run values
+    runs state a u, "asymptotic": the large-n interval's method words}. With "asymptotic",
+    θ̂ ± z se (``asymptotic.interval``; ``point`` its centre and se); else below
+    MIN_RUNS_FOR_INTERVAL runs the t-interval of the per-run values
     (``intervals.t_interval``), else the bootstrap-t."""
     how = how or {}
     small = how.get("small", False) or runs < MIN_RUNS_FOR_INTERVAL
     if small and how.get("refuse"):
         found, method = intervals.Interval(math.nan, math.nan, 0.0, how["refuse"]), ""
+    elif how.get("asymptotic"):
+        found = asymptotic.interval(*point, bounds=BOUNDS[name], level=CONFIDENCE_LEVEL)
+        method = how["asymptotic"]
     elif small:
         found = intervals.t_interval(*point, runs, bounds=BOUNDS[name], level=CONFIDENCE_LEVEL)
         method = MEAN_METHOD if name == "normal_restitution" else SMALL_N_METHOD
@@ -272,7 +279,12 @@ def _joined_method(row: dict) -> str:
 
 
 def _walton_group(
-    key: tuple, group: Any, asked: int | None, seed: int, sets: dict | None = None
+    key: tuple,
+    group: Any,
+    asked: int | None,
+    seed: int,
+    sets: dict | None = None,
+    switch: int = asymptotic.ASYMPTOTIC_FROM,
 ) -> dict[str, Any]:
     arrays = walton_arrays(group)
     x, y, c, e, folded, _, factor = arrays
@@ -301,16 +313,22 @@ def _walton_group(
         row["reason"] = f"{n} runs: a Walton fit needs at least {core.MIN_RUNS_FOR_PARAMETER}"
         return row
     fit = core.decide(np.ones((1, n)), x, y, c, e)
-    boot = resampling.bootstrap(x, y, c, e, resamples, seed, stated)
-    if sets is not None:  # the report's bands reuse them (granudb.analysis.bands)
-        sets[tuple(key)] = boot
     model = core.MODELS[int(fit.model[0])]
     k = int(fit.split[0])
+    # large n: the asymptotic interval where every line of the model is large too
+    large = asymptotic.uses(n, asked, switch) and all(
+        m == 0 or m >= switch // asymptotic.LINE_SHARE for m in (k, n - k)
+    )
+    boot = None if large else resampling.bootstrap(x, y, c, e, resamples, seed, stated)
+    if sets is not None and boot is not None:  # the report's bands reuse them (bands.py)
+        sets[tuple(key)] = boot
+    if large:
+        row.update(bootstrap_resamples=0, bootstrap_rule=asymptotic.rule(switch))
     bic = dict(zip(core.MODELS, fit.bic[0].tolist(), strict=True))
     row.update({f"bic_{name}": value for name, value in bic.items()})
-    row.update(
-        {f"model_support_{m}": float(np.mean(boot.model == i)) for i, m in enumerate(core.MODELS)}
-    )
+    if boot is not None:
+        support = {m: float(np.mean(boot.model == i)) for i, m in enumerate(core.MODELS)}
+        row.update({f"model_support_{m}": share for m, share in support.items()})
     ranked = sorted(bic, key=lambda m: bic[m])
     row["model_reason"] = (
         f"{model}: smallest BIC {bic[model]:.4g} (next {ranked[1]} {bic[ranked[1]]:.4g}; "
@@ -349,11 +367,24 @@ def _walton_group(
         )
         model = "split"
     how = {"boot": boot_method, "small": bool(moved), "stated": stated is not None}
+    errors: tuple[float, ...] = (math.nan,) * 3
+    centre: tuple[float, ...] = errors
+    if large:
+        how["asymptotic"] = asymptotic.method(switch, False)
+        errors = asymptotic.walton_errors(x, y, c, e, k)
+        centre = (float(fit.beta[0]), float(fit.friction[0]), float(fit.restitution[0]))
+        if stated is not None:  # the measurement error's bias, as the bootstrap's pivot
+            how["asymptotic"] = asymptotic.stated_method(switch)
+            shift, spread = asymptotic.stated_shift(x, y, e, stated, centre, seed)
+            centre = tuple(float(v) for v in np.asarray(centre) - shift)
+            errors = tuple(asymptotic.stated_se(*pair) for pair in zip(errors, spread, strict=True))
+        boot = core.Decision(*([np.array([])] * 9))  # no resamples: the values are unused
+    assert boot is not None  # drawn above unless the interval is asymptotic
     row["model"] = model
     row.update(n_sticking=k, n_sliding=n - k)
     row["split_effective_incidence"] = float(x[k]) if model == "split" else math.nan
     row["rotational_restitution"] = float(fit.beta[0])
-    beta = (float(fit.beta[0]), float(fit.beta_se[0]))
+    beta = (centre[0], errors[0]) if large else (float(fit.beta[0]), float(fit.beta_se[0]))
     why_beta = _interval(
         row,
         "rotational_restitution",
@@ -363,7 +394,9 @@ def _walton_group(
         {**how, "refuse": _beta_refusal(model, n)},
     )
     row["sliding_friction"] = float(fit.friction[0])
-    friction = (float(fit.friction[0]), float(fit.friction_se[0]))
+    friction = (
+        (centre[1], errors[1]) if large else (float(fit.friction[0]), float(fit.friction_se[0]))
+    )
     why_mu = _interval(
         row, "sliding_friction", (boot.friction, boot.friction_se), friction, n - k, how
     )
@@ -372,12 +405,14 @@ def _walton_group(
         bound = float((1 + row["rotational_restitution"]) * x[-1] / c[-1])
     row["sliding_friction_lower_bound"] = bound
     row["normal_restitution_mean"] = float(np.mean(e))
-    mean = (float(fit.restitution[0]), float(fit.restitution_se[0]))
+    mean = (centre[2], errors[2]) if large else (float(fit.restitution[0]), fit.restitution_se[0])
     why_e = _interval(
         row, "normal_restitution", (boot.restitution, boot.restitution_se), mean, n, how
     )
     row["normal_restitution_std"] = float(np.std(e, ddof=1))
     row["interval_method"] = _joined_method(row)
+    if large and sets is not None:  # the band of each line from the same normal law
+        sets[tuple(key)] = asymptotic.normal_sets(row, seed)
     said = [
         f"interval of {symbol} {why.removeprefix('interval ')}"
         for symbol, why in (("β", why_beta), ("μ_f", why_mu), ("ē", why_e))
@@ -396,6 +431,7 @@ def walton(
     settings: bayesian.Settings = bayesian.DEFAULT,
     draws: list | None = None,
     sets: dict | None = None,
+    asymptotic_from: int = asymptotic.ASYMPTOTIC_FROM,
 ) -> list[dict[str, Any]]:
     """β, μ_f and ē per group with model selection and bootstrap intervals (Joseph & Hunt
     figures 4, 6, 9). Keys: ``WALTON_KEYS``. ``resamples`` None follows
@@ -404,12 +440,14 @@ def walton(
     (``bayesian.walton_row``, sampler ``settings``), each group's draws appended to
     ``draws`` when a list is given. ``sets``: a dict that receives each fitted group's
     bootstrap parameter sets (a ``walton.Decision``) under its (dataset, particle, wall,
-    fluid), for the bands of its lines (``bands.walton_sets`` makes the same anew)."""
+    fluid), for the bands of its lines (``bands.walton_sets`` makes the same anew).
+    ``asymptotic_from``: the group size from which, with no count asked for, the intervals
+    are asymptotic (``granudb.analysis.asymptotic``) instead of bootstrapped."""
     bayesian.check_method(method)
     rows = []
     with resampling.one_thread():
         for key, group in _groups(frame):
-            row = _walton_group(key, group, resamples, seed, sets)
+            row = _walton_group(key, group, resamples, seed, sets, asymptotic_from)
             row["fit_method"] = method
             if method == bayesian.METHOD:
                 arrays = walton_arrays(group)

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import intervals
+from granudb.analysis import asymptotic, intervals
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
@@ -234,7 +234,18 @@ def _sliding_runs(group: Any) -> tuple[Any, np.ndarray, str, tuple]:
     return sliding, measured, "", everything
 
 
-def _fit_group(key: tuple, group: Any, model: Any, asked: int | None, seed: int) -> dict:
+#: The interval from asymptotic.ASYMPTOTIC_FROM sliding runs (issue 36), of q as below.
+ASYMPTOTIC_OF_Q = " of q = μ₀^(2/7) (μ_f = q g), mapped to μ₀ = q^(7/2)"
+
+
+def _fit_group(
+    key: tuple,
+    group: Any,
+    model: Any,
+    asked: int | None,
+    seed: int,
+    switch: int = asymptotic.ASYMPTOTIC_FROM,
+) -> dict:
     nan = math.nan
     row: dict[str, Any] = {**dict(zip(GROUP, key, strict=True))}
     row.update(gap_viscosity_pa_s=nan, gap_viscosity_low_pa_s=nan, gap_viscosity_high_pa_s=nan)
@@ -263,7 +274,19 @@ def _fit_group(key: tuple, group: Any, model: Any, asked: int | None, seed: int)
         row["reason"] = row["note"] = "the sliding runs' μ_f give no positive μ₀"
         return row
     interval_reason = ""
-    if g is not None and len(measured) < MIN_RUNS_FOR_INTERVAL:
+    large = g is not None and asymptotic.uses(len(measured), asked, switch)
+    if large and g is not None:
+        q = viscosity ** (2 / 7)
+        se = asymptotic.line_se(g, measured - q * g)
+        found = asymptotic.interval(q, se, bounds=(0.0, math.inf), level=LEVEL)
+        interval_reason = found.reason
+        row["interval_method"] = asymptotic.method(switch, stated is not None, ASYMPTOTIC_OF_Q)
+        row.update(bootstrap_resamples=0, bootstrap_rule=asymptotic.rule(switch))
+        if not interval_reason:
+            row.update(gap_viscosity_low_pa_s=found.low**3.5)
+            row.update(gap_viscosity_high_pa_s=found.high**3.5)
+            row["gap_viscosity_std_pa_s"] = 3.5 * q**2.5 * se
+    elif g is not None and len(measured) < MIN_RUNS_FOR_INTERVAL:
         # few runs: μ_f,i = q g_i is a line through the origin, so q's t-interval on the
         # sliding runs is exact under normal scatter; mapped to μ₀ = q^{7/2} (monotone)
         q = viscosity ** (2 / 7)
@@ -312,7 +335,12 @@ def _fit_group(key: tuple, group: Any, model: Any, asked: int | None, seed: int)
 
 
 def gap_viscosity(
-    frame: Any, fluids: dict[str, Any], *, resamples: int | None = None, seed: int = SEED
+    frame: Any,
+    fluids: dict[str, Any],
+    *,
+    resamples: int | None = None,
+    seed: int = SEED,
+    asymptotic_from: int = asymptotic.ASYMPTOTIC_FROM,
 ) -> list[dict[str, Any]]:
     """μ₀ and the gap temperature per immersed group (figure 14, table 2).
 
@@ -324,7 +352,9 @@ def gap_viscosity(
     (``resamples`` None follows ``walton_bootstrap.RESAMPLE_RULE`` on the sliding runs);
     ``method``;
     ``reason`` (one line whenever μ₀ or the temperature is missing, else '') and ``note``
-    (the same text, the older name).
+    (the same text, the older name). ``asymptotic_from``: the number of sliding runs from
+    which, with no count asked for, the interval is asymptotic (``granudb.analysis.asymptotic``;
+    ``bootstrap_resamples`` 0).
     """
     if "normal_speed_m_s" not in frame:  # a table of wall impacts only: the particle's own
         frame = frame.assign(normal_speed_m_s=frame["v_n_in_m_s"])
@@ -339,6 +369,6 @@ def gap_viscosity(
     )
     with resampling.one_thread():
         return [  # dry runs (no fluid) are in no group
-            _fit_group(key, group, fluids.get(key[3]), resamples, seed)
+            _fit_group(key, group, fluids.get(key[3]), resamples, seed, asymptotic_from)
             for key, group in group_frames(frame, GROUP, [c for c in inputs if c not in GROUP])
         ]

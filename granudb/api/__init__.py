@@ -82,6 +82,7 @@ NAMES: dict[str, str] = {
     "reference_show": "reference",
     "reference_reproduce": "reference",
     "reference_dem": "reference",
+    "reference_import": "reference",
     # runs as papers report them
     "import_reported_runs": "reported",
     "reported_runs": "reported",
@@ -277,6 +278,7 @@ if TYPE_CHECKING:
         REFERENCE_NARROW as REFERENCE_NARROW,
         REFERENCE_VALUE_COLUMNS as REFERENCE_VALUE_COLUMNS,
         reference_dem as reference_dem,
+        reference_import as reference_import,
         reference_list as reference_list,
         reference_reproduce as reference_reproduce,
         reference_show as reference_show,

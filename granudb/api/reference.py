@@ -10,12 +10,17 @@ predictions that apply to it and returns each check with its verdict
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 from granudb.analysis import reference_checks
+from granudb.api import inputs
+from granudb.api.database import opened
+from granudb.db import catalog_rows, reported_store, source_changes
 from granudb.dem import reference_runs
-from granudb.errors import ValidationError
+from granudb.errors import NotFoundError, ValidationError
 from granudb.io import reference_library
+from granudb.vocabulary.text import check_text
 
 #: The columns ``granudb reference list`` shows.
 REFERENCE_COLUMNS = ["name", "version", "values", "title", "licences", "path"]
@@ -200,4 +205,105 @@ def reference_dem(
         "name": name,
         "inputs": {k: conditions[k] for k in sorted(conditions)},
         "rows": out,
+    }
+
+
+def _package_source(session: Any, name: str, meta: dict[str, Any]) -> str:
+    """The source key runs imported from reference package ``name`` cite: the package's
+    name, added (citation, DOI, year of the publication) when the database lacks it."""
+    connection = session.connection()
+    try:
+        catalog_rows.source_id(connection, name)
+    except NotFoundError:
+        cited = "; ".join(s["title"] for s in meta["sources"])
+        doi = re.search(r"doi:(10\.\S+?)\.?$", meta["sources"][0]["title"])
+        year = re.search(r"\((\d{4})\)", cited)
+        values: dict[str, Any] = {
+            "key": name,
+            "citation": cited,
+            "notes": f"granudb reference dataset {name} (cite it as its CITATION.cff says)",
+        }
+        if doi:
+            values["doi"] = doi.group(1)
+        if year:
+            values["year"] = int(year.group(1))
+        source_changes.add_source(session, values)
+    return name
+
+
+def reference_import(
+    name: str,
+    *,
+    collection: str | None = None,
+    materials: dict[str, str] | None = None,
+    db: Any = None,
+) -> dict[str, Any]:
+    """Import reference dataset ``name`` (a shipped one, or the folder of a lab's own
+    package written as ``tools/build_reference.py`` writes them) into the database as
+    reported runs (collection ``collection``, the dataset's name when None): one run per
+    point that states a measured e or e_t, each with its u, source (the package, added as
+    a source citing the publication), locator, digitiser, licence and the package's name
+    and version; list and fit them with ``reported_runs`` and ``fit_reported``.
+    ``materials`` maps a particle or wall name of the package to a material of the
+    database ("aluminium oxide" → "alumina"). The same version imported twice is refused
+    in one line, nothing stored. Returns the collection, the number of runs and the
+    quantities left in the package.
+
+    Examples
+    --------
+    >>> import granudb
+    >>> done = granudb.reference_import(
+    ...     "kharaz-gorham-salman-2001", db=db,
+    ...     materials={"aluminium oxide": "alumina",
+    ...                "soda-lime glass": "soda-lime glass (Kharaz anvil)"})
+    >>> done["runs"], done["version"]
+    (11, '1.0.0')
+    """
+    given = inputs.text(name, "name")
+    meta = reference_library.descriptor(given)
+    name = meta["name"]
+    chosen = check_text("collection", inputs.text(collection or name, "collection"))
+    mapping = {}
+    for package_name, ours in (materials or {}).items():
+        if not str(package_name).strip() or not str(ours).strip():
+            rule = "must be PACKAGE=DATABASE, both names given"
+            raise ValidationError("materials", f"{package_name}={ours}", rule, parameter=True)
+        mapping[inputs.text(package_name, "materials")] = inputs.text(ours, "materials")
+    runs, left = reference_library.reported_runs(given)
+    if not runs:
+        raise ValidationError(
+            "name", name, "states no run with a measured e or e_t (its values are conditions, "
+            f"derived and fitted numbers): read them with `granudb reference show {name}`",
+            parameter=True,
+        )  # fmt: skip
+    package = f"{name} {meta['version']}"
+    for run in runs:
+        run["particle"] = mapping.get(run["particle"], run["particle"])
+        run["wall"] = mapping.get(run["wall"], run["wall"])
+        run["reference_package"] = package
+    with opened(db) as database, database.session(write=True) as session:
+        imported = reported_store.packages(session)
+        if package in imported:
+            raise ValidationError(
+                "name", name, f"version {meta['version']} is already imported "
+                f"(collection {imported[package]!r}); nothing was changed", parameter=True,
+            )  # fmt: skip
+        connection = session.connection()
+        for kind, given in sorted({(k, r[k]) for r in runs for k in ("particle", "wall")}):
+            if catalog_rows.entry_name(connection, "material", given) is None:
+                raise ValidationError(
+                    "materials", given, f"is the package's {kind} and not a material of "
+                    f"the database: map it, e.g. --material '{given}=NAME' (granudb "
+                    "materials list names them)", parameter=True,
+                )  # fmt: skip
+        source = _package_source(session, name, meta)
+        for run in runs:
+            run["source"] = source
+        count = reported_store.store(session, chosen, runs)
+    return {
+        "name": name,
+        "version": meta["version"],
+        "collection": chosen,
+        "runs": count,
+        "left_in_package": left,
     }

@@ -28,7 +28,8 @@ REPORTED_COLUMNS = [
     "normal_restitution", "tangential_restitution", "omega_out_rad_s",
     "u_incidence_angle_rad", "u_normal_restitution", "u_tangential_restitution",
     "u_omega_out_rad_s", "no_spin_in", "stated", "effective_incidence", "effective_rebound",
-    "derived_by", "source", "source_locator", "notes",
+    "derived_by", "source", "source_locator", "digitiser", "licence", "reference_package",
+    "notes",
 ]  # fmt: skip
 REPORTED_NARROW = [
     "collection", "run", "particle", "wall", "incidence_angle_rad", "normal_restitution",
@@ -42,7 +43,7 @@ YES, NO = ("yes", "true", "1", "y"), ("no", "false", "0", "n", "")
 def _cell(text: str, column: str, unit: str | None, field: str, row: int) -> Any:
     if column in ("run", "particle", "wall", "fluid"):
         return text or None
-    if column in ("source_locator", "notes"):
+    if column in ("source_locator", "digitiser", "licence", "notes"):
         return check_text(column, text) if text else None
     if column == "no_spin_in":
         if text.lower() in YES:

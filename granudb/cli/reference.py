@@ -1,4 +1,4 @@
-"""``granudb reference list|show|reproduce``: the published collision data shipped with
+"""``granudb reference list|show|reproduce|dem|import``: the published collision data shipped with
 granudb, and how granudb's fits and models reproduce each dataset."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from typing import Annotated
 import typer
 
 from granudb import api
-from granudb.cli.options import Format, FormatOption, wraps
+from granudb.cli.options import DbOption, Format, FormatOption, wraps
 from granudb.cli.output import emit, say, to_json
 
 app = typer.Typer(
@@ -94,3 +94,44 @@ def dem(
         say(f"{result['name']}: the deck's inputs {inputs}")
     columns = api.REFERENCE_DEM_NARROW if fmt is Format.table else api.REFERENCE_DEM_COLUMNS
     emit(result["rows"], columns, fmt, title="Each code against the experiment")
+
+
+@app.command("import")
+@wraps("reference_import")
+def import_(
+    name: Annotated[
+        str,
+        typer.Argument(
+            help="Reference dataset (kharaz-gorham-salman-2001) or the folder of your own "
+            "package of reported values."
+        ),
+    ],
+    collection: Annotated[
+        str | None, typer.Option("--as", help="Collection to store the runs in (default: NAME).")
+    ] = None,
+    materials: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--material",
+            help="PACKAGE=DATABASE: a particle or wall name of the package and the material "
+            "of your database it is (repeat), e.g. 'aluminium oxide=alumina'.",
+        ),
+    ] = None,
+    db: DbOption = None,
+) -> None:
+    """Import a reference dataset's runs as reported runs, with their provenance; then
+    `granudb reported list|fit --collection NAME`."""
+    mapping = {}
+    for given in materials or []:
+        package, sep, ours = given.partition("=")
+        if not sep:
+            mapping[given] = ""  # refused by the function in one line
+        else:
+            mapping[package.strip()] = ours.strip()
+    done = api.reference_import(name, collection=collection, materials=mapping, db=db)
+    say(
+        f"stored {done['runs']} runs of {done['name']} {done['version']} in collection "
+        f"{done['collection']!r}"
+    )
+    if done["left_in_package"]:
+        say(f"left in the package (not a run's column): {', '.join(done['left_in_package'])}")

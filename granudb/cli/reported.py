@@ -49,6 +49,14 @@ def list_(collection: Collection = None, db: DbOption = None,
     records = api.reported_runs(collection, db=db)
     columns = api.REPORTED_NARROW if fmt is Format.table else api.REPORTED_COLUMNS
     emit(records, columns, fmt, title="Runs as reported")
+    if fmt is Format.table:  # the provenance a table has no room for (JSON, CSV: per run)
+        kept = ("collection", "reference_package", "source", "digitiser", "licence")
+        for said in dict.fromkeys(tuple(r.get(k) for k in kept) for r in records):
+            named = [
+                f"{k.replace('_', ' ')} {v}" for k, v in zip(kept[1:], said[1:], strict=True) if v
+            ]
+            if named:
+                say(f"{said[0]}: {'; '.join(named)}")
 
 
 @app.command()

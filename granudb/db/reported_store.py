@@ -23,6 +23,9 @@ STORED = (
     *(s.column for s in stored("reported_runs", uncertainties=True)),
     "source_locator",
     "notes",
+    "digitiser",
+    "licence",
+    "reference_package",
 )
 
 
@@ -83,6 +86,14 @@ def read(session: Session, collection: str | None = None) -> list[dict[str, Any]
         record["source"] = source_key
         out.append(record)
     return out
+
+
+def packages(session: Session) -> dict[str, str]:
+    """The reference packages ("NAME VERSION") imported, each with its collection."""
+    query = select(ReportedRun.reference_package, ReportedRun.collection).where(
+        ReportedRun.reference_package.is_not(None)
+    )
+    return {str(package): collection for package, collection in session.execute(query)}
 
 
 def collections(session: Session) -> list[str]:

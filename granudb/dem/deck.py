@@ -44,7 +44,7 @@ def comment(text: str, prefix: str = "# ", width: int = 96) -> list[str]:
     lines: list[str] = []
     text = "\n".join(line.translate(_COMMENT_SAFE) for line in text.split("\n"))
     for paragraph in text.split("\n"):
-        wrapped = textwrap.wrap(paragraph, width - len(prefix)) or [""]
+        wrapped = textwrap.wrap(paragraph, width - len(prefix), break_on_hyphens=False) or [""]
         # LAMMPS continues a line whose last printable character is "&", comment or not.
         lines.extend(prefix + (w[:-1] + "and" if w.endswith("&") else w) for w in wrapped)
     return lines

@@ -29,6 +29,7 @@ from typing import Any
 
 from granudb.db.package_store import HashMismatch, MergeConflict, PackageContent, store_package
 from granudb.errors import ValidationError
+from granudb.io import reference_library
 from granudb.io.collision_file import MAX_RESTITUTION, MAX_SPEED_M_S, SPEEDS
 from granudb.io.package_dataset import dataset_record
 from granudb.io.package_files import (
@@ -550,6 +551,16 @@ def validate_root(root: Path, *, keep_collisions: bool = True) -> Validated:
     without import) keeps none of the collisions' rows, so memory does not grow with
     their number but for the 8 bytes a row of the duplicate-run check."""
     descriptor = read_descriptor(root)
+    reference = descriptor.get("granudb_reference")
+    if isinstance(reference, dict) and reference.get("kind") == "reported values":
+        name = str(descriptor.get("name"))
+        shipped = name in reference_library.names()
+        door = name if shipped else "FOLDER (the package's folder; unzip a zip first)"
+        said = (
+            f"a package of reported values ({name} {descriptor.get('version')}), not of "
+            f"collisions: import it with `granudb reference import {door}`"
+        )
+        return Validated(descriptor, {}, [said], {}, {})
     problems: list[str] = []
     tables: dict[str, Any] = {}
     counts: dict[str, int] = {}

@@ -5,7 +5,8 @@ One row per run. Columns (case and spaces around a header do not matter): ``run`
 ``incidence_angle`` (θ from the normal), ``e`` (or ``normal_restitution``), ``e_t`` (or
 ``tangential_restitution``), ``omega_out``, ``diameter``; ``u(NAME)`` or ``u_NAME`` the
 standard uncertainty of NAME; ``no_spin_in`` (yes/no: the paper states the sphere arrives
-without spin); ``source_locator`` and ``notes``. A header may carry its unit in brackets
+without spin); ``source_locator``, ``digitiser`` (who read the values from the figure),
+``licence`` (of the file they were read from) and ``notes``. A header may carry its unit in brackets
 (``incidence_angle [deg]``), else each cell carries its own (``20 deg``). A velocity column
 is refused: runs as reported hold no velocity.
 """
@@ -37,6 +38,8 @@ ALIASES = {
     "omega_out_rad_s": "omega_out_rad_s",
     "no_spin_in": "no_spin_in",
     "source_locator": "source_locator",
+    "digitiser": "digitiser",
+    "licence": "licence",
     "notes": "notes",
 }
 #: Columns whose standard uncertainty a file may state.

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from sqlalchemy.engine import Connection
 
-from granudb.analysis import bands, fits
+from granudb.analysis import asymptotic, bands, fits
 from granudb.analysis.groups import GROUP
 from granudb.db import catalog_rows, lookup_rows
 from granudb.lazy import pandas as pd
@@ -221,18 +221,21 @@ def walton_lines(
         beta = fit.get("rotational_restitution")
         mu, e = fit.get("sliding_friction"), fit.get("normal_restitution_mean")
         found = (sets or {}).get(tuple(fit.get(k) for k in GROUP))
+        normal = fit.get("bootstrap_resamples") == 0  # asymptotic: normal-law sets
         if is_number(beta) and stick.size:
             x = np.linspace(0.0, split if split is not None else float(stick.max()), 50)
             lines.append({"label": label, "branch": "sticking", "x": x, "y": -beta * x,
                           "text": f"{label}: sticking, β = {beta:.2g}",
-                          "band": _line_band(found, fit, "sticking", x, factor)})  # fmt: skip
+                          "band": _line_band(found, fit, "sticking", x, factor),
+                          "normal": normal})  # fmt: skip
         if is_number(mu) and is_number(e) and slide.size:
             start = split if split is not None else float(slide.min())
             x = np.linspace(start, float(slide.max()), 50)
             lines.append({"label": label, "branch": "sliding", "x": x,
                           "y": x - mu * (1 + e) * factor,
                           "text": f"{label}: sliding, μ_f = {mu:.2g}",
-                          "band": _line_band(found, fit, "sliding", x, factor)})  # fmt: skip
+                          "band": _line_band(found, fit, "sliding", x, factor),
+                          "normal": normal})  # fmt: skip
     return lines
 
 
@@ -259,18 +262,28 @@ def walton_caption(lines: Sequence[Mapping[str, Any]]) -> str:
         f"{caption}, with the fitted {' and '.join(words[k] for k in kinds)}, each over the "
         f"Ψ_in range of the runs its group's fit counts on that branch ({groups} "
         f"group{'s' if groups != 1 else ''} with a line; a group without one had no β or μ_f "
-        "determined)." + band_caption(sum(line.get("band") is not None for line in lines))
+        "determined)."
+        + band_caption(
+            sum(line.get("band") is not None for line in lines),
+            sum(line.get("band") is not None and bool(line.get("normal")) for line in lines),
+        )
     )
 
 
-def band_caption(count: int) -> str:
-    """What the shaded bands are ('' when none is drawn)."""
+def band_caption(count: int, normal: int = 0) -> str:
+    """What the shaded bands are ('' when none is drawn); ``normal`` of the ``count`` bands
+    are drawn over the asymptotic interval's normal-law sets (``asymptotic.normal_sets``)."""
     if not count:
         return ""
+    over = "the fit's bootstrap parameter sets (the resamples of its intervals)"
+    if normal == count:
+        over = asymptotic.BAND_SETS_WORDS
+    elif normal:
+        over += f", or, where the fit's interval is asymptotic, {asymptotic.BAND_SETS_WORDS}"
     return (
         f" Shaded around a line: its {bands.LEVEL:.0%} band, the "
         f"{50 * (1 - bands.LEVEL):g}–{100 - 50 * (1 - bands.LEVEL):g} percentiles of the line at "
-        "each abscissa over the fit's bootstrap parameter sets (the resamples of its intervals): "
+        f"each abscissa over {over}: "
         "the uncertainty of the fitted line, not the scatter of single runs (drawn only "
         "where the fit gives the parameter's interval)."
     )

@@ -154,6 +154,12 @@ def bootstrap_note(fits: list[dict[str, Any]]) -> str:
     ]
     # a posterior's interval says its own level and sampler (its record's interval_method)
     words += sorted({interval_method(f) for f in fits if f.get("fit_method") == "bayes"})
+    # an asymptotic interval (no resamples, bootstrap_resamples 0) says its own method
+    words += sorted(
+        {f"{f.get('confidence_level') or CONFIDENCE_LEVEL:.0%} intervals, {interval_method(f)}"
+         for f in fits if f.get("bootstrap_resamples") == 0 and f.get("fit_method") != "bayes"
+         and "no interval" not in interval_method(f)}
+    )  # fmt: skip
     if not words:
         return ""
     rules = sorted(

@@ -107,7 +107,7 @@ def test_the_benchmarks_import_no_test_module() -> None:
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[2] / "benchmarks"
-    for name in ("fit_coverage.py", "coverage_cases.py", "propagation.py"):
+    for name in ("fit_coverage.py", "coverage_cases.py", "propagation.py", "fit_speed.py"):
         tree = ast.parse((root / name).read_text("utf-8"))
         imported = [
             n.module if isinstance(n, ast.ImportFrom) else a.name

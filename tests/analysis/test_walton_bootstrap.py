@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from analysis.synthetic import walton_frame
 
-from granudb.analysis import fits, groups
+from granudb.analysis import asymptotic, fits, groups
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as fast
 from granudb.analysis.synthetic import sliding_runs
@@ -83,7 +83,8 @@ def test_resample_rule() -> None:
 
 def test_a_large_group_states_the_rule_and_recovers_the_truth() -> None:
     n = 25_000
-    fit = fits.walton(walton_frame(n, spin=30.0, seed=2))[0]
+    frame = walton_frame(n, spin=30.0, seed=2)
+    fit = fits.walton(frame, asymptotic_from=n + 1)[0]  # the bootstrap, not the large-n rule
     assert fit["bootstrap_resamples"] == 400 and fit["bootstrap_seed"] == 0
     assert fit["bootstrap_rule"] == fast.RESAMPLE_RULE
     assert fit["model"] == "split"
@@ -91,6 +92,17 @@ def test_a_large_group_states_the_rule_and_recovers_the_truth() -> None:
     assert fit["sliding_friction_low"] <= MU <= fit["sliding_friction_high"]
     width = fit["rotational_restitution_high"] - fit["rotational_restitution_low"]
     assert 0 < width < 0.01  # 25,000 runs pin β down; the interval is not a formality
+    # from asymptotic.ASYMPTOTIC_FROM runs (the default) no resamples: the asymptotic
+    # interval, its rule and method said, as close to the bootstrap's as its 400 draws allow
+    large = fits.walton(frame)[0]
+    assert large["bootstrap_resamples"] == 0 and large["bootstrap_rule"] == asymptotic.rule(
+        asymptotic.ASYMPTOTIC_FROM
+    )
+    assert large["interval_method"] == asymptotic.method(asymptotic.ASYMPTOTIC_FROM, False)
+    for name in ("rotational_restitution", "sliding_friction", "normal_restitution"):
+        low, high = fit[f"{name}_low"], fit[f"{name}_high"]
+        assert abs(large[f"{name}_low"] - low) < 0.15 * (high - low)
+        assert abs(large[f"{name}_high"] - high) < 0.15 * (high - low)
     asked = fits.walton(walton_frame(200, seed=2), resamples=50)[0]
     assert asked["bootstrap_resamples"] == 50 and asked["bootstrap_rule"] == "as asked"
     small = fits.walton(walton_frame(200, seed=2))[0]
