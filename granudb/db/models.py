@@ -462,11 +462,6 @@ class ReportedRun(_ReportedRuns, Base):
     source_id: Mapped[int | None] = mapped_column(ForeignKey("sources.id", ondelete="RESTRICT"))
     source_locator: Mapped[str | None] = mapped_column(String(200))
     notes: Mapped[str | None] = mapped_column(Text)
-    #: Who read the values from the figure or file, its licence, and the shipped
-    #: reference dataset ("NAME VERSION") the run came from (migration 0013).
-    digitiser: Mapped[str | None] = mapped_column(Text)
-    licence: Mapped[str | None] = mapped_column(Text)
-    reference_package: Mapped[str | None] = mapped_column(String(200))
 
     __table_args__ = (
         UniqueConstraint("collection", "run"),

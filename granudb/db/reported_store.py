@@ -23,9 +23,6 @@ STORED = (
     *(s.column for s in stored("reported_runs", uncertainties=True)),
     "source_locator",
     "notes",
-    "digitiser",
-    "licence",
-    "reference_package",
 )
 
 
@@ -90,9 +87,8 @@ def read(session: Session, collection: str | None = None) -> list[dict[str, Any]
 
 def packages(session: Session) -> dict[str, str]:
     """The reference packages ("NAME VERSION") imported, each with its collection."""
-    query = select(ReportedRun.reference_package, ReportedRun.collection).where(
-        ReportedRun.reference_package.is_not(None)
-    )
+    package = ReportedRun.__table__.c.reference_package
+    query = select(package, ReportedRun.collection).where(package.is_not(None))
     return {str(package): collection for package, collection in session.execute(query)}
 
 

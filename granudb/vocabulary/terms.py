@@ -526,6 +526,11 @@ STORED: tuple[Stored, ...] = (
     Stored("omega_out_rad_s", "reported_runs", uncertain=True),
     # the paper states the sphere arrives without spin (Walton's Ψ then follows)
     Stored("no_spin_in", "reported_runs", sql="boolean", nullable=False, default=False),
+    # who read the values from the figure or file, its licence, and the shipped reference
+    # dataset ("NAME VERSION") the run came from (migration 0013)
+    Stored("digitiser", "reported_runs", sql="text"),
+    Stored("licence", "reported_runs", sql="text"),
+    Stored("reference_package", "reported_runs", sql="string", length=200),
 )  # fmt: skip
 
 #: CHECKs that read several declared columns of a table, by table and constraint name.

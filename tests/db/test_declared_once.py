@@ -36,6 +36,8 @@ USES: dict[str, set[str]] = {
     # a run's temperature must lie within its fluid's points (or be its reference)
     "db/collision_store.py": {"reference_temperature_c", "temperature_c"},
     "db/package_store.py": {"temperature_c"},
+    # the shipped reference packages imported, each with its collection
+    "db/reported_store.py": {"reference_package"},
     # the Poisson ratio E and G imply must lie in (−1, 0.5)
     "vocabulary/catalogue.py": {"shear_modulus_pa", "youngs_modulus_pa"},
     # the derived quantities a reported run states (ζ_in, e) and the fluid's viscosity at a
