@@ -266,17 +266,17 @@ def test_conditions_from_python_and_the_report_block(opened) -> None:
     """The Python keywords are the options' names; the report's materials table shows
     the conditions as a row of their own, only where they are stated."""
     import granudb
-    from granudb.reporting.blocks import material_block
+    from granudb.reporting.sections import material_section
 
     added = granudb.add_material(
         "PEEK", density="1.3 g/cm^3", youngs_modulus="3.6 GPa", poisson_ratio=0.38,
         conditions=CONDITIONS, db=opened,
     )  # fmt: skip
     assert added["conditions"] == CONDITIONS
-    rows = material_block("Particle", added)["rows"]
+    rows = material_section("Particle", added)["rows"]
     assert [r["value"] for r in rows if r["name"] == "conditions"] == [CONDITIONS]
     steel = granudb.material("steel", db=opened)
-    assert "conditions" not in [r["name"] for r in material_block("Wall", steel)["rows"]]
+    assert "conditions" not in [r["name"] for r in material_section("Wall", steel)["rows"]]
     with pytest.raises(granudb.ValidationError, match="conditions"):
         granudb.update_material("PEEK", conditions="a\tb", db=opened)
 

@@ -18,7 +18,7 @@ import granudb
 from granudb.db.models import PublishedValue
 from granudb.errors import ConflictError, ValidationError
 from granudb.physics.limits import HERTZ_STRAIN_LIMIT, thornton_restitution
-from granudb.reporting.blocks import dataset_flag
+from granudb.reporting.sections import dataset_flag
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "collisions_example.csv"
 SPHERE = {"diameter": "12.7 mm", "velocity": "0.3 m/s"}

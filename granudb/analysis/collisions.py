@@ -31,7 +31,7 @@ from granudb.vocabulary import (
     MATERIAL_PROPERTIES,
     UNCERTAINTY_TERMS,
 )
-from granudb.vocabulary.catalogue import DRY_VALUE_PROPERTIES
+from granudb.vocabulary.catalog import DRY_VALUE_PROPERTIES
 from granudb.vocabulary.listings import COLLISION_WIDE, units_of
 
 #: The material properties ``derive`` takes per body; the dry values go through the pair

@@ -18,7 +18,7 @@ from granudb.db import catalog_rows
 from granudb.db import sources as source_reads
 from granudb.reporting.history import with_changes
 from granudb.vocabulary import FLUIDS, MATERIALS, Catalogue
-from granudb.vocabulary.catalogue import SOURCE_COLUMNS
+from granudb.vocabulary.catalog import SOURCE_COLUMNS
 
 
 def entry(catalogue: Catalogue, name: str, database: Any) -> dict[str, Any]:

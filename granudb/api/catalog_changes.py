@@ -1,6 +1,9 @@
 """Changing the catalogue, for Python users and the command line: add, update and remove
 materials and fluids, and add a fluid's viscosity points.
 
+The same concept as ``granudb.db.catalog_changes`` seen from the API's side: here the
+inputs are parsed and checked and consent is asked; there the rows are written.
+
 ``granudb materials add|update|remove`` are ``add_material``, ``update_material`` and
 ``remove_material``; the same for fluids, plus ``add_fluid_point`` and
 ``import_fluid_points`` (``granudb fluids points add|import``). Both kinds of entry run
@@ -26,7 +29,7 @@ from granudb.db import catalog_changes
 from granudb.io.seed import POINT_NUMERIC, read_table
 from granudb.reporting.format import display
 from granudb.vocabulary import FLUIDS, MATERIALS, Catalogue
-from granudb.vocabulary.catalogue import ONE_LINE_TEXTS
+from granudb.vocabulary.catalog import ONE_LINE_TEXTS
 from granudb.vocabulary.text import check_name, check_text
 
 F = TypeVar("F", bound=Callable[..., Any])

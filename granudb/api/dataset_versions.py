@@ -27,7 +27,7 @@ from granudb.api import inputs
 from granudb.api.consent import Confirm, agreed, unchanged
 from granudb.api.database import opened
 from granudb.api.frames import records_frame
-from granudb.db import catalogue_differences, dataset_catalog
+from granudb.db import catalog_differences, dataset_catalog
 from granudb.db import datasets as store
 from granudb.db.content_hash import hash_problem
 from granudb.errors import ValidationError
@@ -153,7 +153,7 @@ def diff_datasets(a: str, b: str | None = None, *, db: Any = None) -> list[dict[
             return [{"change": "pinned", "run": None, "fields": line} for line in lines]
         second = store.get_dataset(session, *inputs.dataset_ref(b))
         runs = dataset_catalog.diff_datasets(session, first, second)
-        changes = catalogue_differences.catalogue_diff(session.connection(), first.id, second.id)
+        changes = catalog_differences.catalogue_diff(session.connection(), first.id, second.id)
     catalogue = [{"change": "catalogue", "run": None, "fields": difference_line(c)}
                  for c in changes]  # fmt: skip
     return runs + catalogue

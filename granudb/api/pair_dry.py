@@ -12,7 +12,7 @@ from granudb.api.database import opened
 from granudb.api.frames import records_frame
 from granudb.db import catalog_rows, lookup_rows
 from granudb.db import pair_values as pair_store
-from granudb.vocabulary.catalogue import PAIR_VALUE_COLUMNS
+from granudb.vocabulary.catalog import PAIR_VALUE_COLUMNS
 from granudb.vocabulary.text import check_text
 
 

@@ -15,7 +15,7 @@ from granudb.reporting import format as formats
 from granudb.reporting.fit_view import people_view as fit_people_view
 from granudb.reporting.format import display_uncertain
 from granudb.vocabulary import DERIVED_TERMS, FLUIDS, MATERIALS, Term, term
-from granudb.vocabulary.catalogue import (
+from granudb.vocabulary.catalog import (
     PAIR_VALUE_COLUMNS,
     POINT_COLUMNS,
     SOURCE_COLUMNS,

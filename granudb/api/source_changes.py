@@ -1,10 +1,13 @@
 """Changing the sources, for Python users and the command line: ``granudb sources add``
 and ``granudb sources update`` are ``add_source`` and ``update_source``.
 
+The same concept as ``granudb.db.source_changes`` seen from the API's side: here the
+inputs are checked; there the rows and revisions are written.
+
 A source is a citation (required), with a DOI, URL, year, kind and notes. An update keeps
 the source as it was as a revision first (``sources history``), so a released dataset
 goes on citing the text it was released with and says when today's text differs. Fields
-follow one set of rules (``granudb.vocabulary.catalogue.check_source``); a refusal is one
+follow one set of rules (``granudb.vocabulary.catalog.check_source``); a refusal is one
 line and changes nothing.
 """
 
@@ -18,7 +21,7 @@ from granudb.api.catalog_changes import Update
 from granudb.api.database import opened
 from granudb.db import source_changes
 from granudb.errors import ValidationError
-from granudb.vocabulary.catalogue import SOURCE_FIELDS
+from granudb.vocabulary.catalog import SOURCE_FIELDS
 
 #: The longest reason a correction keeps (a sentence or two, not a document).
 MAX_REASON = 1000

@@ -1,6 +1,6 @@
 """Checked collision rows as columns, and the fastest bulk insert each backend offers.
 
-A ``CollisionBlock`` is what a reader (``granudb.io.collision_blocks``, or a DataFrame via
+A ``CollisionChunk`` is what a reader (``granudb.io.collision_chunks``, or a DataFrame via
 ``block_from_frame``) hands to ``granudb.db.collision_store``: run labels, names as the
 file writes them (dictionary-encoded: a million rows name a handful of materials), and the
 SI columns as float64 arrays (NaN = no value).
@@ -113,7 +113,7 @@ class NameColumn:
 
 
 @dataclass
-class CollisionBlock:
+class CollisionChunk:
     """One block of checked rows; ``first_row`` is the spreadsheet row of the first (the
     header is row 1) and ``headers`` the file's header of each column, for messages."""
 
@@ -161,11 +161,11 @@ def frame_columns(frame: Any) -> tuple[list[str], dict[str, Any], list[str | Non
     return [str(r) for r in frame["run"].tolist()], values, notes
 
 
-def block_from_frame(frame: Any) -> CollisionBlock:
-    """A ``CollisionBlock`` from a checked SI DataFrame (names as text), as the Data Package
+def block_from_frame(frame: Any) -> CollisionChunk:
+    """A ``CollisionChunk`` from a checked SI DataFrame (names as text), as the Data Package
     reader and earlier callers give them."""
     runs, values, notes = frame_columns(frame)
-    return CollisionBlock(
+    return CollisionChunk(
         first_row=int(frame.attrs.get("first_row", 2)),
         headers=dict(frame.attrs.get("headers", {})),
         runs=runs,

@@ -1,5 +1,8 @@
 """Changing the catalogue: add, update and remove materials and fluids, add fluid points.
 
+The same concept as ``granudb.api.catalog_changes`` seen from the database's side: there
+the inputs are parsed and consent asked; here the rows are written.
+
 One implementation serves both kinds of entry; what differs between a material and a
 fluid is its specification (``granudb.vocabulary.MATERIALS`` / ``FLUIDS``) and which
 stored rows refer to it (``REFERENCES`` below). Reads go through Core
@@ -33,7 +36,7 @@ from granudb.db.models import (
 from granudb.db.upsert import Change
 from granudb.errors import ConflictError, ValidationError
 from granudb.vocabulary import Catalogue, check_record
-from granudb.vocabulary.catalogue import check_entry, check_words
+from granudb.vocabulary.catalog import check_entry, check_words
 from granudb.vocabulary.rules import same_value
 from granudb.vocabulary.terms import stored
 from granudb.vocabulary.text import check_name, name_key

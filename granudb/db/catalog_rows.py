@@ -25,9 +25,9 @@ from sqlalchemy.engine import Connection
 from sqlalchemy.sql.expression import TableClause
 
 from granudb.errors import NotFoundError
-from granudb.vocabulary.catalogue import FLUIDS as FLUID_CATALOGUE
-from granudb.vocabulary.catalogue import MATERIALS as MATERIAL_CATALOGUE
-from granudb.vocabulary.catalogue import (
+from granudb.vocabulary.catalog import FLUIDS as FLUID_CATALOGUE
+from granudb.vocabulary.catalog import MATERIALS as MATERIAL_CATALOGUE
+from granudb.vocabulary.catalog import (
     PAIR_VALUE_COLUMNS,
     POINT_COLUMNS,
     POINT_UNCERTAINTIES,

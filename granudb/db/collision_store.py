@@ -6,7 +6,7 @@ refused when a run label repeats, bulk-inserted, and the import recorded with th
 sha256, all inside one write transaction: a failure anywhere, in reading or writing, rolls
 everything back.
 
-Rows arrive as ``CollisionBlock`` columns (``granudb.db.bulk_insert``; DataFrames are
+Rows arrive as ``CollisionChunk`` columns (``granudb.db.bulk_insert``; DataFrames are
 converted) and are written by ``bulk_insert.insert_rows``. The file's sha256 may be known
 only once the reader has read the whole file (it is hashed while it is parsed, one pass):
 then "was this file imported before?" is answered at the end, and at the first run that is
@@ -30,7 +30,7 @@ from granudb.db import datasets
 from granudb.db.bulk_hash import BlockHasher
 from granudb.db.bulk_insert import (
     BULK_CACHE_KIB,
-    CollisionBlock,
+    CollisionChunk,
     NameColumn,
     PlainIndexes,
     block_from_frame,
@@ -187,7 +187,7 @@ class FluidRanges:
         """Every row whose temperature its fluid's data does not cover, to ``problems``
         (the first refused at once without one)."""
         problems = problems if problems is not None else FirstProblem()
-        if not isinstance(block, CollisionBlock):
+        if not isinstance(block, CollisionChunk):
             block = block_from_frame(block)
         temperatures = block.values.get("temperature_c")
         if temperatures is None:
@@ -252,7 +252,7 @@ def store_collisions(
     progress: Callable[[int], None] | None = None,
     problems: Any = None,
 ) -> int:
-    """Write every block of ``frames`` (``CollisionBlock``s or DataFrames) into ``target``
+    """Write every block of ``frames`` (``CollisionChunk``s or DataFrames) into ``target``
     in one write transaction.
 
     What only the database can find (an unknown material or fluid name, a temperature
@@ -289,7 +289,7 @@ def store_collisions(
         indexes = _indexes_to_rebuild(session, target)
         try:
             for frame in frames:
-                block = frame if isinstance(frame, CollisionBlock) else block_from_frame(frame)
+                block = frame if isinstance(frame, CollisionChunk) else block_from_frame(frame)
                 ranges.check(block, target.dataset, problems)
                 rows += _store_block(session, dataset, target, block, names, seen, hasher, problems)
                 if progress is not None:
@@ -384,7 +384,7 @@ def _repeated_runs(
     session: Any,
     dataset: Any,
     target: ImportTarget,
-    block: CollisionBlock,
+    block: CollisionChunk,
     index: RunIndex,
     problems: Any,
 ) -> None:
@@ -419,7 +419,7 @@ def _store_block(
     session: Any,
     dataset: Any,
     target: ImportTarget,
-    block: CollisionBlock,
+    block: CollisionChunk,
     names: NameIndex,
     seen: RunIndex,
     hasher: BlockHasher | None,

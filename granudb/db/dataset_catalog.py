@@ -8,7 +8,7 @@ from typing import Any
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session, aliased
 
-from granudb.db.catalogue_differences import sources_read
+from granudb.db.catalog_differences import sources_read
 from granudb.db.models import Collision, Dataset, Fluid, Material
 from granudb.vocabulary import COLLISION_MEASURED as COLUMNS
 from granudb.vocabulary.listings import DATASET_DESCRIPTION
@@ -96,7 +96,7 @@ def diff_datasets(session: Session, first: Dataset, second: Dataset) -> list[dic
     """Runs added in ``second``, removed from ``first``, and changed (field by field)."""
 
     # A release's runs point at the revisions it keeps: runs are compared by the live
-    # rows, the catalogue values themselves by ``catalogue_differences.catalogue_diff``.
+    # rows, the catalogue values themselves by ``catalog_differences.catalogue_diff``.
     live = {
         "particle_id": _live_ids(session, Material),
         "wall_id": _live_ids(session, Material),

@@ -16,7 +16,7 @@ from sqlalchemy import inspect, select
 from sqlalchemy.orm import Session
 
 from granudb.db import catalog_rows, datasets
-from granudb.db.catalogue_differences import sources_read
+from granudb.db.catalog_differences import sources_read
 from granudb.db.content_hash import export_hash
 from granudb.db.models import Collision, Dataset, Fluid, FluidPoint, Material, Source
 from granudb.vocabulary.listings import DATASET_DESCRIPTION

@@ -21,7 +21,7 @@ import numpy as np
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from granudb.db.bulk_insert import CollisionBlock, NameColumn
+from granudb.db.bulk_insert import CollisionChunk, NameColumn
 from granudb.db.catalog_rows import source_record
 from granudb.db.collision_store import FirstProblem, FluidRanges, insert_collisions
 from granudb.db.content_hash import content_hash, update_content_hash
@@ -336,13 +336,13 @@ def _released(session: Session, dataset: Dataset) -> None:
     session.flush()
 
 
-def _temperatures(frame: Any, stored: dict[str, str]) -> CollisionBlock:
+def _temperatures(frame: Any, stored: dict[str, str]) -> CollisionChunk:
     """What ``FluidRanges.check`` reads of a block of the package's runs: their fluids
     under the stored names (matched in another case, or renamed) and temperatures, the
     names coded at numpy speed (a package may hold millions of runs)."""
     codes, names = frame["fluid"].map(stored).factorize()  # no fluid: code -1
     nobody = NameColumn(np.full(len(frame), -1), [])
-    return CollisionBlock(
+    return CollisionChunk(
         first_row=int(frame.attrs.get("first_row", 2)),
         headers={},
         runs=frame["run"].tolist(),

@@ -1,10 +1,13 @@
 """Adding and correcting sources (``granudb sources add|update``).
 
+The same concept as ``granudb.api.source_changes`` seen from the database's side: there
+the inputs are checked; here the rows and revisions are written.
+
 An update first keeps the source as it was as a revision
 (``catalog_revisions.keep_source_revision``, as a re-seed does), so ``sources history``
 lists it and a release goes on citing the text it was released with
-(``catalogue_differences.sources_read``). Fields follow one set of rules
-(``granudb.vocabulary.catalogue.check_source``).
+(``catalog_differences.sources_read``). Fields follow one set of rules
+(``granudb.vocabulary.catalog.check_source``).
 """
 
 from __future__ import annotations
@@ -19,7 +22,7 @@ from granudb.db.catalog_revisions import keep_source_revision
 from granudb.db.models import Source
 from granudb.db.upsert import Change
 from granudb.errors import ConflictError
-from granudb.vocabulary.catalogue import check_source
+from granudb.vocabulary.catalog import check_source
 from granudb.vocabulary.rules import same_value
 from granudb.vocabulary.text import name_key, nfc
 

@@ -9,7 +9,7 @@ The header is checked before any transaction opens (``open_collision_file``): re
 size limit, every column mapped and every unit parsed (all header problems in one
 refusal), so a hostile header costs milliseconds and never holds SQLite's write lock.
 The rows are checked with vectorized rules (``check_values``, ``check_chunk``) as
-``granudb.io.collision_blocks`` reads them; every broken row is collected (``Problems``:
+``granudb.io.collision_chunks`` reads them; every broken row is collected (``Problems``:
 the first ``SHOWN_ROW_PROBLEMS`` kept in row order, all counted) and the file is refused
 once, whole, naming it (``FileProblems``). A cell already refused is not refused again
 by a rule across columns (e, the angle).

@@ -2,7 +2,7 @@
 
 ``open_collision_file`` (``granudb.io.collision_file``) reads and maps the header before
 any transaction; the rows are then read once, hashed as they are read
-(``granudb.io.collision_blocks``), in chunks (memory is bounded whatever the file's size),
+(``granudb.io.collision_chunks``), in chunks (memory is bounded whatever the file's size),
 converted and checked with vectorized rules, and bulk-inserted by
 ``granudb.db.collision_store`` in one transaction: bad rows or ragged lines anywhere
 reject the whole file, every one of them listed in one refusal that names the file, and
@@ -22,7 +22,7 @@ import numpy as np
 from granudb.db import datasets
 from granudb.db.collision_store import ImportTarget, store_collisions
 from granudb.errors import ValidationError
-from granudb.io.collision_blocks import HashingFile, Prefetched, arrow_memory, read_blocks
+from granudb.io.collision_chunks import HashingFile, Prefetched, arrow_memory, read_chunks
 from granudb.io.collision_file import (
     CHUNK_ROWS,
     NUMERIC,
@@ -65,7 +65,7 @@ def import_collisions(
     """Import ``path`` into ``dataset`` (created if new), all or nothing.
 
     This module reads the header (``open_collision_file``, before any transaction);
-    ``granudb.io.collision_blocks`` reads, hashes and checks the rows in one pass;
+    ``granudb.io.collision_chunks`` reads, hashes and checks the rows in one pass;
     ``granudb.db.collision_store`` resolves names, refuses repeated runs, a repeated file
     and temperatures outside a fluid's data, and writes everything in one transaction.
     ``uncertainty`` states the dataset's default standard uncertainty of measured columns
@@ -79,7 +79,7 @@ def import_collisions(
     stream = HashingFile(opened.path)
     try:
         with arrow_memory():
-            blocks = Prefetched(_with_stated(read_blocks(opened, stream, chunk_rows), stated))
+            blocks = Prefetched(_with_stated(read_chunks(opened, stream, chunk_rows), stated))
 
             def digest() -> str:  # the reader thread stops before the rest is hashed
                 blocks.close()
@@ -127,13 +127,13 @@ def collision_frames(source: Path | CollisionFile, chunk_rows: int = CHUNK_ROWS)
     returned. Each frame's ``attrs["first_row"]`` is the spreadsheet row of its first line
     (the header is row 1) and ``attrs["headers"]`` the file's header of each column, so
     later checks can name the row and the column as the file does. (The import reads
-    ``CollisionBlock``s, ``granudb.io.collision_blocks``; this is the same rows as frames.)
+    ``CollisionChunk``s, ``granudb.io.collision_chunks``; this is the same rows as frames.)
     """
     if not isinstance(source, CollisionFile):
         source = open_collision_file(Path(source))
     stream = HashingFile(source.path)
     try:
-        for block in read_blocks(source, stream, chunk_rows):
+        for block in read_chunks(source, stream, chunk_rows):
             if block.faulty:
                 continue  # the file is refused with every problem at the end
             frame = pd.DataFrame({"run": block.runs})

@@ -51,7 +51,7 @@ from granudb.io.package_schema import (
 from granudb.io.tables import MAX_HEADER_BYTES, MAX_HEADERS, TINY_RULE, Problems, underflows
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
-from granudb.vocabulary.catalogue import MATERIALS, ONE_LINE_TEXTS, check_source
+from granudb.vocabulary.catalog import MATERIALS, ONE_LINE_TEXTS, check_source
 from granudb.vocabulary.rules import RULES
 from granudb.vocabulary.text import check_name, check_text, name_key
 
@@ -64,7 +64,7 @@ CASE_INSENSITIVE = ("materials", "fluids")
 MAX_ROWS = 20_000_000
 MAX_CELL_CHARS = 10_000
 #: Rows checked at a time: a block of text cells is the memory validation needs.
-BLOCK_ROWS = 50_000
+CHUNK_ROWS = 50_000
 REQUIRED_RESOURCES = {"collisions", "materials", "fluids", "sources"}
 SHOWN_PER_PROBLEM = 5
 #: Columns holding names (single-line, no padding) and their longest allowed length; other
@@ -270,7 +270,7 @@ def _duplicate_rows(key_hashes: list[Any]) -> Any:
 
 
 def _csv_blocks(path: Path) -> Any:
-    """A resource's CSV as text cells, ``BLOCK_ROWS`` rows at a time."""
+    """A resource's CSV as text cells, ``CHUNK_ROWS`` rows at a time."""
     return pd.read_csv(
         path,
         dtype=str,
@@ -278,7 +278,7 @@ def _csv_blocks(path: Path) -> Any:
         encoding="utf-8",
         na_filter=False,
         on_bad_lines="error",
-        chunksize=BLOCK_ROWS,
+        chunksize=CHUNK_ROWS,
     )
 
 
@@ -293,7 +293,7 @@ def _known_columns(name: str, frame: Any) -> tuple[Any, list[str]]:
 
 def stored_blocks(name: str, path: Path) -> Iterator[Any]:
     """The rows of a validated resource as the SI blocks validation checked, one block of
-    ``BLOCK_ROWS`` at a time, for an import that never holds the whole table: memory is
+    ``CHUNK_ROWS`` at a time, for an import that never holds the whole table: memory is
     bounded by a block, whatever the row count."""
     found = _Findings()
     bad: dict[str, tuple[str, str]] = {}
@@ -310,7 +310,7 @@ def stored_blocks(name: str, path: Path) -> Iterator[Any]:
 def _read_table(
     name: str, path: Path, problems: list[str], known: dict[str, Any], *, keep: bool = True
 ) -> tuple[Any, int]:
-    """Check a resource's CSV in blocks of ``BLOCK_ROWS`` (memory bounded by the block,
+    """Check a resource's CSV in blocks of ``CHUNK_ROWS`` (memory bounded by the block,
     plus 8 bytes a row for the duplicate-key check); returns (SI table or None, rows).
     ``keep=False`` (validation only) keeps no rows."""
     found = _Findings()

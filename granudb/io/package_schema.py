@@ -13,7 +13,7 @@ import math
 from typing import Any
 
 from granudb.io.units import check_unit_expression, registry
-from granudb.vocabulary.catalogue import (
+from granudb.vocabulary.catalog import (
     DRY_VALUE_PROPERTIES,
     FLUIDS,
     MATERIALS,

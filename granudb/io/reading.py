@@ -1,5 +1,5 @@
 """Reading a file once: hashed as it is read, ahead of its consumer, in Arrow's memory
-pool that gives memory back (used by the collision import, ``granudb.io.collision_blocks``).
+pool that gives memory back (used by the collision import, ``granudb.io.collision_chunks``).
 """
 
 from __future__ import annotations

@@ -76,8 +76,8 @@ import numpy as np
 
 from granudb.physics import flow, limits, lubrication, pair, uncertainty
 from granudb.physics import quantities as steps
-from granudb.physics.blocks import run_blocked
 from granudb.physics.numeric import Numeric, PhysicsInputError
+from granudb.physics.row_chunks import run_in_chunks
 
 #: Friction coefficient assumed where asperities touch or the collision is dry; the paper's
 #: dry fits give 0.11 (steel) and 0.106 (glass) on Zerodur (§3).
@@ -250,7 +250,7 @@ def derive(
     recedes faster than the particle approaches, target velocities without a target
     diameter).
 
-    Large tables are computed in blocks of ``granudb.physics.blocks.BLOCK_ROWS`` rows on
+    Large tables are computed in blocks of ``granudb.physics.row_chunks.CHUNK_ROWS`` rows on
     ``threads`` threads (None: the calling thread only, which measured faster than two on
     two cores; n: a pool of n, at most the cores available); every row's result is the
     same whatever the blocks or threads.
@@ -286,7 +286,7 @@ def derive(
         critical_stokes=critical_stokes,
     )
     try:
-        return run_blocked(compute, x, threads)
+        return run_in_chunks(compute, x, threads)
     except PhysicsInputError:
         _validate(x)  # the first bad row of the whole table, as one pass would name it
         raise

@@ -3,7 +3,7 @@ quantities and verdicts, fits next to the published values, figures and methods.
 
 The result is a plain dict (``report``) that the HTML and Markdown templates render; every
 string in it that came from the database is escaped by the templates, never here. The
-pieces live beside this module: ``blocks`` (text and property tables), ``tables`` (fits),
+pieces live beside this module: ``sections`` (text and property tables), ``tables`` (fits),
 ``figures`` (SVG figures), ``groups`` (one label and colour per group) and
 ``references`` (methods and the works cited).
 """
@@ -25,8 +25,8 @@ from granudb.analysis.fluid_state import fluid_model
 from granudb.analysis.pair import derive_pair
 from granudb.db import catalog_rows, lookup_rows
 from granudb.db import catalog_rows as catalog
-from granudb.db.catalogue_differences import dataset_source, sources_read
-from granudb.reporting import blocks, figures, references, tables
+from granudb.db.catalog_differences import dataset_source, sources_read
+from granudb.reporting import figures, references, sections, tables
 from granudb.reporting.groups import colours, fluid_names, labels_of
 from granudb.reporting.pinned import pinned_notes
 from granudb.reporting.verdicts import verdicts
@@ -161,7 +161,7 @@ def _pair_sections(
     """The scenario's flag, verdicts, properties, derived quantities and regime map."""
     immersed = result.fluid_state is not None
     report["flags"].append(
-        blocks.pair_flag(result.derived, immersed, (result.particle, result.wall))
+        sections.pair_flag(result.derived, immersed, (result.particle, result.wall))
     )
     report["verdicts"] = [
         {"name": v.name, "text": v.text, "raised": v.raised}
@@ -177,17 +177,17 @@ def _pair_sections(
     used = result.dry.record()
     report["methods"] = references.methods(references.e_dry_words(used))
     report["properties"] = [
-        blocks.material_block("Particle", result.particle, used),
-        blocks.material_block("Wall", result.wall, used),
-        blocks.dry_used_block(f"{result.particle['name']} on {result.wall['name']}", used),
+        sections.material_section("Particle", result.particle, used),
+        sections.material_section("Wall", result.wall, used),
+        sections.dry_used_section(f"{result.particle['name']} on {result.wall['name']}", used),
     ]
     if immersed:
-        report["properties"].append(blocks.fluid_block(result.fluid, result.fluid_state))
-    scenario = blocks.scenario_rows(result.inputs, assumed)
+        report["properties"].append(sections.fluid_section(result.fluid, result.fluid_state))
+    scenario = sections.scenario_rows(result.inputs, assumed)
     report["assumed"] = [f"{r['label']} = {r['value']}" for r in scenario if r["name"] in assumed]
     report["derived"] = [
         {"heading": "Scenario", "rows": scenario},
-        {"heading": "Derived", "rows": blocks.derived_rows(result.derived)},
+        {"heading": "Derived", "rows": sections.derived_rows(result.derived)},
     ]
     report["figures"].append(
         figures.regime_map_figure(
@@ -246,17 +246,17 @@ def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict
     for role, names in (("Particle", particles), ("Wall", walls)):
         for name in names:
             record = catalog.material_record(catalog.get_material_row(connection, name, pinned))
-            blocks_out.append(blocks.material_block(role, record))
+            blocks_out.append(sections.material_section(role, record))
             keys.add(record.get("source"))
             keys.update(provenance_keys(record.get("dry_provenance"), known))
     pairs = frame[["particle", "wall"]].drop_duplicates().itertuples(index=False)
     for particle, wall in sorted((str(p), str(w)) for p, w in pairs):
         used = dry_values(connection, particle, wall, pinned)
-        blocks_out.append(blocks.dry_used_block(f"{particle} on {wall}", used.record()))
+        blocks_out.append(sections.dry_used_section(f"{particle} on {wall}", used.record()))
         keys.update(used.keys())
     for name in sorted(set(fluid_names(frame["fluid"]).tolist()) - {"dry"}):
         record = catalog.fluid_record(catalog.get_fluid_row(connection, name, pinned))
-        blocks_out.append(blocks.fluid_block(record))
+        blocks_out.append(sections.fluid_section(record))
         keys |= {record.get("source"), record.get("density_source"),
                  record.get("pressure_viscosity_source")}  # fmt: skip
     keys.add(dataset_source(connection, pinned))  # the runs' own source
@@ -271,11 +271,11 @@ def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: boo
     frame = select_collisions(connection, query, columns=REPORT_COLUMNS, shared_text=True)
     if frame.empty:
         if not pair:
-            report["flags"].append(blocks.no_runs_flag(query.describe()))
+            report["flags"].append(sections.no_runs_flag(query.describe()))
         return {}
     citations: dict[str, str] = {}
     if not pair:
-        report["flags"].append(blocks.dataset_flag(frame))
+        report["flags"].append(sections.dataset_flag(frame))
         report["properties"], citations = _properties(connection, frame)
         pinned = lookup_rows.single_dataset_id(connection, frame)
         report["pinned"] = pinned_notes(connection, pinned)

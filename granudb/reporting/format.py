@@ -264,7 +264,7 @@ def _catalogue_entry(change: dict[str, Any]) -> str:
 
 def pinned_line(change: dict[str, Any]) -> str:
     """One line saying what a release pins that today's catalogue has changed (a record
-    of ``granudb.db.catalogue_differences.pinned_changes``).
+    of ``granudb.db.catalog_differences.pinned_changes``).
 
     >>> pinned_line({"kind": "material", "name": "steel", "field": "youngs_modulus_pa",
     ...   "temperature_c": None, "first": 1.9e11, "second": 1e11, "revision": 1,

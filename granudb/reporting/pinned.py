@@ -1,13 +1,13 @@
 """What a release pins that today's catalogue has changed, as the lines every output
 says (``dataset show|list|diff|export``, reports, DEM decks, run listings): the records
-of ``granudb.db.catalogue_differences.pinned_changes``, each said by ``pinned_line``."""
+of ``granudb.db.catalog_differences.pinned_changes``, each said by ``pinned_line``."""
 
 from __future__ import annotations
 
 import logging
 from typing import Any
 
-from granudb.db.catalogue_differences import pinned_changes
+from granudb.db.catalog_differences import pinned_changes
 from granudb.reporting.format import pinned_line
 
 

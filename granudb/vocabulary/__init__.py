@@ -7,7 +7,7 @@ This package sits at the bottom of the layers: it imports nothing of granudb but
 ``granudb.errors``.
 """
 
-from granudb.vocabulary.catalogue import (
+from granudb.vocabulary.catalog import (
     CATALOGUES,
     FLUID_PROPERTIES,
     FLUIDS,

@@ -2,7 +2,7 @@
 
 A listing shows the same columns in every format (a table, JSON, CSV, a DataFrame);
 ``--wide`` (``wide=True``) shows every column. These lists, like the catalogue's
-(``granudb.vocabulary.catalogue``), are the one place a listing's columns are named.
+(``granudb.vocabulary.catalog``), are the one place a listing's columns are named.
 """
 
 from __future__ import annotations

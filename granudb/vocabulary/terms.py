@@ -329,7 +329,7 @@ class Stored:
     From it come the SQLAlchemy column and its CHECK (``granudb.db.models``), the Core
     row's fields (``granudb.db.catalog_rows``), the rule checked before a write
     (``granudb.vocabulary.rules.RULES``), the catalogue's properties, listing columns and
-    command options (``granudb.vocabulary.catalogue``) and the Data Package schema
+    command options (``granudb.vocabulary.catalog``) and the Data Package schema
     (``granudb.io.package_schema``).
 
     ``sql`` is "float", "integer", "text", "string" (``length`` characters), "boolean" or

@@ -15,7 +15,7 @@ to ``RULES``, so schemas, listings and labels are generated from here.
 
 from __future__ import annotations
 
-from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
+from granudb.vocabulary.catalog import FLUIDS, MATERIALS
 from granudb.vocabulary.derived import DERIVED_TERMS
 from granudb.vocabulary.rules import NON_NEGATIVE, RULES
 from granudb.vocabulary.terms import (

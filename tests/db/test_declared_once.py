@@ -39,7 +39,7 @@ USES: dict[str, set[str]] = {
     # the shipped reference packages imported, each with its collection
     "db/reported_store.py": {"reference_package"},
     # the Poisson ratio E and G imply must lie in (−1, 0.5)
-    "vocabulary/catalogue.py": {"shear_modulus_pa", "youngs_modulus_pa"},
+    "vocabulary/catalog.py": {"shear_modulus_pa", "youngs_modulus_pa"},
     # the derived quantities a reported run states (ζ_in, e) and the fluid's viscosity at a
     # run's temperature: derived columns of the same names, declared as derived terms
     "vocabulary/derived.py": {"incidence_angle_rad", "normal_restitution"},
@@ -155,7 +155,7 @@ from granudb.api.database import connect
 from granudb.db.catalog_rows import MaterialRow
 from granudb.db.models import Base, Material
 from granudb.io.package_schema import table_schema
-from granudb.vocabulary.catalogue import MATERIALS, parameter_of
+from granudb.vocabulary.catalog import MATERIALS, parameter_of
 from granudb.vocabulary.rules import RULES
 
 table = Material.__table__

@@ -23,7 +23,7 @@ from support import GOOD_ROW, write_csv
 from granudb.api.database import connect as open_database
 from granudb.db import bulk_hash, datasets
 from granudb.db.content_hash import content_hash
-from granudb.io import collision_blocks
+from granudb.io import collision_chunks
 from granudb.io.collision_import import import_collisions
 
 
@@ -63,7 +63,7 @@ def test_content_hash_from_the_inserted_arrays_equals_the_stored_rows_hash(
 ) -> None:
     # Small chunks and read sizes, so rows cross chunk and read boundaries (a quoted
     # note's line break among them).
-    monkeypatch.setattr(collision_blocks, "READ_BYTES", 4096)
+    monkeypatch.setattr(collision_chunks, "READ_BYTES", 4096)
     monkeypatch.setattr(bulk_hash, "HASH_BLOCK_ROWS", 333)
     path = write_csv(tmp_path / "c.csv", _rows(2_500))
     database = open_database(db)
@@ -83,7 +83,7 @@ def test_notes_with_line_breaks_and_quotes_survive_read_boundaries(
     from sqlalchemy import text
     from support import engine_for
 
-    monkeypatch.setattr(collision_blocks, "READ_BYTES", 64)
+    monkeypatch.setattr(collision_chunks, "READ_BYTES", 64)
     path = write_csv(tmp_path / "c.csv", _rows(60))
     database = open_database(db)
     try:

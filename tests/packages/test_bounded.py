@@ -76,7 +76,7 @@ def test_many_bad_rows_are_counted_once_per_problem(cli, package: Path) -> None:
     lines = (package / "data" / "collisions.csv").read_text("utf-8").splitlines()
     header, row = lines[0], lines[1]
     after_particle = row.split(",", 2)[2]
-    rows = package_import.BLOCK_ROWS * 2 + 7
+    rows = package_import.CHUNK_ROWS * 2 + 7
     body = "".join(f"x{i},nosuch,{after_particle}\n" for i in range(rows))
     _rewrite(package, "collisions", lambda _: header + "\n" + body)
     import granudb
@@ -95,7 +95,7 @@ def test_duplicate_runs_across_blocks_are_found(package: Path) -> None:
     lines = (package / "data" / "collisions.csv").read_text("utf-8").splitlines()
     header, row = lines[0], lines[1]
     rest = row.split(",", 1)[1]
-    rows = package_import.BLOCK_ROWS + 10
+    rows = package_import.CHUNK_ROWS + 10
     body = [f"r{i},{rest}" for i in range(rows)]
     body[-1] = body[3]  # the same run label in the second block as in the first
     _rewrite(package, "collisions", lambda _: "\n".join([header, *body]) + "\n")

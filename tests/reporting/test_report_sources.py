@@ -143,9 +143,9 @@ def test_pair_report_cites_what_the_catalogue_says(cli, ptfe_db, tmp_path, fmt) 
         keys = _check_materials(cli, ptfe_db, blocks, (particle, wall))
         keys |= _check_pair(cli, ptfe_db, blocks, particle, wall)
         fluid = _json(cli, ptfe_db, "fluids", "show", "water")
-        fluid_block = blocks["Fluid: water"]
+        fluid_section = blocks["Fluid: water"]
         where = f"{fluid['source']}, {fluid['source_locator']}"
-        assert fluid_block["reference_viscosity_pa_s"][1] == where
+        assert fluid_section["reference_viscosity_pa_s"][1] == where
         # the pair's CSV carries the same record as the report's table
         out = cli("pair", particle, wall, "--fluid", "water", "--diameter", "12.7 mm",
                   "--velocity", "0.3 m/s", "--format", "csv", db=ptfe_db)  # fmt: skip

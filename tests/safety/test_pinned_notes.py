@@ -1,5 +1,5 @@
 """What a release pins that today's catalogue has changed (issue 25): one line per value,
-computed once (``granudb.db.catalogue_differences``) and said alike by ``dataset
+computed once (``granudb.db.catalog_differences``) and said alike by ``dataset
 show|list|diff|export``, reports, DEM decks with ``--values dataset`` and run listings;
 ``dataset diff`` across catalogue revisions."""
 

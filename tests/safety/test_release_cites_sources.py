@@ -1,7 +1,7 @@
 """A release cites its sources as they were when released: after a user corrects a
 source (``sources update``), the release's report, ``dataset show`` and package print
 the revision the release cites and say that today's text differs (one line, computed
-once in ``catalogue_differences``), a draft prints today's text, and the release's
+once in ``catalog_differences``), a draft prints today's text, and the release's
 package bytes do not change."""
 
 from __future__ import annotations

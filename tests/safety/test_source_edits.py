@@ -11,7 +11,7 @@ import pytest
 from support import dump_hash
 
 import granudb
-from granudb.vocabulary.catalogue import check_source
+from granudb.vocabulary.catalog import check_source
 
 KEY = "joseph-hunt-2004"
 CITATION = "Gondret, P., Lance, M. & Petit, L. (2002). Bouncing motion. Phys. Fluids 14."

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.db.bulk_insert import CollisionBlock, NameColumn, block_from_frame
+from granudb.db.bulk_insert import CollisionChunk, NameColumn, block_from_frame
 from granudb.errors import ValidationError
 from granudb.io import collision_file
 from granudb.io.reading import HashingFile, Prefetched, arrow_memory
@@ -45,7 +45,7 @@ from granudb.vocabulary.text import (
     text_forbidden_pattern,
 )
 
-__all__ = ["HashingFile", "Prefetched", "arrow_memory", "read_blocks"]
+__all__ = ["HashingFile", "Prefetched", "arrow_memory", "read_chunks"]
 
 #: Bytes read and parsed at a time (about 45,000 rows, one chunk: 8 MB held about 20 MB
 #: more at the million-row import's peak, benchmarks/import_speed.py), and the block each
@@ -54,10 +54,10 @@ READ_BYTES = 4 << 20
 BLOCK_BYTES = 1 << 20
 
 
-def read_blocks(
+def read_chunks(
     source: Any, stream: HashingFile, chunk_rows: int = collision_file.CHUNK_ROWS
-) -> Iterator[CollisionBlock]:
-    """The file's rows as checked ``CollisionBlock``s of ``chunk_rows`` rows.
+) -> Iterator[CollisionChunk]:
+    """The file's rows as checked ``CollisionChunk``s of ``chunk_rows`` rows.
 
     From the first chunk with a problem on, blocks come ``faulty`` (with what could be
     read of them: names, and numbers with the unreadable cells empty) so the catalogue
@@ -176,7 +176,7 @@ def _refuse_huge_cells(table: Any, source: Any) -> None:
 
 def _block(
     table: Any, source: Any, headers: dict[str, str], first_row: int, problems: Problems
-) -> CollisionBlock:
+) -> CollisionChunk:
     """One chunk's checked block; its problems are added to ``problems``."""
     _refuse_huge_cells(table, source)
     values = _numbers(table, source)
@@ -189,14 +189,14 @@ def _block(
     found = problems.count
     rows = collision_file.Rows(columns, cell, source.mapping, first_row, problems)
     collision_file.check_values(rows)
-    block = CollisionBlock(first_row, headers, runs, particle, wall, fluid, values, notes)
+    block = CollisionChunk(first_row, headers, runs, particle, wall, fluid, values, notes)
     block.faulty = problems.count > found
     return block
 
 
 def _pandas_block(
     table: Any, source: Any, headers: dict[str, str], first_row: int, problems: Problems
-) -> CollisionBlock:
+) -> CollisionChunk:
     """The earlier pandas path for one chunk: its problems (to ``problems``) and its rows,
     checked, or as far as they could be read (a name that breaks a rule is left out: it
     was refused already)."""

@@ -45,7 +45,7 @@ def _row(label: str, value: str, source: str, name: str | None = None) -> dict[s
 DRY_COLUMNS = ("dry_restitution", "dry_friction")
 
 
-def material_block(
+def material_section(
     role: str, record: dict[str, Any], used: Mapping[str, Any] | None = None
 ) -> dict[str, Any]:
     """A material's stored properties, each with where it comes from: the entry's source
@@ -97,7 +97,7 @@ _DRY_USED = (
 )
 
 
-def dry_used_block(pair: str, used: Mapping[str, Any]) -> dict[str, Any]:
+def dry_used_section(pair: str, used: Mapping[str, Any]) -> dict[str, Any]:
     """The dry e and μ every prediction of ``pair`` uses, each with its basis and source
     as ``granudb pair`` and ``pairs show`` give them (``DryValues.record()``)."""
     rows = [
@@ -119,7 +119,7 @@ def _conditions(record: dict[str, Any], source: str) -> list[dict[str, Any]]:
     return [_row(_title("conditions"), text, source, "conditions")] if text else []
 
 
-def fluid_block(record: dict[str, Any], state: Any | None = None) -> dict[str, Any]:
+def fluid_section(record: dict[str, Any], state: Any | None = None) -> dict[str, Any]:
     """A fluid's properties; with ``state``, the viscosity and density actually used."""
     source = _source(record)
     rows = []

@@ -28,7 +28,7 @@ from sqlalchemy import func, select
 from sqlalchemy.engine import Connection
 
 from granudb.db import catalog_rows
-from granudb.vocabulary.catalogue import FLUIDS, MATERIALS
+from granudb.vocabulary.catalog import FLUIDS, MATERIALS
 from granudb.vocabulary.rules import same_value
 from granudb.vocabulary.terms import keyed, stored, stored_values
 

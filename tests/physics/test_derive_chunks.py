@@ -1,6 +1,6 @@
 """``derive`` over large tables: blocks and threads change nothing but the time taken.
 
-A table longer than ``BLOCK_ROWS`` is computed block by block (on several threads by
+A table longer than ``CHUNK_ROWS`` is computed block by block (on several threads by
 default); every row must equal what a small table holding that row alone gives, every
 column must keep its dtype and shape, and bad input must be refused exactly as one pass
 over the whole table refuses it (the first bad row of the first failing rule).
@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 from support import STEEL_ON_ZERODUR
 
-from granudb.physics.blocks import BLOCK_ROWS, run_blocked
 from granudb.physics.derive import derive
 from granudb.physics.numeric import PhysicsInputError
+from granudb.physics.row_chunks import CHUNK_ROWS, run_in_chunks
 
-ROWS = 2 * BLOCK_ROWS + 123  # two full blocks and a partial one
+ROWS = 2 * CHUNK_ROWS + 123  # two full blocks and a partial one
 
 
 def _mixed(n: int, seed: int = 5) -> dict[str, np.ndarray]:
@@ -100,7 +100,7 @@ def test_blocked_outputs_keep_shape_and_are_independent_writable_arrays() -> Non
 
 def test_bad_input_in_a_late_block_names_the_row_of_the_whole_table() -> None:
     table = _mixed(ROWS)
-    late = 2 * BLOCK_ROWS + 7
+    late = 2 * CHUNK_ROWS + 7
     table["diameter_m"][late] = -1.0
     with pytest.raises(PhysicsInputError) as caught:
         derive(**table)
@@ -112,10 +112,10 @@ def test_bad_input_is_refused_by_the_same_rule_as_one_pass() -> None:
     # whole table, so the diameter row is named although it is in a later block.
     table = _mixed(ROWS)
     table["v_n_in_m_s"][3] = 0.0
-    table["diameter_m"][BLOCK_ROWS + 50] = 0.0
+    table["diameter_m"][CHUNK_ROWS + 50] = 0.0
     with pytest.raises(PhysicsInputError) as caught:
         derive(**table, threads=2)
-    assert (caught.value.field, caught.value.row) == ("diameter_m", BLOCK_ROWS + 51)
+    assert (caught.value.field, caught.value.row) == ("diameter_m", CHUNK_ROWS + 51)
 
 
 def test_run_blocked_calls_compute_once_per_block_and_preserves_dtypes() -> None:
@@ -126,7 +126,7 @@ def test_run_blocked_calls_compute_once_per_block_and_preserves_dtypes() -> None
         return {"twice": 2 * x["a"], "odd": x["a"] % 2 == 1, "name": x["a"].astype(object)}
 
     values = np.arange(25, dtype=float)
-    out = run_blocked(compute, {"a": values}, threads=3, block_rows=10)
+    out = run_in_chunks(compute, {"a": values}, threads=3, block_rows=10)
     assert sorted(seen) == [5, 10, 10]
     assert np.array_equal(out["twice"], 2 * values)
     assert out["odd"].dtype == bool and out["odd"].sum() == 12

@@ -3,7 +3,7 @@
 Why blocks: ``derive`` makes a few hundred temporary arrays. Over 250,000 rows each is
 2 MB, larger than a core's L2 cache and above the C allocator's default mmap threshold,
 so every temporary costs fresh pages (page faults) and a trip to main memory. In blocks of
-``BLOCK_ROWS`` rows (64 KiB an array) the temporaries are reused from the heap and stay in
+``CHUNK_ROWS`` rows (64 KiB an array) the temporaries are reused from the heap and stay in
 cache: measured about 2× faster on one core (``benchmarks/derive_speed.py``).
 
 Why one allocation for the float outputs: the outputs are fresh memory (about 320 MB of
@@ -39,7 +39,7 @@ import numpy as np
 Arrays = dict[str, np.ndarray]
 
 #: Rows per block: 8192 × 8 B = 64 KiB an array (below glibc's 128 KiB mmap threshold).
-BLOCK_ROWS = 8192
+CHUNK_ROWS = 8192
 #: Threads used when none are asked for (see the module docstring for the measurement).
 DEFAULT_THREADS = 1
 
@@ -52,11 +52,11 @@ def available_cores() -> int:
         return os.cpu_count() or 1
 
 
-def run_blocked(
+def run_in_chunks(
     compute: Callable[[Arrays], Arrays],
     inputs: Arrays,
     threads: int | None = None,
-    block_rows: int = BLOCK_ROWS,
+    block_rows: int = CHUNK_ROWS,
 ) -> Arrays:
     """``compute(inputs)``, evaluated block by block into full-size output arrays.
 
