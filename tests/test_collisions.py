@@ -307,9 +307,9 @@ def test_walton_fit_recovers_the_published_dry_values(db: str, tmp_path: Path) -
     # Synthetic runs scattered around the paper's dry fits (β = 0.34, μ_f = 0.11 for steel;
     # β = 0.39, μ_f = 0.106 for glass; ē = 0.97): the fit must give them back within error.
     from granudb.analysis import fits
-    from granudb.analysis.collision_query import CollisionQuery
-    from granudb.analysis.collisions import select_collisions
     from granudb.io.collision_import import import_collisions
+    from granudb.scenario.collision_query import CollisionQuery
+    from granudb.scenario.collisions import select_collisions
 
     rows = walton_rows(120, "steel", "", 0.34, 0.11, 0.97, 0.01, seed=4) + walton_rows(
         120, "glass", "", 0.39, 0.106, 0.97, 0.01, seed=5

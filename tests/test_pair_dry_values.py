@@ -332,7 +332,7 @@ def test_per_run_resolves_each_run_as_its_own_pair() -> None:
 
     import numpy as np
 
-    from granudb.analysis import dry_values
+    from granudb.scenario import dry_values
 
     rng = np.random.default_rng(7)
     n = 400

@@ -1,6 +1,6 @@
-"""The service layer the command line, the reports and the Python API share.
+"""The fits of measured collisions: Walton's β and μ_f, restitution against Stokes number,
+the gap viscosity, their intervals (bootstrap, small-n, asymptotic, Bayesian) and bands,
+the reference datasets' checks, and the synthetic known truth their coverage is measured on.
 
-Fluid state at a temperature, the derivation of one pair or of stored collisions, the
-collision queries that return DataFrames, and the fits. It reads through ``granudb.db``
-and computes through ``granudb.physics``; it never parses files or prints.
+The runs come as frames from ``granudb.scenario``; nothing here reads a file or prints.
 """

@@ -75,7 +75,7 @@ def walton_frame(
 def with_stated_u(frame: pd.DataFrame, u_in, u_out, u_t_in, u_t_out) -> Any:
     """``frame`` with each run's stated u of v_n,in, v_n,out, v_T,in, v_T,out [m/s] and the
     u(e), u(Ψ_in), u(Ψ_out) a listing derives from them (``ratio_uncertainty``, as
-    ``granudb.analysis.collisions`` does)."""
+    ``granudb.scenario.collisions`` does)."""
     vn, e = frame["v_n_in_m_s"], frame["normal_restitution"]
     out = frame.assign(
         v_n_out_m_s=e * vn, u_v_n_in_m_s=u_in, u_v_n_out_m_s=u_out, u_v_t_in_m_s=u_t_in

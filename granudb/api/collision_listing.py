@@ -1,7 +1,7 @@
 """``granudb.collisions()``: measured collisions with every derived column, and the
 collision filters every listing, fit and report takes.
 
-The filters are the fields of ``granudb.analysis.collisions.CollisionQuery`` (dataset,
+The filters are the fields of ``granudb.scenario.collisions.CollisionQuery`` (dataset,
 version, particle, wall, fluid, min_normal_stokes, max_normal_stokes, angle_range,
 regime, roughness_exceeds_gap, rebound_expected, critical_stokes), named once there and
 checked once here (``collision_query``); the command line's options are the same names
@@ -14,13 +14,13 @@ import difflib
 import re
 from typing import Any
 
-from granudb.analysis.collision_query import COLLISION_FILTERS, TANGENTIAL_REGIMES, CollisionQuery
-from granudb.analysis.collisions import select_collisions
 from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.db import lookup_rows
 from granudb.errors import ValidationError
 from granudb.reporting.pinned import announce_pinned
+from granudb.scenario.collision_query import COLLISION_FILTERS, TANGENTIAL_REGIMES, CollisionQuery
+from granudb.scenario.collisions import select_collisions
 from granudb.vocabulary.listings import COLLISION_NARROW
 
 #: The collision filters, in the order help texts list them.

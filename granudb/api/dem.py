@@ -31,11 +31,6 @@ from pathlib import Path
 from typing import Any
 
 from granudb.analysis import fits
-from granudb.analysis.collision_query import CollisionQuery
-from granudb.analysis.collisions import select_collisions
-from granudb.analysis.dry_values import NO_IMMERSED
-from granudb.analysis.fluid_state import fluid_state
-from granudb.analysis.pair import derive_pair, is_dry
 from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.db import catalog_rows, lookup_rows, sources
@@ -57,6 +52,11 @@ from granudb.dem.verify import Record, judged, passed, summary, table, verify
 from granudb.errors import ValidationError
 from granudb.output_files import write_text
 from granudb.reporting.pinned import announce_pinned
+from granudb.scenario.collision_query import CollisionQuery
+from granudb.scenario.collisions import select_collisions
+from granudb.scenario.dry_values import NO_IMMERSED
+from granudb.scenario.fluid_state import fluid_state
+from granudb.scenario.pair import derive_pair, is_dry
 
 #: The codes ``dem_export`` writes for, and those ``dem_verify`` runs.
 DEM_CODES = WRITER_NAMES

@@ -22,13 +22,13 @@ import inspect
 from collections.abc import Mapping
 from typing import Any
 
-from granudb.analysis.refusals import physics_refusal
 from granudb.api import inputs
 from granudb.errors import ValidationError
 from granudb.lazy import numpy as np
 from granudb.lazy import pandas as pd
 from granudb.physics.derive import UNCERTAIN_INPUTS
 from granudb.physics.derive import derive as derive_arrays
+from granudb.scenario.refusals import physics_refusal
 from granudb.vocabulary import RULES
 from granudb.vocabulary.listings import units_of
 

@@ -12,8 +12,6 @@ from pathlib import Path
 from typing import Any
 
 from granudb.analysis import fits
-from granudb.analysis.collisions import select_collisions
-from granudb.analysis.fluid_state import fluid_model
 from granudb.api import inputs
 from granudb.api.collision_listing import collision_query
 from granudb.api.database import opened
@@ -21,6 +19,8 @@ from granudb.db import catalog_rows
 from granudb.errors import ValidationError
 from granudb.lazy import pandas as pd
 from granudb.output_files import write_text
+from granudb.scenario.collisions import select_collisions
+from granudb.scenario.fluid_state import fluid_model
 from granudb.vocabulary.escaping import spreadsheet_frame
 
 #: The forms of e(St_n) ``fit_restitution`` fits.

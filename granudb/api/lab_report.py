@@ -13,7 +13,6 @@ import shlex
 from pathlib import Path
 from typing import Any
 
-from granudb.analysis.pair import TARGETS
 from granudb.api import inputs
 from granudb.api.collision_listing import collision_query
 from granudb.api.database import opened
@@ -21,6 +20,7 @@ from granudb.errors import ValidationError
 from granudb.reporting.build import database_name, dataset_report, pair_report
 from granudb.reporting.render import render
 from granudb.reporting.write import check_output, write_report
+from granudb.scenario.pair import TARGETS
 
 #: The report's formats: one self-contained HTML file, or Markdown with SVG figures.
 REPORT_FORMATS = ("html", "md")

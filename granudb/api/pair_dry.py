@@ -6,12 +6,12 @@ from __future__ import annotations
 
 from typing import Any
 
-from granudb.analysis.dry_values import dry_values as resolve_dry_values
 from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.api.frames import records_frame
 from granudb.db import catalog_rows, lookup_rows
 from granudb.db import pair_values as pair_store
+from granudb.scenario.dry_values import dry_values as resolve_dry_values
 from granudb.vocabulary.catalog import PAIR_VALUE_COLUMNS
 from granudb.vocabulary.text import check_text
 

@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from granudb.analysis import collision_query
 from granudb.reporting import format as formats
 from granudb.reporting.fit_view import people_view as fit_people_view
 from granudb.reporting.format import display_uncertain
+from granudb.scenario import collision_query
 from granudb.vocabulary import DERIVED_TERMS, FLUIDS, MATERIALS, Term, term
 from granudb.vocabulary.catalog import (
     PAIR_VALUE_COLUMNS,

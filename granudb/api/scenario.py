@@ -4,13 +4,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from granudb.analysis.pair import TARGET_WORDS, TARGETS, derive_pair, is_dry, pair_json
 from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.errors import ValidationError
 from granudb.reporting.format import display
 from granudb.reporting.values import qualified_value
 from granudb.reporting.verdicts import verdicts
+from granudb.scenario.pair import TARGET_WORDS, TARGETS, derive_pair, is_dry, pair_json
 
 __all__ = ["pair", "qualified_value"]
 

@@ -158,7 +158,7 @@ class FluidRanges:
     A run's viscosity comes from the fluid's points (two or more), anchored to the printed
     reference value, anywhere between the lowest and highest point; a fluid with fewer
     points has a viscosity only at its reference temperature. Nothing is extrapolated.
-    This mirrors ``granudb.analysis.fluid_state.fluid_states_per_row`` (a test imports
+    This mirrors ``granudb.scenario.fluid_state.fluid_states_per_row`` (a test imports
     runs at the edges and checks every read derives them).
     """
 

@@ -51,7 +51,7 @@ an upper bound: the regime is "gross_slip" where the bound already gives it (a s
 μ_f only slips more) and "undetermined" otherwise.
 
 **Restitution.** ``dry_restitution`` and ``dry_friction`` are the pair's dry values, per
-row (``granudb.analysis.dry_values`` resolves them with their sources; the defaults are
+row (``granudb.scenario.dry_values`` resolves them with their sources; the defaults are
 Joseph & Hunt's steel on Zerodur, borrowed). Past yield (``elastic_state``
 "yield_exceeded") the dry e is bounded by Thornton's elastic–plastic restitution,
 ``restitution_ceiling`` = min(e_dry, e_Thornton(V_y/V)) (docs/physics.md §15) and

@@ -23,7 +23,7 @@ themselves (``expand_e_star``). The incidence angle, not a product of powers, is
 propagated absolutely in the same way.
 
 Temperature enters through the viscosity: the caller gives u(μ) including
-|∂μ/∂T| u(T) from the fluid model (``granudb.analysis.fluid_state``). The per-collision
+|∂μ/∂T| u(T) from the fluid model (``granudb.scenario.fluid_state``). The per-collision
 parameters e, β, Ψ_in and Ψ_out of a measured run are ratios of measured speeds: their u
 is ``ratio_uncertainty``'s (with ``contact_speed_uncertainty``), not a sensitivity here;
 μ_f of (2.9) gets none yet.

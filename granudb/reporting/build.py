@@ -18,11 +18,6 @@ from typing import Any
 from sqlalchemy.engine import Connection, make_url
 
 from granudb.analysis import fits
-from granudb.analysis.collision_query import CollisionQuery
-from granudb.analysis.collisions import select_collisions
-from granudb.analysis.dry_values import dry_values, provenance_keys
-from granudb.analysis.fluid_state import fluid_model
-from granudb.analysis.pair import derive_pair
 from granudb.db import catalog_rows, lookup_rows
 from granudb.db import catalog_rows as catalog
 from granudb.db.catalog_differences import dataset_source, sources_read
@@ -30,6 +25,11 @@ from granudb.reporting import figures, references, sections, tables
 from granudb.reporting.groups import colours, fluid_names, labels_of
 from granudb.reporting.pinned import pinned_notes
 from granudb.reporting.verdicts import verdicts
+from granudb.scenario.collision_query import CollisionQuery
+from granudb.scenario.collisions import select_collisions
+from granudb.scenario.dry_values import dry_values, provenance_keys
+from granudb.scenario.fluid_state import fluid_model
+from granudb.scenario.pair import derive_pair
 from granudb.version import __version__
 
 #: The columns of the runs a report reads (tables, fits, figures and the flag): the runs are

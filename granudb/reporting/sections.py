@@ -13,11 +13,11 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis.dry_values import material_dry_source
-from granudb.analysis.pair import TARGET_WORDS
 from granudb.reporting.format import display, engineering, is_number, unicode_math
 from granudb.reporting.values import qualified_value
 from granudb.reporting.verdicts import GAP_DEFINITION, roughness_verdict
+from granudb.scenario.dry_values import material_dry_source
+from granudb.scenario.pair import TARGET_WORDS
 from granudb.vocabulary import DERIVED_TERMS, MATERIAL_PROPERTIES, TERMS
 
 #: A material's stored properties, in the catalogue's own order.

@@ -14,10 +14,10 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from granudb.analysis.dry_values import BORROWED_VALUES
 from granudb.physics import flow, limits
 from granudb.physics.uncertainty import LIKELY, UNLIKELY, certainty
 from granudb.reporting.format import display, engineering, is_number
+from granudb.scenario.dry_values import BORROWED_VALUES
 
 GAP_DEFINITION = "h_m = x₁/3, the EHD minimum gap of the normal approach (Joseph & Hunt §1, §4)"
 #: The three roughness states in words, shared by verdicts, tables and the regime map.

@@ -10,10 +10,10 @@ import pytest
 from paper_runs import paper_rows, write_csv  # noqa: E402
 from support import execute  # noqa: E402
 
-from granudb.analysis.collision_query import CollisionQuery
-from granudb.analysis.collisions import collision_table, select_collisions
 from granudb.api.database import connect
 from granudb.io.collision_import import import_collisions
+from granudb.scenario.collision_query import CollisionQuery
+from granudb.scenario.collisions import collision_table, select_collisions
 
 
 @pytest.fixture

@@ -62,7 +62,7 @@ def test_exact_data_give_no_interval_rather_than_zero_width() -> None:
     [fit] = fits.walton(walton_frame(20, psi_range=(0.75, 2.5), noise=0.0, seed=2))
     assert fit["sliding_friction"] == pytest.approx(0.11, rel=1e-9)
     assert math.isnan(fit["sliding_friction_low"]) and math.isnan(fit["sliding_friction_high"])
-    assert "interval of μ_f interval not determined" in fit["reason"]
+    assert "interval of μ_f not determined" in fit["reason"]
 
 
 def test_a_degenerate_bootstrap_is_not_determined() -> None:

@@ -13,12 +13,12 @@ from analysis.synthetic import walton_frame
 from paper_runs import paper_rows, write_csv  # noqa: E402
 
 from granudb.analysis import fits  # noqa: E402
-from granudb.analysis.collision_query import CollisionQuery
-from granudb.analysis.collisions import select_collisions  # noqa: E402
 from granudb.analysis.restitution_fit import _group_row  # noqa: E402
 from granudb.api.database import connect  # noqa: E402
 from granudb.io.collision_import import import_collisions  # noqa: E402
 from granudb.reporting.build import REPORT_COLUMNS  # noqa: E402
+from granudb.scenario.collision_query import CollisionQuery
+from granudb.scenario.collisions import select_collisions  # noqa: E402
 
 
 def _same(a: object, b: object) -> bool:

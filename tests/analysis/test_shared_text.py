@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from granudb.analysis.collisions import _values
+from granudb.scenario.collisions import _values
 
 
 def test_text_cells_are_shared_and_equal_to_to_numpy() -> None:

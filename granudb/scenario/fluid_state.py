@@ -16,9 +16,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from granudb.analysis.refusals import physics_refusal
 from granudb.errors import ValidationError
 from granudb.physics.viscosity import ReferencedViscosity, TabulatedViscosity
+from granudb.scenario.refusals import physics_refusal
 
 if TYPE_CHECKING:
     from granudb.db.catalog_rows import FluidRow

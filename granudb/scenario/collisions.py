@@ -14,15 +14,15 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import dry_values
-from granudb.analysis.collision_query import CollisionQuery
-from granudb.analysis.fluid_state import assumptions_per_row, fluid_states_per_row
-from granudb.analysis.refusals import physics_refusal
 from granudb.db.catalog_rows import fluid_rows_by_id, pair_value_rows
 from granudb.db.collision_queries import iter_collisions, reading, survey_collisions
 from granudb.lazy import pandas as pd
 from granudb.physics import uncertainty
 from granudb.physics.derive import derive
+from granudb.scenario import dry_values
+from granudb.scenario.collision_query import CollisionQuery
+from granudb.scenario.fluid_state import assumptions_per_row, fluid_states_per_row
+from granudb.scenario.refusals import physics_refusal
 from granudb.vocabulary import (
     COLLISION_MEASURED,
     COLLISION_TARGET,
@@ -35,7 +35,7 @@ from granudb.vocabulary.catalog import DRY_VALUE_PROPERTIES
 from granudb.vocabulary.listings import COLLISION_WIDE, units_of
 
 #: The material properties ``derive`` takes per body; the dry values go through the pair
-#: rule (``granudb.analysis.dry_values.per_run``) first.
+#: rule (``granudb.scenario.dry_values.per_run``) first.
 _MATERIAL = [
     c for c in MATERIAL_PROPERTIES if c not in ("correlation_length_m", *DRY_VALUE_PROPERTIES)
 ]

@@ -1,6 +1,6 @@
 """Which collisions: the query every listing, fit, report and export selects runs by.
 
-Kept apart from ``granudb.analysis.collisions`` (which reads and derives them, with numpy
+Kept apart from ``granudb.scenario.collisions`` (which reads and derives them, with numpy
 and pandas) so that naming a query — the command line's filter options, a refusal — needs
 neither.
 """

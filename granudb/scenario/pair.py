@@ -14,12 +14,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from sqlalchemy.engine import Connection
 
-from granudb.analysis.dry_values import DryValues, provenance_keys, resolve
-from granudb.analysis.fluid_state import FluidState, fluid_state, state_uncertainty
-from granudb.analysis.refusals import physics_refusal
 from granudb.db import catalog_rows
 from granudb.errors import ValidationError
 from granudb.physics.derive import derive, scalar_view
+from granudb.scenario.dry_values import DryValues, provenance_keys, resolve
+from granudb.scenario.fluid_state import FluidState, fluid_state, state_uncertainty
+from granudb.scenario.refusals import physics_refusal
 
 if TYPE_CHECKING:
     from sqlalchemy.orm import Session
