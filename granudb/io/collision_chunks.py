@@ -21,7 +21,6 @@ re-read with Python's csv module for the row and the reason (``check_shape``).
 
 from __future__ import annotations
 
-import csv
 import io
 import re
 from collections.abc import Iterator
@@ -33,7 +32,7 @@ from granudb.db.bulk_insert import CollisionChunk, NameColumn, block_from_frame
 from granudb.errors import ValidationError
 from granudb.io import collision_file
 from granudb.io.reading import HashingFile, Prefetched, arrow_memory
-from granudb.io.tables import Problems, check_shape, convert_frame, underflows
+from granudb.io.tables import CSV_FIELD_LIMIT, Problems, check_shape, convert_frame, underflows
 from granudb.io.units import round_significant
 from granudb.lazy import pyarrow as pa
 from granudb.lazy import pyarrow_compute as pc
@@ -168,7 +167,7 @@ def _refuse_unparsable(source: Any, exc: Exception) -> None:
 def _refuse_huge_cells(table: Any, source: Any) -> None:
     """A cell longer than Python's csv field limit was always refused by ``check_shape``
     (the file is not a table granudb reads); it still is, with the same message."""
-    limit = csv.field_size_limit()
+    limit = CSV_FIELD_LIMIT
     for column in table.columns:
         if (pc.max(pc.utf8_length(column)).as_py() or 0) > limit:
             check_shape(source.path, source.delimiter)

@@ -17,7 +17,8 @@ from __future__ import annotations
 import csv
 import difflib
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -456,12 +457,28 @@ def convert_frame(
     return out
 
 
+#: The longest CSV cell granudb reads (Python's csv default). granudb's own, not the
+#: process-wide ``csv.field_size_limit()``: a library that raises that limit when it is
+#: imported (frictionless does) must not change which files granudb refuses.
+CSV_FIELD_LIMIT = 131_072
+
+
+@contextmanager
+def _field_limit() -> Iterator[None]:
+    """Python's csv reader at granudb's own cell limit, the process's limit restored after."""
+    before = csv.field_size_limit(CSV_FIELD_LIMIT)
+    try:
+        yield
+    finally:
+        csv.field_size_limit(before)
+
+
 def check_shape(path: Path, delimiter: str) -> None:
     """Every row has as many cells as the header; every row that does not is listed (in
     one ``FileProblems``, capped). pandas silently drops the extra cells of a long row and
     pads a short (truncated) one, so rows are counted here first."""
     problems = Problems(path.name)
-    with path.open(encoding="utf-8-sig", newline="") as handle:
+    with _field_limit(), path.open(encoding="utf-8-sig", newline="") as handle:
         reader = csv.reader(handle, delimiter=delimiter)
         try:
             header = next(reader, None)
