@@ -78,8 +78,10 @@ def test_stated_per_run_u_of_e_replaces_the_fitted_scatter() -> None:
     [fitted] = fits.restitution(frame, "exponential", method="bayes")
     frame["u_normal_restitution"] = 0.06
     [stated] = fits.restitution(frame, "exponential", method="bayes")
-    assert "σ given per run" in stated["prior"] and "stated u" in stated["likelihood"]
+    assert "σ_extra (scatter beyond the stated u) half-Cauchy" in stated["prior"]
+    assert "u_e² + σ_extra²" in stated["likelihood"]
     assert math.isnan(stated["sigma"]) and fitted["sigma"] == pytest.approx(0.02, rel=0.35)
+    assert stated["sigma_extra"] < 0.06  # the stated u already exceeds the scatter
     width = [r["parameter_high"] - r["parameter_low"] for r in (fitted, stated)]
     assert width[1] > 2 * width[0], width
     frame.loc[0, "u_normal_restitution"] = np.nan  # one run without: σ is fitted again
