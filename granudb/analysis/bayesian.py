@@ -6,18 +6,18 @@ Walton model by BIC, the restitution form as asked); the Bayesian option keeps t
 and replaces the bootstrap interval of each parameter by a posterior credible interval, so
 the two answers differ only in how the uncertainty is stated and can be compared run for
 run. Likelihood: the fit's own model with independent Gaussian scatter, its scale σ fitted
-with the parameters (a log-uniform, scale-invariant prior), or the stated per-run standard
-uncertainties when the caller gives them (``sigma``; σ is then not a parameter): the fits
-read them from the runs' ``u_effective_rebound`` (Walton) and ``u_normal_restitution``
-(restitution) columns when every run of the group states one (``stated_u``). Priors:
-uniform on each parameter's physical range (``PRIORS``), stated in every result.
+with the parameters (a log-uniform, scale-invariant prior); or, when the runs state their
+u, errors in every measured variable (``walton``: effective variance; ``restitution``: the
+shared v_N,in integrated out) plus a sampled σ_extra beyond the stated u (half-Cauchy
+prior, scale the median stated u). Priors: uniform on each parameter's physical range
+(``PRIORS``), stated in every result (docs/intervals.md, "The Bayesian option").
 
 Walton: the sticking model is Ψ_out = −βΨ_in, the sliding one Ψ_out = Ψ_in − μ_f(1+e)B and
 the split one Walton's max(−βΨ_in, Ψ_in − μ_f(1+e)B) (the folded runs of
 ``granudb.analysis.walton``; the transition follows from β and μ_f, so no split point is
 sampled). ē has its own Gaussian scatter (a separate factor of the same posterior).
-Restitution: e = e_dry exp(−k/St_n) or e_dry(1 − St_c/St_n)₊, e_dry held at the dry runs'
-mean when the group has dry runs (as the least-squares fit does).
+Restitution: e = e_dry exp(−k/St_n) or e_dry(1 − St_c/St_n)₊, e_dry sampled jointly with the
+group's dry runs (``_dry_factor``), never held at their mean.
 
 Sampler: emcee (Foreman-Mackey, Hogg, Lang & Goodman 2013, PASP 125, 306), its ensemble of
 walkers moved by differential-evolution proposals (ter Braak 2006, Stat. Comput. 16, 239)
