@@ -6,18 +6,18 @@ Walton model by BIC, the restitution form as asked); the Bayesian option keeps t
 and replaces the bootstrap interval of each parameter by a posterior credible interval, so
 the two answers differ only in how the uncertainty is stated and can be compared run for
 run. Likelihood: the fit's own model with independent Gaussian scatter, its scale σ fitted
-with the parameters (a log-uniform, scale-invariant prior), or the stated per-run standard
-uncertainties when the caller gives them (``sigma``; σ is then not a parameter): the fits
-read them from the runs' ``u_effective_rebound`` (Walton) and ``u_normal_restitution``
-(restitution) columns when every run of the group states one (``stated_u``). Priors:
-uniform on each parameter's physical range (``PRIORS``), stated in every result.
+with the parameters (a log-uniform, scale-invariant prior); or, when the runs state their
+u, errors in every measured variable (``walton``: effective variance; ``restitution``: the
+shared v_N,in integrated out) plus a sampled σ_extra beyond the stated u (half-Cauchy
+prior, scale the median stated u). Priors: uniform on each parameter's physical range
+(``PRIORS``), stated in every result (docs/intervals.md, "The Bayesian option").
 
 Walton: the sticking model is Ψ_out = −βΨ_in, the sliding one Ψ_out = Ψ_in − μ_f(1+e)B and
 the split one Walton's max(−βΨ_in, Ψ_in − μ_f(1+e)B) (the folded runs of
 ``granudb.analysis.walton``; the transition follows from β and μ_f, so no split point is
 sampled). ē has its own Gaussian scatter (a separate factor of the same posterior).
-Restitution: e = e_dry exp(−k/St_n) or e_dry(1 − St_c/St_n)₊, e_dry held at the dry runs'
-mean when the group has dry runs (as the least-squares fit does).
+Restitution: e = e_dry exp(−k/St_n) or e_dry(1 − St_c/St_n)₊, e_dry sampled jointly with the
+group's dry runs (``_dry_factor``), never held at their mean.
 
 Sampler: emcee (Foreman-Mackey, Hogg, Lang & Goodman 2013, PASP 125, 306), its ensemble of
 walkers moved by differential-evolution proposals (ter Braak 2006, Stat. Comput. 16, 239)
@@ -91,8 +91,14 @@ PRIORS = {
     "e_dry": "e_dry uniform on (0, 1]",
     "k": "k uniform on [0, 100 max St_n]",
     "fitted_critical_stokes": "St_c uniform on [0, 100 max St_n]",
-    "sigma": "σ log-uniform on (0, ∞) (scale-invariant; absent when per-run σ is given)",
+    "sigma": "σ log-uniform on (0, ∞) (scale-invariant; absent when per-run u is stated)",
+    "sigma_extra": "σ_extra (scatter beyond the stated u) half-Cauchy with scale the runs' "
+    "median stated u (Gelman 2006)",
+    "e_dry_dry_runs": "e_dry uniform on (0, 1], its dry runs' scatter σ_dry log-uniform "
+    "(marginalised: the dry runs give e_dry a Student-t factor)",
 }
+#: Gauss–Hermite nodes over each run's true v_N,in (the restitution fit with stated speeds).
+HERMITE_NODES = 12
 #: Upper end of the restitution parameter's prior, in multiples of the largest St_n.
 PARAMETER_PRIOR_SPAN = 100.0
 E_MAX = 1.05
@@ -119,6 +125,16 @@ class Settings:
 
 
 DEFAULT = Settings()
+#: The default with stated u: σ_extra (its half-Cauchy prior piles up at 0) mixes slower,
+#: its autocorrelation time measured at 17–22 steps on 10 restitution runs (more than
+#: 1,000 draws / 50), so the chain is twice as long.
+STATED_DEFAULT = Settings(steps=2500)
+
+
+def effective(settings: Settings, stated: bool) -> Settings:
+    """The settings a posterior runs with: ``STATED_DEFAULT`` for the default when the runs
+    state their u (σ_extra sampled), else ``settings`` as given."""
+    return STATED_DEFAULT if stated and settings == DEFAULT else settings
 
 
 @dataclass(frozen=True)
@@ -238,41 +254,105 @@ def walton(
     start: tuple[float, float],
     *,
     sigma: np.ndarray | None = None,
+    stated: np.ndarray | None = None,
     settings: Settings = DEFAULT,
 ) -> Posterior:
     """The posterior of Walton's model ``model`` ("sticking", "sliding", "split") on folded
     runs (``x`` = Ψ_in, ``y`` = Ψ_out, ``c`` = (1+e)B, ``e``) and of ē; ``start`` = the
-    least-squares (β, μ_f) (NaN where the model has no such line); ``sigma`` the per-run
-    standard uncertainty of Ψ_out (None: σ is fitted). ē: ``with_mean``."""
+    least-squares (β, μ_f) (NaN where the model has no such line).
+
+    ``stated`` (4, n): each run's stated u as ``walton_bootstrap.stated_walton`` gives it
+    (r = u(v_N,in)/v_N,in, then the numerator speeds' shares of u(e), u(Ψ_in), u(Ψ_out)).
+    Errors in all variables, marginalised with the effective variance of the residual
+    (exact to first order: the lines are linear in Ψ_in, Ψ_out and e): on the sliding
+    line u(Ψ_out)² + u(Ψ_in)² + (μ_f B)²(u(e)² + r²), the shared v_N,in's factor moving
+    Ψ_in, Ψ_out and e together (its share of the residual is μ_f B r); on the sticking
+    line u(Ψ_out)² + β²u(Ψ_in)² (the shared factor cancels); each run on the branch the
+    model puts it at; plus σ_extra² (scatter beyond the stated u, sampled). ``sigma``: a
+    per-run u of Ψ_out alone (no speeds stated), used as the residual's stated u. Neither:
+    σ is fitted. ē: ``with_mean``."""
     has_beta, has_mu = model != "sliding", model != "sticking"
     beta0 = start[0] if math.isfinite(start[0]) else 0.0
     mu0 = start[1] if math.isfinite(start[1]) else 0.0
+    if stated is None and sigma is not None:
+        zero = np.zeros_like(x)
+        stated = np.stack([zero, zero, zero, np.asarray(sigma, dtype=float)])
+    b = c / (1.0 + e)
 
     def line(beta, mu):
         stick, slide = -beta[:, None] * x, x - mu[:, None] * c
         if model == "sticking":
-            return stick
-        return slide if model == "sliding" else np.maximum(stick, slide)
+            return stick, np.ones(stick.shape, dtype=bool)
+        if model == "sliding":
+            return slide, np.zeros(slide.shape, dtype=bool)
+        return np.maximum(stick, slide), stick >= slide
+
+    def variance(beta, mu, sticking):
+        """Each run's stated variance of the residual (walkers, n)."""
+        r, u_e, u_in, u_out = stated
+        slide = u_out**2 + u_in**2 + (mu[:, None] * b) ** 2 * (u_e**2 + r**2)
+        stick = u_out**2 + (beta[:, None] * u_in) ** 2
+        return np.where(sticking, stick, slide)
 
     names = [n for n, has in (("beta", has_beta), ("mu_f", has_mu)) if has]
-    names += [] if sigma is not None else ["log_sigma"]
+    names += ["sigma_extra"] if stated is not None else ["log_sigma"]
     at = {n: i for i, n in enumerate(names)}
+    scale = _median_u(stated[3]) if stated is not None else math.nan
 
     def log_posterior(p: np.ndarray) -> np.ndarray:
         m = len(p)
         beta = p[:, at["beta"]] if has_beta else np.zeros(m)
         mu = p[:, at["mu_f"]] if has_mu else np.zeros(m)
         inside = (beta >= -1) & (beta <= 1) & (mu >= 0)
-        log_sigma = p[:, at["log_sigma"]] if sigma is None else None
-        value = _gaussian(y - line(beta, mu), log_sigma, sigma)
+        predicted, sticking = line(beta, mu)
+        if stated is None:
+            value = _gaussian(y - predicted, p[:, at["log_sigma"]], None)
+        else:
+            extra = p[:, at["sigma_extra"]]
+            inside &= extra >= 0
+            total = variance(beta, mu, sticking) + extra[:, None] ** 2
+            value = _normal(y - predicted, total) + _half_cauchy(extra, scale)
         return np.where(inside & np.isfinite(value), value, -np.inf)
 
-    fitted = y - line(np.array([beta0]), np.array([mu0]))[0]
-    first = {"beta": beta0, "mu_f": mu0, "log_sigma": _log_scale(fitted, len(names) - 1)}
+    fitted = y - line(np.array([beta0]), np.array([mu0]))[0][0]
+    first = {
+        "beta": beta0,
+        "mu_f": mu0,
+        "log_sigma": _log_scale(fitted, len(names) - 1),
+        "sigma_extra": 0.5 * scale,
+    }
     point = np.array([first[n] for n in names])
-    spread = np.array([1e-3 if n.startswith("log") else 1e-4 for n in names])
+    spread = np.array(
+        [1e-3 if n.startswith("log") else 0.1 * scale if n == "sigma_extra" else 1e-4
+         for n in names]
+    )  # fmt: skip
     posterior = sample(log_posterior, point, spread, names, settings)
     return with_mean(posterior, e, settings.seed)
+
+
+def _median_u(u: np.ndarray) -> float:
+    """The half-Cauchy prior's scale: the runs' median stated u (positive)."""
+    positive = u[u > 0]
+    return float(np.median(positive)) if positive.size else 1e-3
+
+
+def _normal(residual: np.ndarray, variance: np.ndarray) -> np.ndarray:
+    """Σ log N(residual | 0, variance) over runs (the last axis), up to a constant."""
+    return -0.5 * np.sum(residual**2 / variance + np.log(variance), axis=-1)
+
+
+def _half_cauchy(value: np.ndarray, scale: float) -> np.ndarray:
+    """log of the half-Cauchy(0, ``scale``) density, up to a constant."""
+    return -np.log1p((value / scale) ** 2)
+
+
+def stated_usable(stated: np.ndarray | None, row: int) -> np.ndarray | None:
+    """``stated`` when every run states a positive u in ``row`` (the residual's own
+    variable: Ψ_out for Walton, e for restitution), else None (σ is fitted)."""
+    if stated is None:
+        return None
+    u = stated[row]
+    return stated if u.size and bool(np.all(np.isfinite(u) & (u > 0))) else None
 
 
 def with_mean(posterior: Posterior, e: np.ndarray, seed: int) -> Posterior:
@@ -318,40 +398,90 @@ def restitution(
     st: np.ndarray,
     e: np.ndarray,
     start: tuple[float, float],
-    fixed: bool,
+    dry: np.ndarray | None = None,
     *,
-    sigma: np.ndarray | None = None,
+    stated: tuple[np.ndarray, np.ndarray] | None = None,
     settings: Settings = DEFAULT,
 ) -> Posterior:
     """The posterior of the restitution ``form`` over immersed runs (St_n, e); ``start`` =
-    the least-squares (e_dry, parameter); e_dry held at ``start[0]`` when ``fixed``;
-    ``sigma`` the per-run standard uncertainty of e (None: σ is fitted)."""
+    the least-squares (e_dry, parameter). ``dry``: the group's dry runs' e, whose own
+    likelihood enters the posterior jointly (their scatter σ_dry marginalised under a
+    log-uniform prior: a Student-t factor in e_dry, ``_dry_factor``); none: e_dry only from
+    the immersed runs.
+
+    ``stated`` (r, u_e): each run's relative u of v_N,in and the u of e that v_n,out gives
+    it (u(v_n,out)/v_N,in). St_n and e share the measured v_N,in: with s = v_N,in(true) /
+    v_N,in(measured) the true St_n is s St_n and the measured e is e(s St_n) s + noise of
+    u_e; the likelihood of each run integrates over s ~ N(1, r) by Gauss–Hermite
+    quadrature (``HERMITE_NODES``, flat prior on the true speed), the noise variance
+    u_e² + σ_extra² with σ_extra sampled. None: σ is fitted."""
     parameter = form.parameter
-    names = (
-        ([] if fixed else ["e_dry"]) + [parameter] + ([] if sigma is not None else ["log_sigma"])
-    )
+    names = ["e_dry", parameter] + (["sigma_extra"] if stated is not None else ["log_sigma"])
     at = {n: i for i, n in enumerate(names)}
     top = PARAMETER_PRIOR_SPAN * float(np.max(st))
+    dry_term = _dry_factor(dry)
+    if stated is not None:
+        r, u_e = stated
+        nodes, weights = np.polynomial.hermite.hermgauss(HERMITE_NODES)
+        factor = 1.0 + math.sqrt(2.0) * r[:, None] * nodes[None, :]  # (n, K): s per node
+        log_w = np.log(weights / math.sqrt(math.pi))
+        scale = _median_u(u_e)
 
     def log_posterior(p: np.ndarray) -> np.ndarray:
-        a = np.full(len(p), start[0]) if fixed else p[:, at["e_dry"]]
-        q = p[:, at[parameter]]
+        a, q = p[:, at["e_dry"]], p[:, at[parameter]]
         inside = (a > 0) & (a <= form.e_dry_max) & (q >= 0) & (q <= top)
-        curve = form.curve(st[None, :], a[:, None], q[:, None])
-        log_sigma = p[:, at["log_sigma"]] if sigma is None else None
-        value = _gaussian(e - curve, log_sigma, sigma)
+        if stated is None:
+            curve = form.curve(st[None, :], a[:, None], q[:, None])
+            value = _gaussian(e - curve, p[:, at["log_sigma"]], None)
+        else:
+            extra = p[:, at["sigma_extra"]]
+            inside &= extra >= 0
+            with np.errstate(divide="ignore", invalid="ignore"):
+                curve = (
+                    form.curve(st[None, :, None] * factor[None], a[:, None, None], q[:, None, None])
+                    * factor[None]
+                )
+            total = (u_e**2)[None, :] + extra[:, None] ** 2  # (walkers, n)
+            z2 = (e[None, :, None] - curve) ** 2 / total[..., None]
+            per_run = _logsumexp(log_w[None, None, :] - 0.5 * z2, axis=-1)
+            value = np.sum(per_run - 0.5 * np.log(total), axis=-1) + _half_cauchy(extra, scale)
+        value = value + dry_term(a)
         return np.where(inside & np.isfinite(value), value, -np.inf)
 
     fitted = e - form.curve(st, start[0], start[1])
     first = {
         "e_dry": start[0],
         parameter: start[1],
-        "log_sigma": _log_scale(fitted, 1 if fixed else 2),
+        "log_sigma": _log_scale(fitted, 2),
+        "sigma_extra": 0.5 * scale if stated is not None else math.nan,
     }
     point = np.array([first[n] for n in names])
-    scale = {"e_dry": 1e-4, parameter: 1e-3 * max(start[1], float(np.min(st)) * 1e-2)}
-    spread = np.array([scale.get(n, 1e-3) for n in names])
+    spreads = {"e_dry": 1e-4, parameter: 1e-3 * max(start[1], float(np.min(st)) * 1e-2)}
+    if stated is not None:
+        spreads["sigma_extra"] = 0.1 * scale
+    spread = np.array([spreads.get(n, 1e-3) for n in names])
     return sample(log_posterior, point, spread, names, settings)
+
+
+def _logsumexp(a: np.ndarray, axis: int) -> np.ndarray:
+    top = np.max(a, axis=axis, keepdims=True)
+    top = np.where(np.isfinite(top), top, 0.0)
+    with np.errstate(divide="ignore"):
+        return np.log(np.sum(np.exp(a - top), axis=axis)) + np.squeeze(top, axis=axis)
+
+
+def _dry_factor(dry: np.ndarray | None):
+    """The dry runs' factor of e_dry's posterior: with e_j ~ N(e_dry, σ_dry) and
+    p(σ_dry) ∝ 1/σ_dry, σ_dry integrated out leaves (S + m(e_dry − ē)²)^(−m/2) (S the
+    dry runs' sum of squares about their mean ē, m ≥ 2 runs; a Student t with m − 1
+    degrees of freedom). Fewer than 2 dry runs: no factor (one run cannot state its own
+    scatter)."""
+    if dry is None or len(dry) < 2:
+        return lambda a: np.zeros_like(a)
+    m, mean = len(dry), float(np.mean(dry))
+    ss = float(np.sum((dry - mean) ** 2))
+    ss = max(ss, 1e-12 * max(mean**2, 1.0))
+    return lambda a: -0.5 * m * np.log(ss + m * (a - mean) ** 2)
 
 
 #: The column of the runs' stated u of Ψ_out that the Walton option reads when present.
@@ -362,6 +492,7 @@ RESULT_NAMES = {
     "mu_f": "sliding_friction",
     "e_mean": "normal_restitution_mean",
     "log_sigma": "sigma",
+    "sigma_extra": "sigma_extra",
 }
 #: The Walton row's keys of each parameter's median, interval and spread.
 _WALTON_KEYS = {
@@ -372,7 +503,17 @@ _WALTON_KEYS = {
 LIKELIHOOD = {
     "walton": "Ψ_out ~ Normal(the chosen model's line at Ψ_in, σ) per run, independent; "
     "e ~ Normal(ē, σ_e)",
+    "walton stated": "errors in Ψ_in, Ψ_out and e from each run's stated u, marginalised "
+    "by the residual's effective variance (first order; the shared v_N,in's factor moves "
+    "all three together): Ψ_out − line(Ψ_in, e) ~ Normal(0, √(v_run + σ_extra²)), "
+    "v_run = u(Ψ_out)² + u(Ψ_in)² + (μ_f B)²(u(e)² + r²) on the sliding line, "
+    "u(Ψ_out)² + β²u(Ψ_in)² on the sticking line (r = u(v_N,in)/v_N,in); "
+    "e ~ Normal(ē, σ_e)",
     "restitution": "e ~ Normal(e(St_n) of the chosen form, σ) per run, independent",
+    "restitution stated": "St_n and e share the measured v_N,in: each run's true speed "
+    "v_N,in s, s ~ Normal(1, r), integrated out (Gauss–Hermite, 12 nodes); "
+    "e ~ Normal(s e(s St_n), √(u_e² + σ_extra²)), u_e = u(v_n,out)/v_N,in",
+    "dry": "; dry runs e ~ Normal(e_dry, σ_dry), jointly (σ_dry integrated out)",
 }
 
 
@@ -387,13 +528,22 @@ def stated_u(frame: Any, column: str, rows: np.ndarray) -> np.ndarray | None:
     return u if u.size and bool(np.all(np.isfinite(u) & (u > 0))) else None
 
 
-def _stated(row: dict, kind: str, names: tuple, per_run: bool, settings: Settings) -> None:
-    said = [PRIORS[RESULT_NAMES.get(n, n)] if n != "e_mean" else PRIORS["normal_restitution"]
-            for n in names if n != "log_sigma"]  # fmt: skip
-    said.append("σ given per run (not fitted)" if per_run else PRIORS["sigma"])
-    likelihood = LIKELIHOOD[kind]
-    if per_run:
-        likelihood = likelihood.replace(", σ)", ", the run's stated u)", 1)
+def _stated(row: dict, kind: str, names: tuple, per_run: bool, settings: Settings,
+            dry: bool = False) -> None:  # fmt: skip
+    said = []
+    for n in names:
+        if n == "log_sigma":
+            continue
+        if n == "e_mean":
+            said.append(PRIORS["normal_restitution"])
+        elif n == "e_dry" and dry:
+            said.append(PRIORS["e_dry_dry_runs"])
+        else:
+            said.append(PRIORS[RESULT_NAMES.get(n, n)])
+    if not per_run:
+        said.append(PRIORS["sigma"])
+    likelihood = LIKELIHOOD[f"{kind} stated" if per_run else kind]
+    likelihood += LIKELIHOOD["dry"] if dry else ""
     row.update(fit_method=METHOD, interval_method=INTERVAL_METHOD, prior="; ".join(said))
     row.update(likelihood=likelihood, **settings.describe())
 
@@ -403,23 +553,38 @@ def _no_chain(row: dict) -> None:
     row.update(autocorrelation_times="", converged=False)
 
 
+def _extra(row: dict, posterior: Posterior) -> None:
+    """σ (fitted) or σ_extra (beyond the stated u): the posterior median; the other NaN."""
+    log_sigma = posterior.summary("log_sigma")[0] if "log_sigma" in posterior.names else math.nan
+    row["sigma"] = math.exp(log_sigma) if math.isfinite(log_sigma) else math.nan
+    extra = posterior.summary("sigma_extra") if "sigma_extra" in posterior.names else None
+    row["sigma_extra"] = extra[0] if extra else math.nan
+
+
 def walton_row(
-    row: dict, arrays: tuple, settings: Settings = DEFAULT, sigma: np.ndarray | None = None
+    row: dict,
+    arrays: tuple,
+    settings: Settings = DEFAULT,
+    sigma: np.ndarray | None = None,
+    stated: np.ndarray | None = None,
 ) -> tuple[Any, str]:
     """Replace a Walton row's values and intervals by the posterior's (median, 95 %
     credible interval, posterior standard deviation as ``_stderr``) for the model the row
     chose; parameters the least-squares fit did not determine stay NaN. ``arrays``: the
-    group's ``walton_arrays``; ``sigma``: per-run u of Ψ_out in the same (sorted) order.
+    group's ``walton_arrays``; ``stated``: the runs' stated u (``walton``), else ``sigma``:
+    per-run u of Ψ_out, in the same (sorted) order.
     Returns (draws frame or None, reason: '' or why there is no posterior)."""
     x, y, c, e = arrays[:4]
     model = row.get("model")
+    per_run = stated is not None or sigma is not None
+    settings = effective(settings, per_run)
     if model is None:
-        _stated(row, "walton", (), sigma is not None, settings)
+        _stated(row, "walton", (), per_run, settings)
         _no_chain(row)
         return None, ""
     start = (row["rotational_restitution"], row["sliding_friction"])
-    posterior = walton(x, y, c, e, model, start, sigma=sigma, settings=settings)
-    _stated(row, "walton", posterior.names, sigma is not None, settings)
+    posterior = walton(x, y, c, e, model, start, sigma=sigma, stated=stated, settings=settings)
+    _stated(row, "walton", posterior.names, per_run, settings)
     row.update(posterior.diagnostics())
     for name, (value_key, prefix) in _WALTON_KEYS.items():
         if name not in posterior.names or not math.isfinite(row[value_key]):
@@ -429,8 +594,7 @@ def walton_row(
         row[f"{prefix}_interval_method"] = INTERVAL_METHOD
         if f"{prefix}_stderr" in row:
             row[f"{prefix}_stderr"] = posterior.spread(name)
-    row["sigma"] = posterior.summary("log_sigma")[0] if sigma is None else math.nan
-    row["sigma"] = math.exp(row["sigma"]) if math.isfinite(row["sigma"]) else math.nan
+    _extra(row, posterior)
     key = {k: row[k] for k in ("dataset", "particle", "wall", "fluid")}
     return posterior.draws(key), posterior.reason
 
@@ -441,35 +605,38 @@ def restitution_row(
     st: np.ndarray,
     e: np.ndarray,
     settings: Settings = DEFAULT,
-    sigma: np.ndarray | None = None,
+    stated: tuple[np.ndarray, np.ndarray] | None = None,
+    dry: np.ndarray | None = None,
 ) -> Any:
     """Replace a restitution row's e_dry and parameter (and intervals, standard errors) by
-    the posterior's; ``sigma``: per-run u of e. Returns the draws frame (None when the
-    least-squares fit gave nothing to start from); a chain that did not converge leaves
-    NaN and says why in ``interval_reason``."""
-    fixed = row["n_dry_runs"] > 0
+    the posterior's; ``stated``: per-run (r, u_e) (``restitution``); ``dry``: the dry runs'
+    e, fitted jointly. Returns the draws frame (None when the least-squares fit gave
+    nothing to start from); a chain that did not converge leaves NaN and says why in
+    ``interval_reason``."""
     parameter = form.parameter
-    names = (
-        (() if fixed else ("e_dry",)) + (parameter,) + (() if sigma is not None else ("log_sigma",))
-    )
-    _stated(row, "restitution", names, sigma is not None, settings)
+    joint = dry is not None and len(dry) >= 2
+    names = ("e_dry", parameter, "sigma_extra" if stated is not None else "log_sigma")
+    settings = effective(settings, stated is not None)
+    _stated(row, "restitution", names, stated is not None, settings, dry=joint)
     if row["reason"]:
         _no_chain(row)
         return None
     posterior = restitution(
-        form, st, e, (row["e_dry"], row["parameter"]), fixed, sigma=sigma, settings=settings
-    )
+        form, st, e, (row["e_dry"], row["parameter"]), dry if joint else None,
+        stated=stated, settings=settings,
+    )  # fmt: skip
     row.update(posterior.diagnostics())
     for name, key in (("e_dry", "e_dry"), (parameter, "parameter")):
-        if name not in posterior.names:
-            continue
         median, low, high = posterior.summary(name)
         row.update({key: median, f"{key}_low": low, f"{key}_high": high})
         row[f"{key}_stderr"] = posterior.spread(name)
+    if joint and dry is not None:
+        row["e_dry_source"] = (
+            f"posterior jointly with the immersed runs and the group's {len(dry)} dry runs"
+        )
     if "fitted_critical_stokes" in row:
         row["fitted_critical_stokes"] = row["parameter"]
-    log_sigma = posterior.summary("log_sigma")[0] if sigma is None else math.nan
-    row["sigma"] = math.exp(log_sigma) if math.isfinite(log_sigma) else math.nan
+    _extra(row, posterior)
     row["interval_reason"] = posterior.reason
     group = {k: row[k] for k in ("dataset", "particle", "wall", "model")}
     return posterior.draws(group)

@@ -452,7 +452,9 @@ def walton(
             if method == bayesian.METHOD:
                 arrays = walton_arrays(group)
                 sigma = bayesian.stated_u(group, "effective_rebound", arrays[5])
-                found, why = bayesian.walton_row(row, arrays, settings, sigma)
+                stated = resampling.stated_walton(group, arrays[5])
+                stated = bayesian.stated_usable(stated, 3)  # every run's u(Ψ_out) > 0
+                found, why = bayesian.walton_row(row, arrays, settings, sigma, stated)
                 if row["model"] is not None:
                     reason = _reason(row["model"], row["n_sticking"], row["n_sliding"])
                     row["reason"] = "; ".join(p for p in (reason, why) if p)

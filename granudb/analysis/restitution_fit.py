@@ -501,6 +501,21 @@ def _intervals(
     row["interval_reason"] = "; ".join(reasons)
 
 
+def _bayes_stated(frame: Any, runs: np.ndarray, e: np.ndarray, speeds: tuple | None):
+    """The Bayesian option's per-run (r, u_e): r = u(v_N,in)/v_N,in and u_e =
+    u(v_n,out)/v_N,in = r_out e from the stated speeds; without them, the runs' listed
+    u(e) with r = 0; None unless every run has u_e > 0 (then σ is fitted)."""
+    found: np.ndarray | None
+    if speeds is not None:
+        r_in, r_out = speeds
+        found = np.stack([r_in, r_out * np.abs(e)])
+    else:
+        u = bayesian.stated_u(frame, "normal_restitution", runs)
+        found = None if u is None else np.stack([np.zeros_like(u), u])
+    usable = bayesian.stated_usable(found, 1)
+    return None if usable is None else (usable[0], usable[1])
+
+
 def restitution(
     frame: Any,
     model: str | None = None,
@@ -560,8 +575,10 @@ def restitution(
                         PARAMETER_NAMES[model],
                         E_DRY_MAX,
                     )
-                    sigma = bayesian.stated_u(frame, "normal_restitution", runs)
-                    found = bayesian.restitution_row(row, form, st[runs], e[runs], settings, sigma)
+                    found = bayesian.restitution_row(
+                        row, form, st[runs], e[runs], settings,
+                        _bayes_stated(frame, runs, e[runs], stated), e[rows[dry[rows]]],
+                    )  # fmt: skip
                     if draws is not None and found is not None:
                         draws.append(found)
                 results.append(row)
