@@ -29,6 +29,7 @@ of a page run in order and share that folder and database.
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import io
 import os
@@ -126,6 +127,7 @@ def seeded_database() -> Path:
         from granudb.api.database import connect
 
         folder = Path(tempfile.mkdtemp(prefix="granudb-docs-template-"))
+        atexit.register(shutil.rmtree, folder, ignore_errors=True)  # gone with the process
         path = folder / "granudb.sqlite"
         connect(str(path)).dispose()
         with sqlite3.connect(path) as connection:  # fold the WAL into the one file
