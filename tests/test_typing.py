@@ -41,6 +41,14 @@ def _type_checking_imports(path: Path) -> dict[str, str]:
     return found
 
 
+def _mypy_env() -> dict[str, str]:
+    """An installed granudb is found by mypy in site-packages (which mypy refuses in
+    MYPYPATH); a checkout's editable install is found by an import hook mypy cannot
+    follow, so its folder is named."""
+    installed = any(part in {"site-packages", "dist-packages"} for part in PACKAGE.parts)
+    return dict(os.environ) if installed else {**os.environ, "MYPYPATH": str(PACKAGE.parent)}
+
+
 def test_api_type_checking_imports_equal_the_tables() -> None:
     seen = _type_checking_imports(PACKAGE / "api" / "__init__.py")
     expected = {name: f"granudb.api.{module}" for name, module in {**api.NAMES, **api.FACE}.items()}
@@ -81,8 +89,7 @@ def test_mypy_sees_signatures_and_refuses_unknown_names(tmp_path: Path) -> None:
         text=True,
         check=False,
         cwd=tmp_path,
-        # an editable install is found by an import hook mypy cannot follow: name the folder
-        env={**os.environ, "MYPYPATH": str(PACKAGE.parent)},
+        env=_mypy_env(),
     )
     lines = [line for line in result.stdout.splitlines() if "use_granudb.py" in line]
     revealed = next(line for line in lines if "Revealed type" in line)

@@ -194,8 +194,9 @@ def test_the_recipe_a_declaration_reaches_every_output(tmp_path: Path, db: str) 
     root = PACKAGE.parent
     ignore = shutil.ignore_patterns("__pycache__")
     shutil.copytree(PACKAGE, tmp_path / "granudb", ignore=ignore)
-    for shipped in ("migrations", "seed_data"):
-        shutil.copytree(root / shipped, tmp_path / shipped, ignore=ignore)
+    for shipped in ("migrations", "seed_data"):  # beside the package in a checkout only
+        if not (PACKAGE / shipped).is_dir():
+            shutil.copytree(root / shipped, tmp_path / shipped, ignore=ignore)
     terms = tmp_path / "granudb" / DECLARING
     text = terms.read_text(encoding="utf-8")
     for anchor, line in (("TERMS: dict[str, Term] = {\n", _TERM),
