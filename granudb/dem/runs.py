@@ -195,7 +195,7 @@ def yade_script(model: DemModel, fragment: str, cases: list[Case]) -> str:
 
 
 _YADE_LOOP = """
-for (p, t, wall, r1, r2, gap, vt, vn, dt, steps) in CASES:
+def granudb_run(p, t, wall, r1, r2, gap, vt, vn, dt, steps):
     O.reset()
     g = {'O': O}
     g.update(globals())
@@ -219,6 +219,22 @@ for (p, t, wall, r1, r2, gap, vt, vn, dt, steps) in CASES:
     v2 = 0.0 if wall else other.state.vel[2]
     print('GRANUDB %r %r %r %r' % (float(s.state.vel[0]), float(s.state.vel[2]),
           float(s.state.angVel[1]), float(v2)), flush=True)
+
+
+# Yade makes its own temporary folder (/tmp/yade-XXXXXX, whatever TMPDIR says) and leaves it
+# behind: the script removes it, empty as this script leaves it, however the runs end.
+import os as granudb_os
+granudb_tmp = granudb_os.path.dirname(O.tmpFilename())
+print('GRANUDB-TMP %s' % granudb_tmp, flush=True)
+try:
+    for case in CASES:
+        granudb_run(*case)
+finally:
+    if granudb_os.path.basename(granudb_tmp).startswith('yade-'):
+        try:
+            granudb_os.rmdir(granudb_tmp)
+        except OSError:
+            pass
 """
 
 

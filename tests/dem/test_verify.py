@@ -203,3 +203,24 @@ def test_the_codes_slide_with_the_immersed_friction(
     monkeypatch.setattr(deck, "friction_input", lambda *a, **k: (a[3].friction.value, None))
     plain = dem_verify.verify(model, todo, codes=[code], workdir=tmp_path)
     assert plain_low < plain[0].friction_rel_error < plain_high, plain
+
+
+def test_yade_leaves_no_temporary_folder(tmp_path: Path) -> None:
+    """Yade makes /tmp/yade-XXXXXX whatever TMPDIR says and leaves it; the verify script
+    removes its own, both after the runs and when a run stops (a failed host check)."""
+    require("yade")
+    from granudb.dem import runs
+
+    model = dry_model()
+    fragment = dem_verify.WRITERS["yade"].write(model)
+    case = dem_verify.cases(model)[0]
+    for name, text in (("good", fragment), ("stops", fragment + "\nraise SystemExit(3)\n")):
+        script = tmp_path / f"{name}.py"
+        script.write_text(runs.yade_script(model, text, [case]))
+        output = runs.run(["yade", "-n", "-x", str(script)], tmp_path, timeout=600)
+        lines = output.splitlines()
+        folders = [ln.split(" ", 1)[1] for ln in lines if ln.startswith("GRANUDB-TMP ")]
+        assert len(folders) == 1, output[-500:]
+        assert Path(folders[0]).name.startswith("yade-")
+        assert not Path(folders[0]).exists(), (name, folders[0])
+        assert ("GRANUDB " in output) == (name == "good"), output[-500:]
