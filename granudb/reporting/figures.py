@@ -432,7 +432,9 @@ def restitution_figure(
         )
         + "."
         + ("" if line is None else " The grey line is the " + fit_said(line[3]) + ".")
-        + band_caption(band is not None).replace("a line", "the grey line", 1)
+        + band_caption(
+            band is not None, band is not None and line[3].get("bootstrap_resamples") == 0
+        ).replace("a line", "the grey line", 1)
         + (plots.ERROR_BARS if errors else "")
     )
     return _figure("fig-restitution", caption, svg, len(st_n))
