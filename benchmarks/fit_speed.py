@@ -112,7 +112,7 @@ def main() -> None:
         cpu = time.process_time()
         _, w_s = timed(fits.walton, frame, asymptotic_from=BOOTSTRAP_ALWAYS)
         _, g_s = timed(fits.gap_viscosity, wet, glycerol, asymptotic_from=BOOTSTRAP_ALWAYS)
-        _, r_s = timed(fits.restitution, wet_e, "threshold")
+        _, r_s = timed(fits.restitution, wet_e, "threshold", asymptotic_from=BOOTSTRAP_ALWAYS)
         before.append((w_s, g_s, r_s, w_s + g_s + r_s, time.process_time() - cpu))
     walton_s, gap_s, rest_s, total, cpu = np.median(runs, axis=0)
     b_walton, b_gap, b_rest, b_total, b_cpu = np.median(before, axis=0)
@@ -154,8 +154,9 @@ def main() -> None:
         "(truth 1.600)"
     )
     print(
-        f"restitution (threshold), {n:,} runs: {rest_s:.2f} s, "
-        f"St_c = {rest['fitted_critical_stokes']:.2f} (truth 20)"
+        f"restitution (threshold), {n:,} runs: {rest_s:.2f} s ({rest['interval_method'][:26]}; "
+        f"bootstrap {b_rest:.2f} s), St_c = {rest['fitted_critical_stokes']:.2f} "
+        f"[{rest['parameter_low']:.2f}, {rest['parameter_high']:.2f}] (truth 20)"
     )
     fast.forget_counts()
     _, pair_walton_s = timed(fits.walton, wet, asymptotic_from=BOOTSTRAP_ALWAYS)
@@ -210,9 +211,19 @@ def stated_cost(n: int, repeats: int) -> None:
     rest_frame, rest = measured(4, n=n), []
     for _ in range(repeats):
         cpu = time.process_time()
-        rest.append((timed(fits.restitution, rest_frame, "exponential")[1],
-                     time.process_time() - cpu))  # fmt: skip
+        [given], rest_given_s = timed(fits.restitution, rest_frame, "exponential")
+        rest.append((rest_given_s, time.process_time() - cpu))
     rest_s, rest_cpu = np.median(rest, axis=0)
+    [boot], rest_boot_s = timed(
+        fits.restitution, rest_frame, "exponential", asymptotic_from=BOOTSTRAP_ALWAYS
+    )
+    print(
+        f"restitution (exponential), {n:,} runs, speeds' u stated: {rest_s:.2f} s (CPU "
+        f"{rest_cpu:.2f} s; median of {repeats}); with the perturbed bootstrap (before, once): "
+        f"{rest_boot_s:.2f} s; k = {given['parameter']:.2f} [{given['parameter_low']:.2f}, "
+        f"{given['parameter_high']:.2f}] (bootstrap [{boot['parameter_low']:.2f}, "
+        f"{boot['parameter_high']:.2f}]; truth 35)"
+    )
     verdict = "PASS" if total <= STATED_BOUND_S and cpu_total <= STATED_BOUND_S else "FAIL"
     print(
         f"{verdict}: the Walton and gap-viscosity fits with the speeds' u stated {total:.2f} s, "
@@ -222,8 +233,8 @@ def stated_cost(n: int, repeats: int) -> None:
     verdict = "PASS" if total <= STATED_BOUND_S and cpu_total <= STATED_BOUND_S else "FAIL"
     print(
         f"{verdict}: the three fits with the speeds' u stated {total:.2f} s, CPU time "
-        f"{cpu_total:.2f} s (restitution, exponential, its perturbed bootstrap unchanged: "
-        f"{rest_s:.2f} s, CPU {rest_cpu:.2f} s); bound <= {STATED_BOUND_S:.1f} s"
+        f"{cpu_total:.2f} s (restitution, exponential: {rest_s:.2f} s, CPU {rest_cpu:.2f} s); "
+        f"bound <= {STATED_BOUND_S:.1f} s"
     )
 
 

@@ -241,12 +241,16 @@ def nls_covariance(jacobian: np.ndarray, residual: np.ndarray) -> np.ndarray:
     its diagonal raised to least squares' A⁻¹S/(n−p) where that is larger (the correlation
     the sandwich's). NaN where A is singular or n ≤ p."""
     n, p = jacobian.shape
-    a = jacobian.T @ jacobian
+    columns = [np.ascontiguousarray(jacobian[:, i]) for i in range(p)]
+    weighted = [c * residual for c in columns]
+    # column by column: p² dot products of length n (a matrix product of an (n, p) array
+    # waits on BLAS's threads, tens of ms on a busy machine)
+    a = np.array([[float(c @ d) for d in columns] for c in columns])
+    meat = np.array([[float(c @ d) for d in weighted] for c in weighted])
     if n <= p or not np.all(np.isfinite(a)) or np.linalg.matrix_rank(a) < p:
         return np.full((p, p), math.nan)
     inverse = np.linalg.inv(a)
-    weighted = jacobian * residual[:, None]
-    sandwich = inverse @ (weighted.T @ weighted) @ inverse * (n / (n - p))
+    sandwich = inverse @ meat @ inverse * (n / (n - p))
     ls = np.diag(inverse) * float(residual @ residual) / (n - p)
     scale = np.sqrt(np.maximum(ls, np.diag(sandwich)) / np.diag(sandwich))
     scale = np.where(np.isfinite(scale), scale, 1.0)

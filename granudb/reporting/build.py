@@ -15,12 +15,14 @@ from datetime import UTC, datetime
 from pathlib import PurePath
 from typing import Any
 
+import numpy as np
 from sqlalchemy.engine import Connection, make_url
 
 from granudb.analysis import fits
 from granudb.db import catalog_rows, lookup_rows
 from granudb.db import catalog_rows as catalog
 from granudb.db.catalog_differences import dataset_source, sources_read
+from granudb.lazy import pandas as pd
 from granudb.reporting import figures, references, sections, tables
 from granudb.reporting.groups import colours, fluid_names, labels_of
 from granudb.reporting.pinned import pinned_notes
@@ -224,11 +226,16 @@ def dataset_report(reader: Any, header: Mapping[str, Any], *, query: Any) -> dic
 
 def _assumptions(frame: Any) -> list[str]:
     """What the derivation assumed for the runs, each said once with its run count."""
-    notes = frame.get("derivation_note", [])
-    counts: dict[str, int] = {}
-    for note in notes:
-        if isinstance(note, str) and note.startswith("assumed:"):
-            counts[note] = counts.get(note, 0) + 1
+    notes = frame.get("derivation_note")
+    if notes is None:
+        return []
+    codes, distinct = pd.factorize(np.asarray(notes, dtype=object), use_na_sentinel=True)
+    tally = np.bincount(codes[codes >= 0], minlength=len(distinct))  # once per distinct note
+    counts = {
+        note: int(n)
+        for note, n in zip(distinct, tally.tolist(), strict=True)
+        if isinstance(note, str) and note.startswith("assumed:") and n
+    }
     return [f"{n} run{'s' if n != 1 else ''}: {note}" for note, n in sorted(counts.items())]
 
 
