@@ -19,6 +19,7 @@ import numpy as np
 from sqlalchemy.engine import Connection, make_url
 
 from granudb.analysis import fits
+from granudb.analysis import walton_bootstrap as resampling
 from granudb.db import catalog_rows, lookup_rows
 from granudb.db import catalog_rows as catalog
 from granudb.db.catalog_differences import dataset_source, sources_read
@@ -273,7 +274,15 @@ def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict
 
 def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bool) -> dict:
     """The stored runs matching ``query``: flag, properties, fit tables and figures.
-    Returns the citations of the materials and fluids involved."""
+    Returns the citations of the materials and fluids involved. The BLAS runs on one
+    thread throughout (``walton_bootstrap.one_thread``, as in the fits): the report's
+    products are small, and threads left spinning after one cost about 0.1 s of CPU on
+    100,000 runs on a 2-core machine (benchmarks/report_speed.py)."""
+    with resampling.one_thread():
+        return _add_collisions(reader, report, query, pair=pair)
+
+
+def _add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bool) -> dict:
     connection = _connection(reader)
     frame = select_collisions(connection, query, columns=REPORT_COLUMNS, shared_text=True)
     if frame.empty:
