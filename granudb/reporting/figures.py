@@ -147,7 +147,9 @@ def pair_maps(
     pairs = sorted(set(group_keys(frame["particle"], frame["wall"]).tolist()))
     for index, (particle, wall) in enumerate(pairs):
         mask = ((frame["particle"] == particle) & (frame["wall"] == wall)).to_numpy()
-        runs = _run_series(frame[mask], names[mask], fluids[mask], branches[mask])
+        # only the two columns the series read (not a copy of every column of the pair)
+        speeds = frame.loc[mask, ["v_n_in_m_s", "viscosity_pa_s"]]
+        runs = _run_series(speeds, names[mask], fluids[mask], branches[mask])
         wet = [densities[f] for f in set(fluids[mask].tolist()) if f in densities]
         figure = regime_map_figure(
             catalog_rows.material_record(
@@ -174,7 +176,8 @@ def _run_series(
     mu = np.where(np.isfinite(mu), mu, AIR_VISCOSITY_PA_S)
     group_codes, group_list = sorted_codes(groups)
     branch_codes, branch_list = sorted_codes(branches)
-    dry = {g for g, f in zip(groups.tolist(), fluids.tolist(), strict=True) if f == "dry"}
+    in_dry = np.unique(group_codes[np.asarray(fluids == "dry", dtype=bool)]).tolist()
+    dry = {group_list[code] for code in in_dry}  # the groups with a dry run
     series = []
     for group in sorted(group_list, key=lambda g: (g not in dry, g)):
         in_group = group_codes == group_list.index(group)
