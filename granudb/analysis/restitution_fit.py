@@ -479,7 +479,7 @@ def asymptotic_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, 
 
 def asymptotic_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
                     count: int, seed: int, stated: tuple | None = None,
-                    dry: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+                    dry: np.ndarray | None = None) -> tuple:  # fmt: skip
     """``count`` (e_dry, parameter) sets drawn (seeded) from ``asymptotic_law``'s normal law,
     within 0 ≤ e_dry ≤ 1 and parameter ≥ 0: the report's band where the interval is
     asymptotic (``granudb.analysis.bands``)."""

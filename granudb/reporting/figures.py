@@ -436,7 +436,8 @@ def restitution_figure(
         + "."
         + ("" if line is None else " The grey line is the " + fit_said(line[3]) + ".")
         + band_caption(
-            band is not None, band is not None and line[3].get("bootstrap_resamples") == 0
+            band is not None,
+            band is not None and line is not None and line[3].get("bootstrap_resamples") == 0,
         ).replace("a line", "the grey line", 1)
         + (plots.ERROR_BARS if errors else "")
     )
