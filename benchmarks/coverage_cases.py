@@ -8,7 +8,10 @@ import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from granudb.analysis import fits
+from granudb.analysis.restitution_fit import PARAMETER_NAMES, restitution_curve
 from granudb.analysis.synthetic import TRUTH as STATED_TRUTH
 from granudb.analysis.synthetic import (
     U_REL,
@@ -19,6 +22,7 @@ from granudb.analysis.synthetic import (
     walton_frame,
     walton_measured,
 )
+from granudb.lazy import pandas as pd
 
 BOUND = 0.90  # issue 23: a nominal 95 % interval covers the truth at least 90 % of the time
 SIZES = (3, 5, 10, 30, 100)
@@ -34,6 +38,7 @@ class Case:
     fit: Callable[[object, int | None], dict]  # (frame, resamples) → the group's row
     keys: tuple[str, str, str]  # value, low, high
     most_sets: int | None = None  # a slow fit (the Bayesian option) runs at most this many
+    sizes: tuple[int, ...] | None = None  # the only sizes this case runs at (None: any)
 
 
 def _walton(frame, resamples):
@@ -57,6 +62,73 @@ def _walton_bayes(frame, resamples):
 def _gap(frame, resamples):
     [row] = fits.gap_viscosity(frame, {}, resamples=resamples)
     return row
+
+
+def _restitution_at(model, switch):
+    def fit(frame, resamples):
+        [row] = fits.restitution(frame, model, resamples=resamples, asymptotic_from=switch)
+        return row
+
+    return fit
+
+
+def large_sets(model: str, stated: bool, dry: int) -> Callable[[int, int], object]:
+    """Sets for the restitution fit's large-n cells (issue 36): runs on ``model``'s curve
+    (``LARGE_TRUTH``; St_n geometric from 15 to 3000), measured through speeds with
+    U_REL relative noise, that u stated when ``stated`` (else scatter 0.02 on e, as
+    ``restitution_runs``), and ``dry`` dry runs (e_dry with scatter 0.01)."""
+
+    def make(n, seed):
+        if not stated:
+            return restitution_runs(0.97, model, LARGE_TRUTH[model], n=n, seed=seed, dry=dry)
+        rng = np.random.default_rng(seed)
+        st_true = np.geomspace(15, 3000, n)
+        v_in_true = st_true * 1e-3  # m/s; St_n ∝ v_n,in at a fixed sphere and fluid
+        e_true = restitution_curve(model, st_true, 0.97, LARGE_TRUTH[model])
+        v_in = v_in_true * (1 + U_REL * rng.standard_normal(n))
+        v_out = e_true * v_in_true * (1 + U_REL * rng.standard_normal(n))
+        immersed = pd.DataFrame({
+            "dataset": "d", "particle": "steel", "wall": "Zerodur", "fluid": "glycerol-37",
+            "v_n_in_m_s": v_in, "v_n_out_m_s": v_out, "u_v_n_in_m_s": U_REL * v_in,
+            "u_v_n_out_m_s": U_REL * np.abs(v_out),
+            "normal_stokes_number": st_true * v_in / v_in_true,
+            "normal_restitution": v_out / v_in,
+        })  # fmt: skip
+        if not dry:
+            return immersed
+        dry_runs = pd.DataFrame({
+            "dataset": "d", "particle": "steel", "wall": "Zerodur", "fluid": None,
+            "normal_stokes_number": np.nan, "normal_restitution": 0.97 + rng.normal(0, 0.01, dry),
+        })  # fmt: skip
+        return pd.concat([immersed, dry_runs], ignore_index=True)
+
+    return make
+
+
+#: The large-n cells' truth (e_dry 0.97): St_c of the threshold form, k of the exponential.
+LARGE_TRUTH = {"threshold": 10.0, "exponential": 35.0}
+#: The large-n cells run at this size only; the fit's switch stays its default (10,000).
+LARGE_N = 10_000
+
+
+def large_cases(n: int = LARGE_N, switch: int = LARGE_N) -> list[Case]:
+    """The restitution fit's asymptotic-interval cells at ``n`` runs (switch ``switch``):
+    both forms, with and without stated u, e_dry fitted or from 4 or 50 dry runs."""
+    found = []
+    for model in ("threshold", "exponential"):
+        fit = _restitution_at(model, switch)
+        for stated in (False, True):
+            for dry in (0, 4, 50):
+                make = large_sets(model, stated, dry)
+                words = (f"large n: restitution {model}, "
+                         f"{f'stated u ({U_REL:.0%})' if stated else 'no stated u'}, "
+                         + (f"e_dry of {dry} dry runs" if dry else "e_dry fitted"))  # fmt: skip
+                name = PARAMETER_NAMES[model]
+                found.append(Case(f"{words}: {name}", LARGE_TRUTH[model], make, fit, PARAMETER,
+                                  sizes=(n,)))  # fmt: skip
+                if not dry:
+                    found.append(Case(f"{words}: e_dry", 0.97, make, fit, E_DRY, sizes=(n,)))
+    return found
 
 
 def _walton_keys(name):
@@ -317,6 +389,7 @@ CASES = [
         _gap,
         ("gap_viscosity_pa_s", "gap_viscosity_low_pa_s", "gap_viscosity_high_pa_s"),
     ),
+    *large_cases(),
 ]
 
 

@@ -201,3 +201,87 @@ def stated_shift(x, y, e, stated: tuple, point, seed: int, draws: int = SHIFT_DR
             shift[i] = float(np.mean(shifts[ok, i]))
             spread[i] = float(np.var(shifts[ok, i], ddof=1))
     return shift, spread
+
+
+# The restitution fit's large-n interval (issue 36): a non-linear least squares e(St_n)
+# with e_dry fitted, or held at the dry runs' mean, whose own uncertainty then enters.
+
+#: What a restitution row's ``interval_method`` says when its interval is asymptotic.
+RESTITUTION_METHOD = (
+    "asymptotic normal interval θ̂ ± t·se of the non-linear least squares (delta method: "
+    "se the larger of least squares' (JᵀJ)⁻¹S/(n−p) and the sandwich's (HC1) per parameter, "
+    "J the model's Jacobian at the fit; at least {switch:,} runs in the group: no bootstrap)"
+)
+#: ... when e_dry is the dry runs' mean (its variance carried through the fit).
+RESTITUTION_DRY = (
+    "; e_dry the mean of {dry} dry runs, its variance s²/{dry} carried into the parameter by "
+    "∂θ/∂e_dry = −ΣJ_θJ_e/ΣJ_θ², t on the Welch–Satterthwaite degrees of freedom"
+)
+
+#: ... when the runs state a u of their speeds.
+RESTITUTION_STATED = (
+    "; centred on θ̂ − b̂, b̂ the mean shift of θ over {draws} copies of all the runs with "
+    "every measured normal speed perturbed by its stated u (normal), each refitted; se² plus "
+    "the copies' covariance × (1 + 1/{draws})"
+)
+
+
+def restitution_method(switch: int, stated: bool, dry: int) -> str:
+    """The restitution fit's asymptotic interval's words: ``stated`` u (the perturbed
+    copies' shift, ``STATED_SHIFT``), ``dry`` dry runs behind a fixed e_dry (≥ 2)."""
+    words = RESTITUTION_METHOD.format(switch=switch)
+    if dry >= 2:
+        words += RESTITUTION_DRY.format(dry=dry)
+    return words + (RESTITUTION_STATED.format(draws=SHIFT_DRAWS) if stated else "")
+
+
+def nls_covariance(jacobian: np.ndarray, residual: np.ndarray) -> np.ndarray:
+    """The covariance of a least-squares fit's parameters, Jacobian ``jacobian`` (n, p) and
+    residuals ``residual`` at the fit: the sandwich (HC1) n/(n−p) A⁻¹(Σr²JJᵀ)A⁻¹, A = JᵀJ,
+    its diagonal raised to least squares' A⁻¹S/(n−p) where that is larger (the correlation
+    the sandwich's). NaN where A is singular or n ≤ p."""
+    n, p = jacobian.shape
+    columns = [np.ascontiguousarray(jacobian[:, i]) for i in range(p)]
+    weighted = [c * residual for c in columns]
+    # column by column: p² dot products of length n (a matrix product of an (n, p) array
+    # waits on BLAS's threads, tens of ms on a busy machine)
+    a = np.array([[float(c @ d) for d in columns] for c in columns])
+    meat = np.array([[float(c @ d) for d in weighted] for c in weighted])
+    if n <= p or not np.all(np.isfinite(a)) or np.linalg.matrix_rank(a) < p:
+        return np.full((p, p), math.nan)
+    inverse = np.linalg.inv(a)
+    sandwich = inverse @ meat @ inverse * (n / (n - p))
+    ls = np.diag(inverse) * float(residual @ residual) / (n - p)
+    scale = np.sqrt(np.maximum(ls, np.diag(sandwich)) / np.diag(sandwich))
+    scale = np.where(np.isfinite(scale), scale, 1.0)
+    return sandwich * np.outer(scale, scale)
+
+
+def welch_dof(parts: list[tuple[float, float]]) -> float:
+    """The Welch–Satterthwaite degrees of freedom of a sum of variances (variance, dof)
+    pairs (dof ``math.inf``: known): (Σv)² / Σ v²/ν.
+
+    >>> welch_dof([(1.0, 3), (0.0, math.inf)])
+    3.0
+    """
+    total = sum(v for v, _ in parts)
+    denominator = sum(v * v / dof for v, dof in parts if math.isfinite(dof) and v > 0)
+    return total * total / denominator if denominator > 0 else math.inf
+
+
+#: Above these degrees of freedom the normal quantile stands for Student's.
+NORMAL_DOF = 1000
+
+
+def t_interval(
+    point: float, se: float, dof: float, *, bounds: tuple[float, float], level: float
+) -> intervals.Interval:
+    """θ̂ ± t se with t Student's at ``dof`` (rounded down; the normal's above NORMAL_DOF),
+    clipped to ``bounds``; refused as ``interval`` refuses."""
+    got = interval(point, se, bounds=(-math.inf, math.inf), level=level)
+    if got.reason or not dof < NORMAL_DOF:
+        return interval(point, se, bounds=bounds, level=level)
+    half = intervals.student_t(level, max(1, int(dof))) * se
+    return intervals.Interval(
+        float(max(point - half, bounds[0])), float(min(point + half, bounds[1])), 1.0
+    )

@@ -89,8 +89,9 @@ BAND_SETS = 200
 
 def restitution_band(frame: Any, row: Mapping[str, Any], grid: np.ndarray):
     """The band of ``row``'s fitted e(St_n) (a ``restitution_fit.restitution`` row) over
-    ``grid``, from the first ``BAND_SETS`` of the bootstrap sets behind its intervals
-    (None where it has none)."""
+    ``grid``, from the first ``BAND_SETS`` of the bootstrap sets behind its intervals, or,
+    where its interval is asymptotic (``bootstrap_resamples`` 0), ``asymptotic.SETS`` sets
+    of the same normal law (``restitution_fit.asymptotic_sets``); None where it has none."""
     if not all(math.isfinite(row.get(k, math.nan)) for k in ("parameter", "parameter_low")):
         return None
     mine = np.ones(len(frame), dtype=bool)
@@ -107,10 +108,16 @@ def restitution_band(frame: Any, row: Mapping[str, Any], grid: np.ndarray):
     dry = e[
         (frame["fluid"].isna().to_numpy()[mine] if "fluid" in frame else False) & np.isfinite(e)
     ]
-    (a, _), (p, _) = restitution_fit.bootstrap_sets(
-        model, st[immersed], e[immersed], fit, row["n_dry_runs"] > 0,
-        min(BAND_SETS, int(row["bootstrap_resamples"])), int(row["bootstrap_seed"]), stated,
-        dry if row["n_dry_runs"] > 0 else None,
-    )  # fmt: skip
+    if row.get("bootstrap_resamples") == 0:  # asymptotic: sets of the same normal law
+        a, p = restitution_fit.asymptotic_sets(
+            model, st[immersed], e[immersed], fit, row["n_dry_runs"] > 0, asymptotic.SETS,
+            int(row["bootstrap_seed"]), stated, dry if row["n_dry_runs"] > 0 else None,
+        )  # fmt: skip
+    else:
+        (a, _), (p, _) = restitution_fit.bootstrap_sets(
+            model, st[immersed], e[immersed], fit, row["n_dry_runs"] > 0,
+            min(BAND_SETS, int(row["bootstrap_resamples"])), int(row["bootstrap_seed"]), stated,
+            dry if row["n_dry_runs"] > 0 else None,
+        )  # fmt: skip
     curves = restitution_fit.restitution_curve(model, grid[None, :], a[:, None], p[:, None])
     return curve_band(curves)

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import bayesian, intervals
+from granudb.analysis import asymptotic, bayesian, intervals
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.errors import ValidationError
 from granudb.lazy import scipy_optimize
@@ -406,6 +406,92 @@ def bootstrap_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, f
     return found
 
 
+def asymptotic_law(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
+                   seed: int, stated: tuple | None = None,
+                   dry: np.ndarray | None = None) -> tuple:  # fmt: skip
+    """The asymptotic normal law of (e_dry, parameter) at large n (issue 36): (centre (2,),
+    covariance (2, 2), degrees of freedom (2,)) from ``fit`` = (e_dry, e_dry_se, parameter,
+    parameter_se). The least squares' covariance by the delta method
+    (``asymptotic.nls_covariance``: sandwich or least squares, the Jacobian at the fit);
+    with ``fixed`` e_dry the mean of ``dry`` runs (≥ 2), its variance s²/n_dry carried into
+    the parameter by ∂θ/∂e_dry = −ΣJ_θJ_e/ΣJ_θ² (the Gauss–Newton step ``one_step`` takes
+    for a moved e_dry), on n_dry − 1 degrees of freedom; with ``stated`` u, the centre moved
+    by the mean shift of ``asymptotic.SHIFT_DRAWS`` copies of all the runs perturbed by
+    their stated u (``resampling.perturbed``, each refitted by ``refit``) and their
+    covariance added (× (1 + 1/copies), on copies − 1 degrees of freedom), as
+    ``asymptotic.stated_shift`` does for the Walton fit. The degrees of freedom are
+    Welch–Satterthwaite's (``asymptotic.welch_dof``); the intervals and the report's band
+    both come from this law (``asymptotic_intervals``, ``asymptotic_sets``)."""
+    st, e = np.asarray(st, dtype=float), np.asarray(e, dtype=float)
+    centre = np.array([fit[0], fit[2]], dtype=float)
+    f, ja, jp = _curve(model, 1.0 / st, centre[:1], centre[1:])
+    r = e - f
+    parts: list[list[tuple[float, float]]] = [[], []]
+    covariance = np.zeros((2, 2))
+    if fixed:
+        covariance[1, 1] = asymptotic.nls_covariance(jp[:, None], r)[0, 0]
+        if dry is not None and len(dry) >= 2:
+            dry_var = float(np.var(dry, ddof=1)) / len(dry)
+            slope = -float(ja @ jp) / float(jp @ jp)
+            covariance += dry_var * np.array([[1.0, slope], [slope, slope * slope]])
+            parts[0].append((dry_var, len(dry) - 1))
+            parts[1].append((slope * slope * dry_var, len(dry) - 1))
+    else:
+        covariance += asymptotic.nls_covariance(np.stack([ja, jp], axis=1), r)
+    if stated is not None:
+        draws = asymptotic.SHIFT_DRAWS
+        rng = np.random.default_rng(seed)
+        st_b, e_b = resampling.perturbed(rng, draws, st, e, stated)
+        (a, _), (p, _) = refit(model, st_b, e_b, np.ones((draws, len(st))), (fit[0], fit[2]),
+                               fixed, (fit[1], fit[3]))  # fmt: skip
+        shifts = np.stack([a, p], axis=1) - centre
+        shifts = shifts[np.all(np.isfinite(shifts), axis=1)]
+        if len(shifts) < max(2, draws // 2):
+            return centre, np.full((2, 2), math.nan), np.full(2, math.nan)
+        spread = np.cov(shifts.T) * (1 + 1 / draws)
+        centre, covariance = centre - shifts.mean(axis=0), covariance + spread
+        for i in range(2):
+            parts[i].append((float(spread[i, i]), draws - 1))
+    dof = [
+        asymptotic.welch_dof([(float(covariance[i, i]) - sum(v for v, _ in parts[i]),
+                              math.inf), *parts[i]])
+        for i in range(2)
+    ]  # fmt: skip
+    return centre, covariance, np.array(dof)
+
+
+def asymptotic_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
+                         seed: int, stated: tuple | None = None,
+                         dry: np.ndarray | None = None) -> dict:  # fmt: skip
+    """{name: intervals.Interval}: the asymptotic intervals θ̂ ± t se of the parameter and
+    (unless ``fixed``) e_dry from ``asymptotic_law``, in place of ``bootstrap_intervals``."""
+    centre, covariance, dof = asymptotic_law(model, st, e, fit, fixed, seed, stated, dry)
+    se = np.sqrt(np.diag(covariance))
+    level = intervals.LEVEL
+    found = {"parameter": asymptotic.t_interval(
+        centre[1], se[1], dof[1], bounds=(0.0, math.inf), level=level)}  # fmt: skip
+    if not fixed:
+        found["e_dry"] = asymptotic.t_interval(
+            centre[0], se[0], dof[0], bounds=(0.0, E_DRY_MAX), level=level
+        )
+    return found
+
+
+def asymptotic_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
+                    count: int, seed: int, stated: tuple | None = None,
+                    dry: np.ndarray | None = None) -> tuple:  # fmt: skip
+    """``count`` (e_dry, parameter) sets drawn (seeded) from ``asymptotic_law``'s normal law,
+    within 0 ≤ e_dry ≤ 1 and parameter ≥ 0: the report's band where the interval is
+    asymptotic (``granudb.analysis.bands``)."""
+    centre, covariance, _ = asymptotic_law(model, st, e, fit, fixed, seed, stated, dry)
+    if not np.all(np.isfinite(covariance)):
+        return np.full(count, math.nan), np.full(count, math.nan)
+    values, vectors = np.linalg.eigh(covariance)
+    root = vectors * np.sqrt(np.maximum(values, 0.0))
+    drawn = centre + np.random.default_rng(seed).standard_normal((count, 2)) @ root.T
+    return np.clip(drawn[:, 0], 0.0, E_DRY_MAX), np.maximum(drawn[:, 1], 0.0)
+
+
 def _group_row(
     model: str,
     key: tuple,
@@ -414,8 +500,10 @@ def _group_row(
     dry_e: np.ndarray,
     resamples: int | None = None,
     stated: tuple | None = None,
+    switch: int = asymptotic.ASYMPTOTIC_FROM,
 ) -> dict[str, Any]:
     fixed = float(min(np.mean(dry_e), E_DRY_MAX)) if dry_e.size else None
+    large = asymptotic.uses(len(st), resamples, switch)  # the asymptotic interval (issue 36)
     row: dict[str, Any] = {
         "dataset": key[0],
         "particle": key[1],
@@ -429,7 +517,15 @@ def _group_row(
         "e_dry_stderr": math.nan,
         "e_dry_source": (
             f"mean e of the group's {dry_e.size} dry run{'s' if dry_e.size != 1 else ''} "
-            + ("(fixed in the fit, redrawn in the bootstrap)" if dry_e.size >= 2 else "(fixed)")
+            + (
+                (
+                    "(fixed in the fit, its variance in the interval)"
+                    if large
+                    else "(fixed in the fit, redrawn in the bootstrap)"
+                )
+                if dry_e.size >= 2
+                else "(fixed)"
+            )
             if fixed is not None
             else "fitted, bounded 0 ≤ e_dry ≤ 1"
         ),
@@ -449,6 +545,11 @@ def _group_row(
         "stokes_number": "St_n = m* v_N,in/(6πμR*²) of the relative normal approach (as derived)",
         "reason": "",
     }
+    if large:  # no resamples: the record says the method and the switch
+        row["interval_method"] = asymptotic.restitution_method(
+            switch, stated is not None, int(dry_e.size)
+        )
+        row.update(bootstrap_resamples=0, bootstrap_rule=asymptotic.rule(switch))
     needed = 2 if fixed is not None else 3
     if len(np.unique(st)) < needed or float(np.max(st)) < 2.0 * float(np.min(st)):
         distinct = len(np.unique(st))
@@ -465,7 +566,7 @@ def _group_row(
         except (RuntimeError, ValueError) as exc:
             row["reason"] = f"least squares did not converge ({type(exc).__name__})"
         else:
-            _intervals(row, model, st, e, fixed is not None, stated, dry_e)
+            _intervals(row, model, st, e, fixed is not None, stated, dry_e, large)
     if model == "threshold":
         row["fitted_critical_stokes"] = row["parameter"]
     return row
@@ -479,17 +580,22 @@ def _intervals(
     fixed: bool,
     stated: tuple | None = None,
     dry: np.ndarray | None = None,
+    large: bool = False,
 ) -> None:
-    """The bootstrap-t intervals into ``row``, or why there are none (``interval_reason``)."""
+    """The bootstrap-t intervals into ``row`` (``large``: the asymptotic ones), or why there
+    are none (``interval_reason``)."""
     refused = intervals.too_few(len(st), MIN_RUNS_FOR_INTERVAL)
     if refused:
         row["interval_reason"] = refused
         return
     fit = (row["e_dry"], row["e_dry_stderr"], row["parameter"], row["parameter_stderr"])
-    found = bootstrap_intervals(
-        model, st, e, fit, fixed, row["bootstrap_resamples"], SEED, stated, dry
-    )
-    if fixed and dry is not None and len(dry) >= 2:
+    if large:
+        found = asymptotic_intervals(model, st, e, fit, fixed, SEED, stated, dry)
+    else:
+        found = bootstrap_intervals(
+            model, st, e, fit, fixed, row["bootstrap_resamples"], SEED, stated, dry
+        )
+    if fixed and dry is not None and len(dry) >= 2 and not large:
         row["interval_method"] += DRY_METHOD
     reasons = []
     for name, got in found.items():
@@ -525,6 +631,7 @@ def restitution(
     draws: list | None = None,
     report: bool = False,
     resamples: int | None = None,
+    asymptotic_from: int = asymptotic.ASYMPTOTIC_FROM,
 ) -> list[dict[str, Any]]:
     """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
     (figure 5).
@@ -539,7 +646,10 @@ def restitution(
     ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
     ``reason`` (why the fit is empty, else ''); ``fit_method``; ``model_reason`` (why
     this form: ``restitution_model``; ``model`` None: the default, or with ``report`` the
-    report's form); ``resamples``: the bootstrap's count (None: the rule's). Where runs carry stated
+    report's form); ``resamples``: the bootstrap's count (None: the rule's); from
+    ``asymptotic_from`` immersed runs in a group, with no count asked for, the interval is
+    asymptotic instead (``asymptotic_intervals``; ``bootstrap_resamples`` 0 and
+    ``bootstrap_rule`` say so). Where runs carry stated
     uncertainties of their normal speeds (``u_v_n_in_m_s``, ``u_v_n_out_m_s``), every
     resample perturbs them too (``interval_method`` says so; docs/physics.md, "Fit
     intervals"). ``method`` "bayes": values are posterior medians with 95 % credible
@@ -566,7 +676,7 @@ def restitution(
                 stated = None if speeds is None else tuple(r[runs] for r in speeds)
                 stated = stated if stated is not None and any(r.any() for r in stated) else None
                 row = _group_row(model, key, st[runs], e[runs], e[rows[dry[rows]]],
-                                 resamples, stated)  # fmt: skip
+                                 resamples, stated, asymptotic_from)  # fmt: skip
                 row["fit_method"] = method
                 row["model_reason"] = why
                 if method == bayesian.METHOD:

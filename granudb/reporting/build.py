@@ -15,12 +15,15 @@ from datetime import UTC, datetime
 from pathlib import PurePath
 from typing import Any
 
+import numpy as np
 from sqlalchemy.engine import Connection, make_url
 
 from granudb.analysis import fits
+from granudb.analysis import walton_bootstrap as resampling
 from granudb.db import catalog_rows, lookup_rows
 from granudb.db import catalog_rows as catalog
 from granudb.db.catalog_differences import dataset_source, sources_read
+from granudb.lazy import pandas as pd
 from granudb.reporting import figures, references, sections, tables
 from granudb.reporting.groups import colours, fluid_names, labels_of
 from granudb.reporting.pinned import pinned_notes
@@ -224,11 +227,16 @@ def dataset_report(reader: Any, header: Mapping[str, Any], *, query: Any) -> dic
 
 def _assumptions(frame: Any) -> list[str]:
     """What the derivation assumed for the runs, each said once with its run count."""
-    notes = frame.get("derivation_note", [])
-    counts: dict[str, int] = {}
-    for note in notes:
-        if isinstance(note, str) and note.startswith("assumed:"):
-            counts[note] = counts.get(note, 0) + 1
+    notes = frame.get("derivation_note")
+    if notes is None:
+        return []
+    codes, distinct = pd.factorize(np.asarray(notes, dtype=object), use_na_sentinel=True)
+    tally = np.bincount(codes[codes >= 0], minlength=len(distinct))  # once per distinct note
+    counts = {
+        note: int(n)
+        for note, n in zip(distinct, tally.tolist(), strict=True)
+        if isinstance(note, str) and note.startswith("assumed:") and n
+    }
     return [f"{n} run{'s' if n != 1 else ''}: {note}" for note, n in sorted(counts.items())]
 
 
@@ -266,7 +274,15 @@ def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict
 
 def add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bool) -> dict:
     """The stored runs matching ``query``: flag, properties, fit tables and figures.
-    Returns the citations of the materials and fluids involved."""
+    Returns the citations of the materials and fluids involved. The BLAS runs on one
+    thread throughout (``walton_bootstrap.one_thread``, as in the fits): the report's
+    products are small, and threads left spinning after one cost about 0.1 s of CPU on
+    100,000 runs on a 2-core machine (benchmarks/report_speed.py)."""
+    with resampling.one_thread():
+        return _add_collisions(reader, report, query, pair=pair)
+
+
+def _add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bool) -> dict:
     connection = _connection(reader)
     frame = select_collisions(connection, query, columns=REPORT_COLUMNS, shared_text=True)
     if frame.empty:

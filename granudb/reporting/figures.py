@@ -137,7 +137,10 @@ def pair_maps(
     ``reader``: a Core connection or a session (the catalogue is read through Core)."""
     connection = reader if isinstance(reader, Connection) else reader.connection()
     fluids = fluid_names(frame["fluid"])
-    names = np.asarray(labels, dtype=object)
+    # each run's group and branch as codes into their sorted names, once for every pair
+    # (the labels' codes are the ones the scatter figures made: ``sorted_codes`` keeps them)
+    group_codes, group_names = sorted_codes(labels)
+    branch_codes, branch_names = sorted_codes(branches)
     pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
     densities = {
         name: catalog_rows.get_fluid_row(connection, name, pinned).reference_density_kg_m3
@@ -147,7 +150,10 @@ def pair_maps(
     pairs = sorted(set(group_keys(frame["particle"], frame["wall"]).tolist()))
     for index, (particle, wall) in enumerate(pairs):
         mask = ((frame["particle"] == particle) & (frame["wall"] == wall)).to_numpy()
-        runs = _run_series(frame[mask], names[mask], fluids[mask], branches[mask])
+        # only the two columns the series read (not a copy of every column of the pair)
+        speeds = frame.loc[mask, ["v_n_in_m_s", "viscosity_pa_s"]]
+        runs = _run_series(speeds, (group_codes[mask], group_names), fluids[mask],
+                           (branch_codes[mask], branch_names))  # fmt: skip
         wet = [densities[f] for f in set(fluids[mask].tolist()) if f in densities]
         figure = regime_map_figure(
             catalog_rows.material_record(
@@ -166,15 +172,17 @@ def pair_maps(
 
 
 def _run_series(
-    frame: Any, groups: np.ndarray, fluids: np.ndarray, branches: np.ndarray
+    frame: Any, groups: tuple[np.ndarray, list], fluids: np.ndarray, branches: tuple
 ) -> list[dict[str, Any]]:
-    """The runs of one pair as series of one group and one branch each, dry groups first."""
+    """The runs of one pair as series of one group and one branch each, dry groups first;
+    ``groups`` and ``branches``: each run's code and the sorted names (``sorted_codes``),
+    names without a run of the pair giving no series."""
     v = frame["v_n_in_m_s"].to_numpy(float)
     mu = frame["viscosity_pa_s"].to_numpy(float)
     mu = np.where(np.isfinite(mu), mu, AIR_VISCOSITY_PA_S)
-    group_codes, group_list = sorted_codes(groups)
-    branch_codes, branch_list = sorted_codes(branches)
-    dry = {g for g, f in zip(groups.tolist(), fluids.tolist(), strict=True) if f == "dry"}
+    (group_codes, group_list), (branch_codes, branch_list) = groups, branches
+    in_dry = np.unique(group_codes[np.asarray(fluids == "dry", dtype=bool)]).tolist()
+    dry = {group_list[code] for code in in_dry}  # the groups with a dry run
     series = []
     for group in sorted(group_list, key=lambda g: (g not in dry, g)):
         in_group = group_codes == group_list.index(group)
@@ -432,7 +440,10 @@ def restitution_figure(
         )
         + "."
         + ("" if line is None else " The grey line is the " + fit_said(line[3]) + ".")
-        + band_caption(band is not None).replace("a line", "the grey line", 1)
+        + band_caption(
+            band is not None,
+            band is not None and line is not None and line[3].get("bootstrap_resamples") == 0,
+        ).replace("a line", "the grey line", 1)
         + (plots.ERROR_BARS if errors else "")
     )
     return _figure("fig-restitution", caption, svg, len(st_n))

@@ -95,9 +95,23 @@ def sorted_codes(values: Any) -> tuple[Any, list[Any]]:
     """(codes, names): each element's index in the sorted distinct ``names``.
 
     Why: hashing (``pandas.factorize``) then sorting the few distinct values is linear in
-    the runs, where ``numpy.unique`` sorts a million strings."""
+    the runs, where ``numpy.unique`` sorts a million strings. A report passes the same
+    labels to every figure: the last few answers are kept by the identity of ``values``
+    (a tuple or list a report never changes once made; the codes are a read-only copy)."""
+    for seen, found in _SORTED:
+        if seen is values:
+            return found[0], list(found[1])
     codes, uniques = pd.factorize(np.asarray(values, dtype=object), use_na_sentinel=False)
     order = sorted(range(len(uniques)), key=lambda i: uniques[i])
     rank = np.empty(len(order), dtype=np.intp)
     rank[order] = np.arange(len(order))
-    return rank[codes], [uniques[i] for i in order]
+    found = (rank[codes], [uniques[i] for i in order])
+    found[0].flags.writeable = False
+    if isinstance(values, list | tuple):
+        _SORTED[:] = [(values, found), *_SORTED[: _SORTED_KEPT - 1]]
+    return found[0], list(found[1])
+
+
+#: ``sorted_codes``' last answers, (values, (codes, names)), newest first.
+_SORTED: list[tuple[Any, tuple[Any, list[Any]]]] = []
+_SORTED_KEPT = 4

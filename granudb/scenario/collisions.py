@@ -190,7 +190,8 @@ def _values(column: Any) -> np.ndarray:
         return np.asarray(column)
     codes, distinct = pd.factorize(column, use_na_sentinel=True)
     if isinstance(column, np.ndarray):
-        text = len(distinct) > 0 and all(isinstance(value, str) for value in distinct)
+        # every distinct value a str (in C: a run label column has a value per run)
+        text = pd.api.types.infer_dtype(distinct, skipna=False) == "string"
         missing = np.nan if text else None
     else:
         missing = getattr(column.dtype, "na_value", None)

@@ -6,4 +6,16 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 
-from coverage_cases import BOUND, CASES, SIZES, Case, Tally, rows, tally  # noqa: E402, F401
+from coverage_cases import (  # noqa: E402, F401
+    BOUND,
+    CASES,
+    E_DRY,
+    LARGE_TRUTH,
+    PARAMETER,
+    SIZES,
+    Case,
+    Tally,
+    large_sets,
+    rows,
+    tally,
+)
