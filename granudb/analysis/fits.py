@@ -24,12 +24,19 @@ from granudb.analysis import asymptotic, bayesian, intervals
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
-from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
+from granudb.analysis.groups import (
+    GROUP,
+    WALTON_INPUTS,
+    group_frames,
+    group_rows,
+    walton_arrays,
+)
 from granudb.analysis.restitution_fit import (
     RESTITUTION_MODELS,
     restitution,
     restitution_curve,
 )
+from granudb.lazy import pandas as pd
 
 __all__ = [
     "FIT_METHODS",
@@ -483,16 +490,18 @@ def walton_branches(frame: Any, fits: list[dict[str, Any]]) -> np.ndarray:
     all slide); a run without a rebound (e ≤ 0 or not measured) is "no rebound"; the runs
     of a group the fit chose no model for are "not determined". An object array of
     ``BRANCHES`` names, in the frame's row order."""
-    branches = np.full(len(frame), "not determined", dtype=object)
+    # one string object per branch (not one per run): the figures hash these cells
+    names = np.array(BRANCHES, dtype=object)
     rebound = frame["normal_restitution"].to_numpy(dtype=float) > 0
-    branches[~rebound] = "no rebound"
+    branches = names[np.where(rebound, 3, 2)]
     chosen = {tuple(_group_key(f.get(g)) for g in GROUP): f for f in fits if f.get("model")}
-    keys = frame[GROUP].astype(object).where(frame[GROUP].notna(), None)
-    for key, rows in keys.groupby(GROUP, dropna=False, sort=False).indices.items():
+    inputs = [c for c in WALTON_INPUTS if c not in GROUP and c in frame]
+    for key, rows in group_rows(frame, GROUP).items():
         fit = chosen.get(tuple(_group_key(k) for k in key))
         if fit is None:
             continue
-        order = walton_arrays(frame.iloc[rows])[5]
+        runs = pd.DataFrame({c: frame[c].to_numpy()[rows] for c in inputs}, copy=False)
+        order = walton_arrays(runs)[5]  # the columns it reads, not a copy of every column
         sticking = int(fit.get("n_sticking") or 0)
-        branches[rows[order]] = np.where(np.arange(len(order)) < sticking, "sticking", "sliding")
+        branches[rows[order]] = names[(np.arange(len(order)) >= sticking).astype(np.intp)]
     return branches
