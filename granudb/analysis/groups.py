@@ -41,8 +41,14 @@ def group_frames(
     found from the key columns alone (no copy of the frame), and each group copies only
     the columns its fit reads, one group at a time (a third of a million runs, not all)."""
     fill = fill or {}
-    by = [frame[k].fillna(fill[k]) if k in fill else frame[k] for k in keys]
-    indices = frame.groupby(by, sort=True).indices
+    indices: dict[tuple, Any] = {}
+    for found, rows in group_rows(frame, keys).items():
+        key = tuple(fill.get(k) if v is None else v for k, v in zip(keys, found, strict=True))
+        if any(v is None for v in key):
+            continue
+        if key in indices:  # a filled missing value and the fill value itself: one group
+            rows = np.sort(np.concatenate([indices[key], rows]))
+        indices[key] = rows
     names = list(frame.columns) if columns is None else [c for c in columns if c in frame]
     for key in sorted(indices):
         at = indices[key]

@@ -29,3 +29,25 @@ def test_group_rows_match_pandas_groupby_with_missing_keys() -> None:
         np.testing.assert_array_equal(found[key], rows)
     assert sum(len(r) for r in found.values()) == n
     assert group_rows(frame.iloc[:0], keys) == {}
+
+
+def test_group_frames_fill_joins_missing_and_fill_value_and_drops_other_missing() -> None:
+    from granudb.analysis.groups import group_frames
+
+    frame = pd.DataFrame(
+        {
+            "particle": np.array(["b", "a", "a", None, "a", "b"], dtype=object),
+            "fluid": np.array([None, "dry", np.nan, "water", "water", "water"], dtype=object),
+            "e": np.arange(6.0),
+        }
+    )
+    got = [
+        (key, rows["e"].tolist())
+        for key, rows in group_frames(frame, ["particle", "fluid"], ["e"], fill={"fluid": "dry"})
+    ]
+    assert got == [
+        (("a", "dry"), [1.0, 2.0]),
+        (("a", "water"), [4.0]),
+        (("b", "dry"), [0.0]),
+        (("b", "water"), [5.0]),
+    ]
