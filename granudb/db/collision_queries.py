@@ -8,6 +8,7 @@ million runs read in bounded memory: 100,000 rows load in a fraction of a second
 from __future__ import annotations
 
 import itertools
+import operator
 from collections.abc import Collection, Iterator, Mapping, Sequence
 from typing import Any
 
@@ -63,9 +64,10 @@ def iter_collisions(
     Why this way: the select returns each run's own columns and the ids of its dataset
     and materials; names and material properties are looked up once per id and spread
     with an index (not joined into every row). Rows come from the driver's cursor in
-    chunks (no SQLAlchemy row objects), each chunk becomes one object array and its
-    columns numpy arrays at C speed, so a million runs read at the driver's pace in
-    bounded memory. PostgreSQL streams through a server-side (named) cursor."""
+    chunks (no SQLAlchemy row objects), each chunk's number cells become one float array
+    and its text cells object arrays, at C speed (no object array of every cell), so a
+    million runs read at the driver's pace in bounded memory. PostgreSQL streams through
+    a server-side (named) cursor."""
     connection = reading(reader)
     read = [c for c in COLLISION_MEASURED if measured is None or c in measured]
     query = _collision_select(connection, filters, text=text, measured=read)
@@ -80,22 +82,23 @@ def iter_collisions(
     table = np.stack([_floats([r[2 + i] for r in materials]) for i in range(len(properties))], 1)
     names = [*_IDS, *read, *(_TEXT if text else ())]
     at = {name: i for i, name in enumerate(names)}
+    width = len(names) - (len(_TEXT) if text else 0)  # the number cells lead each row
+    numbers = operator.itemgetter(slice(0, width))
     for rows in _driver_chunks(connection, query, chunk_rows):
         try:
-            if text:
-                raise TypeError("text columns")
-            # fromiter over the flattened cells: about twice as fast as np.array on the
-            # tuples, with the same conversions (None is NaN, a text cell is parsed or refused)
-            cells = itertools.chain.from_iterable(rows)
-            block = np.fromiter(cells, dtype=float, count=len(rows) * len(names))
-            block = block.reshape(len(rows), len(names))
-        except (TypeError, ValueError):  # text, or a bad stored cell (NaN, as below)
+            # fromiter over the flattened number cells: about twice as fast as np.array on
+            # the tuples, with the same conversions (None is NaN, a text cell is parsed or
+            # refused); the text cells (last in each row) are taken apart below
+            cells = itertools.chain.from_iterable(map(numbers, rows) if text else rows)
+            block = np.fromiter(cells, dtype=float, count=len(rows) * width)
+            block = block.reshape(len(rows), width)
+        except (TypeError, ValueError):  # a bad stored cell (NaN, as below)
             block = np.array(rows, dtype=object).reshape(len(rows), len(names))
         data: dict[str, Any] = {}
         where = np.searchsorted(set_ids, block[:, at["dataset_id"]].astype(np.int64))
         data["dataset"], data["version"] = set_names[where], set_versions[where]
         if text:
-            data["run"] = block[:, at["run"]].copy()
+            data["run"] = _cells(rows, at["run"])
         roles = {}
         for role in ("particle", "wall"):
             ids = block[:, at[f"{role}_id"]].astype(np.int64)
@@ -105,7 +108,7 @@ def iter_collisions(
         for name in COLLISION_MEASURED:
             data[name] = _floats(block[:, at[name]]) if name in at else np.full(len(rows), np.nan)
         if text:
-            data["notes"] = block[:, at["notes"]].copy()
+            data["notes"] = _cells(rows, at["notes"])
         for role in ("particle", "wall"):
             for i, name in enumerate(MATERIAL_PROPERTIES):
                 data[f"{role}_{name}"] = table[roles[role], i]
@@ -196,6 +199,12 @@ def _driver_chunks(connection: Any, query: Any, chunk_rows: int) -> Iterator[lis
             yield rows
     finally:
         cursor.close()
+
+
+def _cells(rows: list[tuple], at: int) -> Any:
+    """The cells at position ``at`` of the driver's ``rows``, as an object array (the
+    driver's own objects: a text cell is the driver's string)."""
+    return np.fromiter(map(operator.itemgetter(at), rows), dtype=object, count=len(rows))
 
 
 def _floats(values: Any) -> Any:
