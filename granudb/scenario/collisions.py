@@ -123,7 +123,7 @@ def collision_table(
         del stored
         keep = where(chunk) if where is not None else None
         names = list(chunk) if columns is None else [c for c in columns if c in chunk]
-        out.append({c: _values(chunk[c]) for c in names}, keep)
+        out.append({c: chunk[c] if c in _SHARED else _values(chunk[c]) for c in names}, keep)
         del chunk
     if out.names is None:
         empty = pd.DataFrame({c: [] for c in (COLLISION_WIDE if columns is None else columns)})
@@ -174,6 +174,12 @@ class _Columns:
 
     def arrays(self) -> dict[str, np.ndarray]:
         return {name: self.data[name][: self.filled] for name in self.names or ()}
+
+
+#: Text columns a chunk (``iter_collisions``) already holds as ``_values`` would make them:
+#: names looked up per id (one string per distinct name) and the run labels (a string
+#: per run, never missing: a dataset's labels are distinct, so factorizing shares none).
+_SHARED = frozenset({"dataset", "particle", "wall", "run"})
 
 
 def _values(column: Any) -> np.ndarray:
