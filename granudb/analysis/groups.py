@@ -69,6 +69,8 @@ def group_rows(frame: Any, keys: list[str]) -> dict[tuple, np.ndarray]:
         codes, uniques = pd.factorize(np.asarray(frame[name], dtype=object))
         parts.append([None, *uniques])  # code −1 (missing) → None
         combined = combined * (len(uniques) + 1) + (codes + 1)
+    if len(combined) and combined.max() < 2**16:  # numpy's stable sort is then a radix sort
+        combined = combined.astype(np.uint16)
     order = np.argsort(combined, kind="stable")
     ordered = combined[order]
     found: dict[tuple, np.ndarray] = {}

@@ -64,11 +64,19 @@ def fluid_names(fluids: Any) -> Any:
 def group_keys(*columns: Any) -> Any:
     """Each row's tuple of ``columns`` values (an object array of tuples), built once per
     distinct combination."""
+    codes, keys = _key_codes(columns)
+    return keys[codes]
+
+
+def _key_codes(columns: Any) -> tuple[Any, Any]:
+    """(each row's code, the distinct combinations of ``columns`` values as an object array
+    of tuples, indexed by code): one factorize per column, then one of the combined codes
+    (integers, not tuples)."""
     factors = [pd.factorize(np.asarray(c, dtype=object), use_na_sentinel=False) for c in columns]
     combined = np.zeros(len(factors[0][0]) if factors else 0, dtype=np.int64)
     for codes, uniques in factors:  # mixed radix: a handful of distinct values per column
         combined = combined * max(len(uniques), 1) + codes
-    distinct, inverse = np.unique(combined, return_inverse=True)
+    inverse, distinct = pd.factorize(combined)
     keys = np.empty(len(distinct), dtype=object)
     for i, code in enumerate(distinct.tolist()):
         key = []
@@ -76,13 +84,14 @@ def group_keys(*columns: Any) -> Any:
             code, digit = divmod(code, max(len(uniques), 1))
             key.append(uniques[digit])
         keys[i] = tuple(reversed(key))
-    return keys[inverse.ravel()]
+    return inverse, keys
 
 
 def labels_of(frame: Any) -> list[str]:
-    """The group label of every row of a collisions DataFrame."""
-    keys = group_keys(frame["particle"], frame["wall"], fluid_names(frame["fluid"]))
-    return per_value(keys, lambda key: group_label(*key)).tolist()
+    """The group label of every row of a collisions DataFrame (one string per group)."""
+    codes, keys = _key_codes([frame["particle"], frame["wall"], fluid_names(frame["fluid"])])
+    labels = np.array([group_label(*key) for key in keys], dtype=object)
+    return labels[codes].tolist()
 
 
 def colours(labels: Iterable[str]) -> dict[str, str]:
