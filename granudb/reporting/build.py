@@ -244,10 +244,13 @@ def _connection(reader: Any) -> Any:
     return reader if isinstance(reader, Connection) else reader.connection()
 
 
-def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict[str, str]]:
-    """Property blocks of every material and fluid the runs use, and their citations."""
+def _properties(
+    connection: Any, frame: Any, fluids: Any, pinned: int | None
+) -> tuple[list[dict[str, Any]], dict[str, str]]:
+    """Property blocks of every material and fluid the runs use, and their citations.
+    ``fluids``: each run's ``fluid_names``; ``pinned``: the one dataset version the runs
+    come from (``lookup_rows.single_dataset_id``), whose catalogue a release keeps."""
     blocks_out, keys = [], set()
-    pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
     particles = sorted(set(frame["particle"].unique().tolist()))
     walls = sorted(set(frame["wall"].unique().tolist()) - set(particles))
     known = sources_read(connection, pinned)  # a release cites its sources as released
@@ -262,7 +265,7 @@ def _properties(connection: Any, frame: Any) -> tuple[list[dict[str, Any]], dict
         used = dry_values(connection, particle, wall, pinned)
         blocks_out.append(sections.dry_used_section(f"{particle} on {wall}", used.record()))
         keys.update(used.keys())
-    for name in sorted(set(fluid_names(frame["fluid"]).tolist()) - {"dry"}):
+    for name in sorted(set(fluids.tolist()) - {"dry"}):
         record = catalog.fluid_record(catalog.get_fluid_row(connection, name, pinned))
         blocks_out.append(sections.fluid_section(record))
         keys |= {record.get("source"), record.get("density_source"),
@@ -290,19 +293,21 @@ def _add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bo
             report["flags"].append(sections.no_runs_flag(query.describe()))
         return {}
     citations: dict[str, str] = {}
+    fluids = fluid_names(frame["fluid"])  # each run's fluid as people read it, once
+    pinned = None
     if not pair:
         report["flags"].append(sections.dataset_flag(frame))
-        report["properties"], citations = _properties(connection, frame)
-        pinned = lookup_rows.single_dataset_id(connection, frame)
+        pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
+        report["properties"], citations = _properties(connection, frame, fluids, pinned)
         report["pinned"] = pinned_notes(connection, pinned)
     report["assumptions"] = _assumptions(frame)
-    labels = labels_of(frame)
+    labels = labels_of(frame, fluids)
     palette = colours(labels)
     walton_sets: dict = {}  # the fits' bootstrap sets, for the bands of their lines
     walton = fits.walton(frame, sets=walton_sets)
     branches = fits.walton_branches(frame, walton)  # the one classification of each run
     if not pair:
-        report["runs"] = tables.run_table(tables.run_frame(frame, branches))
+        report["runs"] = tables.run_table(tables.run_frame(frame, branches, fluids))
     report["tables"].append(
         tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )
@@ -318,6 +323,6 @@ def _add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bo
     report["figures"] += figures.dataset_figures(frame, labels, palette, fitted)
     if not pair:
         report["figures"] += figures.pair_maps(
-            connection, frame, branches, labels, palette, query.critical_stokes
+            connection, frame, branches, labels, palette, query.critical_stokes, fluids, pinned
         )
     return citations

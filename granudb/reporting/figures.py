@@ -17,7 +17,7 @@ from sqlalchemy.engine import Connection
 
 from granudb.analysis import asymptotic, bands, fits
 from granudb.analysis.groups import GROUP
-from granudb.db import catalog_rows, lookup_rows
+from granudb.db import catalog_rows
 from granudb.lazy import pandas as pd
 from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
@@ -25,7 +25,6 @@ from granudb.physics.impact import gyration_factor
 from granudb.reporting import plots
 from granudb.reporting.format import display, is_number
 from granudb.reporting.groups import (
-    fluid_names,
     group_keys,
     group_label,
     sorted_codes,
@@ -130,18 +129,20 @@ def pair_maps(
     labels: Sequence[str],
     colours: Mapping[str, str],
     critical_stokes: float,
+    fluids: Any,
+    pinned: int | None,
 ) -> list[dict[str, Any]]:
     """One regime map per particle/wall pair, with every run of that pair on it, in its
     group's colour (the one of every figure and table) and shaped by ``branches`` (the one
-    classification, ``granudb.analysis.fits.walton_branches``).
+    classification, ``granudb.analysis.fits.walton_branches``). ``fluids``: each run's
+    ``fluid_names``; ``pinned``: the one dataset version of the runs
+    (``lookup_rows.single_dataset_id``), whose catalogue a release keeps.
     ``reader``: a Core connection or a session (the catalogue is read through Core)."""
     connection = reader if isinstance(reader, Connection) else reader.connection()
-    fluids = fluid_names(frame["fluid"])
     # each run's group and branch as codes into their sorted names, once for every pair
     # (the labels' codes are the ones the scatter figures made: ``sorted_codes`` keeps them)
     group_codes, group_names = sorted_codes(labels)
     branch_codes, branch_names = sorted_codes(branches)
-    pinned = lookup_rows.single_dataset_id(connection, frame)  # a release's own values
     densities = {
         name: catalog_rows.get_fluid_row(connection, name, pinned).reference_density_kg_m3
         for name in set(fluids.tolist()) - {"dry"}

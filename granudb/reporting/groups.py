@@ -87,9 +87,11 @@ def _key_codes(columns: Any) -> tuple[Any, Any]:
     return inverse, keys
 
 
-def labels_of(frame: Any) -> list[str]:
-    """The group label of every row of a collisions DataFrame (one string per group)."""
-    codes, keys = _key_codes([frame["particle"], frame["wall"], fluid_names(frame["fluid"])])
+def labels_of(frame: Any, fluids: Any = None) -> list[str]:
+    """The group label of every row of a collisions DataFrame (one string per group);
+    ``fluids``: its ``fluid_names``, where the caller has them."""
+    fluids = fluid_names(frame["fluid"]) if fluids is None else fluids
+    codes, keys = _key_codes([frame["particle"], frame["wall"], fluids])
     labels = np.array([group_label(*key) for key in keys], dtype=object)
     return labels[codes].tolist()
 

@@ -315,11 +315,12 @@ def gap_table(gap: list[dict[str, Any]], colours: Mapping[str, str]) -> dict[str
 RUN_TABLE_LIMIT = 200
 
 
-def run_frame(frame: Any, branches: Any) -> Any:
+def run_frame(frame: Any, branches: Any, fluids: Any = None) -> Any:
     """Every run as the run table lists it (``REPORT_RUN_COLUMNS``, SI, machine names):
-    the rows of the CSV beside a report, and the source of its run table."""
+    the rows of the CSV beside a report, and the source of its run table. ``fluids``: the
+    frame's ``fluid_names``, where the caller has them."""
     runs = frame.reindex(columns=[c for c in REPORT_RUN_COLUMNS if c != "walton_branch"])
-    runs["fluid"] = fluid_names(runs["fluid"])
+    runs["fluid"] = fluid_names(runs["fluid"]) if fluids is None else fluids
     runs.insert(REPORT_RUN_COLUMNS.index("walton_branch"), "walton_branch", branches)
     return runs
 
