@@ -25,8 +25,8 @@ from granudb.physics.impact import gyration_factor
 from granudb.reporting import plots
 from granudb.reporting.format import display, is_number
 from granudb.reporting.groups import (
-    group_keys,
     group_label,
+    key_codes,
     sorted_codes,
 )
 from granudb.reporting.tables import PARAMETER_LABELS, model_said
@@ -148,9 +148,10 @@ def pair_maps(
         for name in set(fluids.tolist()) - {"dry"}
     }
     figures = []
-    pairs = sorted(set(group_keys(frame["particle"], frame["wall"]).tolist()))
+    pair_codes, pair_keys = key_codes([frame["particle"], frame["wall"]])
+    pairs = sorted(pair_keys.tolist())
     for index, (particle, wall) in enumerate(pairs):
-        mask = ((frame["particle"] == particle) & (frame["wall"] == wall)).to_numpy()
+        mask = pair_codes == pair_keys.tolist().index((particle, wall))
         # only the two columns the series read (not a copy of every column of the pair)
         speeds = frame.loc[mask, ["v_n_in_m_s", "viscosity_pa_s"]]
         runs = _run_series(speeds, (group_codes[mask], group_names), fluids[mask],

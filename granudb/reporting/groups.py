@@ -64,11 +64,11 @@ def fluid_names(fluids: Any) -> Any:
 def group_keys(*columns: Any) -> Any:
     """Each row's tuple of ``columns`` values (an object array of tuples), built once per
     distinct combination."""
-    codes, keys = _key_codes(columns)
+    codes, keys = key_codes(columns)
     return keys[codes]
 
 
-def _key_codes(columns: Any) -> tuple[Any, Any]:
+def key_codes(columns: Any) -> tuple[Any, Any]:
     """(each row's code, the distinct combinations of ``columns`` values as an object array
     of tuples, indexed by code): one factorize per column, then one of the combined codes
     (integers, not tuples)."""
@@ -91,7 +91,7 @@ def labels_of(frame: Any, fluids: Any = None) -> list[str]:
     """The group label of every row of a collisions DataFrame (one string per group);
     ``fluids``: its ``fluid_names``, where the caller has them."""
     fluids = fluid_names(frame["fluid"]) if fluids is None else fluids
-    codes, keys = _key_codes([frame["particle"], frame["wall"], fluids])
+    codes, keys = key_codes([frame["particle"], frame["wall"], fluids])
     labels = np.array([group_label(*key) for key in keys], dtype=object)
     return labels[codes].tolist()
 
