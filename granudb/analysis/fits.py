@@ -500,7 +500,7 @@ def walton_branches(frame: Any, fits: list[dict[str, Any]]) -> np.ndarray:
         fit = chosen.get(tuple(_group_key(k) for k in key))
         if fit is None:
             continue
-        runs = pd.DataFrame({c: frame[c].to_numpy()[rows] for c in inputs}, copy=False)
+        runs = pd.DataFrame({c: frame[c].take(rows) for c in inputs}, copy=False)
         order = walton_arrays(runs)[5]  # the columns it reads, not a copy of every column
         sticking = int(fit.get("n_sticking") or 0)
         branches[rows[order]] = names[(np.arange(len(order)) >= sticking).astype(np.intp)]
