@@ -320,7 +320,16 @@ def _derive_block(
         names = tuple(k[2:] for k in first if k.startswith("u_"))
         columns.update(
             propagation_check.check_and_resample(
-                evaluate, x, u, columns, first, names, correlated, one_speed
+                evaluate,
+                x,
+                u,
+                columns,
+                first,
+                names,
+                correlated,
+                one_speed,
+                critical_stokes,
+                limits.friction_cap(x["mu_dry"], limiting_shear_slope),
             )
         )
     return columns

@@ -47,7 +47,8 @@ from typing import Any
 
 import numpy as np
 
-from granudb.physics.uncertainty import SOURCES
+from granudb.physics import flow, lubrication
+from granudb.physics.uncertainty import SOURCES, exceedance
 
 Arrays = dict[str, np.ndarray]
 
@@ -67,7 +68,7 @@ Z95 = 1.959963984540054
 _BOUND = 0.5 * Z95 * Z95 / (2 * Z95)
 FIRST_ORDER = "first order (GUM)"
 MONTE_CARLO = "Monte Carlo (JCGM 101), {draws:,} draws"
-NOT_REACHED = "; tolerance not reached"
+NOT_REACHED = " (tolerance not reached)"
 
 #: The column naming each row's method, and the ends of a quantity's 95 % interval: the
 #: names ``granudb.vocabulary.terms`` gives them (physics imports nothing of granudb;
@@ -90,22 +91,71 @@ VERDICTS = {
 _PARTNERS = {"rho1": "rho2", "e1": "e2", "nu1": "nu2", "s1": "s2", "y1": "y2"}
 
 
-def _relative(columns: Arrays, out: Arrays, names: tuple[str, ...]) -> np.ndarray:
-    """max over ``names`` of u(Q)/|Q| by row (NaN-free: quantities of 0 or without u skip)."""
-    worst = np.zeros(np.shape(columns[names[0]]))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for name in names:
-            ratio = out[f"u_{name}"] / np.abs(columns[name])
-            np.fmax(worst, np.where(np.isfinite(ratio), ratio, 0.0), out=worst)
-    return worst
-
-
 #: The verdict probabilities whose verdict switches a quantity discontinuously.
 PROBABILITIES = ("probability_asperity_contact", "probability_rebound", "probability_yield")
+#: Quantities the asperity-contact verdict switches (μ_dry ↔ the film's μ): a row whose
+#: contact probability is between 2.5 and 97.5 % sends them to the Monte Carlo.
+CONTACT_STEPPED = ("friction_coefficient_used", "maw_psi_in")
+#: Quantities linear in normal inputs (±1.96u is their exact interval) or absolute.
+LINEAR = ("normal_speed_m_s", "tangential_speed_m_s", "incidence_angle_rad")
+#: Quantities that move with U (their relative scale includes u(U)/|U|).
+TANGENTIAL = (
+    "tangential_speed_m_s",
+    "incidence_angle_rad",
+    "traction_film_m",
+    "lubricated_friction",
+    "shear_strain",
+    "friction_coefficient_used",
+    "maw_psi_in",
+)
+#: Quantities built on A(c) (5.9), a polynomial of degree 16 whose log slope changes.
+WITH_A = ("friction_integral", "lubricated_friction", "friction_coefficient_used", "maw_psi_in")
+RESTITUTION = "predicted_restitution"
+#: Quadrature nodes in z (standard normal) for u of e across St_c's step.
+_NODES = np.linspace(-6.0, 6.0, 241)
+_WEIGHTS = np.exp(-0.5 * _NODES**2) / np.exp(-0.5 * _NODES**2).sum()
 
 
-#: The quantities a verdict switches discontinuously (checked with the verdicts).
-STEPPED = ("predicted_restitution", "friction_coefficient_used", "maw_psi_in")
+def _input_scale(x: Arrays, u: Arrays, columns: Arrays) -> np.ndarray:
+    """Per row, the largest relative scale r of any stated input: u/|x| (v_n's relative to
+    the approach speed v_N, v_t's to the impact speed); a Poisson ratio's u(ν)·(1 + ν²)/
+    (ν(1 − ν²)), the ratio of ln(1 − ν²)'s second derivative to its first times u(ν)."""
+    shape = np.shape(columns["normal_speed_m_s"])
+    r_max = np.zeros(shape)
+    scale = {"vn": columns["normal_speed_m_s"], "vt": columns["impact_speed_m_s"]}
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for source, given in u.items():
+            if source in ("nu1", "nu2"):
+                nu = x[source]
+                ratio = np.asarray(given, dtype=float) * (1 + nu * nu) / np.abs(nu * (1 - nu * nu))
+            else:
+                ratio = np.asarray(given, dtype=float) / np.abs(scale.get(source, x[source]))
+            np.fmax(r_max, np.where(np.isfinite(ratio), ratio, 0.0), out=r_max)
+    return r_max
+
+
+def _log_factor(u_r: np.ndarray) -> np.ndarray:
+    """Linear-space share of a shift of the log interval's end: W/(1 − e^−W), W its width."""
+    w = 2 * Z95 * np.where(np.isfinite(u_r), u_r, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(w > 1e-12, w / -np.expm1(-w), 1.0)
+
+
+def _a_change(columns: Arrays, out: Arrays) -> tuple[np.ndarray, np.ndarray]:
+    """(|Δs|, u_r(c)): the change of A's log slope s = d ln A/d ln c across c's own
+    95 % interval, and c's relative u (c = η̂ p_max)."""
+    c = columns["eta_hat_pa_inv"] * columns["max_pressure_pa"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u_c = np.hypot(
+            np.nan_to_num(out["u_eta_hat_pa_inv"] / columns["eta_hat_pa_inv"]),
+            np.nan_to_num(out["u_max_pressure_pa"] / columns["max_pressure_pa"]),
+        )
+        step = np.exp(Z95 * u_c)
+        change = np.abs(
+            lubrication.friction_integral_log_slope(c * step)
+            - lubrication.friction_integral_log_slope(c / step)
+        )
+    return np.where(np.isfinite(change), change, 0.0), u_c
 
 
 def first_order_adequate(
@@ -114,32 +164,116 @@ def first_order_adequate(
     columns: Arrays,
     out: Arrays,
     names: tuple[str, ...],
+    friction_cap: Any = np.inf,
     tolerance: float = TOLERANCE,
 ) -> dict[str, np.ndarray]:
-    """By quantity (and ``"verdicts"``), true by row where first order's u and ±1.96u
-    interval are adequate (the module's check), from the inputs ``x`` and their u
-    (``u``, step names), derive's ``columns`` and first order's ``out`` (``u_<q>`` and
-    the verdict probabilities: a verdict's first-order 95 % interval reaches its
-    threshold exactly where its probability is between 2.5 % and 97.5 %)."""
-    r_max = np.zeros(np.shape(columns[names[0]]))
+    """By quantity (and ``"verdicts"``), true by row where first order's u and its 95 %
+    interval (``first_order_intervals``) are adequate by the module's check, from the
+    inputs ``x`` and their u (``u``, step names), derive's ``columns`` and first order's
+    ``out`` (``u_<q>`` and the verdict probabilities); ``friction_cap`` is the film's
+    μ_f cap min(μ_dry, γ_max)."""
+    r_max = _input_scale(x, u, columns)
     with np.errstate(divide="ignore", invalid="ignore"):
-        for source, given in u.items():
-            if SOURCES.get(source) or source == "vn":
-                ratio = np.asarray(given, dtype=float) / np.abs(x[source])
-                np.fmax(r_max, np.where(np.isfinite(ratio), ratio, 0.0), out=r_max)
-    limit = tolerance / _BOUND - r_max
-    verdicts = np.ones(r_max.shape, dtype=bool)
-    for probability in PROBABILITIES:
-        p = out[probability]
-        verdicts &= ~((p > 0.025) & (p < 0.975))
-    ok: dict[str, np.ndarray] = {"verdicts": verdicts}
+        r_u = out["u_tangential_speed_m_s"] / np.abs(columns["tangential_speed_m_s"])
+    r_u = np.where(np.isfinite(r_u), r_u, 0.0)
+    p = out["probability_asperity_contact"]
+    contact = ~((p > 0.025) & (p < 0.975))
+    # the film's μ is capped (μ_used = min(μ_lub, cap)): a cap inside μ_lub's interval
+    # is a kink of μ_used and ψ
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lub, u_lub = columns["lubricated_friction"], out["u_lubricated_friction"]
+        capped = exceedance(lub / friction_cap, u_lub / lub)
+    contact &= ~((capped > 0.025) & (capped < 0.975))
+    ok: dict[str, np.ndarray] = {"verdicts": contact}
+    change, u_c = _a_change(columns, out) if set(WITH_A) & set(names) else (0.0, 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         for name in names:
-            ratio = out[f"u_{name}"] / np.abs(columns[name])
-            ok[name] = ~(ratio > limit)  # NaN (no u, or Q = 0) passes
-            if name in STEPPED:
-                ok[name] &= verdicts
+            if name in ("normal_speed_m_s", "tangential_speed_m_s"):  # linear: exact
+                ok[name] = np.ones(r_max.shape, dtype=bool)
+                continue
+            r_q = np.fmax(r_max, r_u) if name in TANGENTIAL else r_max
+            source = "added_mass_stokes_number" if name == RESTITUTION else name
+            u_r = out[f"u_{source}"] / np.abs(columns[source])
+            if name in LINEAR:  # ±1.96u: curvature of the exponential and of the inputs
+                bound = _BOUND * (u_r + r_q)
+            else:  # lognormal: only the inputs' own curvature (and A's) moves its ends
+                bound = _BOUND * r_q
+                if name in WITH_A:
+                    bound = bound + 0.125 * change * u_c / u_r
+                bound = bound * _log_factor(u_r)
+            ok[name] = ~(bound > tolerance)  # NaN (no u) passes
+            if name in CONTACT_STEPPED:
+                ok[name] &= contact
     return ok
+
+
+def first_order_intervals(
+    columns: Arrays, out: Arrays, names: tuple[str, ...], critical_stokes: float
+) -> Arrays:
+    """The 95 % interval of each quantity by first order: Q·exp(±1.96 u_r) for a positive
+    quantity (first order on ln Q: every one is a product of powers or A(c) of one), ±1.96u
+    for ``LINEAR`` ones and any Q ≤ 0; the predicted restitution through St_am's
+    lognormal interval and St_c's step (e is monotone in St), with its u by quadrature
+    where the step is inside the interval. Also returns ``u_predicted_restitution``."""
+    result: Arrays = {}
+    for name in names:
+        q, u_q = columns[name], out[f"u_{name}"]
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            u_r = u_q / np.abs(q)
+            log = np.exp(Z95 * u_r)
+            low = np.where(q > 0, q / log, q - Z95 * u_q)
+            high = np.where(q > 0, q * log, q + Z95 * u_q)
+        if name in LINEAR:
+            low, high = q - Z95 * u_q, q + Z95 * u_q
+        low95, high95 = interval_columns(name)
+        result[low95], result[high95] = low, high
+    if RESTITUTION in names:
+        result.update(_restitution(columns, out, critical_stokes))
+    return result
+
+
+def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays:
+    st_am, st_n = columns["added_mass_stokes_number"], columns["normal_stokes_number"]
+    ceiling = columns["restitution_ceiling"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s_am = out["u_added_mass_stokes_number"] / st_am
+        s_n = out["u_normal_stokes_number"] / st_n
+
+    def e_at(z: Any) -> np.ndarray:
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            wet = flow.predicted_restitution(st_am * np.exp(z * s_am), ceiling, 0.0)
+            return np.where(st_n * np.exp(z * s_n) > critical_stokes, wet, 0.0)
+
+    low95, high95 = interval_columns(RESTITUTION)
+    defined = np.isfinite(st_am) & np.isfinite(s_am)
+    low = np.where(defined, e_at(-Z95), np.nan)
+    high = np.where(defined, e_at(Z95), np.nan)
+    u_e = np.array(out[f"u_{RESTITUTION}"], dtype=float, copy=True)
+    p = out["probability_rebound"]
+    across = defined & (p > 0.025) & (p < 0.975)
+    if across.any():
+        rows = np.flatnonzero(across.reshape(-1))
+        flat = {k: np.broadcast_to(v, across.shape).reshape(-1)[rows]
+                for k, v in (("am", st_am), ("n", st_n), ("c", ceiling), ("sa", s_am),
+                             ("sn", s_n))}  # fmt: skip
+        z = _NODES[None, :]
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            wet = flow.predicted_restitution(
+                flat["am"][:, None] * np.exp(z * flat["sa"][:, None]), flat["c"][:, None], 0.0
+            )
+            e = np.where(flat["n"][:, None] * np.exp(z * flat["sn"][:, None]) > critical_stokes,
+                         wet, 0.0)  # fmt: skip
+        mean = e @ _WEIGHTS
+        sd = np.sqrt(np.maximum((e * e) @ _WEIGHTS - mean * mean, 0.0))
+        u_flat = u_e.reshape(-1)
+        u_flat[rows] = sd
+    # where no rebound is likely (e = 0, no u) the interval is [0, 0] only if stated
+    stated = np.isfinite(u_e) | ~(p <= 0.025)
+    return {
+        low95: np.where(stated, low, np.nan),
+        high95: np.where(stated, high, np.nan),
+        f"u_{RESTITUTION}": u_e,
+    }
 
 
 def _draw(
@@ -299,58 +433,75 @@ def check_and_resample(
     names: tuple[str, ...],
     correlated: np.ndarray,
     one_speed: np.ndarray,
+    critical_stokes: float,
+    friction_cap: Any = np.inf,
 ) -> Arrays:
     """``out`` (first order's ``u_<q>`` and probabilities) with, for every row: the 95 %
     intervals ``low95_<q>``/``high95_<q>`` and ``propagation_method``; rows where
-    ``first_order_adequate`` fails get the Monte Carlo's u, intervals and probabilities.
-    A row none of whose inputs states a u has no method (None) and no interval (NaN)."""
+    ``first_order_adequate`` fails get the Monte Carlo's u, intervals and probabilities
+    for the quantities that failed (and the probabilities). A row none of whose inputs
+    states a u has no method (None) and no interval (NaN)."""
     shape = np.shape(columns[names[0]])
     stated = np.zeros(shape, dtype=bool)
     for given in u.values():
         stated |= np.isfinite(np.asarray(given, dtype=float))
-    ok = first_order_adequate(x, u, columns, out, names)
-    row_ok = np.logical_and.reduce([ok[k] for k in ok])
     result = dict(out)
-    for name in names:
-        low, high = interval_columns(name)
-        half = Z95 * out[f"u_{name}"]
-        result[low], result[high] = columns[name] - half, columns[name] + half
+    result.update(first_order_intervals(columns, out, names, critical_stokes))
+    ok = first_order_adequate(x, u, columns, out, names, friction_cap)
+    failing = {k: ~np.broadcast_to(v, shape) & stated for k, v in ok.items()}
+    rows = np.flatnonzero(np.logical_or.reduce([f.reshape(-1) for f in failing.values()]))
     method = np.full(shape, None, dtype=object)
     method[stated] = FIRST_ORDER
-    rows = np.flatnonzero(stated & ~row_ok)
-    if rows.size:
+    if not rows.size:
+        result[PROPAGATION_METHOD] = method
+        return result
 
-        def flat(v: Any) -> np.ndarray:
-            return np.broadcast_to(np.asarray(v, dtype=float), shape).reshape(-1)
+    def flat(v: Any) -> np.ndarray:
+        return np.broadcast_to(np.asarray(v, dtype=float), shape).reshape(-1)
 
-        flat_x = {k: flat(v) for k, v in x.items()}
-        given = {k: flat(v) for k, v in u.items()}
-        drawn, used, reached = monte_carlo_rows(
-            evaluate, flat_x, given, rows, names, flat(correlated) != 0, flat(one_speed) != 0
-        )
-        for column, values in drawn.items():
-            target = np.array(np.broadcast_to(result[column], shape), dtype=float).reshape(-1)
+    flat_x = {k: flat(v) for k, v in x.items()}
+    given = {k: flat(v) for k, v in u.items()}
+    fail_at = {k: v.reshape(-1)[rows] for k, v in failing.items()}
+    # the draws' statistics (and the tolerance) only for the quantities some row sends
+    drawn_names = tuple(k for k in names if k in fail_at and fail_at[k].any())
+    drawn, used, reached = monte_carlo_rows(
+        evaluate, flat_x, given, rows, drawn_names, flat(correlated) != 0, flat(one_speed) != 0
+    )
+    any_verdict = fail_at["verdicts"] | fail_at.get(RESTITUTION, False)
+    for column, values in drawn.items():
+        if column not in result:
+            continue
+        target = np.array(np.broadcast_to(result[column], shape), dtype=float).reshape(-1)
+        quantity = column.removeprefix("u_").removeprefix("low95_").removeprefix("high95_")
+        if column.startswith(("u_", "low95_", "high95_")):
             # a quantity first order leaves without u (none of its inputs stated) keeps none
-            if column.startswith(("u_", "low95_", "high95_")):
-                keep = flat(out_u(out, column))[rows]
-                if column.endswith("predicted_restitution"):  # e = 0 below St_c has a u here
-                    keep = flat(columns["normal_stokes_number"])[rows]
-            else:  # a probability without a number (dry, no Y) stays without
-                keep = flat(out[column])[rows]
-            quantity = column.removeprefix("u_").removeprefix("low95_").removeprefix("high95_")
-            failed = ~flat(ok.get(quantity, ok["verdicts"]))[rows].astype(bool)
-            target[rows] = np.where(failed, np.where(np.isnan(keep), np.nan, values), target[rows])
-            result[column] = target.reshape(shape)
-        flat_method = method.reshape(-1)
-        failing = {k: flat(v)[rows] == 0 for k, v in ok.items()}
-        for index, row in enumerate(rows):
-            which = [k if k != "verdicts" else "verdict probabilities" for k in failing
-                     if failing[k][index]]  # fmt: skip
-            text = MONTE_CARLO.format(draws=int(used[index]))
-            text += NOT_REACHED if not reached[index] else ""
-            flat_method[row] = f"{text} for {', '.join(which)}; {FIRST_ORDER} for the rest"
-        method = flat_method.reshape(shape)
-    result[PROPAGATION_METHOD] = method
+            keep = flat(out[f"u_{quantity}"])[rows]
+            if quantity == RESTITUTION:  # e = 0 below St_c has a spread here
+                keep = flat(columns["normal_stokes_number"])[rows]
+            replace = fail_at[quantity] & ~np.isnan(keep)
+        else:  # a probability without a number (dry, no Y) stays without
+            replace = any_verdict & ~np.isnan(flat(out[column])[rows])
+        target[rows] = np.where(replace, values, target[rows])
+        result[column] = target.reshape(shape)
+    # one text per distinct pattern of failing quantities and draws (no per-row Python)
+    labels = [k for k in names if k in fail_at] + ["verdicts"]
+    bits = np.zeros(rows.size, dtype=np.int64)
+    for index, k in enumerate(labels):
+        bits |= fail_at[k].astype(np.int64) << index
+    key = np.stack([bits, used, reached.astype(np.int64)], axis=1)
+    patterns, inverse = np.unique(key, axis=0, return_inverse=True)
+    texts = []
+    for pattern_bits, draws, done in patterns:
+        which = [
+            k if k != "verdicts" else "verdict probabilities"
+            for index, k in enumerate(labels)
+            if pattern_bits >> index & 1
+        ]
+        text = MONTE_CARLO.format(draws=int(draws)) + ("" if done else NOT_REACHED)
+        texts.append(f"{text} for {', '.join(which)}; {FIRST_ORDER} for the rest")
+    flat_method = method.reshape(-1)
+    flat_method[rows] = np.array(texts, dtype=object)[inverse.reshape(-1)]
+    result[PROPAGATION_METHOD] = flat_method.reshape(shape)
     return result
 
 
