@@ -24,15 +24,18 @@ SCENARIO = {
 }
 
 
-def test_a_linear_quantity_keeps_first_order_and_it_is_exact() -> None:
-    """R = d/2 (flat wall): 1 % on d gives u(R) = 1 % of R by first order, ±1.96u."""
+def test_a_linear_quantity_keeps_first_order_with_its_lognormal_interval() -> None:
+    """R = d/2 (flat wall): 1 % on d gives u(R) = 1 % of R by first order, and the 95 %
+    interval of first order on ln R, R·exp(±1.96·0.01); v_N, linear, keeps ±1.96u."""
     got = derive(**SCENARIO, uncertainties={"u_diameter_m": 0.01 * SCENARIO["diameter_m"]})
     radius = float(got["effective_radius_m"])
     assert got["propagation_method"].item() == FIRST_ORDER
     assert float(got["u_effective_radius_m"]) == pytest.approx(0.01 * radius, rel=1e-12)
     assert float(got["high95_effective_radius_m"]) == pytest.approx(
-        radius * (1 + 0.01 * Z95), rel=1e-12
+        radius * np.exp(0.01 * Z95), rel=1e-12
     )
+    got = derive(**SCENARIO, uncertainties={"u_v_n_in_m_s": 0.003})
+    assert float(got["low95_normal_speed_m_s"]) == pytest.approx(0.3 - Z95 * 0.003, rel=1e-12)
 
 
 def test_a_curved_quantity_goes_to_monte_carlo_with_the_analytic_quantiles() -> None:
