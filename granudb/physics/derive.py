@@ -234,6 +234,7 @@ def derive(
     uncertainties: Mapping[str, Numeric] | None = None,
     correlated_materials: Numeric = False,
     one_speed: Numeric = False,
+    monte_carlo: bool = True,
 ) -> dict[str, np.ndarray]:
     """Derive every derived column (``granudb.vocabulary.DERIVED_TERMS``) for arrays of collisions.
 
@@ -264,7 +265,10 @@ def derive(
     (``granudb.physics.uncertainty``: GUM first order); ``correlated_materials`` true
     where the particle and the wall are one material (their sources are then one),
     ``one_speed`` where v_n and v_t are one measured speed at a set angle (their
-    uncertainties fully correlated).
+    uncertainties fully correlated). Each row's u is first order where
+    ``granudb.physics.propagation_check``'s check allows, else its Monte Carlo; with
+    ``monte_carlo`` False first order everywhere, and ``propagation_method`` names the
+    quantities the check failed (the cost of the Monte Carlo is then not paid).
     """
     given = locals()
     names = list(_INPUTS)
@@ -281,6 +285,7 @@ def derive(
     compute = partial(
         _derive_block,
         uncertain=uncertainties is not None,
+        monte_carlo=monte_carlo,
         limiting_shear_slope=limiting_shear_slope,
         gap_fraction=gap_fraction,
         critical_stokes=critical_stokes,
@@ -296,6 +301,7 @@ def _derive_block(
     x: dict[str, np.ndarray],
     *,
     uncertain: bool,
+    monte_carlo: bool,
     limiting_shear_slope: float,
     gap_fraction: float,
     critical_stokes: float,
@@ -330,6 +336,7 @@ def _derive_block(
                 one_speed,
                 critical_stokes,
                 limits.friction_cap(x["mu_dry"], limiting_shear_slope),
+                monte_carlo=monte_carlo,
             )
         )
     return columns

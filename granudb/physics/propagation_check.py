@@ -141,6 +141,16 @@ def _log_factor(u_r: np.ndarray) -> np.ndarray:
         return np.where(w > 1e-12, w / -np.expm1(-w), 1.0)
 
 
+def _u_r_limit(r_q: np.ndarray, tolerance: float) -> np.ndarray:
+    """The largest u_r(Q) at which a lognormal interval passes ``_BOUND`` r_q F(W) ≤
+    ``tolerance`` (F = W/(1 − e^−W) ≤ 1 + W/2 + W²/12, W = 3.92 u_r): one limit per row,
+    so each quantity's check is one product and one comparison (negative: none passes)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        k = tolerance / (_BOUND * r_q)
+        w = -3.0 + 6.0 * np.sqrt(0.25 + (k - 1.0) / 3.0)
+    return np.where(k >= 1.0, w / (2 * Z95), -1.0)
+
+
 def _a_change(columns: Arrays, out: Arrays) -> tuple[np.ndarray, np.ndarray]:
     """(|Δs|, u_r(c)): the change of A's log slope s = d ln A/d ln c across c's own
     95 % interval, and c's relative u (c = η̂ p_max)."""
@@ -186,6 +196,8 @@ def first_order_adequate(
     contact &= ~((capped > 0.025) & (capped < 0.975))
     ok: dict[str, np.ndarray] = {"verdicts": contact}
     change, u_c = _a_change(columns, out) if set(WITH_A) & set(names) else (0.0, 0.0)
+    limit = _u_r_limit(r_max, tolerance)
+    limit_t = _u_r_limit(np.fmax(r_max, r_u), tolerance)
     with np.errstate(divide="ignore", invalid="ignore"):
         for name in names:
             if name in ("normal_speed_m_s", "tangential_speed_m_s"):  # linear: exact
@@ -193,15 +205,15 @@ def first_order_adequate(
                 continue
             r_q = np.fmax(r_max, r_u) if name in TANGENTIAL else r_max
             source = "added_mass_stokes_number" if name == RESTITUTION else name
-            u_r = out[f"u_{source}"] / np.abs(columns[source])
+            q, u_q = np.abs(columns[source]), out[f"u_{source}"]
             if name in LINEAR:  # ±1.96u: curvature of the exponential and of the inputs
-                bound = _BOUND * (u_r + r_q)
-            else:  # lognormal: only the inputs' own curvature (and A's) moves its ends
-                bound = _BOUND * r_q
-                if name in WITH_A:
-                    bound = bound + 0.125 * change * u_c / u_r
-                bound = bound * _log_factor(u_r)
-            ok[name] = ~(bound > tolerance)  # NaN (no u) passes
+                ok[name] = ~(_BOUND * (u_q / q + r_q) > tolerance)
+            elif name in WITH_A:  # lognormal, with A's change of slope
+                u_r = u_q / q
+                bound = (_BOUND * r_q + 0.125 * change * u_c / u_r) * _log_factor(u_r)
+                ok[name] = ~(bound > tolerance)  # NaN (no u) passes
+            else:  # lognormal: only the inputs' own curvature moves its ends
+                ok[name] = ~(u_q > (limit_t if name in TANGENTIAL else limit) * q)
             if name in CONTACT_STEPPED:
                 ok[name] &= contact
     return ok
@@ -219,12 +231,22 @@ def first_order_intervals(
     for name in names:
         q, u_q = columns[name], out[f"u_{name}"]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            u_r = u_q / np.abs(q)
-            log = np.exp(Z95 * u_r)
-            low = np.where(q > 0, q / log, q - Z95 * u_q)
-            high = np.where(q > 0, q * log, q + Z95 * u_q)
-        if name in LINEAR:
-            low, high = q - Z95 * u_q, q + Z95 * u_q
+            if name in LINEAR:
+                low, high = q - Z95 * u_q, q + Z95 * u_q
+            else:
+                t = np.divide(u_q, q)
+                if not isinstance(t, np.ndarray) or not t.ndim:  # one scenario
+                    t = np.array(t, dtype=float, ndmin=1)
+                t *= Z95
+                np.exp(t, out=t)
+                high = np.multiply(q, t)
+                low = np.divide(q, t, out=t)
+                if np.ndim(q) == 0:
+                    low, high = low.reshape(()), high.reshape(())
+                negative = q <= 0
+                if np.any(negative):  # a Q ≤ 0 (none in derive today) keeps ±1.96u
+                    low = np.where(negative, q - Z95 * u_q, low)
+                    high = np.where(negative, q + Z95 * u_q, high)
         low95, high95 = interval_columns(name)
         result[low95], result[high95] = low, high
     if RESTITUTION in names:
@@ -435,6 +457,8 @@ def check_and_resample(
     one_speed: np.ndarray,
     critical_stokes: float,
     friction_cap: Any = np.inf,
+    *,
+    monte_carlo: bool = True,
 ) -> Arrays:
     """``out`` (first order's ``u_<q>`` and probabilities) with, for every row: the 95 %
     intervals ``low95_<q>``/``high95_<q>`` and ``propagation_method``; rows where
@@ -462,6 +486,14 @@ def check_and_resample(
     flat_x = {k: flat(v) for k, v in x.items()}
     given = {k: flat(v) for k, v in u.items()}
     fail_at = {k: v.reshape(-1)[rows] for k, v in failing.items()}
+    if not monte_carlo:  # first order kept everywhere; the method says where it failed
+        labels = [k for k in names if k in fail_at] + ["verdicts"]
+        flat_method = method.reshape(-1)
+        for index in range(rows.size):
+            which = ", ".join(k for k in labels if fail_at[k][index])
+            flat_method[rows[index]] = f"{FIRST_ORDER}; the check failed for {which}"
+        result[PROPAGATION_METHOD] = flat_method.reshape(shape)
+        return result
     # the draws' statistics (and the tolerance) only for the quantities some row sends
     drawn_names = tuple(k for k in names if k in fail_at and fail_at[k].any())
     drawn, used, reached = monte_carlo_rows(
