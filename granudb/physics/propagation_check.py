@@ -130,7 +130,8 @@ def _input_scale(x: Arrays, u: Arrays, columns: Arrays) -> np.ndarray:
                 ratio = np.asarray(given, dtype=float) * (1 + nu * nu) / np.abs(nu * (1 - nu * nu))
             else:
                 ratio = np.asarray(given, dtype=float) / np.abs(scale.get(source, x[source]))
-            np.fmax(r_max, np.where(np.isfinite(ratio), ratio, 0.0), out=r_max)
+            np.fmax(r_max, ratio, out=r_max)  # NaN (not stated) is skipped
+    r_max[np.isinf(r_max)] = 0.0  # an input of 0 (v_t) is scaled by what it enters
     return r_max
 
 
@@ -160,11 +161,10 @@ def _a_change(columns: Arrays, out: Arrays) -> tuple[np.ndarray, np.ndarray]:
             np.nan_to_num(out["u_eta_hat_pa_inv"] / columns["eta_hat_pa_inv"]),
             np.nan_to_num(out["u_max_pressure_pa"] / columns["max_pressure_pa"]),
         )
-        step = np.exp(Z95 * u_c)
-        change = np.abs(
-            lubrication.friction_integral_log_slope(c * step)
-            - lubrication.friction_integral_log_slope(c / step)
-        )
+        # s(c) from first order itself (u_r(A) = s u_r(c)); s at the interval's top once
+        s_c = out["u_friction_integral"] / columns["friction_integral"] / u_c
+        top = lubrication.friction_integral_log_slope(c * np.exp(Z95 * u_c))
+        change = 2.0 * np.abs(top - s_c)
     return np.where(np.isfinite(change), change, 0.0), u_c
 
 
@@ -201,7 +201,6 @@ def first_order_adequate(
     with np.errstate(divide="ignore", invalid="ignore"):
         for name in names:
             if name in ("normal_speed_m_s", "tangential_speed_m_s"):  # linear: exact
-                ok[name] = np.ones(r_max.shape, dtype=bool)
                 continue
             r_q = np.fmax(r_max, r_u) if name in TANGENTIAL else r_max
             source = "added_mass_stokes_number" if name == RESTITUTION else name
@@ -472,13 +471,17 @@ def check_and_resample(
     result = dict(out)
     result.update(first_order_intervals(columns, out, names, critical_stokes))
     ok = first_order_adequate(x, u, columns, out, names, friction_cap)
-    failing = {k: ~np.broadcast_to(v, shape) & stated for k, v in ok.items()}
-    rows = np.flatnonzero(np.logical_or.reduce([f.reshape(-1) for f in failing.values()]))
+    any_bad = np.zeros(shape, dtype=bool)
+    for v in ok.values():
+        any_bad |= ~v
+    any_bad &= stated
     method = np.full(shape, None, dtype=object)
     method[stated] = FIRST_ORDER
-    if not rows.size:
+    if not any_bad.any():
         result[PROPAGATION_METHOD] = method
         return result
+    rows = np.flatnonzero(any_bad.reshape(-1))
+    failing = {k: ~np.broadcast_to(v, shape) & stated for k, v in ok.items()}
 
     def flat(v: Any) -> np.ndarray:
         return np.broadcast_to(np.asarray(v, dtype=float), shape).reshape(-1)
