@@ -7,25 +7,30 @@ over the same derivation; every row also gets the 95 % coverage interval of each
 (``low95_<q>``, ``high95_<q>``) and its method (``propagation_method``, one column for
 the row's u, intervals and verdict probabilities).
 
-**The check** (``first_order_adequate``), per row, from first order's own results:
+**First order's interval** (``first_order_intervals``): Q·exp(±1.96 u_r) (first order
+on ln Q; u_r = u(Q)/|Q|) for every positive quantity, ±1.96u for the ``LINEAR`` ones; the
+predicted restitution through St_am's log-normal interval and St_c's step (e is
+monotone in St), its u by quadrature where the step is inside the interval.
 
-- *Smoothness.* Every propagated quantity is a product of powers of the inputs or a
-  smooth function of such products. For Q = Π (1 + ε_k)^{s_k} (ε_k the inputs' relative
-  deviations, standard deviations r_k), Q's second-order term in normalised coordinates
-  is H = a aᵀ − diag(a_k r_k) with a_k = s_k r_k, whose norm is at most u_r² + u_r r_max
-  (u_r = u(Q)/|Q|, r_max the largest relative input u). An end of the 95 % interval
-  then moves by at most ½ 1.96² ‖H‖ |Q| (the curvature along the worst direction at
-  1.96 standard deviations), 0.49 (u_r + r_max) of the interval's width 3.92 u(Q).
-  First order is kept where that bound is at most ``TOLERANCE`` for every quantity:
-  max u_r + r_max ≤ TOLERANCE / 0.49.
-- *Steps.* A verdict switches a quantity discontinuously (e = 0 below St_c, the friction
-  used where the asperities touch, the elastic state at yield). Where the first-order
-  95 % interval of the verdict's ratio (St_n/St_c, Λ, p_max/1.6Y; lognormal, as the
-  verdict probabilities take it) reaches 1, the row goes to the Monte Carlo.
+**The check** (``first_order_adequate``), per row, from first order's own results (no
+evaluation of the physics):
 
-The check is validated against a 10⁶-draw Monte Carlo in benchmarks/propagation_study.py
-(every quantity at 1, 5 and 10 % input u and near St_c) and in
-tests/physics/test_propagation_check.py.
+- *Curvature.* For Q = Π (1 + ε_k)^{s_k} (ε_k the inputs' relative deviations, standard
+  deviations r_k), ln Q's second-order term in normalised coordinates is
+  −diag(a_k r_k) with a_k = s_k r_k, whose norm is at most u_r r_max (r_max the largest
+  r_k: ``_input_scale``). An end of the log interval then moves by at most
+  ½ 1.96² u_r r_max, 0.49 r_max of its width 3.92 u_r, and by W/(1 − e^−W) times that
+  share of the linear width (W = 3.92 u_r). A(c) adds the change Δs of its log slope
+  across c's interval: 0.125 Δs u_r(c)/u_r(Q). ±1.96u (``LINEAR``) takes the old bound
+  0.49 (u_r + r_max). First order is kept where the bound is at most ``TOLERANCE``.
+- *Steps.* The friction used and Maw's ψ switch where asperities touch (Λ = 1) and bend
+  at (5.8)'s cap: where the contact probability, or the probability that μ_lub exceeds
+  the cap (log-normal, as the verdict probabilities), is between 2.5 and 97.5 %, they
+  and the verdict probabilities go to the Monte Carlo.
+
+Validated against a 10⁶-draw Monte Carlo in benchmarks/propagation.py (every quantity at
+1, 5 and 10 % input u, 37 % glycerol and near St_c: docs/propagation.md) and in
+tests/physics/test_propagation_study.py.
 
 **The Monte Carlo** (``monte_carlo_rows``): each source of a flagged row is drawn normal
 with its u (the particle's and the wall's one draw where they are one material; v_t with
@@ -37,7 +42,8 @@ batches' averages is within ``NUMERICAL_TOLERANCE`` of the interval's width for 
 quantity of the row, or ``MAX_DRAWS`` (then the method says the tolerance was not
 reached). Each verdict's probability is the share of the draws where it holds. The
 value stays f(x) (the derivation's), the interval is the Monte Carlo's (asymmetric where
-it is). Seeded by ``SEED`` and the row's index: the same table gives the same numbers.
+it is). Seeded by ``SEED``, the first row's index within its block and the batch: the same
+table gives the same numbers.
 """
 
 from __future__ import annotations

@@ -137,8 +137,8 @@ def _interval_terms(column: str, term: Term) -> dict[str, Term]:
             f"{end} end of {term.title}'s 95 % interval",
             term.unit,
             f"{end.capitalize()} end of the 95 % coverage interval of {column} (same unit; "
-            "±1.96u by first order, the 2.5 % or 97.5 % quantile by Monte Carlo: "
-            "propagation_method; empty: no u).",
+            "first order: value·exp(±1.96u/value), ±1.96u for a speed or angle; Monte "
+            "Carlo: its 2.5 % or 97.5 % quantile; propagation_method says which; empty: no u).",
             role="derived",
             symbol=f"{symbol} {'≥' if end == 'low' else '≤'}",
         )
