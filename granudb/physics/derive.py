@@ -315,6 +315,7 @@ def _derive_block(
         gap_fraction=gap_fraction,
         critical_stokes=critical_stokes,
     )
+    columns: dict[str, np.ndarray]
     columns, (p, h, f, lub, tan) = evaluate(x, keep_steps=True)
     if uncertain:
         u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}

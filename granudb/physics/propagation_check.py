@@ -425,30 +425,37 @@ def monte_carlo_rows(
     return result, used, reached
 
 
-class _quiet:
+def _quiet() -> Any:
     """Silence numpy's 'all-NaN slice' warnings (an undefined quantity stays NaN)."""
+    import warnings
+
+    catch = warnings.catch_warnings()
+    catch.__enter__()
+    warnings.simplefilter("ignore", RuntimeWarning)
+    return _Restore(catch)
+
+
+class _Restore:
+    def __init__(self, catch: Any) -> None:
+        self._catch = catch
 
     def __enter__(self) -> None:
-        import warnings
+        return None
 
-        self._catch = warnings.catch_warnings()
-        self._catch.__enter__()
-        warnings.simplefilter("ignore", RuntimeWarning)
-
-    def __exit__(self, *exc: object) -> None:
+    def __exit__(self, *exc: Any) -> None:
         self._catch.__exit__(*exc)
 
 
 def _mean(batches: list[dict[str, np.ndarray]], key: str) -> np.ndarray:
     with _quiet():
-        return np.nanmean(np.stack([b[key] for b in batches]), axis=0)
+        return np.asarray(np.nanmean(np.stack([b[key] for b in batches]), axis=0))
 
 
 def _spread(batches: list[dict[str, np.ndarray]], key: str) -> np.ndarray:
     """The standard deviation of the batches' average of ``key`` (s/√h)."""
     stack = np.stack([b[key] for b in batches])
     with _quiet():
-        return np.nanstd(stack, axis=0, ddof=1) / np.sqrt(len(batches))
+        return np.asarray(np.nanstd(stack, axis=0, ddof=1) / np.sqrt(len(batches)))
 
 
 def check_and_resample(
@@ -493,20 +500,20 @@ def check_and_resample(
         return np.broadcast_to(np.asarray(v, dtype=float), shape).reshape(-1)
 
     flat_x = {k: flat(v) for k, v in x.items()}
-    given = {k: flat(v) for k, v in u.items()}
+    u_flat = {k: flat(v) for k, v in u.items()}
     fail_at = {k: v.reshape(-1)[rows] for k, v in failing.items()}
     if not monte_carlo:  # first order kept everywhere; the method says where it failed
         labels = [k for k in names if k in fail_at] + ["verdicts"]
         flat_method = method.reshape(-1)
         for index in range(rows.size):
-            which = ", ".join(k for k in labels if fail_at[k][index])
-            flat_method[rows[index]] = f"{FIRST_ORDER}; the check failed for {which}"
+            failed = ", ".join(k for k in labels if fail_at[k][index])
+            flat_method[rows[index]] = f"{FIRST_ORDER}; the check failed for {failed}"
         result[PROPAGATION_METHOD] = flat_method.reshape(shape)
         return result
     # the draws' statistics (and the tolerance) only for the quantities some row sends
     drawn_names = tuple(k for k in names if k in fail_at and fail_at[k].any())
     drawn, used, reached = monte_carlo_rows(
-        evaluate, flat_x, given, rows, drawn_names, flat(correlated) != 0, flat(one_speed) != 0
+        evaluate, flat_x, u_flat, rows, drawn_names, flat(correlated) != 0, flat(one_speed) != 0
     )
     any_verdict = fail_at["verdicts"] | fail_at.get(RESTITUTION, False)
     for column, values in drawn.items():
