@@ -526,6 +526,8 @@ def check_and_resample(
             keep = flat(out[f"u_{quantity}"])[rows]
             if quantity == RESTITUTION:  # e = 0 below St_c has a spread here
                 keep = flat(columns["normal_stokes_number"])[rows]
+            elif quantity in CONTACT_STEPPED:  # so has μ at its cap (no first-order u)
+                keep = flat(out["u_lubricated_friction"])[rows]
             replace = fail_at[quantity] & ~np.isnan(keep)
         else:  # a probability without a number (dry, no Y) stays without
             replace = any_verdict & ~np.isnan(flat(out[column])[rows])
