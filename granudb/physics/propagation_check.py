@@ -54,7 +54,7 @@ from typing import Any
 import numpy as np
 
 from granudb.physics import flow, lubrication
-from granudb.physics.uncertainty import SOURCES, exceedance
+from granudb.physics.uncertainty import SOURCES
 
 Arrays = dict[str, np.ndarray]
 
@@ -182,12 +182,14 @@ def first_order_adequate(
     names: tuple[str, ...],
     friction_cap: Any = np.inf,
     tolerance: float = TOLERANCE,
+    relative: dict[str, Any] | None = None,
 ) -> dict[str, np.ndarray]:
     """By quantity (and ``"verdicts"``), true by row where first order's u and its 95 %
     interval (``first_order_intervals``) are adequate by the module's check, from the
     inputs ``x`` and their u (``u``, step names), derive's ``columns`` and first order's
     ``out`` (``u_<q>`` and the verdict probabilities); ``friction_cap`` is the film's
-    μ_f cap min(μ_dry, γ_max)."""
+    μ_f cap min(μ_dry, γ_max). ``relative``, if given, receives u(Q)/Q of the
+    log-normal quantities (for ``first_order_intervals``, which then reuses them)."""
     r_max = _input_scale(x, u, columns)
     with np.errstate(divide="ignore", invalid="ignore"):
         r_u = out["u_tangential_speed_m_s"] / np.abs(columns["tangential_speed_m_s"])
@@ -196,10 +198,10 @@ def first_order_adequate(
     contact = ~((p > 0.025) & (p < 0.975))
     # the film's μ is capped (μ_used = min(μ_lub, cap)): a cap inside μ_lub's interval
     # is a kink of μ_used and ψ
+    # P(μ_lub > cap) between 2.5 and 97.5 % (log-normal): |ln(μ_lub/cap)| < 1.96 u_r
     with np.errstate(divide="ignore", invalid="ignore"):
         lub, u_lub = columns["lubricated_friction"], out["u_lubricated_friction"]
-        capped = exceedance(lub / friction_cap, u_lub / lub)
-    contact &= ~((capped > 0.025) & (capped < 0.975))
+        contact &= ~(np.abs(np.log(lub / friction_cap)) < Z95 * u_lub / lub)
     ok: dict[str, np.ndarray] = {"verdicts": contact}
     change, u_c = _a_change(columns, out) if set(WITH_A) & set(names) else (0.0, 0.0)
     limit = _u_r_limit(r_max, tolerance)
@@ -218,14 +220,21 @@ def first_order_adequate(
                 bound = (_BOUND * r_q + 0.125 * change * u_c / u_r) * _log_factor(u_r)
                 ok[name] = ~(bound > tolerance)  # NaN (no u) passes
             else:  # lognormal: only the inputs' own curvature moves its ends
-                ok[name] = ~(u_q > (limit_t if name in TANGENTIAL else limit) * q)
+                u_r = np.divide(u_q, columns[source])  # Q > 0 (a Q ≤ 0 passes: ±1.96u)
+                ok[name] = ~(u_r > (limit_t if name in TANGENTIAL else limit))
+                if relative is not None and source == name:
+                    relative[name] = u_r
             if name in CONTACT_STEPPED:
                 ok[name] &= contact
     return ok
 
 
 def first_order_intervals(
-    columns: Arrays, out: Arrays, names: tuple[str, ...], critical_stokes: float
+    columns: Arrays,
+    out: Arrays,
+    names: tuple[str, ...],
+    critical_stokes: float,
+    relative: dict[str, Any] | None = None,
 ) -> Arrays:
     """The 95 % interval of each quantity by first order: Q·exp(±1.96 u_r) for a positive
     quantity (first order on ln Q: every one is a product of powers or A(c) of one), ±1.96u
@@ -239,7 +248,9 @@ def first_order_intervals(
             if name in LINEAR:
                 low, high = q - Z95 * u_q, q + Z95 * u_q
             else:
-                t = np.divide(u_q, q)
+                t = (relative or {}).pop(name, None)
+                if t is None:
+                    t = np.divide(u_q, q)
                 if not isinstance(t, np.ndarray) or not t.ndim:  # one scenario
                     t = np.array(t, dtype=float, ndmin=1)
                 t *= Z95
@@ -482,8 +493,9 @@ def check_and_resample(
     for given in u.values():
         stated |= np.isfinite(np.asarray(given, dtype=float))
     result = dict(out)
-    result.update(first_order_intervals(columns, out, names, critical_stokes))
-    ok = first_order_adequate(x, u, columns, out, names, friction_cap)
+    relative: dict[str, Any] = {}
+    ok = first_order_adequate(x, u, columns, out, names, friction_cap, relative=relative)
+    result.update(first_order_intervals(columns, out, names, critical_stokes, relative))
     any_bad = np.zeros(shape, dtype=bool)
     for v in ok.values():
         any_bad |= ~v
