@@ -271,25 +271,26 @@ def first_order_intervals(
 
 
 def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays:
+    """e's interval: e(St) = ceiling·exp(−β/St) at St_am·exp(±1.96 u_r(St_am)), 0 where
+    St_n·exp(±1.96 u_r(St_n)) ≤ St_c (comonotone); its u by quadrature across the step."""
     st_am, st_n = columns["added_mass_stokes_number"], columns["normal_stokes_number"]
     ceiling = columns["restitution_ceiling"]
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         s_am = out["u_added_mass_stokes_number"] / st_am
         s_n = out["u_normal_stokes_number"] / st_n
-
-    def e_at(z: Any) -> np.ndarray:
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            wet = flow.predicted_restitution(st_am * np.exp(z * s_am), ceiling, 0.0)
-            return np.where(st_n * np.exp(z * s_n) > critical_stokes, wet, 0.0)
-
-    low95, high95 = interval_columns(RESTITUTION)
-    defined = np.isfinite(st_am) & np.isfinite(s_am)
-    low = np.where(defined, e_at(-Z95), np.nan)
-    high = np.where(defined, e_at(Z95), np.nan)
-    u_e = np.array(out[f"u_{RESTITUTION}"], dtype=float, copy=True)
+        inv = -flow.LEGENDRE_BETA / st_am  # ln(e/ceiling) = −β/St
+        g = np.exp(Z95 * s_am)
+        high = ceiling * np.exp(inv / g)
+        low = ceiling * np.exp(inv * g)
+        margin = np.log(critical_stokes / st_n)  # rebound where z s_n > margin
+        z_n = Z95 * s_n
+        high = np.where(z_n > margin, high, 0.0)
+        low = np.where(-z_n > margin, low, 0.0)
+    u_e = out[f"u_{RESTITUTION}"]
     p = out["probability_rebound"]
-    across = defined & (p > 0.025) & (p < 0.975)
+    across = (p > 0.025) & (p < 0.975) & np.isfinite(s_am)
     if across.any():
+        u_e = np.array(u_e, dtype=float, copy=True)
         rows = np.flatnonzero(across.reshape(-1))
         flat = {k: np.broadcast_to(v, across.shape).reshape(-1)[rows]
                 for k, v in (("am", st_am), ("n", st_n), ("c", ceiling), ("sa", s_am),
@@ -303,15 +304,16 @@ def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays
                          wet, 0.0)  # fmt: skip
         mean = e @ _WEIGHTS
         sd = np.sqrt(np.maximum((e * e) @ _WEIGHTS - mean * mean, 0.0))
-        u_flat = u_e.reshape(-1)
-        u_flat[rows] = sd
-    # where no rebound is likely (e = 0, no u) the interval is [0, 0] only if stated
-    stated = np.isfinite(u_e) | ~(p <= 0.025)
-    return {
-        low95: np.where(stated, low, np.nan),
-        high95: np.where(stated, high, np.nan),
-        f"u_{RESTITUTION}": u_e,
-    }
+        u_e.reshape(-1)[rows] = sd
+    # no St (dry), no u of St, or no rebound likely with no u: no interval
+    missing = np.isnan(st_am + s_am) | (np.isnan(u_e) & (p <= 0.025))
+    if np.ndim(missing):
+        low[missing] = np.nan
+        high[missing] = np.nan
+    elif missing:
+        low, high = np.full((), np.nan), np.full((), np.nan)
+    low95, high95 = interval_columns(RESTITUTION)
+    return {low95: low, high95: high, f"u_{RESTITUTION}": u_e}
 
 
 def _draw(
