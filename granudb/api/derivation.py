@@ -220,8 +220,8 @@ def derive(frame: Any, **options: Any) -> Any:
         checked["uncertainties"] = uncertain
     with physics_refusal():
         derived = derive_arrays(**arrays, **checked)
-    out = frame.copy()
-    for name, values in derived.items():
-        out[name] = values
+    added = pd.DataFrame(dict(derived), index=frame.index)
+    kept = frame.drop(columns=[c for c in added.columns if c in frame.columns])
+    out = pd.concat([kept, added], axis=1)
     out.attrs["units"] = units_of(out.columns)
     return out

@@ -129,8 +129,13 @@ def print_pair(document: dict[str, Any]) -> None:
             continue
         label = f"{described.symbol} ({described.title.lower()})"
         value = api.qualified_value(document, name)
+        low, high = document.get(f"low95_{name}"), document.get(f"high95_{name}")
+        if isinstance(low, float) and isinstance(high, float) and low == low and high == high:
+            value += f"\n95 %: {api.display(low, name)} – {api.display(high, name)}"
         derived.add_row(Text(label), Text(value), Text(described.description))
     out.print(derived)
+    if document.get("propagation_method"):
+        out.print(Text(f"u and 95 % intervals: {document['propagation_method']}"))
 
     out.print("[bold]Verdicts[/bold]")
     for verdict in document["verdicts"]:

@@ -74,7 +74,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.physics import flow, limits, lubrication, pair, uncertainty
+from granudb.physics import flow, limits, lubrication, pair, propagation_check, uncertainty
 from granudb.physics import quantities as steps
 from granudb.physics.numeric import Numeric, PhysicsInputError
 from granudb.physics.row_chunks import run_in_chunks
@@ -234,6 +234,7 @@ def derive(
     uncertainties: Mapping[str, Numeric] | None = None,
     correlated_materials: Numeric = False,
     one_speed: Numeric = False,
+    monte_carlo: bool = True,
 ) -> dict[str, np.ndarray]:
     """Derive every derived column (``granudb.vocabulary.DERIVED_TERMS``) for arrays of collisions.
 
@@ -264,7 +265,10 @@ def derive(
     (``granudb.physics.uncertainty``: GUM first order); ``correlated_materials`` true
     where the particle and the wall are one material (their sources are then one),
     ``one_speed`` where v_n and v_t are one measured speed at a set angle (their
-    uncertainties fully correlated).
+    uncertainties fully correlated). Each row's u is first order where
+    ``granudb.physics.propagation_check``'s check allows, else its Monte Carlo; with
+    ``monte_carlo`` False first order everywhere, and ``propagation_method`` names the
+    quantities the check failed (the cost of the Monte Carlo is then not paid).
     """
     given = locals()
     names = list(_INPUTS)
@@ -281,6 +285,7 @@ def derive(
     compute = partial(
         _derive_block,
         uncertain=uncertainties is not None,
+        monte_carlo=monte_carlo,
         limiting_shear_slope=limiting_shear_slope,
         gap_fraction=gap_fraction,
         critical_stokes=critical_stokes,
@@ -296,6 +301,7 @@ def _derive_block(
     x: dict[str, np.ndarray],
     *,
     uncertain: bool,
+    monte_carlo: bool,
     limiting_shear_slope: float,
     gap_fraction: float,
     critical_stokes: float,
@@ -303,6 +309,49 @@ def _derive_block(
     """Every derived column for broadcast inputs ``x`` (one block of rows), after
     ``_validate``."""
     _validate(x)
+    evaluate = partial(
+        _evaluate,
+        limiting_shear_slope=limiting_shear_slope,
+        gap_fraction=gap_fraction,
+        critical_stokes=critical_stokes,
+    )
+    columns: dict[str, np.ndarray]
+    columns, (p, h, f, lub, tan) = evaluate(x, keep_steps=True)
+    if uncertain:
+        u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
+        correlated, one_speed = x[_CORRELATED] != 0, x[_ONE_SPEED] != 0
+        first = uncertainty.propagate(
+            x, u, (p, h, f, lub, tan), columns, critical_stokes, correlated, one_speed
+        )
+        # first order where its check allows, else a Monte Carlo; intervals and method
+        names = tuple(k[2:] for k in first if k.startswith("u_"))
+        columns.update(
+            propagation_check.check_and_resample(
+                evaluate,
+                x,
+                u,
+                columns,
+                first,
+                names,
+                correlated,
+                one_speed,
+                critical_stokes,
+                limits.friction_cap(x["mu_dry"], limiting_shear_slope),
+                monte_carlo=monte_carlo,
+            )
+        )
+    return columns
+
+
+def _evaluate(
+    x: dict[str, np.ndarray],
+    *,
+    limiting_shear_slope: float,
+    gap_fraction: float,
+    critical_stokes: float,
+    keep_steps: bool = False,
+) -> Any:
+    """derive's columns for valid inputs ``x`` (and the steps' results if ``keep_steps``)."""
     caps = (x["mu_dry"], limiting_shear_slope)
     p = steps.pair_properties(x)
     h = steps.hertz(x, p)
@@ -311,20 +360,7 @@ def _derive_block(
     tan = steps.tangential(p, f, lub, caps, x["mu_wet"])
     col = steps.collision(p)
     columns = _columns(p, h, f, lub, tan, col, critical_stokes)
-    if uncertain:
-        u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
-        columns.update(
-            uncertainty.propagate(
-                x,
-                u,
-                (p, h, f, lub, tan),
-                columns,
-                critical_stokes,
-                x[_CORRELATED] != 0,
-                x[_ONE_SPEED] != 0,
-            )
-        )
-    return columns
+    return (columns, (p, h, f, lub, tan)) if keep_steps else columns
 
 
 #: Prefix of an input's uncertainty among the block's arrays, and the correlation flag.

@@ -39,7 +39,10 @@ source by source, to 1e-12.
 The first-order result is checked against Monte Carlo propagation (JCGM 101:2008) in
 tests/physics/test_uncertainty.py: within 10 % for input uncertainties up to 5 %; at
 30 % the curvature makes them part: u(St) of a 30 % viscosity (St ∝ 1/μ) is more than
-10 % below the Monte Carlo spread, while h_m ∝ μ^{2/5} still agrees.
+10 % below the Monte Carlo spread. ``derive`` therefore does not take these u as they
+are: ``granudb.physics.propagation_check`` checks them per row and quantity, gives the
+95 % intervals, and replaces by a Monte Carlo the ones its check refuses
+(docs/propagation.md).
 
 **Verdict probabilities** (``verdict_probabilities``): a verdict compares a positive
 quantity with a threshold, q = Q/Q_c > 1. q is taken as lognormal with ln q's standard

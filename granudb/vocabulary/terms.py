@@ -46,6 +46,16 @@ def uncertainty_column(column: str) -> str:
     return UNCERTAINTY_PREFIX + column
 
 
+def interval_columns(column: str) -> tuple[str, str]:
+    """The columns of ``column``'s 95 % coverage interval (its low and high end, same
+    unit): ``low95_lubricated_friction``, ``high95_lubricated_friction``."""
+    return f"low95_{column}", f"high95_{column}"
+
+
+#: The column naming the method that gave a row's u, intervals and probabilities.
+PROPAGATION_METHOD = "propagation_method"
+
+
 #: GUM's notation in a file's header, ``u(v_n_in) [mm/s]``: the same column as
 #: ``u_v_n_in [mm/s]``.
 _UNCERTAINTY_NOTATION = re.compile(r"^\s*u\(\s*([A-Za-z_][A-Za-z0-9_]*)\s*\)")

@@ -20,8 +20,10 @@ from granudb.vocabulary.derived import DERIVED_TERMS
 from granudb.vocabulary.rules import NON_NEGATIVE, RULES
 from granudb.vocabulary.terms import (
     COLLISION_UNCERTAIN,
+    PROPAGATION_METHOD,
     TERMS,
     Term,
+    interval_columns,
     stored,
     uncertainty_column,
 )
@@ -126,14 +128,55 @@ PROBABILITY_TERMS: dict[str, Term] = {
     ),
 }
 
+
+def _interval_terms(column: str, term: Term) -> dict[str, Term]:
+    symbol = term.symbol or column
+    low, high = interval_columns(column)
+    return {
+        name: Term(
+            f"{end} end of {term.title}'s 95 % interval",
+            term.unit,
+            f"{end.capitalize()} end of the 95 % coverage interval of {column} (same unit; "
+            "first order: value·exp(±1.96u/value), ±1.96u for a speed or angle; Monte "
+            "Carlo: its 2.5 % or 97.5 % quantile; propagation_method says which; empty: no u).",
+            role="derived",
+            symbol=f"{symbol} {'≥' if end == 'low' else '≤'}",
+        )
+        for name, end in ((low, "low"), (high, "high"))
+    }
+
+
+#: The 95 % coverage interval's ends of each quantity in ``UNCERTAIN_DERIVED``.
+INTERVAL_TERMS: dict[str, Term] = {
+    name: value
+    for column in UNCERTAIN_DERIVED
+    for name, value in _interval_terms(column, DERIVED_TERMS[column]).items()
+}
+
+#: How a row's u, intervals and verdict probabilities were obtained (one field for all).
+METHOD_TERMS: dict[str, Term] = {
+    PROPAGATION_METHOD: Term(
+        "Propagation method",
+        None,
+        "Which method gave this scenario's standard uncertainties, 95 % intervals and "
+        "verdict probabilities: first order (GUM) where its check shows it adequate, else "
+        "a Monte Carlo (JCGM 101) with the number of draws it took (docs/propagation.md); "
+        "empty where no input states a u.",
+        role="derived",
+        symbol="method of u",
+    )
+}
+
 #: Every column ``derive`` adds when given uncertainties: u of each quantity in
-#: ``UNCERTAIN_DERIVED``, then the probabilities.
+#: ``UNCERTAIN_DERIVED``, the probabilities, each quantity's 95 % interval and the method.
 UNCERTAINTY_TERMS: dict[str, Term] = {
     **{
         uncertainty_column(name): _uncertainty_term(name, DERIVED_TERMS[name], "derived")
         for name in UNCERTAIN_DERIVED
     },
     **PROBABILITY_TERMS,
+    **INTERVAL_TERMS,
+    **METHOD_TERMS,
 }
 
 #: A collision's measured columns and their stated uncertainties' columns

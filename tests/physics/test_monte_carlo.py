@@ -1,6 +1,6 @@
 """Propagation that knows when first order fails (issue 36): the check keeps first order
 where it holds and switches to a seeded Monte Carlo where it does not, checked against
-known distributions (the 10⁶-draw comparison is benchmarks/propagation.py)."""
+known distributions (derive's per-row method is studied in benchmarks/propagation.py)."""
 
 from __future__ import annotations
 

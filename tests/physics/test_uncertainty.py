@@ -65,15 +65,17 @@ def test_first_order_agrees_with_monte_carlo_up_to_5_percent(relative: float) ->
 
 
 def test_first_order_and_monte_carlo_part_at_30_percent_viscosity() -> None:
-    """St ∝ 1/μ: with u(μ)/μ = 30 % (rectangular, so μ stays positive) the spread of
-    1/μ is skewed and wider than first order says, by more than 10 %; h_m ∝ μ^{2/5}
-    is nearly linear and still agrees."""
+    """St ∝ 1/μ: with u(μ)/μ = 30 % the spread of 1/μ is skewed and wider than first
+    order says (by more than 10 % against rectangular draws): derive's check sees it and
+    gives the Monte Carlo's u, whose interval of St is skewed upward."""
     first, sampled = _first_order_and_monte_carlo(0.30, ("viscosity_pa_s",), "uniform")
-    ratio = float(first["u_stokes_number"]) / float(np.std(sampled["stokes_number"]))
-    assert ratio < 0.90
-    assert float(first["u_min_gap_m"]) == pytest.approx(
-        float(np.std(sampled["min_gap_m"])), rel=0.10
-    )
+    first_order = float(first["stokes_number"]) * 0.30  # u_r(St) = u_r(μ)
+    assert first_order / float(np.std(sampled["stokes_number"])) < 0.90
+    assert str(first["propagation_method"]).startswith("Monte Carlo")
+    value = float(first["stokes_number"])
+    low, high = float(first["low95_stokes_number"]), float(first["high95_stokes_number"])
+    assert high - value > 1.5 * (value - low)
+    assert float(first["u_stokes_number"]) > 1.1 * first_order
 
 
 def test_same_material_on_both_sides_is_fully_correlated() -> None:
@@ -154,9 +156,9 @@ def test_blocks_give_the_same_uncertainties() -> None:
     n = 70_000
     speeds = rng.uniform(0.05, 1.0, n)
     table = derive(**(SCENARIO | {"v_n_in_m_s": speeds}),
-                   uncertainties={"u_v_n_in_m_s": 0.02 * speeds})  # fmt: skip
+                   uncertainties={"u_v_n_in_m_s": 0.02 * speeds}, monte_carlo=False)  # fmt: skip
     one = derive(**(SCENARIO | {"v_n_in_m_s": speeds[-1]}),
-                 uncertainties={"u_v_n_in_m_s": 0.02 * speeds[-1]})  # fmt: skip
+                 uncertainties={"u_v_n_in_m_s": 0.02 * speeds[-1]}, monte_carlo=False)  # fmt: skip
     assert float(table["u_min_gap_m"][-1]) == float(one["u_min_gap_m"])
 
 
@@ -207,7 +209,7 @@ def test_fast_propagation_equals_the_straightforward_sums(monkeypatch) -> None:
 
     monkeypatch.setattr(uncertainty, "sensitivities", spy)
     flags = {"correlated_materials": rng.random(n) < 0.5, "one_speed": rng.random(n) < 0.5}
-    result = derive(**inputs, uncertainties=u, **flags)
+    result = derive(**inputs, uncertainties=u, **flags, monte_carlo=False)
     monkeypatch.undo()
     [(sens, scaled)] = seen
     quantities = {name: value for name, value in sens.items() if name in result}
@@ -221,6 +223,10 @@ def test_fast_propagation_equals_the_straightforward_sums(monkeypatch) -> None:
             else (np.abs(result[name]) * relative)
         )
         got = result[f"u_{name}"]
+        # e across St_c's step (rebound uncertain) takes its u by quadrature, not sums
+        p = result["probability_rebound"]
+        first = ~((p > 0.025) & (p < 0.975)) if name == "predicted_restitution" else True
+        got, want = np.where(first, got, np.nan), np.where(first, want, np.nan)
         if name == "predicted_restitution":  # 0 or NaN where rebound is not predicted
             keep = np.isfinite(got) & (got > 0)
             got, want = got[keep], want[keep]
