@@ -176,6 +176,20 @@ def test_derive_frame_takes_u_columns_and_carries_the_probabilities() -> None:
     with pytest.raises(ValidationError, match="u_viscosity_pa_s") as caught:
         granudb.derive(frame)
     assert caught.value.row == 2
+    # the propagation's options are options, not columns, and are checked as such
+    from granudb.api.derivation import INPUTS
+
+    assert "monte_carlo" not in INPUTS and "monte_carlo_draws" not in INPUTS
+    frame["u_viscosity_pa_s"] = [0.8e-3, 0.8e-3]  # 25 %: the check sends St to the draws
+    with_mc = granudb.derive(frame)["propagation_method"]
+    assert all(m.startswith("Monte Carlo") for m in with_mc)
+    first = granudb.derive(frame, monte_carlo=False)["propagation_method"]
+    assert all(m.startswith("first order (GUM); the check failed for") for m in first)
+    spent = granudb.derive(frame, monte_carlo_draws=0)["propagation_method"]
+    assert all("Monte Carlo not run" in m for m in spent)
+    for option, value in (("monte_carlo", "yes"), ("monte_carlo_draws", -1)):
+        with pytest.raises(ValidationError, match=option):
+            granudb.derive(frame, **{option: value})
 
 
 def test_fluid_points_carry_their_uncertainty_into_the_viscosity(opened) -> None:

@@ -34,7 +34,14 @@ from granudb.vocabulary.listings import units_of
 
 _PARAMETERS = inspect.signature(derive_arrays).parameters
 #: The keyword options of ``derive`` (numbers for the whole table, not columns).
-OPTIONS = ("critical_stokes", "dry_friction", "gap_fraction", "dry_restitution")
+OPTIONS = (
+    "critical_stokes",
+    "dry_friction",
+    "gap_fraction",
+    "dry_restitution",
+    "monte_carlo",
+    "monte_carlo_draws",
+)
 _NOT_OFFERED = (
     "limiting_shear_slope",
     "threads",
@@ -144,6 +151,18 @@ def _options(options: Mapping[str, Any]) -> dict[str, float]:
         if option == "critical_stokes":
             checked[option] = inputs.critical_stokes(value)
             continue
+        if option == "monte_carlo":
+            if not isinstance(value, bool | np.bool_):
+                rule = "must be True or False"
+                raise ValidationError(option, repr(value)[:60], rule, parameter=True)
+            checked[option] = bool(value)
+            continue
+        if option == "monte_carlo_draws":
+            if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 0:
+                rule = "must be a whole number of draws ≥ 0"
+                raise ValidationError(option, repr(value)[:60], rule, parameter=True)
+            checked[option] = int(value)
+            continue
         number = inputs.number(value, option)
         if number is None:
             raise inputs.missing(option)
@@ -160,7 +179,10 @@ def derive(frame: Any, **options: Any) -> Any:
     ``granudb.api.derivation.INPUTS`` (e.g. ``particle_density_kg_m3``,
     ``wall_youngs_modulus_pa``, ``diameter_m``, ``v_n_in_m_s``); the ten in ``REQUIRED``
     in every row, the others optional (NaN: not given). ``options`` are
-    ``critical_stokes``, ``dry_friction``, ``gap_fraction`` and ``dry_restitution``.
+    ``critical_stokes``, ``dry_friction``, ``gap_fraction`` and ``dry_restitution``, and,
+    for the propagation, ``monte_carlo`` (False: first order everywhere, the method naming
+    where its check failed) and ``monte_carlo_draws`` (the call's Monte Carlo budget,
+    default 5,000,000 draws; docs/propagation.md).
     Columns ``u_<input>`` (``UNCERTAINTY_COLUMNS``: ``u_viscosity_pa_s``, …; ≥ 0, NaN:
     not given) are the inputs' standard uncertainties: then every continuous derived
     quantity gets its ``u_<column>`` and each verdict its probability

@@ -235,6 +235,7 @@ def derive(
     correlated_materials: Numeric = False,
     one_speed: Numeric = False,
     monte_carlo: bool = True,
+    monte_carlo_draws: int = propagation_check.DRAW_BUDGET,
 ) -> dict[str, np.ndarray]:
     """Derive every derived column (``granudb.vocabulary.DERIVED_TERMS``) for arrays of collisions.
 
@@ -269,6 +270,9 @@ def derive(
     ``granudb.physics.propagation_check``'s check allows, else its Monte Carlo; with
     ``monte_carlo`` False first order everywhere, and ``propagation_method`` names the
     quantities the check failed (the cost of the Monte Carlo is then not paid).
+    ``monte_carlo_draws`` bounds the Monte Carlo's cost: the call's draws of the
+    derivation over all its rows, each block of rows its rows' share, served in row order;
+    a row beyond it keeps first order and its ``propagation_method`` says so.
     """
     given = locals()
     names = list(_INPUTS)
@@ -282,10 +286,12 @@ def derive(
         x[_U + short] = arrays[len(names) + index]
     if uncertainties is not None:
         x[_CORRELATED], x[_ONE_SPEED] = arrays[-2], arrays[-1]
+    rows = max(int(arrays[0].size), 1) if arrays else 1
     compute = partial(
         _derive_block,
         uncertain=uncertainties is not None,
         monte_carlo=monte_carlo,
+        draws_per_row=monte_carlo_draws / rows,
         limiting_shear_slope=limiting_shear_slope,
         gap_fraction=gap_fraction,
         critical_stokes=critical_stokes,
@@ -302,6 +308,7 @@ def _derive_block(
     *,
     uncertain: bool,
     monte_carlo: bool,
+    draws_per_row: float,
     limiting_shear_slope: float,
     gap_fraction: float,
     critical_stokes: float,
@@ -338,6 +345,7 @@ def _derive_block(
                 critical_stokes,
                 limits.friction_cap(x["mu_dry"], limiting_shear_slope),
                 monte_carlo=monte_carlo,
+                budget=draws_per_row * max(int(np.size(columns[names[0]])), 1),
             )
         )
     return columns

@@ -66,6 +66,13 @@ NUMERICAL_TOLERANCE = 0.02
 BATCH = 2_000
 MAX_DRAWS = 20_000
 MIN_BATCHES = 2
+#: Draws of the derivation one call may spend on its Monte Carlo, over all its rows
+#: (``derive(..., monte_carlo_draws=…)``): about 5 s of CPU on this project's machine
+#: (measured: 1 µs a draw of one row), 250 rows at the full ``MAX_DRAWS`` or 1,250 at two
+#: batches; one scenario (``pair``) never reaches it. Each block of rows gets
+#: its share (its rows' share of the call's); a row the share does not reach keeps first
+#: order and its method says so (``NOT_RUN``), never silently.
+DRAW_BUDGET = 5_000_000
 #: Rows × draws evaluated at once (bounds memory).
 CHUNK = 200_000
 SEED = 20_081  # JCGM 101:2008
@@ -75,6 +82,10 @@ _BOUND = 0.5 * Z95 * Z95 / (2 * Z95)
 FIRST_ORDER = "first order (GUM)"
 MONTE_CARLO = "Monte Carlo (JCGM 101), {draws:,} draws"
 NOT_REACHED = " (tolerance not reached)"
+NOT_RUN = (
+    "{first}; the check failed for {failed}; Monte Carlo not run: the call's budget of "
+    "{budget:,} draws was spent on earlier rows (monte_carlo_draws raises it)"
+)
 
 #: The column naming each row's method, and the ends of a quantity's 95 % interval: the
 #: names ``granudb.vocabulary.terms`` gives them (physics imports nothing of granudb;
@@ -377,18 +388,27 @@ def monte_carlo_rows(
     max_draws: int = MAX_DRAWS,
     numerical_tolerance: float = NUMERICAL_TOLERANCE,
     seed: int = SEED,
+    budget: float = np.inf,
 ) -> tuple[Arrays, np.ndarray, np.ndarray]:
     """({u_<q>, low95_<q>, high95_<q>, probabilities} of ``rows``, draws used by row,
     whether the tolerance was reached by row): the module's adaptive Monte Carlo;
-    ``evaluate`` maps inputs (step names) to derive's columns."""
+    ``evaluate`` maps inputs (step names) to derive's columns. At most ``budget`` draws in
+    all: rows are served in order, each with at least ``MIN_BATCHES`` batches; a row the
+    budget does not reach has 0 draws (and NaN results)."""
     stats = ("sd", "low", "high")
     per_chunk = max(1, CHUNK // batch)
     result: Arrays = {}
     used = np.zeros(rows.size, dtype=int)
     reached = np.zeros(rows.size, dtype=bool)
+    remaining = budget
     for start in range(0, rows.size, per_chunk):
-        part = rows[start : start + per_chunk]
+        affordable = int(min(per_chunk, remaining // (MIN_BATCHES * batch)))
+        if affordable < 1:
+            break
+        part = rows[start : start + affordable]
         m = part.size
+        # this chunk's rows may go on while the budget lasts (never below MIN_BATCHES)
+        limit = max(MIN_BATCHES * batch, min(max_draws, int(remaining // m) // batch * batch))
         batches: list[dict[str, np.ndarray]] = []
         while True:
             h = len(batches)
@@ -425,8 +445,9 @@ def monte_carlo_rows(
                 for stat in stats:
                     spread = _spread(batches, f"{name}:{stat}")
                     done &= ~(2 * spread > numerical_tolerance * width)
-            if done.all() or h * batch >= max_draws:
+            if done.all() or h * batch >= limit:
                 break
+        remaining -= m * len(batches) * batch
         sl = slice(start, start + m)
         used[sl] = len(batches) * batch
         reached[sl] = done
@@ -434,7 +455,9 @@ def monte_carlo_rows(
             name, _, stat = key.partition(":")
             column = {"": name, "sd": f"u_{name}", "low": interval_columns(name)[0],
                       "high": interval_columns(name)[1]}[stat]  # fmt: skip
-            result.setdefault(column, np.empty(rows.size))[sl] = _mean(batches, key)
+            result.setdefault(column, np.full(rows.size, np.nan))[sl] = _mean(batches, key)
+        if m < per_chunk and start + m < rows.size:
+            break  # the budget is spent
     return result, used, reached
 
 
@@ -484,12 +507,14 @@ def check_and_resample(
     friction_cap: Any = np.inf,
     *,
     monte_carlo: bool = True,
+    budget: float = DRAW_BUDGET,
 ) -> Arrays:
     """``out`` (first order's ``u_<q>`` and probabilities) with, for every row: the 95 %
     intervals ``low95_<q>``/``high95_<q>`` and ``propagation_method``; rows where
     ``first_order_adequate`` fails get the Monte Carlo's u, intervals and probabilities
-    for the quantities that failed (and the probabilities). A row none of whose inputs
-    states a u has no method (None) and no interval (NaN)."""
+    for the quantities that failed (and the probabilities), as far as ``budget`` draws
+    reach (rows in order; the others keep first order, and their method says why). A row
+    none of whose inputs states a u has no method (None) and no interval (NaN)."""
     shape = np.shape(columns[names[0]])
     stated = np.zeros(shape, dtype=bool)
     for given in u.values():
@@ -527,8 +552,16 @@ def check_and_resample(
     # the draws' statistics (and the tolerance) only for the quantities some row sends
     drawn_names = tuple(k for k in names if k in fail_at and fail_at[k].any())
     drawn, used, reached = monte_carlo_rows(
-        evaluate, flat_x, u_flat, rows, drawn_names, flat(correlated) != 0, flat(one_speed) != 0
+        evaluate,
+        flat_x,
+        u_flat,
+        rows,
+        drawn_names,
+        flat(correlated) != 0,
+        flat(one_speed) != 0,
+        budget=budget,
     )
+    served = used > 0
     any_verdict = fail_at["verdicts"] | fail_at.get(RESTITUTION, False)
     for column, values in drawn.items():
         if column not in result:
@@ -542,9 +575,9 @@ def check_and_resample(
                 keep = flat(columns["normal_stokes_number"])[rows]
             elif quantity in CONTACT_STEPPED:  # so has μ at its cap (no first-order u)
                 keep = flat(out["u_lubricated_friction"])[rows]
-            replace = fail_at[quantity] & ~np.isnan(keep)
+            replace = fail_at[quantity] & ~np.isnan(keep) & served
         else:  # a probability without a number (dry, no Y) stays without
-            replace = any_verdict & ~np.isnan(flat(out[column])[rows])
+            replace = any_verdict & ~np.isnan(flat(out[column])[rows]) & served
         target[rows] = np.where(replace, values, target[rows])
         result[column] = target.reshape(shape)
     # one text per distinct pattern of failing quantities and draws (no per-row Python)
@@ -556,13 +589,16 @@ def check_and_resample(
     patterns, inverse = np.unique(key, axis=0, return_inverse=True)
     texts = []
     for pattern_bits, draws, done in patterns:
-        which = [
+        which = ", ".join(
             k if k != "verdicts" else "verdict probabilities"
             for index, k in enumerate(labels)
             if pattern_bits >> index & 1
-        ]
+        )
+        if not draws:
+            texts.append(NOT_RUN.format(first=FIRST_ORDER, failed=which, budget=int(budget)))
+            continue
         text = MONTE_CARLO.format(draws=int(draws)) + ("" if done else NOT_REACHED)
-        texts.append(f"{text} for {', '.join(which)}; {FIRST_ORDER} for the rest")
+        texts.append(f"{text} for {which}; {FIRST_ORDER} for the rest")
     flat_method = method.reshape(-1)
     flat_method[rows] = np.array(texts, dtype=object)[inverse.reshape(-1)]
     result[PROPAGATION_METHOD] = flat_method.reshape(shape)

@@ -57,3 +57,39 @@ def test_the_same_scenario_gives_the_same_numbers() -> None:
     u = {"u_viscosity_pa_s": 0.25 * SCENARIO["viscosity_pa_s"]}
     first, again = derive(**SCENARIO, uncertainties=u), derive(**SCENARIO, uncertainties=u)
     assert float(first["u_stokes_number"]) == float(again["u_stokes_number"])
+
+
+def test_the_call_budget_bounds_the_monte_carlo_and_says_where_it_stopped() -> None:
+    """300 rows that all need the Monte Carlo (25 % on μ), a budget for about 100 of them
+    at two batches: the first rows get the Monte Carlo, the rest keep first order with a
+    method that names the budget; within the budget the rows agree with a call that has
+    no limit (same seeds); nothing is silently left without an interval."""
+    from granudb.physics.propagation_check import BATCH, MIN_BATCHES
+
+    rows = 300
+    table = {k: np.full(rows, v) for k, v in SCENARIO.items()}
+    u = {"u_viscosity_pa_s": np.full(rows, 0.25 * SCENARIO["viscosity_pa_s"])}
+    budget = 100 * MIN_BATCHES * BATCH
+    got = derive(**table, uncertainties=u, monte_carlo_draws=budget)
+    methods = list(got["propagation_method"])
+    served = [m.startswith("Monte Carlo") for m in methods]
+    assert 0 < sum(served) <= 100 and served == sorted(served, reverse=True)
+    unserved = methods[sum(served)]
+    assert unserved.startswith(FIRST_ORDER) and "stokes_number" in unserved
+    assert f"budget of {budget:,} draws" in unserved and "monte_carlo_draws" in unserved
+    first = sum(served)
+    st = float(got["stokes_number"][0])
+    # the rows beyond the budget keep first order's interval (log-normal), not NaN
+    assert float(got["high95_stokes_number"][first]) == pytest.approx(
+        st * np.exp(Z95 * float(got["u_stokes_number"][first]) / st), rel=1e-9
+    )
+    # within the budget: the Monte Carlo's skewed interval, as with no limit
+    unlimited = derive(**{k: v[:1] for k, v in table.items()}, uncertainties={
+        k: v[:1] for k, v in u.items()})  # fmt: skip
+    assert float(got["high95_stokes_number"][0]) == pytest.approx(
+        float(unlimited["high95_stokes_number"][0]), rel=0.02
+    )
+    assert float(got["high95_stokes_number"][0]) > float(got["high95_stokes_number"][first])
+    # a budget of 0: first order everywhere, each row saying the Monte Carlo was not run
+    none = derive(**table, uncertainties=u, monte_carlo_draws=0)
+    assert all("Monte Carlo not run" in m for m in none["propagation_method"])
