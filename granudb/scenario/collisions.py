@@ -257,6 +257,9 @@ def _derive_stored(
             dry_friction=dry_mu,
             immersed_friction=wet_mu,
             uncertainties=stated,
+            # a table read runs first order, its method naming where the check failed:
+            # reading runs never pays for draws (granudb.derive and pair do)
+            monte_carlo=False,
         )
     if stated is not None:
         # a run stating none of derive's input uncertainties has none propagated (not 0)
