@@ -35,8 +35,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sets", type=int, default=200)
     parser.add_argument("--sizes", type=int, nargs="+", default=list(SIZES))
-    parser.add_argument("--only", default="", help="cases whose name contains this")
-    parser.add_argument("--skip", default="\0", help="leave out cases whose name contains this")
+    parser.add_argument(
+        "--only", nargs="+", default=[""], help="cases whose name contains any of these"
+    )
+    parser.add_argument(
+        "--skip", nargs="+", default=["\0"], help="leave out cases whose name contains any"
+    )
     args = parser.parse_args()
     failed = False
     print(f"coverage of nominal 95 % intervals over {args.sets} synthetic sets; bound ≥ {BOUND}")
@@ -45,7 +49,7 @@ def main() -> int:
     )
     print("(rows marked 'Bayes:' are the Bayesian option, at most their case's most_sets sets)")
     for case in CASES:
-        if args.only not in case.name or args.skip in case.name:
+        if not any(o in case.name for o in args.only) or any(s in case.name for s in args.skip):
             continue
         for n in args.sizes:
             start = time.perf_counter()

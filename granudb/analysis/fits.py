@@ -335,7 +335,11 @@ def _walton_group(
         "BIC = n ln(S/n) + p ln n, p = 2 sticking, 2 sliding, 4 split)"
     )
     # a run counted as sliding whose own kinematics says it sticks never enters μ_f
-    moved, moved_why = (0, "") if model == "sticking" else core.kinematic_sticking(x, y, c, k)
+    if model == "sticking":  # ... and one taken as sticking that slides never enters β
+        moved, moved_why = core.kinematic_sliding(x, y, c, float(fit.beta[0]))
+        moved = -moved
+    else:
+        moved, moved_why = core.kinematic_sticking(x, y, c, k)
     if moved:
         k += moved
         fit = core.at_split(x, y, c, e, k)
