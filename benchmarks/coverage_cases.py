@@ -380,6 +380,8 @@ def short_method(row: dict, low_key: str) -> str:
                or row.get("interval_method") or "")  # fmt: skip
     if said.startswith("asymptotic"):
         return "asymptotic"
+    if said.startswith("profile likelihood"):
+        return "profile"
     if "t-interval" in said:
         return "small-n t"
     if "posterior" in said or "credible" in said or "emcee" in said:

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import bayesian, intervals
+from granudb.analysis import bayesian, intervals, restitution_small_n
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.errors import ValidationError
 from granudb.lazy import scipy_optimize
@@ -482,8 +482,8 @@ def _intervals(
 ) -> None:
     """The bootstrap-t intervals into ``row``, or why there are none (``interval_reason``)."""
     refused = intervals.too_few(len(st), MIN_RUNS_FOR_INTERVAL)
-    if refused:
-        row["interval_reason"] = refused
+    if refused:  # few runs: the profile likelihood where it is measured to hold (issue 36)
+        restitution_small_n.into_row(row, model, st, e, fixed, stated, dry, MIN_RUNS_FOR_INTERVAL)
         return
     fit = (row["e_dry"], row["e_dry_stderr"], row["parameter"], row["parameter_stderr"])
     found = bootstrap_intervals(
