@@ -75,8 +75,9 @@ def restitution_model(asked: str | None = None, *, report: bool = False) -> tupl
 
 E_DRY_MAX = 1.0
 SEED = 0
-#: Fewer runs than this give no interval: St_c's bootstrap-t interval covered 0.85 to 0.86
-#: at n = 10 (benchmarks/fit_coverage.py; a pivot on ln St_c did no better).
+#: Fewer runs than this get no bootstrap interval: St_c's bootstrap-t covered 0.85 to 0.86
+#: at n = 10 (benchmarks/fit_coverage.py; a pivot on ln St_c did no better); they get the
+#: profile likelihood of ``restitution_small_n`` instead (issue 36).
 MIN_RUNS_FOR_INTERVAL = 20
 #: Gauss–Newton iterations of each resample's refit (it starts at the fit).
 ITERATIONS = 30
