@@ -27,6 +27,13 @@ METHOD = (
     "t²_(n−k)}}, the other parameter minimised within its bounds at each θ (fewer than {runs} "
     "runs)"
 )
+
+
+def gave(row: dict) -> bool:
+    """True where a restitution row's intervals are this module's (no bootstrap sets)."""
+    return str(row.get("interval_method", "")).startswith(METHOD.split(",")[0])
+
+
 #: What the method adds with e_dry held at the dry runs' mean.
 FIXED = "; e_dry held at the dry runs' mean (its own uncertainty not included)"
 #: Grid of the parameter: this many points from GRID_LOW min St_n to GRID_HIGH max St_n.
