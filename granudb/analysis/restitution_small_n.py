@@ -151,6 +151,8 @@ def into_row(
             reasons.append(f"{what}: {got.reason}")
     if any(not got.reason for got in found.values()):
         row["interval_method"] = METHOD.format(runs=minimum) + (FIXED if fixed else "")
+        row["bootstrap_resamples"] = 0  # no resamples drawn: the record says so
+        row["bootstrap_rule"] = f"no resamples: the profile likelihood below {minimum} runs"
         if fixed and dry is not None and len(dry) >= 2:
             row["e_dry_source"] = row.get("e_dry_source", "").replace(
                 "redrawn in the bootstrap", "held in the profile likelihood"

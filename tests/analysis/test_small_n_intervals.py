@@ -231,6 +231,13 @@ def test_restitution_at_few_runs_has_a_profile_interval_that_covers(model, truth
             assert row["interval_method"].startswith("profile likelihood, F-calibrated")
             assert row["e_dry_low"] <= row["e_dry"] <= row["e_dry_high"]
     assert given >= 38 and hits / given >= 0.9  # 200 sets: 0.96 and 0.955
+    # the report's note says the record's method, and no resamples were drawn
+    from granudb.reporting import tables
+
+    [row] = fits.restitution(restitution_runs(0.97, model, truth, n=8, seed=1), model)
+    note = tables.bootstrap_note([row])
+    assert row["interval_method"] in note and "resamples" not in note
+    assert row["bootstrap_resamples"] == 0
     # awkward: three runs leave one degree of freedom; two give none and are refused
     found = restitution_small_n.profile_intervals(model, np.array([20.0, 200.0]),
                                                   np.array([0.5, 0.9]), None)  # fmt: skip
