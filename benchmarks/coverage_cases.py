@@ -104,7 +104,7 @@ def _gap_stated(n, seed):
 _THRESHOLD, _EXPONENTIAL = _restitution("threshold"), _restitution("exponential")
 _THRESHOLD_BAYES = _restitution("threshold", "bayes")
 _EXPONENTIAL_BAYES = _restitution("exponential", "bayes")
-#: Sets per cell of the Bayesian option's rows (a posterior costs about a second a set).
+#: Sets per cell of the Bayesian option's rows (a posterior costs 1–3 s CPU a set).
 BAYES_SETS = 200
 PARAMETER = ("parameter", "parameter_low", "parameter_high")
 E_DRY = ("e_dry", "e_dry_low", "e_dry_high")

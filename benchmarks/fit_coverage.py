@@ -13,10 +13,12 @@ sizes (``--sizes 10000`` runs it): there the Walton and gap-viscosity fits give 
 asymptotic interval (``granudb.analysis.asymptotic``, from 10,000 runs; seconds a cell),
 the restitution fits the bootstrap (minutes a cell). Exit status 1 when any coverage is below
 the bound, or an interval has zero width. The Bayesian option's rows ("Bayes: …", posterior
-credible intervals by emcee) run at most ``coverage.BAYES_SETS`` sets per cell: a posterior
-costs about a second a set.
+credible intervals by emcee) run at most ``coverage.BAYES_SETS`` (200) sets per cell: a
+posterior costs 1–3 s CPU a set (minutes a cell). ``--only`` and ``--skip`` take several
+substrings (any matches); cases on the same synthetic sets share their fits.
 
     nice -n 10 python benchmarks/fit_coverage.py [--sets 200] [--sizes 3 5 10 30 100]
+        [--only "Bayes: Walton μ_f" "Bayes: Walton β"] [--skip Bayes]
 """
 
 from __future__ import annotations
