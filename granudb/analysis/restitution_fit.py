@@ -535,8 +535,9 @@ def restitution(
     ``e_dry_source`` (fitted, or the dry runs' mean); ``parameter_name``
     ('fitted_critical_stokes' or 'k'), ``parameter``, ``parameter_stderr`` (asymptotic);
     ``parameter_low``/``_high`` and ``e_dry_low``/``_high``: studentized bootstrap intervals
-    (``interval_method``, ``bootstrap_resamples``, ``bootstrap_seed``; NaN with
-    ``interval_reason`` below MIN_RUNS_FOR_INTERVAL runs or when degenerate);
+    (``interval_method``, ``bootstrap_resamples``, ``bootstrap_seed``); below
+    MIN_RUNS_FOR_INTERVAL runs the profile likelihood's (``restitution_small_n``,
+    ``bootstrap_resamples`` 0); NaN with ``interval_reason`` where refused or degenerate;
     ``fitted_critical_stokes`` (threshold form only); ``stokes_number`` (which St);
     ``reason`` (why the fit is empty, else ''); ``fit_method``; ``model_reason`` (why
     this form: ``restitution_model``; ``model`` None: the default, or with ``report`` the
