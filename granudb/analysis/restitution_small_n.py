@@ -16,6 +16,8 @@ Measured coverage per form and parameter: docs/intervals.md.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -29,7 +31,7 @@ METHOD = (
 )
 
 
-def gave(row: dict) -> bool:
+def gave(row: Mapping[str, Any]) -> bool:
     """True where a restitution row's intervals are this module's (no bootstrap sets)."""
     return str(row.get("interval_method", "")).startswith(METHOD.split(",")[0])
 
