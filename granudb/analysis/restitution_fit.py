@@ -336,20 +336,30 @@ def one_step_series(model: str, st: np.ndarray, e: np.ndarray, start: tuple) -> 
 
 
 def dry_means(dry: np.ndarray | None, resamples: int, seed: int) -> np.ndarray | None:
-    """Each resample's e_dry: the mean of the group's dry runs drawn with replacement (their
-    own bootstrap, from a generator of its own so the immersed runs' draws are unchanged),
-    at most E_DRY_MAX; None with fewer than two dry runs (nothing to redraw)."""
+    """Each resample's e_dry: ē_dry + s_dry/√m · T, T of Student's t with m − 1 degrees of
+    freedom (m dry runs, s_dry their sample sd): the law of the true mean given the dry
+    runs, their unknown scatter integrated (from a generator of its own so the immersed
+    runs' draws are unchanged), at most E_DRY_MAX; None with fewer than two dry runs
+    (nothing to redraw). Resampling the dry runs instead gave St_c's interval 0.795 at
+    10,000 runs with 4 dry runs (200 sets): the bootstrap of 4 values is too narrow
+    ((m−1)/m of the variance, normal tails) where e_dry's error dominates (issue 36)."""
     if dry is None or len(dry) < 2:
         return None
     rng = np.random.default_rng([seed, DRY_STREAM])
-    drawn = rng.integers(0, len(dry), size=(resamples, len(dry)))
-    return np.minimum(np.asarray(dry, dtype=float)[drawn].mean(axis=1), E_DRY_MAX)
+    values = np.asarray(dry, dtype=float)
+    m = len(values)
+    spread = float(np.std(values, ddof=1)) / math.sqrt(m)
+    drawn = float(np.mean(values)) + spread * rng.standard_t(m - 1, size=resamples)
+    return np.minimum(drawn, E_DRY_MAX)
 
 
 #: The generator stream of the dry runs' redraws (``dry_means``).
 DRY_STREAM = 1
 #: What ``interval_method`` adds when the dry runs' mean is redrawn in every resample.
-DRY_METHOD = ", the dry runs' mean e_dry redrawn in every resample (the dry runs resampled)"
+DRY_METHOD = (
+    ", the dry runs' mean e_dry redrawn in every resample from its Student-t law "
+    "(ē_dry + s_dry/√m · t_(m−1))"
+)
 
 
 def bootstrap_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
