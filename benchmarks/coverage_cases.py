@@ -176,8 +176,8 @@ def _gap_stated(n, seed):
 _THRESHOLD, _EXPONENTIAL = _restitution("threshold"), _restitution("exponential")
 _THRESHOLD_BAYES = _restitution("threshold", "bayes")
 _EXPONENTIAL_BAYES = _restitution("exponential", "bayes")
-#: Sets per cell of the Bayesian option's rows (a posterior costs about a second a set).
-BAYES_SETS = 100
+#: Sets per cell of the Bayesian option's rows (a posterior costs 1–3 s CPU a set).
+BAYES_SETS = 200
 PARAMETER = ("parameter", "parameter_low", "parameter_high")
 E_DRY = ("e_dry", "e_dry_low", "e_dry_high")
 CASES = [
@@ -453,6 +453,8 @@ def short_method(row: dict, low_key: str) -> str:
                or row.get("interval_method") or "")  # fmt: skip
     if said.startswith("asymptotic"):
         return "asymptotic"
+    if said.startswith("profile likelihood"):
+        return "profile"
     if "t-interval" in said:
         return "small-n t"
     if "posterior" in said or "credible" in said or "emcee" in said:

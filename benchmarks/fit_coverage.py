@@ -15,10 +15,12 @@ the restitution fits too (from issue 36; before it the bootstrap, minutes a cell
 cells named "large n: …" (both forms, with and without stated u, e_dry fitted or from 4
 or 50 dry runs) run at n = 10,000 only. Exit status 1 when any coverage is below
 the bound, or an interval has zero width. The Bayesian option's rows ("Bayes: …", posterior
-credible intervals by emcee) run at most ``coverage.BAYES_SETS`` sets per cell: a posterior
-costs about a second a set.
+credible intervals by emcee) run at most ``coverage.BAYES_SETS`` (200) sets per cell: a
+posterior costs 1–3 s CPU a set (minutes a cell). ``--only`` and ``--skip`` take several
+substrings (any matches); cases on the same synthetic sets share their fits.
 
     nice -n 10 python benchmarks/fit_coverage.py [--sets 200] [--sizes 3 5 10 30 100]
+        [--only "Bayes: Walton μ_f" "Bayes: Walton β"] [--skip Bayes]
 """
 
 from __future__ import annotations
@@ -37,8 +39,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sets", type=int, default=200)
     parser.add_argument("--sizes", type=int, nargs="+", default=list(SIZES))
-    parser.add_argument("--only", default="", help="cases whose name contains this")
-    parser.add_argument("--skip", default="\0", help="leave out cases whose name contains this")
+    parser.add_argument(
+        "--only", nargs="+", default=[""], help="cases whose name contains any of these"
+    )
+    parser.add_argument(
+        "--skip", nargs="+", default=["\0"], help="leave out cases whose name contains any"
+    )
     args = parser.parse_args()
     failed = False
     print(f"coverage of nominal 95 % intervals over {args.sets} synthetic sets; bound ≥ {BOUND}")
@@ -47,7 +53,7 @@ def main() -> int:
     )
     print("(rows marked 'Bayes:' are the Bayesian option, at most their case's most_sets sets)")
     for case in CASES:
-        if args.only not in case.name or args.skip in case.name:
+        if not any(o in case.name for o in args.only) or any(s in case.name for s in args.skip):
             continue
         for n in [m for m in args.sizes if case.sizes is None or m in case.sizes]:
             start = time.perf_counter()

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import asymptotic, restitution_fit
+from granudb.analysis import asymptotic, restitution_fit, restitution_small_n
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
@@ -93,6 +93,8 @@ def restitution_band(frame: Any, row: Mapping[str, Any], grid: np.ndarray):
     where its interval is asymptotic (``bootstrap_resamples`` 0), ``asymptotic.SETS`` sets
     of the same normal law (``restitution_fit.asymptotic_sets``); None where it has none."""
     if not all(math.isfinite(row.get(k, math.nan)) for k in ("parameter", "parameter_low")):
+        return None
+    if restitution_small_n.gave(row):  # a profile-likelihood interval: no bootstrap sets
         return None
     mine = np.ones(len(frame), dtype=bool)
     for k in ("dataset", "particle", "wall"):

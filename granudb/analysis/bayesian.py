@@ -590,6 +590,11 @@ def walton_row(
         if name not in posterior.names or not math.isfinite(row[value_key]):
             continue  # a line of < 3 runs: no value whatever the method
         median, low, high = posterior.summary(name)
+        if name == "beta" and len(x) < 2 * core.MIN_RUNS_PER_LINE:
+            # too few runs to test a split: the median, no interval (issue 36: on split
+            # data the all-sticking posterior at 3 runs covered 0.44)
+            row[value_key] = median
+            continue
         row.update({value_key: median, f"{prefix}_low": low, f"{prefix}_high": high})
         row[f"{prefix}_interval_method"] = INTERVAL_METHOD
         if f"{prefix}_stderr" in row:

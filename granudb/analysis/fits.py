@@ -262,6 +262,15 @@ def _beta_refusal(model: str, n: int) -> str:
     return ""
 
 
+def _bayes_beta_refusal(row: dict) -> str:
+    """The Bayesian option's refusal of β's interval ('' where given): as the
+    least-squares fit's, with too few runs to test a split (``bayesian.walton_row``)."""
+    n = int(row["n_runs"])
+    if n >= 2 * core.MIN_RUNS_PER_LINE or not math.isfinite(row["rotational_restitution"]):
+        return ""
+    return "interval of β " + _beta_refusal("sticking", n).removeprefix("interval ")
+
+
 #: The row's ``interval_method`` when none of its parameters has an interval.
 NO_INTERVAL = "no interval given (reason says why)"
 
@@ -342,7 +351,11 @@ def _walton_group(
         "BIC = n ln(S/n) + p ln n, p = 2 sticking, 2 sliding, 4 split)"
     )
     # a run counted as sliding whose own kinematics says it sticks never enters μ_f
-    moved, moved_why = (0, "") if model == "sticking" else core.kinematic_sticking(x, y, c, k)
+    if model == "sticking":  # ... and one taken as sticking that slides never enters β
+        moved, moved_why = core.kinematic_sliding(x, y, c, float(fit.beta[0]))
+        moved = -moved
+    else:
+        moved, moved_why = core.kinematic_sticking(x, y, c, k)
     if moved:
         k += moved
         fit = core.at_split(x, y, c, e, k)
@@ -464,7 +477,8 @@ def walton(
                 found, why = bayesian.walton_row(row, arrays, settings, sigma, stated)
                 if row["model"] is not None:
                     reason = _reason(row["model"], row["n_sticking"], row["n_sliding"])
-                    row["reason"] = "; ".join(p for p in (reason, why) if p)
+                    beta = _bayes_beta_refusal(row)
+                    row["reason"] = "; ".join(p for p in (reason, beta, why) if p)
                 if draws is not None and found is not None:
                     draws.append(found)
             rows.append(row)

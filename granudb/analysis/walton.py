@@ -284,3 +284,41 @@ def at_split(x: np.ndarray, y: np.ndarray, c: np.ndarray, e: np.ndarray, k: int)
     return decision(
         model, np.array([k]), bic, line, (np.array([k]), np.array([n - k])), (mean, mean_se)
     )
+
+
+def kinematic_sliding(x: np.ndarray, y: np.ndarray, c: np.ndarray, beta: float) -> tuple[int, str]:
+    """(runs that slide by their kinematics although the fit took every run as sticking on a
+    line of ``beta`` < 0, the reason in words): 0 and '' where none do.
+
+    On a sticking line of β < 0 every run keeps the direction of its contact point (Ψ_out =
+    −βΨ_in > 0), and in Walton's model no run lies below the sticking line (Ψ_out =
+    max(−βΨ_in, Ψ_in − μ_f c)). A first run (smallest Ψ_in) that reverses (Ψ_out < 0, its
+    own β = −Ψ_out/Ψ_in in (0, 1]) cannot be on that line; the runs after it are then on the
+    other branch, the sliding line of slope one (they keep their direction, and sticking
+    runs have a smaller Ψ_in than every sliding run). Sliding runs of a μ_f that varies, or
+    few runs, can mimic a line through the origin of slope −β > 0 (the ``misses_origin``
+    test has little power at few runs); so where the split with that one run sticking and
+    the rest sliding has the smaller BIC (p = 4 against 2), the runs after the first are
+    taken as sliding. The sticking line then has one run: no β, and too few runs to choose
+    a model (the caller says "not determined")."""
+    n = len(x)
+    if not (beta < 0 and n >= 1 + MIN_RUNS_PER_LINE and x[0] > 0 and y[0] < 0):
+        return 0, ""
+    beta_0 = -y[0] / x[0]
+    if not beta_0 <= BETA_BOUNDS[1]:
+        return 0, ""
+    d, cc = x[1:] - y[1:], c[1:]
+    friction = max(float(d @ cc) / float(cc @ cc), 0.0)
+    slide = float(np.sum((d - friction * cc) ** 2))
+    stick = float(np.sum((y + beta * x) ** 2))
+    scale = max(float(y @ y + (x - y) @ (x - y)), 1e-300) * SSE_FLOOR
+    bic_stick = n * math.log(max(stick, scale) / n) + PARAMETER_COUNT["sticking"] * math.log(n)
+    bic_split = n * math.log(max(slide, scale) / n) + PARAMETER_COUNT["split"] * math.log(n)
+    if not bic_split < bic_stick:
+        return 0, ""
+    return n - 1, (
+        f"the run at Ψ_in {x[0]:.3g} reverses (β {beta_0:+.2f}) and cannot be on the sticking "
+        f"line of β {beta:+.2f} (whose runs keep their direction); the {n - 1} runs after it "
+        f"lie on a sliding line (μ_f {friction:.3g}, BIC {bic_split:.4g} against the "
+        f"sticking line's {bic_stick:.4g})"
+    )

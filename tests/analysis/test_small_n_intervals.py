@@ -72,6 +72,34 @@ def test_with_more_sliding_runs_the_sticking_run_is_left_out_of_mu_f() -> None:
     assert math.isnan(fit["rotational_restitution"])  # < 3 sticking runs give no β
 
 
+def test_sliding_runs_that_mimic_a_sticking_line_give_no_beta() -> None:
+    # one run sticking at β +0.46 and four sliding (μ_f 0.11) far out: at five runs a line
+    # through the origin of β −0.63 fits them all, and a split of one sticking run is not a
+    # model; the reversing first run cannot be on a line of β < 0 (its runs keep direction)
+    rng = np.random.default_rng(5)
+    x = np.array([0.08, 1.78, 1.82, 1.98, 2.4])
+    e = 0.97 + 0.01 * rng.standard_normal(5)
+    y = x - 0.11 * (1 + e) * B + 0.01 * rng.standard_normal(5)
+    y[0] = -0.46 * x[0]
+    c = (1 + e) * B
+    moved, why = core.kinematic_sliding(x, y, c, -0.63)
+    assert moved == 4 and "the run at Ψ_in 0.08 reverses (β +0.46)" in why
+    [fit] = fits.walton(frame(x, y, e))
+    assert fit["model"] is None and math.isnan(fit["rotational_restitution_low"])
+    assert "reverses" in fit["model_reason"] and "BIC chose sticking" in fit["model_reason"]
+    assert fit["reason"] == "model not determined (1 sticking, 4 sliding runs): no β, no μ_f"
+
+
+def test_a_true_sticking_line_of_negative_beta_keeps_its_runs() -> None:
+    # awkward: the first run reverses by noise alone; the others are no sliding line
+    x = np.array([0.03, 0.2, 0.4, 0.6, 0.8])
+    y = 0.15 * x + np.array([-0.012, 0.004, -0.003, 0.002, 0.001])
+    c = np.full(5, 1.97 * B)
+    assert core.kinematic_sliding(x, y, c, -0.15) == (0, "")
+    [fit] = fits.walton(frame(x, y, np.full(5, 0.97)))
+    assert fit["model"] == "sticking" and fit["rotational_restitution_low"] < -0.15
+
+
 def test_a_sliding_run_at_small_incidence_stays_on_the_line() -> None:
     # awkward: the smallest Ψ_in is still a sliding run (β = μc/Ψ_in − 1 = 0.6 < 1)
     x = np.array([0.48, 0.9, 1.3, 1.7, 2.1])
@@ -187,3 +215,38 @@ def test_student_t_quantile_matches_scipy(dof: int) -> None:
         assert intervals.student_t(level, dof) == pytest.approx(
             stats.t.ppf(0.5 + level / 2, dof), rel=1e-10
         )
+
+
+@pytest.mark.parametrize("model, truth", [("threshold", 10.0), ("exponential", 35.0)])
+def test_restitution_at_few_runs_has_a_profile_interval_that_covers(model, truth) -> None:
+    from granudb.analysis import restitution_small_n
+    from granudb.analysis.synthetic import restitution_runs
+
+    hits = given = 0
+    for seed in range(40):
+        [row] = fits.restitution(restitution_runs(0.97, model, truth, n=5, seed=seed), model)
+        if math.isfinite(row["parameter_low"]):
+            given += 1
+            hits += row["parameter_low"] <= truth <= row["parameter_high"]
+            assert row["interval_method"].startswith("profile likelihood, F-calibrated")
+            assert row["e_dry_low"] <= row["e_dry"] <= row["e_dry_high"]
+    assert given >= 38 and hits / given >= 0.9  # 200 sets: 0.96 and 0.955
+    # the report's note says the record's method, and no resamples were drawn
+    from granudb.reporting import tables
+
+    [row] = fits.restitution(restitution_runs(0.97, model, truth, n=8, seed=1), model)
+    note = tables.bootstrap_note([row])
+    assert row["interval_method"] in note and "resamples" not in note
+    assert row["bootstrap_resamples"] == 0
+    # awkward: three runs leave one degree of freedom; two give none and are refused
+    found = restitution_small_n.profile_intervals(model, np.array([20.0, 200.0]),
+                                                  np.array([0.5, 0.9]), None)  # fmt: skip
+    assert found["parameter"].reason == "interval not determined: 2 runs, at least 3 needed"
+
+
+def test_bayes_gives_no_beta_interval_where_three_runs_cannot_test_a_split() -> None:
+    # on split data the all-sticking posterior at three runs covered 0.44 (9 of 200 sets)
+    [row] = fits.walton(walton_frame(3, spin=30.0, seed=2), method="bayes")
+    assert math.isfinite(row["rotational_restitution"])
+    assert math.isnan(row["rotational_restitution_low"])
+    assert "interval of β not determined: 3 runs cannot test a split" in row["reason"]

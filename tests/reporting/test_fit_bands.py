@@ -56,9 +56,11 @@ def test_restitution_band_holds_the_true_curve(model: str, parameter: float) -> 
         fitted = fits.restitution_curve(model, grid, row["e_dry"], row["parameter"])
         assert np.all((low <= fitted + 1e-9) & (fitted - 1e-9 <= high))
     assert np.all(np.mean(held, axis=0) >= 0.85), np.mean(held, axis=0)  # nominal 0.95
-    # fewer runs than the fit's minimum for an interval: no band either
+    # fewer runs than the bootstrap's minimum: the profile-likelihood interval (issue 36),
+    # and no band (a band is drawn from the bootstrap's sets)
     few = restitution_runs(0.97, model, parameter, n=12, seed=8)
     [short] = fits.restitution(few, model)
+    assert short["interval_method"].startswith("profile likelihood")
     assert bands.restitution_band(few, short, grid) is None
 
 
