@@ -8,20 +8,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from support import STEEL_ON_ZERODUR
 
 from granudb.physics.derive import UNCERTAIN_INPUTS, derive
 from granudb.physics.propagation_check import FIRST_ORDER
 
 GLYCEROL_37 = {
-    "particle_density_kg_m3": 7780.0,
-    "particle_youngs_modulus_pa": 190e9,
-    "particle_poisson_ratio": 0.27,
-    "particle_roughness_rms_m": 23.6e-9,
-    "wall_density_kg_m3": 2540.0,
-    "wall_youngs_modulus_pa": 91e9,
-    "wall_poisson_ratio": 0.24,
-    "wall_roughness_rms_m": 15.5e-9,
-    "diameter_m": 0.0127,
+    **STEEL_ON_ZERODUR,
     "v_n_in_m_s": 0.3,
     "v_t_in_m_s": 0.17,
     "fluid_density_kg_m3": 1090.0,
