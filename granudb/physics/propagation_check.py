@@ -48,7 +48,9 @@ table gives the same numbers.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import contextlib
+import warnings
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import numpy as np
@@ -461,25 +463,12 @@ def monte_carlo_rows(
     return result, used, reached
 
 
-def _quiet() -> Any:
+@contextlib.contextmanager
+def _quiet() -> Iterator[None]:
     """Silence numpy's 'all-NaN slice' warnings (an undefined quantity stays NaN)."""
-    import warnings
-
-    catch = warnings.catch_warnings()
-    catch.__enter__()
-    warnings.simplefilter("ignore", RuntimeWarning)
-    return _Restore(catch)
-
-
-class _Restore:
-    def __init__(self, catch: Any) -> None:
-        self._catch = catch
-
-    def __enter__(self) -> None:
-        return None
-
-    def __exit__(self, *exc: Any) -> None:
-        self._catch.__exit__(*exc)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        yield
 
 
 def _mean(batches: list[dict[str, np.ndarray]], key: str) -> np.ndarray:
