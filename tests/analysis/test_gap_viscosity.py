@@ -102,3 +102,25 @@ def test_a_moving_target_is_fitted_at_the_relative_normal_speed() -> None:
     wrong = runs.assign(normal_speed_m_s=runs["v_n_in_m_s"])
     [biased] = fits.gap_viscosity(wrong, {"glycerol-37": None})
     assert abs(biased["gap_viscosity_pa_s"] / 11.5e-3 - 1) > 0.10
+
+
+def test_without_stated_u_the_bootstrap_stops_where_the_bias_outgrows_it() -> None:
+    """Without the runs' stated u the errors-in-variables bias of μ₀ grows against its
+    standard error as √n: the bootstrap-t is given at 1,000 sliding runs (measured
+    coverage 0.925) and refused at 1,500 (the bias about 1.0 se; 0.885 at 2,000), with the
+    measured figures and the advice to state the speeds' u; the same runs with their u
+    stated get an interval (the bias corrected)."""
+    from granudb.analysis.synthetic import sliding_measured
+
+    [given] = fits.gap_viscosity(sliding_runs(1.6e-3, n=1000, seed=3), {}, resamples=200)
+    assert given["interval_reason"] == ""
+    assert given["gap_viscosity_low_pa_s"] < given["gap_viscosity_high_pa_s"]
+    [refused] = fits.gap_viscosity(sliding_runs(1.6e-3, n=1500, seed=3), {}, resamples=200)
+    reason = refused["interval_reason"]
+    assert reason.startswith("interval not determined: at 1500 sliding runs")
+    assert "0.885 at 2,000" in reason and "state the speeds' u" in reason
+    assert math.isnan(refused["gap_viscosity_low_pa_s"]) and refused["bootstrap_resamples"] == 0
+    assert refused["gap_viscosity_pa_s"] == pytest.approx(1.6e-3, rel=0.05)  # the value stays
+    [stated] = fits.gap_viscosity(sliding_measured(3, n=1500), {}, resamples=200)
+    assert stated["interval_reason"] == ""
+    assert stated["gap_viscosity_low_pa_s"] < 1.6e-3 * 1.1
