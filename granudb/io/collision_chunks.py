@@ -247,7 +247,8 @@ def _numbers(table: Any, source: Any) -> dict[str, Any] | None:
         if (np.isinf(values) | (np.isnan(values) & ~_numpy(empty))).any():
             return None  # "inf", "nan": the pandas path says what is wrong
         if cmap.scale != 1.0 or cmap.offset != 0.0:
-            si = round_significant(values * cmap.scale + cmap.offset)
+            with np.errstate(over="ignore"):  # beyond float range: inf, refused by its rule
+                si = round_significant(values * cmap.scale + cmap.offset)
         else:
             si = values
         if underflows(values, si).any():
