@@ -423,9 +423,13 @@ def _fit_group(
             row.update(gap_viscosity_low_pa_s=found.low**3.5)
             row.update(gap_viscosity_high_pa_s=found.high**3.5)
             row["gap_viscosity_std_pa_s"] = 3.5 * q**2.5 * se
-    elif g is not None and stated is None and _unstated_bias(measured, g, viscosity, True):
+    elif (
+        g is not None
+        and stated is None
+        and (biased := _unstated_bias(measured, g, viscosity, bootstrap=True))
+    ):
         # without stated u the errors-in-variables bias outgrows the bootstrap's interval
-        interval_reason = _unstated_bias(measured, g, viscosity, True)
+        interval_reason = biased
         row["bootstrap_resamples"] = 0
     elif g is not None:
         x, y, c, e, order, smooth = everything
