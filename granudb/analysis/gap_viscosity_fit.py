@@ -392,6 +392,8 @@ def _fit_group(
             centre = q - shift
             se = asymptotic.stated_se(se, spread)
             row["interval_method"] += STATED_SHIFT.format(draws=asymptotic.SHIFT_DRAWS)
+            if math.isfinite(shift):  # μ₀ = q̂^(7/2), not corrected
+                row["interval_method"] += asymptotic.shift_words(shift, value="q̂^(7/2)", of=" in q")
         found = asymptotic.interval(centre, se, bounds=(0.0, math.inf), level=LEVEL)
         interval_reason = found.reason
         if stated is None and not interval_reason:

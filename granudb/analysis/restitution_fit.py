@@ -473,10 +473,12 @@ def asymptotic_law(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed:
 
 def asymptotic_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
                          seed: int, stated: tuple | None = None,
-                         dry: np.ndarray | None = None) -> dict:  # fmt: skip
-    """{name: intervals.Interval}: the asymptotic intervals θ̂ ± t se of the parameter and
-    (unless ``fixed``) e_dry from ``asymptotic_law``, in place of ``bootstrap_intervals``."""
+                         dry: np.ndarray | None = None) -> tuple[dict, dict]:  # fmt: skip
+    """({name: intervals.Interval}, {name: b̂}): the asymptotic intervals θ̂ ± t se of the
+    parameter and (unless ``fixed``) e_dry from ``asymptotic_law``, in place of
+    ``bootstrap_intervals``, and each one's shift b̂ = θ̂ − its centre (0 without stated u)."""
     centre, covariance, dof = asymptotic_law(model, st, e, fit, fixed, seed, stated, dry)
+    shift = {"e_dry": float(fit[0] - centre[0]), "parameter": float(fit[2] - centre[1])}
     se = np.sqrt(np.diag(covariance))
     level = intervals.LEVEL
     found = {"parameter": asymptotic.t_interval(
@@ -485,7 +487,7 @@ def asymptotic_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, 
         found["e_dry"] = asymptotic.t_interval(
             centre[0], se[0], dof[0], bounds=(0.0, E_DRY_MAX), level=level
         )
-    return found
+    return found, {name: shift[name] for name in found}
 
 
 def asymptotic_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
@@ -601,7 +603,12 @@ def _intervals(
         return
     fit = (row["e_dry"], row["e_dry_stderr"], row["parameter"], row["parameter_stderr"])
     if large:
-        found = asymptotic_intervals(model, st, e, fit, fixed, SEED, stated, dry)
+        found, shift = asymptotic_intervals(model, st, e, fit, fixed, SEED, stated, dry)
+        if stated is not None and all(map(math.isfinite, shift.values())):
+            names = {"parameter": PARAMETER_NAMES[model], "e_dry": "e_dry"}
+            row["interval_method"] += asymptotic.shift_words(
+                {names[name]: value for name, value in sorted(shift.items())}
+            )
     else:
         found = bootstrap_intervals(
             model, st, e, fit, fixed, row["bootstrap_resamples"], SEED, stated, dry
