@@ -27,6 +27,7 @@ from granudb.lazy import pandas as pd
 from granudb.reporting import figures, references, sections, tables
 from granudb.reporting.groups import colours, fluid_names, labels_of
 from granudb.reporting.pinned import pinned_notes
+from granudb.reporting.values import method_text
 from granudb.reporting.verdicts import verdicts
 from granudb.scenario.collision_query import CollisionQuery
 from granudb.scenario.collisions import select_collisions
@@ -190,7 +191,11 @@ def _pair_sections(
     report["assumed"] = [f"{r['label']} = {r['value']}" for r in scenario if r["name"] in assumed]
     report["derived"] = [
         {"heading": "Scenario", "rows": scenario},
-        {"heading": "Derived", "rows": sections.derived_rows(result.derived)},
+        {
+            "heading": "Derived",
+            "rows": sections.derived_rows(result.derived),
+            "note": method_text(result.derived),  # how the u and intervals were obtained
+        },
     ]
     report["figures"].append(
         figures.regime_map_figure(
