@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import asymptotic, bayesian, intervals, restitution_small_n
+from granudb.analysis import asymptotic, bayesian, intervals, restitution_small_n, shared_scale
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.errors import ValidationError
 from granudb.lazy import scipy_optimize
@@ -625,6 +625,18 @@ def _intervals(
     row["interval_reason"] = "; ".join(reasons)
 
 
+def _widen_by_scale(row: dict, share: float, sources: str) -> None:
+    """The parameter's interval widened by the catalogue's share of St_n, a relative error
+    shared by every run (St_c and k scale with it, e_dry does not:
+    ``granudb.analysis.shared_scale``); the method says so."""
+    if not (share > 0) or math.isnan(row.get("parameter_low", math.nan)):
+        return
+    row["parameter_low"], row["parameter_high"] = shared_scale.widened(
+        row["parameter_low"], row["parameter_high"], row["parameter"], share, intervals.LEVEL
+    )
+    row["interval_method"] += shared_scale.words(share, sources)
+
+
 def _bayes_stated(frame: Any, runs: np.ndarray, e: np.ndarray, speeds: tuple | None):
     """The Bayesian option's per-run (r, u_e): r = u(v_N,in)/v_N,in and u_e =
     u(v_n,out)/v_N,in = r_out e from the stated speeds; without them, the runs' listed
@@ -650,6 +662,7 @@ def restitution(
     report: bool = False,
     resamples: int | None = None,
     asymptotic_from: int = asymptotic.ASYMPTOTIC_FROM,
+    stokes_scale: dict[tuple, tuple[float, str]] | None = None,
 ) -> list[dict[str, Any]]:
     """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
     (figure 5).
@@ -674,6 +687,10 @@ def restitution(
     intervals"). ``method`` "bayes": values are posterior medians with 95 % credible
     intervals (``bayesian.restitution_row``, which adds the prior, likelihood, sampler
     settings and diagnostics), each group's draws appended to ``draws`` when a list is given.
+    ``stokes_scale``: {(dataset, particle, wall): (u_r, sources)}, the catalogue's share of
+    each group's St_n where it states one (``granudb.scenario.plug_ins.stokes_scale``):
+    an error shared by every run, which widens the parameter's interval whatever the
+    method (``granudb.analysis.shared_scale``; ``interval_method`` says so).
     """
     model, why = restitution_model(model, report=report)
     bayesian.check_method(method)
@@ -686,6 +703,7 @@ def restitution(
     # frame, of its immersed or dry rows, or of the frame sorted by group.
     groups = frame.groupby([frame[k] for k in _INPUTS[:3]], sort=True).indices
     speeds = resampling.stated_speeds(frame)
+    scales = stokes_scale or {}
     results = []
     with resampling.one_thread():  # as the other fits (walton_bootstrap.one_thread)
         for key in sorted(groups):
@@ -710,5 +728,7 @@ def restitution(
                     )  # fmt: skip
                     if draws is not None and found is not None:
                         draws.append(found)
+                if key in scales:  # the catalogue's share of St_n, whatever the method
+                    _widen_by_scale(row, *scales[key])
                 results.append(row)
     return results

@@ -21,6 +21,7 @@ from granudb.lazy import pandas as pd
 from granudb.output_files import write_text
 from granudb.scenario.collisions import select_collisions
 from granudb.scenario.fluid_state import fluid_model
+from granudb.scenario.plug_ins import stokes_scale
 from granudb.vocabulary.escaping import spreadsheet_frame
 
 #: The forms of e(St_n) ``fit_restitution`` fits.
@@ -126,7 +127,9 @@ def fit_restitution(
         db,
         filters,
         as_frame,
-        lambda _session, frame, found: fits.restitution(frame, chosen, method=how, draws=found),
+        lambda session, frame, found: fits.restitution(
+            frame, chosen, method=how, draws=found, stokes_scale=stokes_scale(session, frame)
+        ),
         draws,
     )
 
