@@ -1,4 +1,4 @@
-"""A plug-in error shared by every run of a fit: the catalogue's share of St_n.
+"""A plug-in error shared by every run of a fit: the catalogue's share of St_n or of g.
 
 The restitution fit's runs stand on St_n = m* v_N,in / (6π μ R*²) as derived from the
 catalogue: the particle's density and diameter, the fluid's viscosity at the run's
@@ -11,6 +11,11 @@ bootstrap-t, profile likelihood, asymptotic, Bayesian) therefore lacks a factor 
 is normal with standard deviation u_r, the catalogue's relative u of St_n
 (``granudb.scenario.plug_ins`` computes it with ``granudb.pair``'s propagation, the one
 record of how u reaches St_n).
+
+The gap-viscosity fit is the same with g of (5.8), μ_f = q g, q = μ₀^(2/7): g is built
+from the catalogue's E*, R*, pressure–viscosity coefficient (not μ, which the fit
+replaces), so an error of them moves every run's g by one factor s, q̂ by 1/s and μ₀ by
+s^(−7/2): μ₀'s interval lacks a log-normal factor of standard deviation 3.5 u_r.
 
 The two are independent (the catalogue's error is one draw for the fit, the runs' scatter
 another), so on the log scale their half-widths add in quadrature, each side on its own
@@ -27,12 +32,15 @@ from __future__ import annotations
 import math
 from statistics import NormalDist
 
-#: What a fit's interval method adds where the catalogue states a u of St_n's inputs.
+#: What a fit's interval method adds where the catalogue states a u of what its runs
+#: stand on (St_n: St_c and k scale with it; g of (5.8): μ₀ with its −7/2 power).
 WORDS = (
-    "; widened by the catalogue's share of St_n (u_r = {share:.2%}: {sources}; one error "
-    "shared by every run, by which St_c and k scale), on the log scale √(h² + (z·u_r)²) "
-    "each side"
+    "; widened by the catalogue's share of {of} (u_r = {share:.2%}: {sources}; one error "
+    "shared by every run, {law}), on the log scale √(h² + (z·{power}u_r)²) each side"
 )
+#: ``words``' arguments for the restitution fit's St_n and the gap viscosity's g.
+STOKES = {"of": "St_n", "law": "by which St_c and k scale", "power": ""}
+GAP = {"of": "g of (5.8)", "law": "μ₀ = (μ_f/g)^(7/2) scales with its −7/2 power", "power": "3.5·"}
 
 
 def widened(low: float, high: float, value: float, share: float, level: float) -> tuple:
@@ -57,6 +65,7 @@ def widened(low: float, high: float, value: float, share: float, level: float) -
     return centre * math.exp(-below), centre * math.exp(above)
 
 
-def words(share: float, sources: str) -> str:
-    """The method's words for a ``share`` of ``sources`` (``WORDS``)."""
-    return WORDS.format(share=share, sources=sources)
+def words(share: float, sources: str, of: dict[str, str] = STOKES) -> str:
+    """The method's words for a ``share`` of ``sources`` (``WORDS``; ``of``: ``STOKES``
+    or ``GAP``)."""
+    return WORDS.format(share=share, sources=sources, **of)

@@ -326,7 +326,7 @@ def _add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bo
     if restitution:
         report["tables"].append(tables.restitution_table(restitution))
     models = {f.name: fluid_model(f) for f in catalog_rows.fluid_rows(connection)}
-    gap = fits.gap_viscosity(frame, models)
+    gap = fits.gap_viscosity(frame, models, gap_scale=plug_ins.gap_scale(connection, frame))
     if gap:
         report["tables"].append(tables.gap_table(gap, palette))
     fitted = {"walton": walton, "branches": branches, "restitution": restitution,

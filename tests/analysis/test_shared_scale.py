@@ -12,9 +12,12 @@ import pytest
 from support import write_csv
 
 import granudb
-from granudb.analysis import fits, shared_scale
-from granudb.analysis.synthetic import restitution_runs
+from granudb.analysis import fits, gap_viscosity_fit, shared_scale
+from granudb.analysis.synthetic import restitution_runs, sliding_runs
+from granudb.api.database import opened
 from granudb.scenario import plug_ins
+from granudb.scenario.collision_query import CollisionQuery
+from granudb.scenario.collisions import select_collisions
 
 SETS, SHARE, QUICK_BOUND = 40, 0.05, 0.825  # true ≥ 0.95: P(< 33 of 40) ≈ 0.3 %
 KEY = ("d", "steel", "Zerodur")
@@ -59,15 +62,16 @@ def test_the_widening_is_the_log_quadrature_and_leaves_e_dry() -> None:
     assert all(map(math.isnan, shared_scale.widened(math.nan, math.nan, value, 0.1, 0.95)))
 
 
-def _runs(tmp_path, st_at_1: float) -> object:
+def _runs(tmp_path, st_at_1: float, slope: float = 0.0) -> object:
     """20 immersed runs of steel on Zerodur in glycerol-37 at 20 °C, on e = 0.97
-    exp(−35/St_n) with a small scatter, speeds from 20 to 900 mm/s."""
+    exp(−35/St_n) with a small scatter, speeds from 20 to 900 mm/s, v_t = ``slope`` v_n."""
     rng = np.random.default_rng(5)
     rows = []
     for i, v in enumerate(np.geomspace(0.02, 0.9, 20)):
         e = 0.97 * math.exp(-35.0 / (st_at_1 * v)) + rng.normal(0, 0.01)
-        rows.append([f"g{i}", "steel", "Zerodur", "glycerol-37", "12.7", "0", f"{v * 1e3:.3f}",
-                     "0", "0", f"{e * v * 1e3:.3f}", "0", "0", "20", ""])  # fmt: skip
+        rows.append([f"g{i}", "steel", "Zerodur", "glycerol-37", "12.7", "",
+                     f"{v * 1e3:.3f}", f"{slope * v * 1e3:.3f}", "0", f"{e * v * 1e3:.3f}",
+                     f"{0.5 * slope * v * 1e3:.3f}", "0", "20", ""])  # fmt: skip
     return write_csv(tmp_path / "runs.csv", rows)
 
 
@@ -93,3 +97,54 @@ def test_fit_and_report_take_the_share_pair_propagates(db: str, tmp_path) -> Non
     assert (after["parameter_low"], after["parameter_high"]) == pytest.approx((low, high))
     markdown = granudb.report(dataset="g", format="md", db=db)
     assert f"u_r = {share:.2%}" in markdown
+
+
+def test_a_catalogue_error_of_g_is_covered_only_with_its_share() -> None:
+    """The gap viscosity: an error of the catalogue's E* moves every run's g by one factor
+    (g ∝ E*^2.9 here, through A(c) of (5.9)), μ₀ by its −7/2 power."""
+    truth, r_e, sets = 1.6e-3, 0.02, 30
+    frame = sliding_runs(truth, n=300, seed=0)
+    inputs = frame.assign(normal_speed_m_s=frame["v_n_in_m_s"])
+    g = gap_viscosity_fit.model_friction(inputs, 1.0)
+    moved = inputs.assign(reduced_modulus_pa=inputs["reduced_modulus_pa"] * 1.001)
+    slope = float(np.mean(np.log(gap_viscosity_fit.model_friction(moved, 1.0) / g)))
+    share = abs(slope / math.log(1.001)) * r_e
+    key = ("synthetic", "steel", "Zerodur", "glycerol-37")
+    hits = {False: 0, True: 0}
+    for seed in range(sets):
+        frame = sliding_runs(truth, n=300, seed=seed)
+        frame["reduced_modulus_pa"] *= math.exp(r_e * np.random.default_rng(seed).normal())
+        for widen in (False, True):
+            scale = {key: (share, "E*")} if widen else None
+            [row] = fits.gap_viscosity(frame, {}, gap_scale=scale)
+            hits[widen] += row["gap_viscosity_low_pa_s"] <= truth <= row["gap_viscosity_high_pa_s"]
+            assert ("catalogue's share of g of (5.8)" in row["interval_method"]) is widen
+    assert hits[True] >= 25 and hits[False] < hits[True] - 6, hits
+
+
+def test_the_share_of_g_leaves_out_the_viscosity_the_fit_replaces(db: str, tmp_path) -> None:
+    scenario = {"fluid": "glycerol-37", "diameter": "12.7 mm", "temperature": "20 degC"}
+    st_at_1 = granudb.pair("steel", "Zerodur", velocity="1 m/s", db=db, **scenario)
+    granudb.import_collisions(_runs(tmp_path, st_at_1["normal_stokes_number"], 0.6),
+                              dataset="g", db=db)  # fmt: skip
+
+    def shares() -> tuple[dict, dict]:  # on the runs as the fits read them
+        with opened(db) as database, database.session() as session:
+            frame = select_collisions(session, CollisionQuery())
+            return plug_ins.stokes_scale(session, frame), plug_ins.gap_scale(session, frame)
+
+    assert shares() == ({}, {})  # nothing stated
+    granudb.update_fluid("glycerol-37", reference_viscosity="3.0 ± 0.15 mPa s", db=db)
+    stokes, gap = shares()
+    assert list(stokes) == [("g", "steel", "Zerodur")] and gap == {}  # μ is what g leaves out
+    granudb.update_material("steel", youngs_modulus="190 GPa ± 5 %", db=db)
+    stokes, gap = shares()
+    [(share, sources)] = gap.values()
+    v_n = float(np.median(np.geomspace(0.02, 0.9, 20)))  # the runs' median speeds
+    speed, angle = math.hypot(v_n, 0.6 * v_n), math.atan2(0.6 * v_n, v_n)
+    document = granudb.pair("steel", "Zerodur", velocity=f"{speed} m/s",
+                            angle=f"{math.degrees(angle)} deg", db=db, **scenario)  # fmt: skip
+    u_mu = 2 / 7 * 0.05  # μ_f ∝ μ^(2/7), 5 % on μ
+    relative = document["u_lubricated_friction"] / document["lubricated_friction"]
+    assert share == pytest.approx(math.sqrt(relative**2 - u_mu**2), rel=1e-3)
+    assert sources == plug_ins.GAP_SOURCES
