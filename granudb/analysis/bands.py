@@ -91,7 +91,9 @@ def restitution_band(frame: Any, row: Mapping[str, Any], grid: np.ndarray):
     """The band of ``row``'s fitted e(St_n) (a ``restitution_fit.restitution`` row) over
     ``grid``, from the first ``BAND_SETS`` of the bootstrap sets behind its intervals, or,
     where its interval is asymptotic (``bootstrap_resamples`` 0), ``asymptotic.SETS`` sets
-    of the same normal law (``restitution_fit.asymptotic_sets``); None where it has none."""
+    of the same normal law (``restitution_fit.asymptotic_sets``), each set's parameter
+    times its own draw of the catalogue's shared error (``shared_scale_u``, log-normal)
+    where one is stated; None where it has none."""
     if not all(math.isfinite(row.get(k, math.nan)) for k in ("parameter", "parameter_low")):
         return None
     if restitution_small_n.gave(row):  # a profile-likelihood interval: no bootstrap sets
@@ -121,5 +123,9 @@ def restitution_band(frame: Any, row: Mapping[str, Any], grid: np.ndarray):
             min(BAND_SETS, int(row["bootstrap_resamples"])), int(row["bootstrap_seed"]), stated,
             dry if row["n_dry_runs"] > 0 else None,
         )  # fmt: skip
+    share = float(row.get("shared_scale_u", math.nan))
+    if share > 0:  # the catalogue's error shared by every run scales the parameter too
+        z = np.random.default_rng(int(row["bootstrap_seed"]) + 1).standard_normal(len(p))
+        p = p * np.exp(share * z)
     curves = restitution_fit.restitution_curve(model, grid[None, :], a[:, None], p[:, None])
     return curve_band(curves)

@@ -356,6 +356,7 @@ def _fit_group(
     row.update(gap_viscosity_pa_s=nan, gap_viscosity_low_pa_s=nan, gap_viscosity_high_pa_s=nan)
     row.update(gap_viscosity_std_pa_s=nan, gap_temperature_c=nan)
     row.update(gap_temperature_low_c=nan, gap_temperature_high_c=nan, n_runs=0)
+    row["shared_scale_u"] = nan  # the catalogue's share of g, where stated
     row.update(confidence_level=LEVEL, bootstrap_seed=seed, interval_reason="")
     row["interval_method"] = intervals.METHOD + ", the sliding runs re-decided in each"
     stated = resampling.stated_inputs(group, walton_arrays(group))
@@ -459,6 +460,7 @@ def _fit_group(
             low, high, viscosity, 3.5 * scale[0], LEVEL
         )
         row["interval_method"] += shared_scale.words(scale[0], scale[1], shared_scale.GAP)
+        row["shared_scale_u"] = scale[0]
     row["interval_reason"] = interval_reason
     row["gap_temperature_c"], reason = _temperature(model, viscosity)
     if not reason and not interval_reason:
@@ -493,7 +495,8 @@ def gap_viscosity(
     ``bootstrap_resamples`` 0). ``gap_scale``: {(dataset, particle, wall, fluid): (u_r,
     sources)}, the catalogue's share of each group's g of (5.8) where it states one
     (``granudb.scenario.plug_ins.gap_scale``): an error shared by every run, which widens
-    μ₀'s interval and the gap temperature's with it (``granudb.analysis.shared_scale``).
+    μ₀'s interval and the gap temperature's with it (``granudb.analysis.shared_scale``;
+    ``shared_scale_u`` gives u_r: NaN where nothing is stated or no interval was given).
     """
     scales = gap_scale or {}
     if "normal_speed_m_s" not in frame:  # a table of wall impacts only: the particle's own

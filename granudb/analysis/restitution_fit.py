@@ -555,6 +555,7 @@ def _group_row(
         else resamples,
         "bootstrap_seed": SEED,
         "interval_reason": "",
+        "shared_scale_u": math.nan,  # the catalogue's share of St_n, where stated
         "stokes_number": "St_n = m* v_N,in/(6πμR*²) of the relative normal approach (as derived)",
         "reason": "",
     }
@@ -631,6 +632,7 @@ def _widen_by_scale(row: dict, share: float, sources: str) -> None:
     ``granudb.analysis.shared_scale``); the method says so."""
     if not (share > 0) or math.isnan(row.get("parameter_low", math.nan)):
         return
+    row["shared_scale_u"] = share
     row["parameter_low"], row["parameter_high"] = shared_scale.widened(
         row["parameter_low"], row["parameter_high"], row["parameter"], share, intervals.LEVEL
     )
@@ -690,7 +692,8 @@ def restitution(
     ``stokes_scale``: {(dataset, particle, wall): (u_r, sources)}, the catalogue's share of
     each group's St_n where it states one (``granudb.scenario.plug_ins.stokes_scale``):
     an error shared by every run, which widens the parameter's interval whatever the
-    method (``granudb.analysis.shared_scale``; ``interval_method`` says so).
+    method (``granudb.analysis.shared_scale``; ``interval_method`` says so, and
+    ``shared_scale_u`` gives u_r: NaN where nothing is stated or no interval was given).
     """
     model, why = restitution_model(model, report=report)
     bayesian.check_method(method)

@@ -12,7 +12,7 @@ import pytest
 from support import write_csv
 
 import granudb
-from granudb.analysis import fits, gap_viscosity_fit, shared_scale
+from granudb.analysis import bands, fits, gap_viscosity_fit, shared_scale
 from granudb.analysis.synthetic import restitution_runs, sliding_runs
 from granudb.api.database import opened
 from granudb.scenario import plug_ins
@@ -148,3 +148,14 @@ def test_the_share_of_g_leaves_out_the_viscosity_the_fit_replaces(db: str, tmp_p
     relative = document["u_lubricated_friction"] / document["lubricated_friction"]
     assert share == pytest.approx(math.sqrt(relative**2 - u_mu**2), rel=1e-3)
     assert sources == plug_ins.GAP_SOURCES
+
+
+def test_the_report_band_carries_the_share_its_interval_carries() -> None:
+    frame = restitution_runs(0.97, "exponential", 35.0, n=30, seed=3)
+    [plain] = fits.restitution(frame, "exponential")
+    [wide] = fits.restitution(frame, "exponential", stokes_scale={KEY: (0.1, "x")})
+    assert math.isnan(plain["shared_scale_u"]) and wide["shared_scale_u"] == 0.1
+    grid = np.geomspace(15, 3000, 50)
+    (low0, high0), (low1, high1) = (bands.restitution_band(frame, r, grid) for r in (plain, wide))
+    steep = grid < 100  # where e(St) moves with k
+    assert np.all(high1[steep] - low1[steep] > high0[steep] - low0[steep])
