@@ -297,7 +297,7 @@ def derive(
         critical_stokes=critical_stokes,
     )
     try:
-        return run_in_chunks(compute, x, threads)
+        return run_in_chunks(compute, x, threads, writes_into=uncertainties is not None)
     except PhysicsInputError:
         _validate(x)  # the first bad row of the whole table, as one pass would name it
         raise
@@ -305,6 +305,7 @@ def derive(
 
 def _derive_block(
     x: dict[str, np.ndarray],
+    into: dict[str, np.ndarray] | None = None,
     *,
     uncertain: bool,
     monte_carlo: bool,
@@ -314,7 +315,8 @@ def _derive_block(
     critical_stokes: float,
 ) -> dict[str, np.ndarray]:
     """Every derived column for broadcast inputs ``x`` (one block of rows), after
-    ``_validate``."""
+    ``_validate``. ``into``: the outputs' rows of this block, where the uncertainties and
+    intervals are written directly (``row_chunks.run_in_chunks``' ``writes_into``)."""
     _validate(x)
     evaluate = partial(
         _evaluate,
@@ -328,7 +330,7 @@ def _derive_block(
         u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
         correlated, one_speed = x[_CORRELATED] != 0, x[_ONE_SPEED] != 0
         first = uncertainty.propagate(
-            x, u, (p, h, f, lub, tan), columns, critical_stokes, correlated, one_speed
+            x, u, (p, h, f, lub, tan), columns, critical_stokes, correlated, one_speed, into
         )
         # first order where its check allows, else a Monte Carlo; intervals and method
         names = tuple(k[2:] for k in first if k.startswith("u_"))
@@ -346,6 +348,7 @@ def _derive_block(
                 limits.friction_cap(x["mu_dry"], limiting_shear_slope),
                 monte_carlo=monte_carlo,
                 budget=draws_per_row * max(int(np.size(columns[names[0]])), 1),
+                into=into,
             )
         )
     return columns

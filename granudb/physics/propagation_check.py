@@ -206,7 +206,7 @@ def first_order_adequate(
     r_max = _input_scale(x, u, columns)
     with np.errstate(divide="ignore", invalid="ignore"):
         r_u = out["u_tangential_speed_m_s"] / np.abs(columns["tangential_speed_m_s"])
-    r_u = np.where(np.isfinite(r_u), r_u, 0.0)
+    r_t = np.fmax(r_max, np.where(np.isfinite(r_u), r_u, 0.0))  # for what moves with U
     p = out["probability_asperity_contact"]
     contact = ~((p > 0.025) & (p < 0.975))
     # the film's μ is capped (μ_used = min(μ_lub, cap)): a cap inside μ_lub's interval
@@ -218,22 +218,25 @@ def first_order_adequate(
     ok: dict[str, np.ndarray] = {"verdicts": contact}
     change, u_c = _a_change(columns, out) if set(WITH_A) & set(names) else (0.0, 0.0)
     limit = _u_r_limit(r_max, tolerance)
-    limit_t = _u_r_limit(np.fmax(r_max, r_u), tolerance)
+    limit_t = _u_r_limit(r_t, tolerance)
     with np.errstate(divide="ignore", invalid="ignore"):
         for name in names:
             if name in ("normal_speed_m_s", "tangential_speed_m_s"):  # linear: exact
                 continue
-            r_q = np.fmax(r_max, r_u) if name in TANGENTIAL else r_max
+            if name == RESTITUTION and "added_mass_stokes_number" in ok:
+                ok[name] = ok["added_mass_stokes_number"]  # through St_am's interval
+                continue
+            r_q = r_t if name in TANGENTIAL else r_max
             source = "added_mass_stokes_number" if name == RESTITUTION else name
-            q, u_q = np.abs(columns[source]), out[f"u_{source}"]
+            q, u_q = columns[source], out[f"u_{source}"]
             if name in LINEAR:  # ±1.96u: curvature of the exponential and of the inputs
-                ok[name] = ~(_BOUND * (u_q / q + r_q) > tolerance)
+                ok[name] = ~(_BOUND * (u_q / np.abs(q) + r_q) > tolerance)
             elif name in WITH_A:  # lognormal, with A's change of slope
-                u_r = u_q / q
+                u_r = u_q / np.abs(q)
                 bound = (_BOUND * r_q + 0.125 * change * u_c / u_r) * _log_factor(u_r)
                 ok[name] = ~(bound > tolerance)  # NaN (no u) passes
             else:  # lognormal: only the inputs' own curvature moves its ends
-                u_r = np.divide(u_q, columns[source])  # Q > 0 (a Q ≤ 0 passes: ±1.96u)
+                u_r = np.divide(u_q, q)  # Q > 0 (a Q ≤ 0 passes: ±1.96u)
                 ok[name] = ~(u_r > (limit_t if name in TANGENTIAL else limit))
                 if relative is not None and source == name:
                     relative[name] = u_r
@@ -248,36 +251,46 @@ def first_order_intervals(
     names: tuple[str, ...],
     critical_stokes: float,
     relative: dict[str, Any] | None = None,
+    into: Arrays | None = None,
 ) -> Arrays:
     """The 95 % interval of each quantity by first order: Q·exp(±1.96 u_r) for a positive
     quantity (first order on ln Q: every one is a product of powers or A(c) of one), ±1.96u
     for ``LINEAR`` ones and any Q ≤ 0; the predicted restitution through St_am's
     lognormal interval and St_c's step (e is monotone in St), with its u by quadrature
-    where the step is inside the interval. Also returns ``u_predicted_restitution``."""
+    where the step is inside the interval. Also returns ``u_predicted_restitution``.
+    ``relative``: u(Q)/Q by quantity where already computed (``first_order_adequate``);
+    ``into``: arrays to write the interval ends into, where given."""
     result: Arrays = {}
-    for name in names:
-        q, u_q = columns[name], out[f"u_{name}"]
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+    relative = relative or {}
+    into = into or {}
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for name in names:
+            low95, high95 = interval_columns(name)
+            if name == RESTITUTION:  # below, in this place of the result
+                result[low95] = result[high95] = None  # type: ignore[assignment]
+                continue
+            q, u_q = columns[name], out[f"u_{name}"]
             if name in LINEAR:
-                low, high = q - Z95 * u_q, q + Z95 * u_q
+                width = Z95 * u_q
+                low = np.subtract(q, width, out=into.get(low95))
+                high = np.add(q, width, out=into.get(high95))
             else:
-                t = (relative or {}).pop(name, None)
+                t = relative.pop(name, None)
                 if t is None:
                     t = np.divide(u_q, q)
                 if not isinstance(t, np.ndarray) or not t.ndim:  # one scenario
                     t = np.array(t, dtype=float, ndmin=1)
                 t *= Z95
                 np.exp(t, out=t)
-                high = np.multiply(q, t)
-                low = np.divide(q, t, out=t)
+                high = np.multiply(q, t, out=into.get(high95))
+                low = np.divide(q, t, out=into.get(low95, t))
                 if np.ndim(q) == 0:
                     low, high = low.reshape(()), high.reshape(())
                 negative = q <= 0
-                if np.any(negative):  # a Q ≤ 0 (none in derive today) keeps ±1.96u
-                    low = np.where(negative, q - Z95 * u_q, low)
-                    high = np.where(negative, q + Z95 * u_q, high)
-        low95, high95 = interval_columns(name)
-        result[low95], result[high95] = low, high
+                if negative.any():  # a Q ≤ 0 (U = 0: no film) keeps ±1.96u
+                    low[...] = np.where(negative, q - Z95 * u_q, low)
+                    high[...] = np.where(negative, q + Z95 * u_q, high)
+            result[low95], result[high95] = low, high
     if RESTITUTION in names:
         result.update(_restitution(columns, out, critical_stokes))
     return result
@@ -497,13 +510,15 @@ def check_and_resample(
     *,
     monte_carlo: bool = True,
     budget: float = DRAW_BUDGET,
+    into: Arrays | None = None,
 ) -> Arrays:
     """``out`` (first order's ``u_<q>`` and probabilities) with, for every row: the 95 %
     intervals ``low95_<q>``/``high95_<q>`` and ``propagation_method``; rows where
     ``first_order_adequate`` fails get the Monte Carlo's u, intervals and probabilities
     for the quantities that failed (and the probabilities), as far as ``budget`` draws
     reach (rows in order; the others keep first order, and their method says why). A row
-    none of whose inputs states a u has no method (None) and no interval (NaN)."""
+    none of whose inputs states a u has no method (None) and no interval (NaN). ``into``:
+    arrays to write first order's interval ends into, where given."""
     shape = np.shape(columns[names[0]])
     stated = np.zeros(shape, dtype=bool)
     for given in u.values():
@@ -511,10 +526,11 @@ def check_and_resample(
     result = dict(out)
     relative: dict[str, Any] = {}
     ok = first_order_adequate(x, u, columns, out, names, friction_cap, relative=relative)
-    result.update(first_order_intervals(columns, out, names, critical_stokes, relative))
-    any_bad = np.zeros(shape, dtype=bool)
+    result.update(first_order_intervals(columns, out, names, critical_stokes, relative, into))
+    all_ok = np.ones(shape, dtype=bool)
     for v in ok.values():
-        any_bad |= ~v
+        all_ok &= v
+    any_bad = np.logical_not(all_ok, out=all_ok)
     any_bad &= stated
     method = np.full(shape, None, dtype=object)
     method[stated] = FIRST_ORDER

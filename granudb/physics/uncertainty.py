@@ -413,11 +413,13 @@ def propagate(
     critical_stokes: float,
     correlated: np.ndarray | None = None,
     one_speed: np.ndarray | None = None,
+    into: Arrays | None = None,
 ) -> Arrays:
     """``u_<column>`` of every propagated column of ``columns`` (``derive``'s, in its
     order) and the verdict probabilities, from the inputs' uncertainties ``u`` (step
     names, see ``SOURCES``); ``steps`` are the results of ``granudb.physics.quantities``'
-    pair_properties, hertz, fluid_numbers, lubricated and tangential."""
+    pair_properties, hertz, fluid_numbers, lubricated and tangential. ``into``: arrays
+    to write ``u_<column>`` into, where given (returned as the values)."""
     p, h, f, lub, tan = steps
     scaled = scaled_sources(x, u)
     if "vn" in scaled:
@@ -447,16 +449,22 @@ def propagate(
                                     "friction_coefficient_used" else name], stated)  # fmt: skip
             relative[name] = np.where(reach > 0, relative[name], np.nan)
     out: Arrays = {}
+    into = into or {}
     for name in (name for name in columns if name in relative):
+        key = f"u_{name}"
         if name == "incidence_angle_rad":  # absolute already; NaN where the angle is
-            out[f"u_{name}"] = relative[name] + 0.0 * columns[name]
+            out[key] = np.add(relative[name], 0.0 * columns[name], out=into.get(key))
         else:
-            u_q = columns[name] * relative[name]
-            out[f"u_{name}"] = np.abs(u_q, out=u_q) if isinstance(u_q, np.ndarray) else abs(u_q)
+            u_q = np.multiply(columns[name], relative[name], out=into.get(key))
+            out[key] = np.abs(u_q, out=u_q) if isinstance(u_q, np.ndarray) else abs(u_q)
     # Outside an immersed rebound e is e_dry (dry) or 0 by the St_c rule: neither has a
     # propagated u (e_dry's own is not an input here), so none is stated.
     rebound = np.isfinite(f["st_am"]) & (columns["predicted_restitution"] > 0) & f["immersed"]
-    out["u_predicted_restitution"] = np.where(rebound, out["u_predicted_restitution"], np.nan)
+    u_e = out["u_predicted_restitution"]
+    if isinstance(u_e, np.ndarray) and u_e.ndim:
+        u_e[~rebound] = np.nan
+    else:
+        out["u_predicted_restitution"] = np.where(rebound, u_e, np.nan)
     out.update(
         verdict_probabilities(
             film=columns["film_parameter"],
@@ -603,10 +611,13 @@ def exceedance(ratio: Any, u_relative: Any) -> np.ndarray:
     ratio = np.asarray(ratio, dtype=float)
     s = np.asarray(u_relative, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
-        z = np.log(ratio) / s
-    step = np.where(ratio > 1.0, 1.0, 0.0)
-    out = np.where(s > 0, normal_cdf(np.where(s > 0, z, 0.0)), step)
-    return np.where(np.isnan(ratio), np.nan, out)
+        z = np.log(ratio) / s  # s = 0: ±inf, whose Φ is the step 1 if q > 1 else 0
+    out = normal_cdf(z)
+    undefined = np.isnan(out)  # a NaN ratio; or no u (NaN), or s = 0 at q = 1: the step
+    if undefined.any():
+        step = undefined & ~(s > 0) & ~np.isnan(ratio)
+        out[step] = np.broadcast_to(ratio > 1.0, out.shape)[step]
+    return out
 
 
 def verdict_probabilities(
@@ -631,11 +642,15 @@ def verdict_probabilities(
     [0.5, 1.0, None]
     """
     with np.errstate(divide="ignore", invalid="ignore"):
-        contact = 1.0 - exceedance(film, u_film)
+        contact = exceedance(film, u_film)
+    np.subtract(1.0, contact, out=contact)
     rebound = exceedance(normal_stokes / critical_stokes, u_normal_stokes)
+    if not immersed.all():  # dry rows: no contact verdict, rebound certain
+        contact = np.where(immersed, contact, np.nan)
+        rebound = np.where(immersed, rebound, 1.0)
     return {
-        "probability_asperity_contact": np.where(immersed, contact, np.nan),
-        "probability_rebound": np.where(immersed, rebound, 1.0),
+        "probability_asperity_contact": contact,
+        "probability_rebound": rebound,
         "probability_yield": exceedance(yield_ratio, u_yield_ratio),
     }
 
