@@ -176,10 +176,8 @@ def _a_change(columns: Arrays, out: Arrays) -> tuple[np.ndarray, np.ndarray]:
     95 % interval, and c's relative u (c = η̂ p_max)."""
     c = columns["eta_hat_pa_inv"] * columns["max_pressure_pa"]
     with np.errstate(divide="ignore", invalid="ignore"):
-        u_c = np.hypot(
-            np.nan_to_num(out["u_eta_hat_pa_inv"] / columns["eta_hat_pa_inv"]),
-            np.nan_to_num(out["u_max_pressure_pa"] / columns["max_pressure_pa"]),
-        )
+        parts = [out[f"u_{k}"] / columns[k] for k in ("eta_hat_pa_inv", "max_pressure_pa")]
+        u_c = np.hypot(*(v if np.isfinite(v).all() else np.nan_to_num(v) for v in parts))
         # s(c) from first order itself (u_r(A) = s u_r(c)); s at the interval's top once
         s_c = out["u_friction_integral"] / columns["friction_integral"] / u_c
         top = lubrication.friction_integral_log_slope(c * np.exp(Z95 * u_c))
@@ -523,6 +521,8 @@ def check_and_resample(
     stated = np.zeros(shape, dtype=bool)
     for given in u.values():
         stated |= np.isfinite(np.asarray(given, dtype=float))
+        if stated.all():
+            break
     result = dict(out)
     relative: dict[str, Any] = {}
     ok = first_order_adequate(x, u, columns, out, names, friction_cap, relative=relative)
@@ -532,8 +532,11 @@ def check_and_resample(
         all_ok &= v
     any_bad = np.logical_not(all_ok, out=all_ok)
     any_bad &= stated
-    method = np.full(shape, None, dtype=object)
-    method[stated] = FIRST_ORDER
+    if stated.all():
+        method = np.full(shape, FIRST_ORDER, dtype=object)
+    else:
+        method = np.full(shape, None, dtype=object)
+        method[stated] = FIRST_ORDER
     if not any_bad.any():
         result[PROPAGATION_METHOD] = method
         return result

@@ -132,20 +132,28 @@ def scaled_sources(x: Arrays, u: Arrays) -> Arrays:
     >>> scaled_sources({"e1": np.array([200e9])}, {"e1": np.array([np.nan])})
     {}
     """
+    return _scaled_and_partial(x, u)[0]
+
+
+def _scaled_and_partial(x: Arrays, u: Arrays) -> tuple[Arrays, Arrays]:
+    """``scaled_sources``, and each given source stated for some rows only: 1.0 where
+    stated, 0.0 where not (one look at each u for both)."""
     out: Arrays = {}
-    for source, relative in SOURCES.items():
-        given = u.get(source)
-        if given is None:
-            continue
-        value = np.asarray(given, dtype=float)
-        stated = ~np.isnan(value)  # u ≥ 0 (``derive`` checks); NaN: not given
-        if not stated.any():
-            continue
-        if not stated.all():
-            value = np.nan_to_num(value, nan=0.0)
-        with np.errstate(divide="ignore", invalid="ignore"):
+    partial: Arrays = {}
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for source, relative in SOURCES.items():
+            given = u.get(source)
+            if given is None:
+                continue
+            value = np.asarray(given, dtype=float)
+            missing = np.isnan(value)  # u ≥ 0 (``derive`` checks); NaN: not given
+            if missing.any():
+                if missing.all():
+                    continue
+                partial[source] = (~missing).astype(float)
+                value = np.nan_to_num(value, nan=0.0)
             out[source] = value / np.abs(x[source]) if relative else value
-    return out
+    return out, partial
 
 
 def relative_uncertainty(
@@ -421,7 +429,7 @@ def propagate(
     pair_properties, hertz, fluid_numbers, lubricated and tangential. ``into``: arrays
     to write ``u_<column>`` into, where given (returned as the values)."""
     p, h, f, lub, tan = steps
-    scaled = scaled_sources(x, u)
+    scaled, partial = _scaled_and_partial(x, u)
     if "vn" in scaled:
         scaled["vn"] = scaled["vn"] / p["v_n"]  # relative to the approach speed v_N > 0
     sens = sensitivities(x, (p, h, f, lub), scaled, correlated, one_speed)
@@ -430,7 +438,6 @@ def propagate(
     relative = _relatives(sens, sums, scaled, columns, lubricated)
     # A source stated for some rows only (a table of runs): a row none of whose reaching
     # sources is stated has no u (NaN), not the 0 its unstated rows' zeros would give.
-    partial = _partly_stated(u, scaled)
     if partial:
         stated: dict[str, np.ndarray | float] = {
             k: partial.get(k, 1.0) for k in scaled if k != E_STAR
@@ -610,6 +617,8 @@ def exceedance(ratio: Any, u_relative: Any) -> np.ndarray:
     """
     ratio = np.asarray(ratio, dtype=float)
     s = np.asarray(u_relative, dtype=float)
+    if np.isnan(ratio).all():  # no verdict in any row (no yield stress, dry)
+        return np.full(np.broadcast(ratio, s).shape, np.nan)
     with np.errstate(divide="ignore", invalid="ignore"):
         z = np.log(ratio) / s  # s = 0: ±inf, whose Φ is the step 1 if q > 1 else 0
     out = normal_cdf(z)
@@ -676,19 +685,6 @@ def _any_of(masks: list[Any]) -> Any:
     out: Any = 0.0
     for mask in masks:
         out = np.maximum(out, mask)
-    return out
-
-
-def _partly_stated(u: Arrays, scaled: Arrays) -> Arrays:
-    """Each given source stated for some rows only: 1.0 where stated, 0.0 where not."""
-    out: Arrays = {}
-    for source in scaled:
-        given = u.get(source)
-        if given is None:
-            continue
-        stated = ~np.isnan(np.asarray(given, dtype=float))
-        if stated.ndim and not stated.all():
-            out[source] = stated.astype(float)
     return out
 
 
