@@ -326,6 +326,10 @@ def _derive_block(
     )
     columns: dict[str, np.ndarray]
     columns, (p, h, f, lub, tan) = evaluate(x, keep_steps=True)
+    if into is not None:  # stored while still in cache, before the uncertainties' work
+        for name, values in columns.items():
+            into[name][...] = values
+            columns[name] = into[name]
     if uncertain:
         u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
         correlated, one_speed = x[_CORRELATED] != 0, x[_ONE_SPEED] != 0

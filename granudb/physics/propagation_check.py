@@ -532,10 +532,13 @@ def check_and_resample(
         all_ok &= v
     any_bad = np.logical_not(all_ok, out=all_ok)
     any_bad &= stated
+    method = (into or {}).get(PROPAGATION_METHOD)
+    if method is None:
+        method = np.empty(shape, dtype=object)
     if stated.all():
-        method = np.full(shape, FIRST_ORDER, dtype=object)
+        method[...] = FIRST_ORDER
     else:
-        method = np.full(shape, None, dtype=object)
+        method[...] = None
         method[stated] = FIRST_ORDER
     if not any_bad.any():
         result[PROPAGATION_METHOD] = method
@@ -555,7 +558,7 @@ def check_and_resample(
         for index in range(rows.size):
             failed = ", ".join(k for k in labels if fail_at[k][index])
             flat_method[rows[index]] = f"{FIRST_ORDER}; the check failed for {failed}"
-        result[PROPAGATION_METHOD] = flat_method.reshape(shape)
+        result[PROPAGATION_METHOD] = method  # written through its flat view
         return result
     # the draws' statistics (and the tolerance) only for the quantities some row sends
     drawn_names = tuple(k for k in names if k in fail_at and fail_at[k].any())
@@ -609,7 +612,7 @@ def check_and_resample(
         texts.append(f"{text} for {which}; {FIRST_ORDER} for the rest")
     flat_method = method.reshape(-1)
     flat_method[rows] = np.array(texts, dtype=object)[inverse.reshape(-1)]
-    result[PROPAGATION_METHOD] = flat_method.reshape(shape)
+    result[PROPAGATION_METHOD] = method  # written through its flat view
     return result
 
 
