@@ -333,8 +333,17 @@ def _derive_block(
     if uncertain:
         u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
         correlated, one_speed = x[_CORRELATED] != 0, x[_ONE_SPEED] != 0
+        scaled: dict[str, np.ndarray] = {}  # the sources' scaled u, for the check too
         first = uncertainty.propagate(
-            x, u, (p, h, f, lub, tan), columns, critical_stokes, correlated, one_speed, into
+            x,
+            u,
+            (p, h, f, lub, tan),
+            columns,
+            critical_stokes,
+            correlated,
+            one_speed,
+            into,
+            scaled,
         )
         # first order where its check allows, else a Monte Carlo; intervals and method
         names = tuple(k[2:] for k in first if k.startswith("u_"))
@@ -353,6 +362,7 @@ def _derive_block(
                 monte_carlo=monte_carlo,
                 budget=draws_per_row * max(int(np.size(columns[names[0]])), 1),
                 into=into,
+                scaled=scaled,
             )
         )
     return columns

@@ -135,18 +135,24 @@ _NODES = np.linspace(-6.0, 6.0, 241)
 _WEIGHTS = np.exp(-0.5 * _NODES**2) / np.exp(-0.5 * _NODES**2).sum()
 
 
-def _input_scale(x: Arrays, u: Arrays, columns: Arrays) -> np.ndarray:
+def _input_scale(x: Arrays, u: Arrays, columns: Arrays, scaled: Arrays | None = None) -> np.ndarray:
     """Per row, the largest relative scale r of any stated input: u/|x| (v_n's relative to
     the approach speed v_N, v_t's to the impact speed); a Poisson ratio's u(ν)·(1 + ν²)/
-    (ν(1 − ν²)), the ratio of ln(1 − ν²)'s second derivative to its first times u(ν)."""
+    (ν(1 − ν²)), the ratio of ln(1 − ν²)'s second derivative to its first times u(ν).
+    ``scaled``: the sources' scaled u as first order took them
+    (``granudb.physics.uncertainty.propagate``), whose relative ones are these u/|x|."""
     shape = np.shape(columns["normal_speed_m_s"])
     r_max = np.zeros(shape)
     scale = {"vn": columns["normal_speed_m_s"], "vt": columns["impact_speed_m_s"]}
     with np.errstate(divide="ignore", invalid="ignore"):
         for source, given in u.items():
+            if scaled is not None and source not in scaled:
+                continue  # not stated in any row
             if source in ("nu1", "nu2"):
                 nu = x[source]
                 ratio = np.asarray(given, dtype=float) * (1 + nu * nu) / np.abs(nu * (1 - nu * nu))
+            elif scaled is not None and (SOURCES[source] or source == "vn"):
+                ratio = scaled[source]  # u/|x| (v_n's: u/v_N), 0 where not stated
             else:
                 ratio = np.asarray(given, dtype=float) / np.abs(scale.get(source, x[source]))
             np.fmax(r_max, ratio, out=r_max)  # NaN (not stated) is skipped
@@ -194,14 +200,16 @@ def first_order_adequate(
     friction_cap: Any = np.inf,
     tolerance: float = TOLERANCE,
     relative: dict[str, Any] | None = None,
+    scaled: Arrays | None = None,
 ) -> dict[str, np.ndarray]:
     """By quantity (and ``"verdicts"``), true by row where first order's u and its 95 %
     interval (``first_order_intervals``) are adequate by the module's check, from the
     inputs ``x`` and their u (``u``, step names), derive's ``columns`` and first order's
     ``out`` (``u_<q>`` and the verdict probabilities); ``friction_cap`` is the film's
     μ_f cap min(μ_dry, γ_max). ``relative``, if given, receives u(Q)/Q of the
-    log-normal quantities (for ``first_order_intervals``, which then reuses them)."""
-    r_max = _input_scale(x, u, columns)
+    log-normal quantities (for ``first_order_intervals``, which then reuses them);
+    ``scaled``, the sources' scaled u if first order kept them (``_input_scale``)."""
+    r_max = _input_scale(x, u, columns, scaled)
     with np.errstate(divide="ignore", invalid="ignore"):
         r_u = out["u_tangential_speed_m_s"] / np.abs(columns["tangential_speed_m_s"])
     r_t = np.fmax(r_max, np.where(np.isfinite(r_u), r_u, 0.0))  # for what moves with U
@@ -215,6 +223,8 @@ def first_order_adequate(
         contact &= ~(np.abs(np.log(lub / friction_cap)) < Z95 * u_lub / lub)
     ok: dict[str, np.ndarray] = {"verdicts": contact}
     change, u_c = _a_change(columns, out) if set(WITH_A) & set(names) else (0.0, 0.0)
+    a_term = 0.125 * change * u_c  # A's share of the bound, times u_r(Q)
+    bounds = (_BOUND * r_max, _BOUND * r_t)  # the inputs' share (what moves with U: r_t)
     limit = _u_r_limit(r_max, tolerance)
     limit_t = _u_r_limit(r_t, tolerance)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -231,7 +241,7 @@ def first_order_adequate(
                 ok[name] = ~(_BOUND * (u_q / np.abs(q) + r_q) > tolerance)
             elif name in WITH_A:  # lognormal, with A's change of slope
                 u_r = u_q / np.abs(q)
-                bound = (_BOUND * r_q + 0.125 * change * u_c / u_r) * _log_factor(u_r)
+                bound = (bounds[name in TANGENTIAL] + a_term / u_r) * _log_factor(u_r)
                 ok[name] = ~(bound > tolerance)  # NaN (no u) passes
             else:  # lognormal: only the inputs' own curvature moves its ends
                 u_r = np.divide(u_q, q)  # Q > 0 (a Q ≤ 0 passes: ±1.96u)
@@ -304,19 +314,20 @@ def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays
         s_n = out["u_normal_stokes_number"] / st_n
         inv = -flow.LEGENDRE_BETA / st_am  # ln(e/ceiling) = −β/St
         g = np.exp(Z95 * s_am)
-        high = ceiling * np.exp(inv / g)
-        low = ceiling * np.exp(inv * g)
+        high = np.asarray(ceiling * np.exp(inv / g))  # an array also for one scenario
+        low = np.asarray(ceiling * np.exp(inv * g))
         margin = np.log(critical_stokes / st_n)  # rebound where z s_n > margin
         z_n = Z95 * s_n
-        high = np.where(z_n > margin, high, 0.0)
-        low = np.where(-z_n > margin, low, 0.0)
+        np.putmask(high, ~(z_n > margin), 0.0)
+        np.putmask(low, ~(-z_n > margin), 0.0)
     u_e = out[f"u_{RESTITUTION}"]
     p = out["probability_rebound"]
     across = (p > 0.025) & (p < 0.975) & np.isfinite(s_am)
     if across.any():
         u_e = np.array(u_e, dtype=float, copy=True)
         rows = np.flatnonzero(across.reshape(-1))
-        flat = {k: np.broadcast_to(v, across.shape).reshape(-1)[rows]
+        flat = {k: np.reshape(v if np.shape(v) == across.shape else
+                              np.broadcast_to(v, across.shape), -1)[rows]
                 for k, v in (("am", st_am), ("n", st_n), ("c", ceiling), ("sa", s_am),
                              ("sn", s_n))}  # fmt: skip
         z = _NODES[None, :]
@@ -332,8 +343,8 @@ def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays
     # no St (dry), no u of St, or no rebound likely with no u: no interval
     missing = np.isnan(st_am + s_am) | (np.isnan(u_e) & (p <= 0.025))
     if np.ndim(missing):
-        low[missing] = np.nan
-        high[missing] = np.nan
+        np.putmask(low, missing, np.nan)
+        np.putmask(high, missing, np.nan)
     elif missing:
         low, high = np.full((), np.nan), np.full((), np.nan)
     low95, high95 = interval_columns(RESTITUTION)
@@ -509,6 +520,7 @@ def check_and_resample(
     monte_carlo: bool = True,
     budget: float = DRAW_BUDGET,
     into: Arrays | None = None,
+    scaled: Arrays | None = None,
 ) -> Arrays:
     """``out`` (first order's ``u_<q>`` and probabilities) with, for every row: the 95 %
     intervals ``low95_<q>``/``high95_<q>`` and ``propagation_method``; rows where
@@ -516,7 +528,8 @@ def check_and_resample(
     for the quantities that failed (and the probabilities), as far as ``budget`` draws
     reach (rows in order; the others keep first order, and their method says why). A row
     none of whose inputs states a u has no method (None) and no interval (NaN). ``into``:
-    arrays to write first order's interval ends into, where given."""
+    arrays to write first order's interval ends into, where given; ``scaled``: the
+    sources' scaled u as first order took them, if kept."""
     shape = np.shape(columns[names[0]])
     stated = np.zeros(shape, dtype=bool)
     for given in u.values():
@@ -525,7 +538,9 @@ def check_and_resample(
             break
     result = dict(out)
     relative: dict[str, Any] = {}
-    ok = first_order_adequate(x, u, columns, out, names, friction_cap, relative=relative)
+    ok = first_order_adequate(
+        x, u, columns, out, names, friction_cap, relative=relative, scaled=scaled
+    )
     result.update(first_order_intervals(columns, out, names, critical_stokes, relative, into))
     all_ok = np.ones(shape, dtype=bool)
     for v in ok.values():

@@ -263,11 +263,12 @@ def sensitivities(
     p, h, f, lub = steps
     wall_only = not np.any(p["free"]) and bool(np.all(np.isnan(x["d2"])))
 
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # v_n's u is scaled by v_N (relative), v_t's is absolute: one speed's ratio
-        speed_factor = x["vt"] * p["v_n"] / x["vn"]
-
     correlated, one_speed = _flag(correlated), _flag(one_speed)  # tested once, not per base
+    speed_factor: Any = 1.0
+    if one_speed is not None:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # v_n's u is scaled by v_N (relative), v_t's is absolute: one speed's ratio
+            speed_factor = x["vt"] * p["v_n"] / x["vn"]
 
     def base(sens: Sens) -> Sens:
         return _merged(sens, scaled, correlated, one_speed, speed_factor)
@@ -281,26 +282,29 @@ def sensitivities(
         # G = E/(2(1+ν)) where not given: its E and ν enter G*
         g_sens: Sens = {}
         for side, g_name, nu in (("1", "g1", nu1), ("2", "g2", nu2)):
-            derived = _indicator(np.isnan(x[g_name]))
             weight = g_star * (2 - nu) / p[g_name]
+            missing = np.isnan(x[g_name])
+            if not missing.all():  # G given in some rows: E and ν enter only where not
+                weight = weight * _indicator(missing)
             g_sens = _lin(
                 (1.0, g_sens),
-                (1.0, {f"e{side}": weight * derived,
-                       f"nu{side}": g_star / p[g_name] - weight * derived / (1 + nu)}),
-            )  # fmt: skip
+                (1.0, {f"e{side}": weight, f"nu{side}": g_star / p[g_name] - weight / (1 + nu)}),
+            )
         s_r = {"d": 1.0} if wall_only else {"d": p["r_eff"] / p["radius"]}
         s_m1 = {"rho1": 1.0, "d": 3.0}
         # 1/m* = 1/m₁ + 1/m₂: d ln m* = (m*/m₁) d ln m₁ + (1 − m*/m₁) d ln m₂ (wall: m* = m₁)
         k1 = p["m_eff"] / p["m1"]
         s_m = s_m1 if wall_only else {"rho1": k1, "d": 3.0 * k1, "rho2": 1.0 - k1}
         v_n, speed = p["v_n"], p["speed"]
-        vt_centre = x["vt"] - np.where(np.isnan(x["w_vt"]), 0.0, x["w_vt"])
+        vt_centre = p["v_t_centre"]
         s_vn = {"vn": 1.0}  # v_n's u is relative to v_N (``propagate``)
         s_v = {"vn": (v_n / speed) ** 2, "vt": vt_centre / speed**2}
         tangential = p["u"]
-        s_u = {"vt": np.where(tangential == 0.0, 0.0, 1.0 / tangential)}
-        sigma = f["sigma"]
-        s_sigma = {"s1": x["s1"] / sigma**2, "s2": x["s2"] / sigma**2}
+        inverse = np.asarray(1.0 / tangential)
+        inverse[tangential == 0.0] = 0.0
+        s_u = {"vt": inverse}
+        sigma_squared = f["sigma"] ** 2
+        s_sigma = {"s1": x["s1"] / sigma_squared, "s2": x["s2"] / sigma_squared}
         k_am = flow.ADDED_MASS_COEFFICIENT * x["rho_f"] / x["rho1"]
         k_am = k_am / (1.0 + k_am)
     mu, rho_f, c, rho1 = (base({k: 1.0}) for k in ("mu", "rho_f", "c_barus", "rho1"))
@@ -340,7 +344,7 @@ def sensitivities(
     radius = _lin((1 / 3, s_r), (1 / 3, load), (-1 / 3, s_e))
     pressure = _lin((1, load), (-2, radius))
     time = _lin((1, delta), (-1, s_vn))
-    slower = _indicator(np.sqrt(x["e1"] / x["rho1"]) <= np.sqrt(x["e2"] / x["rho2"]))
+    slower = _indicator(h["c_wave_1"] <= h["c_wave_2"])
     wave = base({"e1": 0.5 * slower, "rho1": -0.5 * slower,
                  "e2": 0.5 * (1 - slower), "rho2": -0.5 * (1 - slower)})  # fmt: skip
     soft = _indicator(~(x["y2"] < x["y1"]))  # fmin: the particle's unless the wall's is lower
@@ -422,16 +426,22 @@ def propagate(
     correlated: np.ndarray | None = None,
     one_speed: np.ndarray | None = None,
     into: Arrays | None = None,
+    scaled: Arrays | None = None,
 ) -> Arrays:
     """``u_<column>`` of every propagated column of ``columns`` (``derive``'s, in its
     order) and the verdict probabilities, from the inputs' uncertainties ``u`` (step
     names, see ``SOURCES``); ``steps`` are the results of ``granudb.physics.quantities``'
     pair_properties, hertz, fluid_numbers, lubricated and tangential. ``into``: arrays
-    to write ``u_<column>`` into, where given (returned as the values)."""
+    to write ``u_<column>`` into, where given (returned as the values); ``scaled``, if
+    given, receives each given source's scaled u (``scaled_sources``; v_n's relative to
+    v_N), 0 where not stated."""
     p, h, f, lub, tan = steps
-    scaled, partial = _scaled_and_partial(x, u)
-    if "vn" in scaled:
-        scaled["vn"] = scaled["vn"] / p["v_n"]  # relative to the approach speed v_N > 0
+    given, partial = _scaled_and_partial(x, u)
+    if "vn" in given:
+        given["vn"] = given["vn"] / p["v_n"]  # relative to the approach speed v_N > 0
+    if scaled is not None:
+        scaled.update(given)
+    scaled = given
     sens = sensitivities(x, (p, h, f, lub), scaled, correlated, one_speed)
     sums = sens.pop("_sums")
     lubricated = (tan["mu_used"] == lub["mu_lub"]) & np.isfinite(lub["mu_lub"])
@@ -469,7 +479,7 @@ def propagate(
     rebound = np.isfinite(f["st_am"]) & (columns["predicted_restitution"] > 0) & f["immersed"]
     u_e = out["u_predicted_restitution"]
     if isinstance(u_e, np.ndarray) and u_e.ndim:
-        u_e[~rebound] = np.nan
+        np.putmask(u_e, ~rebound, np.nan)
     else:
         out["u_predicted_restitution"] = np.where(rebound, u_e, np.nan)
     out.update(
