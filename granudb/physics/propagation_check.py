@@ -199,16 +199,19 @@ def first_order_adequate(
     names: tuple[str, ...],
     friction_cap: Any = np.inf,
     tolerance: float = TOLERANCE,
-    relative: dict[str, Any] | None = None,
     scaled: Arrays | None = None,
+    ends: Arrays | None = None,
+    into: Arrays | None = None,
 ) -> dict[str, np.ndarray]:
     """By quantity (and ``"verdicts"``), true by row where first order's u and its 95 %
     interval (``first_order_intervals``) are adequate by the module's check, from the
     inputs ``x`` and their u (``u``, step names), derive's ``columns`` and first order's
     ``out`` (``u_<q>`` and the verdict probabilities); ``friction_cap`` is the film's
-    μ_f cap min(μ_dry, γ_max). ``relative``, if given, receives u(Q)/Q of the
-    log-normal quantities (for ``first_order_intervals``, which then reuses them);
-    ``scaled``, the sources' scaled u if first order kept them (``_input_scale``)."""
+    μ_f cap min(μ_dry, γ_max). ``scaled``: the sources' scaled u if first order kept
+    them (``_input_scale``). ``ends``, if given, receives the interval ends of the
+    log-normal quantities checked by u(Q)/Q alone, from the same u(Q)/Q while it is at
+    hand (``first_order_intervals`` then takes them), written into ``into`` where given."""
+    into = into or {}
     r_max = _input_scale(x, u, columns, scaled)
     with np.errstate(divide="ignore", invalid="ignore"):
         r_u = out["u_tangential_speed_m_s"] / np.abs(columns["tangential_speed_m_s"])
@@ -227,7 +230,7 @@ def first_order_adequate(
     bounds = (_BOUND * r_max, _BOUND * r_t)  # the inputs' share (what moves with U: r_t)
     limit = _u_r_limit(r_max, tolerance)
     limit_t = _u_r_limit(r_t, tolerance)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for name in names:
             if name in ("normal_speed_m_s", "tangential_speed_m_s"):  # linear: exact
                 continue
@@ -246,8 +249,11 @@ def first_order_adequate(
             else:  # lognormal: only the inputs' own curvature moves its ends
                 u_r = np.divide(u_q, q)  # Q > 0 (a Q ≤ 0 passes: ±1.96u)
                 ok[name] = ~(u_r > (limit_t if name in TANGENTIAL else limit))
-                if relative is not None and source == name:
-                    relative[name] = u_r
+                if ends is not None and source == name:
+                    low95, high95 = interval_columns(name)
+                    ends[low95], ends[high95] = _log_normal_ends(
+                        q, u_q, u_r, into.get(low95), into.get(high95)
+                    )
             if name in CONTACT_STEPPED:
                 ok[name] &= contact
     return ok
@@ -258,7 +264,7 @@ def first_order_intervals(
     out: Arrays,
     names: tuple[str, ...],
     critical_stokes: float,
-    relative: dict[str, Any] | None = None,
+    ends: Arrays | None = None,
     into: Arrays | None = None,
 ) -> Arrays:
     """The 95 % interval of each quantity by first order: Q·exp(±1.96 u_r) for a positive
@@ -266,14 +272,17 @@ def first_order_intervals(
     for ``LINEAR`` ones and any Q ≤ 0; the predicted restitution through St_am's
     lognormal interval and St_c's step (e is monotone in St), with its u by quadrature
     where the step is inside the interval. Also returns ``u_predicted_restitution``.
-    ``relative``: u(Q)/Q by quantity where already computed (``first_order_adequate``);
-    ``into``: arrays to write the interval ends into, where given."""
+    ``ends``: interval ends already computed (``first_order_adequate``); ``into``: arrays
+    to write the interval ends into, where given."""
     result: Arrays = {}
-    relative = relative or {}
+    ends = ends or {}
     into = into or {}
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for name in names:
             low95, high95 = interval_columns(name)
+            if low95 in ends:
+                result[low95], result[high95] = ends[low95], ends[high95]
+                continue
             if name == RESTITUTION:  # below, in this place of the result
                 result[low95] = result[high95] = None  # type: ignore[assignment]
                 continue
@@ -283,25 +292,34 @@ def first_order_intervals(
                 low = np.subtract(q, width, out=into.get(low95))
                 high = np.add(q, width, out=into.get(high95))
             else:
-                t = relative.pop(name, None)
-                if t is None:
-                    t = np.divide(u_q, q)
-                if not isinstance(t, np.ndarray) or not t.ndim:  # one scenario
-                    t = np.array(t, dtype=float, ndmin=1)
-                t *= Z95
-                np.exp(t, out=t)
-                high = np.multiply(q, t, out=into.get(high95))
-                low = np.divide(q, t, out=into.get(low95, t))
-                if np.ndim(q) == 0:
-                    low, high = low.reshape(()), high.reshape(())
-                negative = q <= 0
-                if negative.any():  # a Q ≤ 0 (U = 0: no film) keeps ±1.96u
-                    low[...] = np.where(negative, q - Z95 * u_q, low)
-                    high[...] = np.where(negative, q + Z95 * u_q, high)
+                low, high = _log_normal_ends(
+                    q, u_q, np.divide(u_q, q), into.get(low95), into.get(high95)
+                )
             result[low95], result[high95] = low, high
     if RESTITUTION in names:
         result.update(_restitution(columns, out, critical_stokes))
     return result
+
+
+def _log_normal_ends(
+    q: Any, u_q: Any, u_r: Any, low: np.ndarray | None, high: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Q·exp(∓1.96 u_r) and Q·exp(±1.96 u_r), u_r = u(Q)/Q (overwritten), written into
+    ``low``/``high`` where given; ±1.96u where Q ≤ 0 (Q = 0: U = 0, no film)."""
+    t = u_r
+    if not isinstance(t, np.ndarray) or not t.ndim:  # one scenario
+        t = np.array(t, dtype=float, ndmin=1)
+    t *= Z95
+    np.exp(t, out=t)
+    high = np.multiply(q, t, out=high)
+    low = np.divide(q, t, out=t if low is None else low)
+    if np.ndim(q) == 0:
+        low, high = low.reshape(()), high.reshape(())
+    negative = q <= 0
+    if negative.any():
+        low[...] = np.where(negative, q - Z95 * u_q, low)
+        high[...] = np.where(negative, q + Z95 * u_q, high)
+    return low, high
 
 
 def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays:
@@ -537,11 +555,11 @@ def check_and_resample(
         if stated.all():
             break
     result = dict(out)
-    relative: dict[str, Any] = {}
+    ends: Arrays = {}
     ok = first_order_adequate(
-        x, u, columns, out, names, friction_cap, relative=relative, scaled=scaled
+        x, u, columns, out, names, friction_cap, scaled=scaled, ends=ends, into=into
     )
-    result.update(first_order_intervals(columns, out, names, critical_stokes, relative, into))
+    result.update(first_order_intervals(columns, out, names, critical_stokes, ends, into))
     all_ok = np.ones(shape, dtype=bool)
     for v in ok.values():
         all_ok &= v

@@ -223,6 +223,8 @@ def _merged(sens: Sens, scaled: Arrays, correlated: Any, one_speed: Any, speed_f
     relative u). Done once on the base quantities, it holds for all that are built from
     them (the propagation is linear)."""
     out = {name: value for name, value in sens.items() if name in scaled}
+    if correlated is None and one_speed is None:
+        return out  # no two inputs are one source
     pairs = [(first, second, correlated, 1.0) for first, second in _PARTNERS.items()]
     pairs.append(("vn", "vt", one_speed, speed_factor))
     for first, second, flag, factor in pairs:
