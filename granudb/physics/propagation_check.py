@@ -160,11 +160,19 @@ def _input_scale(x: Arrays, u: Arrays, columns: Arrays, scaled: Arrays | None = 
     return r_max
 
 
+def _finite(values: Any, fill: float = 0.0) -> Any:
+    """``values`` with ``fill`` where not finite (``values`` itself where all are)."""
+    finite = np.isfinite(values)
+    return values if finite.all() else np.where(finite, values, fill)
+
+
 def _log_factor(u_r: np.ndarray) -> np.ndarray:
     """Linear-space share of a shift of the log interval's end: W/(1 − e^−W), W its width."""
-    w = 2 * Z95 * np.where(np.isfinite(u_r), u_r, 0.0)
+    w = 2 * Z95 * _finite(u_r)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(w > 1e-12, w / -np.expm1(-w), 1.0)
+        factor = w / -np.expm1(-w)
+    small = ~(w > 1e-12)
+    return np.where(small, 1.0, factor) if small.any() else factor
 
 
 def _u_r_limit(r_q: np.ndarray, tolerance: float) -> np.ndarray:
@@ -174,7 +182,8 @@ def _u_r_limit(r_q: np.ndarray, tolerance: float) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         k = tolerance / (_BOUND * r_q)
         w = -3.0 + 6.0 * np.sqrt(0.25 + (k - 1.0) / 3.0)
-    return np.where(k >= 1.0, w / (2 * Z95), -1.0)
+    passes = k >= 1.0
+    return w / (2 * Z95) if passes.all() else np.where(passes, w / (2 * Z95), -1.0)
 
 
 def _a_change(columns: Arrays, out: Arrays) -> tuple[np.ndarray, np.ndarray]:
@@ -183,12 +192,13 @@ def _a_change(columns: Arrays, out: Arrays) -> tuple[np.ndarray, np.ndarray]:
     c = columns["eta_hat_pa_inv"] * columns["max_pressure_pa"]
     with np.errstate(divide="ignore", invalid="ignore"):
         parts = [out[f"u_{k}"] / columns[k] for k in ("eta_hat_pa_inv", "max_pressure_pa")]
-        u_c = np.hypot(*(v if np.isfinite(v).all() else np.nan_to_num(v) for v in parts))
+        eta, p_max = (v if np.isfinite(v).all() else np.nan_to_num(v) for v in parts)
+        u_c = np.sqrt(eta * eta + p_max * p_max)  # √(a² + b²): np.hypot is 3-6x slower
         # s(c) from first order itself (u_r(A) = s u_r(c)); s at the interval's top once
         s_c = out["u_friction_integral"] / columns["friction_integral"] / u_c
         top = lubrication.friction_integral_log_slope(c * np.exp(Z95 * u_c))
         change = 2.0 * np.abs(top - s_c)
-    return np.where(np.isfinite(change), change, 0.0), u_c
+    return _finite(change), u_c
 
 
 def first_order_adequate(
@@ -215,7 +225,7 @@ def first_order_adequate(
     r_max = _input_scale(x, u, columns, scaled)
     with np.errstate(divide="ignore", invalid="ignore"):
         r_u = out["u_tangential_speed_m_s"] / np.abs(columns["tangential_speed_m_s"])
-    r_t = np.fmax(r_max, np.where(np.isfinite(r_u), r_u, 0.0))  # for what moves with U
+    r_t = np.fmax(r_max, _finite(r_u))  # for what moves with U
     p = out["probability_asperity_contact"]
     contact = ~((p > 0.025) & (p < 0.975))
     # the film's μ is capped (μ_used = min(μ_lub, cap)): a cap inside μ_lub's interval
@@ -350,9 +360,9 @@ def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays
                              ("sn", s_n))}  # fmt: skip
         z = _NODES[None, :]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            wet = flow.predicted_restitution(
-                flat["am"][:, None] * np.exp(z * flat["sa"][:, None]), flat["c"][:, None], 0.0
-            )
+            # e = ceiling·exp(−β/St) as above (St > 0 here: St_am and its u are finite)
+            st = flat["am"][:, None] * np.exp(z * flat["sa"][:, None])
+            wet = flat["c"][:, None] * np.exp(-flow.LEGENDRE_BETA / st)
             e = np.where(flat["n"][:, None] * np.exp(z * flat["sn"][:, None]) > critical_stokes,
                          wet, 0.0)  # fmt: skip
         mean = e @ _WEIGHTS

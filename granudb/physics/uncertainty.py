@@ -242,9 +242,12 @@ def _merged(sens: Sens, scaled: Arrays, correlated: Any, one_speed: Any, speed_f
 
 def _flag(flag: Any) -> Any:
     """A correlation flag as None (no row), True (every row) or the array (some rows)."""
-    if flag is None or not np.any(flag):
+    if flag is None:
         return None
-    return True if np.all(flag) else flag
+    flag = np.asarray(flag)
+    if not flag.any():
+        return None
+    return True if flag.all() else flag
 
 
 def _indicator(condition: np.ndarray) -> np.ndarray:
@@ -263,7 +266,7 @@ def sensitivities(
     and the steps' results (``granudb.physics.quantities``): only the given sources
     (``scaled``), with inputs that are one source merged (``_merged``)."""
     p, h, f, lub = steps
-    wall_only = not np.any(p["free"]) and bool(np.all(np.isnan(x["d2"])))
+    wall_only = not np.asarray(p["free"]).any() and bool(np.isnan(x["d2"]).all())
 
     correlated, one_speed = _flag(correlated), _flag(one_speed)  # tested once, not per base
     speed_factor: Any = 1.0
