@@ -325,10 +325,11 @@ def _log_normal_ends(
     low = np.divide(q, t, out=t if low is None else low)
     if np.ndim(q) == 0:
         low, high = low.reshape(()), high.reshape(())
-    negative = q <= 0
-    if negative.any():
-        low[...] = np.where(negative, q - Z95 * u_q, low)
-        high[...] = np.where(negative, q + Z95 * u_q, high)
+    if not (q.size and q.min() > 0):  # some Q ≤ 0 (or NaN): look row by row
+        negative = q <= 0
+        if negative.any():
+            low[...] = np.where(negative, q - Z95 * u_q, low)
+            high[...] = np.where(negative, q + Z95 * u_q, high)
     return low, high
 
 

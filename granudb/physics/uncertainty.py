@@ -703,6 +703,21 @@ def _any_of(masks: list[Any]) -> Any:
     return out
 
 
+class _Squares(dict):  # type: ignore[type-arg]
+    """u_k² of the scaled sources, each computed when first asked for (a source whose
+    sensitivities are all arrays never needs its own)."""
+
+    def __init__(self, scaled: Arrays) -> None:
+        super().__init__()
+        self.scaled = scaled
+
+    def __missing__(self, source: str) -> np.ndarray:
+        value = self.scaled[source]
+        square: np.ndarray = value * value
+        self[source] = square
+        return square
+
+
 def _relatives(
     sens: dict[str, Sens],
     sums: dict[str, Any],
@@ -712,7 +727,7 @@ def _relatives(
 ) -> dict[str, Any]:
     """u(Q)/|Q| of every propagated column from the sensitivities and the sources'
     scaled uncertainties (NaN where no given source reaches Q): ``propagate``'s sum."""
-    squares = {source: value * value for source, value in scaled.items()}
+    squares = _Squares(scaled)
     variances: dict[int, Any] = {}  # each set of sensitivities once (x₁ and h_m share one)
     norms: dict[int, Any] = {}
 
