@@ -307,7 +307,11 @@ def first_order_intervals(
                 )
             result[low95], result[high95] = low, high
     if RESTITUTION in names:
-        result.update(_restitution(columns, out, critical_stokes))
+        for column, values in _restitution(columns, out, critical_stokes).items():
+            target = into.get(column)  # copied there while still in cache
+            if target is not None:
+                target[...] = values
+            result[column] = values if target is None else target
     return result
 
 

@@ -487,19 +487,25 @@ def propagate(
         np.putmask(u_e, ~rebound, np.nan)
     else:
         out["u_predicted_restitution"] = np.where(rebound, u_e, np.nan)
-    out.update(
-        verdict_probabilities(
-            film=columns["film_parameter"],
-            u_film=relative["film_parameter"],
-            normal_stokes=columns["normal_stokes_number"],
-            u_normal_stokes=relative["normal_stokes_number"],
-            critical_stokes=critical_stokes,
-            yield_ratio=h["p_max"] / (1.6 * np.fmin(x["y1"], x["y2"])),
-            u_yield_ratio=relative["_yield_ratio"],
-            immersed=f["immersed"],
-        )
+    probabilities = verdict_probabilities(
+        film=columns["film_parameter"],
+        u_film=relative["film_parameter"],
+        normal_stokes=columns["normal_stokes_number"],
+        u_normal_stokes=relative["normal_stokes_number"],
+        critical_stokes=critical_stokes,
+        yield_ratio=h["p_max"] / (1.6 * np.fmin(x["y1"], x["y2"])),
+        u_yield_ratio=relative["_yield_ratio"],
+        immersed=f["immersed"],
     )
+    for name, values in probabilities.items():  # into ``into`` while still in cache
+        out[name] = values if into.get(name) is None else _copied(values, into[name])
     return out
+
+
+def _copied(values: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """``target`` with ``values`` copied in."""
+    target[...] = values
+    return target
 
 
 def ratio_uncertainty(ratio: Any, denominator: Any, u_numerator: Any, u_denominator: Any) -> Any:
