@@ -405,7 +405,8 @@ def _uncertainty_inputs(uncertainties: Mapping[str, Numeric] | None) -> dict[str
                 key, "", f"is not an input uncertainty (u_ + one of {', '.join(UNCERTAIN_INPUTS)})"
             )
         array = np.asarray(value, dtype=float)
-        if (array < 0).any():  # one pass (NaN, "not given", is not < 0); the message below
+        # the smallest u first (no temporary); NaN ("not given") makes it NaN: look closer
+        if array.size and not array.min() >= 0 and (array < 0).any():
             _check(key, array, np.isnan(array) | (array >= 0), "must be ≥ 0 (NaN: not given)")
         out[_INPUTS[name]] = array
     return out
