@@ -378,8 +378,9 @@ def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays
             # e = ceiling·exp(−β/St) as above (St > 0 here: St_am and its u are finite)
             st = flat["am"][:, None] * np.exp(z * flat["sa"][:, None])
             wet = flat["c"][:, None] * np.exp(-flow.LEGENDRE_BETA / st)
-            e = np.where(flat["n"][:, None] * np.exp(z * flat["sn"][:, None]) > critical_stokes,
-                         wet, 0.0)  # fmt: skip
+            # 0 where St_n is not above St_c (wet is finite and ≥ 0: a product is np.where)
+            e = np.multiply(wet, flat["n"][:, None] * np.exp(z * flat["sn"][:, None])
+                            > critical_stokes, out=wet)  # fmt: skip
         mean = e @ _WEIGHTS
         sd = np.sqrt(np.maximum((e * e) @ _WEIGHTS - mean * mean, 0.0))
         u_e.reshape(-1)[rows] = sd
