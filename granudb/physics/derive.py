@@ -297,7 +297,7 @@ def derive(
         critical_stokes=critical_stokes,
     )
     try:
-        return run_in_chunks(compute, x, threads)
+        return run_in_chunks(compute, x, threads, writes_into=uncertainties is not None)
     except PhysicsInputError:
         _validate(x)  # the first bad row of the whole table, as one pass would name it
         raise
@@ -305,6 +305,7 @@ def derive(
 
 def _derive_block(
     x: dict[str, np.ndarray],
+    into: dict[str, np.ndarray] | None = None,
     *,
     uncertain: bool,
     monte_carlo: bool,
@@ -314,7 +315,8 @@ def _derive_block(
     critical_stokes: float,
 ) -> dict[str, np.ndarray]:
     """Every derived column for broadcast inputs ``x`` (one block of rows), after
-    ``_validate``."""
+    ``_validate``. ``into``: the outputs' rows of this block, where the uncertainties and
+    intervals are written directly (``row_chunks.run_in_chunks``' ``writes_into``)."""
     _validate(x)
     evaluate = partial(
         _evaluate,
@@ -324,11 +326,24 @@ def _derive_block(
     )
     columns: dict[str, np.ndarray]
     columns, (p, h, f, lub, tan) = evaluate(x, keep_steps=True)
+    if into is not None:  # stored while still in cache, before the uncertainties' work
+        for name, values in columns.items():
+            into[name][...] = values
+            columns[name] = into[name]
     if uncertain:
         u = {name[len(_U) :]: values for name, values in x.items() if name.startswith(_U)}
         correlated, one_speed = x[_CORRELATED] != 0, x[_ONE_SPEED] != 0
+        scaled: dict[str, np.ndarray] = {}  # the sources' scaled u, for the check too
         first = uncertainty.propagate(
-            x, u, (p, h, f, lub, tan), columns, critical_stokes, correlated, one_speed
+            x,
+            u,
+            (p, h, f, lub, tan),
+            columns,
+            critical_stokes,
+            correlated,
+            one_speed,
+            into,
+            scaled,
         )
         # first order where its check allows, else a Monte Carlo; intervals and method
         names = tuple(k[2:] for k in first if k.startswith("u_"))
@@ -346,6 +361,8 @@ def _derive_block(
                 limits.friction_cap(x["mu_dry"], limiting_shear_slope),
                 monte_carlo=monte_carlo,
                 budget=draws_per_row * max(int(np.size(columns[names[0]])), 1),
+                into=into,
+                scaled=scaled,
             )
         )
     return columns
@@ -388,7 +405,8 @@ def _uncertainty_inputs(uncertainties: Mapping[str, Numeric] | None) -> dict[str
                 key, "", f"is not an input uncertainty (u_ + one of {', '.join(UNCERTAIN_INPUTS)})"
             )
         array = np.asarray(value, dtype=float)
-        if (array < 0).any():  # one pass (NaN, "not given", is not < 0); the message below
+        # the smallest u first (no temporary); NaN ("not given") makes it NaN: look closer
+        if array.size and not array.min() >= 0 and (array < 0).any():
             _check(key, array, np.isnan(array) | (array >= 0), "must be ≥ 0 (NaN: not given)")
         out[_INPUTS[name]] = array
     return out

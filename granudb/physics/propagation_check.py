@@ -32,6 +32,16 @@ Validated against a 10⁶-draw Monte Carlo in benchmarks/propagation.py (every q
 1, 5 and 10 % input u, 37 % glycerol and near St_c: docs/propagation.md) and in
 tests/physics/test_propagation_study.py.
 
+**Cost where first order holds** (``benchmarks/derive_speed.py``: about 0.8 of the plain
+derive's CPU for the check and the 70 interval ends, as much again for first order's u).
+Each log-normal quantity checked by u(Q)/Q alone is one pass: u/Q is divided once and,
+while it is in cache, compared with the row's limit and turned into the interval ends
+(``first_order_adequate``'s ``ends``), which are written straight into the output's rows
+(``into``: ``granudb.physics.row_chunks``); a Q ≤ 0 is looked for only where the
+smallest Q is not > 0, and a np.where only where some row needs it. Measured against
+the code before (27 Nov 2026, same process, alternating, 120,000–240,000 first-order
+rows): the check and intervals 0.78× its CPU, derive with uncertainties 0.80–0.86×.
+
 **The Monte Carlo** (``monte_carlo_rows``): each source of a flagged row is drawn normal
 with its u (the particle's and the wall's one draw where they are one material; v_t with
 v_n's relative draw where they are one speed); draws outside an input's domain (E ≤ 0,
@@ -135,18 +145,24 @@ _NODES = np.linspace(-6.0, 6.0, 241)
 _WEIGHTS = np.exp(-0.5 * _NODES**2) / np.exp(-0.5 * _NODES**2).sum()
 
 
-def _input_scale(x: Arrays, u: Arrays, columns: Arrays) -> np.ndarray:
+def _input_scale(x: Arrays, u: Arrays, columns: Arrays, scaled: Arrays | None = None) -> np.ndarray:
     """Per row, the largest relative scale r of any stated input: u/|x| (v_n's relative to
     the approach speed v_N, v_t's to the impact speed); a Poisson ratio's u(ν)·(1 + ν²)/
-    (ν(1 − ν²)), the ratio of ln(1 − ν²)'s second derivative to its first times u(ν)."""
+    (ν(1 − ν²)), the ratio of ln(1 − ν²)'s second derivative to its first times u(ν).
+    ``scaled``: the sources' scaled u as first order took them
+    (``granudb.physics.uncertainty.propagate``), whose relative ones are these u/|x|."""
     shape = np.shape(columns["normal_speed_m_s"])
     r_max = np.zeros(shape)
     scale = {"vn": columns["normal_speed_m_s"], "vt": columns["impact_speed_m_s"]}
     with np.errstate(divide="ignore", invalid="ignore"):
         for source, given in u.items():
+            if scaled is not None and source not in scaled:
+                continue  # not stated in any row
             if source in ("nu1", "nu2"):
                 nu = x[source]
                 ratio = np.asarray(given, dtype=float) * (1 + nu * nu) / np.abs(nu * (1 - nu * nu))
+            elif scaled is not None and (SOURCES[source] or source == "vn"):
+                ratio = scaled[source]  # u/|x| (v_n's: u/v_N), 0 where not stated
             else:
                 ratio = np.asarray(given, dtype=float) / np.abs(scale.get(source, x[source]))
             np.fmax(r_max, ratio, out=r_max)  # NaN (not stated) is skipped
@@ -154,11 +170,19 @@ def _input_scale(x: Arrays, u: Arrays, columns: Arrays) -> np.ndarray:
     return r_max
 
 
+def _finite(values: Any, fill: float = 0.0) -> Any:
+    """``values`` with ``fill`` where not finite (``values`` itself where all are)."""
+    finite = np.isfinite(values)
+    return values if finite.all() else np.where(finite, values, fill)
+
+
 def _log_factor(u_r: np.ndarray) -> np.ndarray:
     """Linear-space share of a shift of the log interval's end: W/(1 − e^−W), W its width."""
-    w = 2 * Z95 * np.where(np.isfinite(u_r), u_r, 0.0)
+    w = 2 * Z95 * _finite(u_r)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(w > 1e-12, w / -np.expm1(-w), 1.0)
+        factor = w / -np.expm1(-w)
+    small = ~(w > 1e-12)
+    return np.where(small, 1.0, factor) if small.any() else factor
 
 
 def _u_r_limit(r_q: np.ndarray, tolerance: float) -> np.ndarray:
@@ -168,7 +192,8 @@ def _u_r_limit(r_q: np.ndarray, tolerance: float) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         k = tolerance / (_BOUND * r_q)
         w = -3.0 + 6.0 * np.sqrt(0.25 + (k - 1.0) / 3.0)
-    return np.where(k >= 1.0, w / (2 * Z95), -1.0)
+    passes = k >= 1.0
+    return w / (2 * Z95) if passes.all() else np.where(passes, w / (2 * Z95), -1.0)
 
 
 def _a_change(columns: Arrays, out: Arrays) -> tuple[np.ndarray, np.ndarray]:
@@ -176,15 +201,14 @@ def _a_change(columns: Arrays, out: Arrays) -> tuple[np.ndarray, np.ndarray]:
     95 % interval, and c's relative u (c = η̂ p_max)."""
     c = columns["eta_hat_pa_inv"] * columns["max_pressure_pa"]
     with np.errstate(divide="ignore", invalid="ignore"):
-        u_c = np.hypot(
-            np.nan_to_num(out["u_eta_hat_pa_inv"] / columns["eta_hat_pa_inv"]),
-            np.nan_to_num(out["u_max_pressure_pa"] / columns["max_pressure_pa"]),
-        )
+        parts = [out[f"u_{k}"] / columns[k] for k in ("eta_hat_pa_inv", "max_pressure_pa")]
+        eta, p_max = (v if np.isfinite(v).all() else np.nan_to_num(v) for v in parts)
+        u_c = np.sqrt(eta * eta + p_max * p_max)  # √(a² + b²): np.hypot is 3-6x slower
         # s(c) from first order itself (u_r(A) = s u_r(c)); s at the interval's top once
         s_c = out["u_friction_integral"] / columns["friction_integral"] / u_c
         top = lubrication.friction_integral_log_slope(c * np.exp(Z95 * u_c))
         change = 2.0 * np.abs(top - s_c)
-    return np.where(np.isfinite(change), change, 0.0), u_c
+    return _finite(change), u_c
 
 
 def first_order_adequate(
@@ -195,18 +219,23 @@ def first_order_adequate(
     names: tuple[str, ...],
     friction_cap: Any = np.inf,
     tolerance: float = TOLERANCE,
-    relative: dict[str, Any] | None = None,
+    scaled: Arrays | None = None,
+    ends: Arrays | None = None,
+    into: Arrays | None = None,
 ) -> dict[str, np.ndarray]:
     """By quantity (and ``"verdicts"``), true by row where first order's u and its 95 %
     interval (``first_order_intervals``) are adequate by the module's check, from the
     inputs ``x`` and their u (``u``, step names), derive's ``columns`` and first order's
     ``out`` (``u_<q>`` and the verdict probabilities); ``friction_cap`` is the film's
-    μ_f cap min(μ_dry, γ_max). ``relative``, if given, receives u(Q)/Q of the
-    log-normal quantities (for ``first_order_intervals``, which then reuses them)."""
-    r_max = _input_scale(x, u, columns)
+    μ_f cap min(μ_dry, γ_max). ``scaled``: the sources' scaled u if first order kept
+    them (``_input_scale``). ``ends``, if given, receives the interval ends of the
+    log-normal quantities checked by u(Q)/Q alone, from the same u(Q)/Q while it is at
+    hand (``first_order_intervals`` then takes them), written into ``into`` where given."""
+    into = into or {}
+    r_max = _input_scale(x, u, columns, scaled)
     with np.errstate(divide="ignore", invalid="ignore"):
         r_u = out["u_tangential_speed_m_s"] / np.abs(columns["tangential_speed_m_s"])
-    r_u = np.where(np.isfinite(r_u), r_u, 0.0)
+    r_t = np.fmax(r_max, _finite(r_u))  # for what moves with U
     p = out["probability_asperity_contact"]
     contact = ~((p > 0.025) & (p < 0.975))
     # the film's μ is capped (μ_used = min(μ_lub, cap)): a cap inside μ_lub's interval
@@ -217,26 +246,34 @@ def first_order_adequate(
         contact &= ~(np.abs(np.log(lub / friction_cap)) < Z95 * u_lub / lub)
     ok: dict[str, np.ndarray] = {"verdicts": contact}
     change, u_c = _a_change(columns, out) if set(WITH_A) & set(names) else (0.0, 0.0)
+    a_term = 0.125 * change * u_c  # A's share of the bound, times u_r(Q)
+    bounds = (_BOUND * r_max, _BOUND * r_t)  # the inputs' share (what moves with U: r_t)
     limit = _u_r_limit(r_max, tolerance)
-    limit_t = _u_r_limit(np.fmax(r_max, r_u), tolerance)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    limit_t = _u_r_limit(r_t, tolerance)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for name in names:
             if name in ("normal_speed_m_s", "tangential_speed_m_s"):  # linear: exact
                 continue
-            r_q = np.fmax(r_max, r_u) if name in TANGENTIAL else r_max
+            if name == RESTITUTION and "added_mass_stokes_number" in ok:
+                ok[name] = ok["added_mass_stokes_number"]  # through St_am's interval
+                continue
+            r_q = r_t if name in TANGENTIAL else r_max
             source = "added_mass_stokes_number" if name == RESTITUTION else name
-            q, u_q = np.abs(columns[source]), out[f"u_{source}"]
+            q, u_q = columns[source], out[f"u_{source}"]
             if name in LINEAR:  # ±1.96u: curvature of the exponential and of the inputs
-                ok[name] = ~(_BOUND * (u_q / q + r_q) > tolerance)
+                ok[name] = ~(_BOUND * (u_q / np.abs(q) + r_q) > tolerance)
             elif name in WITH_A:  # lognormal, with A's change of slope
-                u_r = u_q / q
-                bound = (_BOUND * r_q + 0.125 * change * u_c / u_r) * _log_factor(u_r)
+                u_r = u_q / np.abs(q)
+                bound = (bounds[name in TANGENTIAL] + a_term / u_r) * _log_factor(u_r)
                 ok[name] = ~(bound > tolerance)  # NaN (no u) passes
             else:  # lognormal: only the inputs' own curvature moves its ends
-                u_r = np.divide(u_q, columns[source])  # Q > 0 (a Q ≤ 0 passes: ±1.96u)
+                u_r = np.divide(u_q, q)  # Q > 0 (a Q ≤ 0 passes: ±1.96u)
                 ok[name] = ~(u_r > (limit_t if name in TANGENTIAL else limit))
-                if relative is not None and source == name:
-                    relative[name] = u_r
+                if ends is not None and source == name:
+                    low95, high95 = interval_columns(name)
+                    ends[low95], ends[high95] = _log_normal_ends(
+                        q, u_q, u_r, into.get(low95), into.get(high95)
+                    )
             if name in CONTACT_STEPPED:
                 ok[name] &= contact
     return ok
@@ -247,40 +284,67 @@ def first_order_intervals(
     out: Arrays,
     names: tuple[str, ...],
     critical_stokes: float,
-    relative: dict[str, Any] | None = None,
+    ends: Arrays | None = None,
+    into: Arrays | None = None,
 ) -> Arrays:
     """The 95 % interval of each quantity by first order: Q·exp(±1.96 u_r) for a positive
     quantity (first order on ln Q: every one is a product of powers or A(c) of one), ±1.96u
     for ``LINEAR`` ones and any Q ≤ 0; the predicted restitution through St_am's
     lognormal interval and St_c's step (e is monotone in St), with its u by quadrature
-    where the step is inside the interval. Also returns ``u_predicted_restitution``."""
+    where the step is inside the interval. Also returns ``u_predicted_restitution``.
+    ``ends``: interval ends already computed (``first_order_adequate``); ``into``: arrays
+    to write the interval ends into, where given."""
     result: Arrays = {}
-    for name in names:
-        q, u_q = columns[name], out[f"u_{name}"]
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+    ends = ends or {}
+    into = into or {}
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for name in names:
+            low95, high95 = interval_columns(name)
+            if low95 in ends:
+                result[low95], result[high95] = ends[low95], ends[high95]
+                continue
+            if name == RESTITUTION:  # below, in this place of the result
+                result[low95] = result[high95] = None  # type: ignore[assignment]
+                continue
+            q, u_q = columns[name], out[f"u_{name}"]
             if name in LINEAR:
-                low, high = q - Z95 * u_q, q + Z95 * u_q
+                width = Z95 * u_q
+                low = np.subtract(q, width, out=into.get(low95))
+                high = np.add(q, width, out=into.get(high95))
             else:
-                t = (relative or {}).pop(name, None)
-                if t is None:
-                    t = np.divide(u_q, q)
-                if not isinstance(t, np.ndarray) or not t.ndim:  # one scenario
-                    t = np.array(t, dtype=float, ndmin=1)
-                t *= Z95
-                np.exp(t, out=t)
-                high = np.multiply(q, t)
-                low = np.divide(q, t, out=t)
-                if np.ndim(q) == 0:
-                    low, high = low.reshape(()), high.reshape(())
-                negative = q <= 0
-                if np.any(negative):  # a Q ≤ 0 (none in derive today) keeps ±1.96u
-                    low = np.where(negative, q - Z95 * u_q, low)
-                    high = np.where(negative, q + Z95 * u_q, high)
-        low95, high95 = interval_columns(name)
-        result[low95], result[high95] = low, high
+                low, high = _log_normal_ends(
+                    q, u_q, np.divide(u_q, q), into.get(low95), into.get(high95)
+                )
+            result[low95], result[high95] = low, high
     if RESTITUTION in names:
-        result.update(_restitution(columns, out, critical_stokes))
+        for column, values in _restitution(columns, out, critical_stokes).items():
+            target = into.get(column)  # copied there while still in cache
+            if target is not None:
+                target[...] = values
+            result[column] = values if target is None else target
     return result
+
+
+def _log_normal_ends(
+    q: Any, u_q: Any, u_r: Any, low: np.ndarray | None, high: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Q·exp(∓1.96 u_r) and Q·exp(±1.96 u_r), u_r = u(Q)/Q (overwritten), written into
+    ``low``/``high`` where given; ±1.96u where Q ≤ 0 (Q = 0: U = 0, no film)."""
+    t = u_r
+    if not isinstance(t, np.ndarray) or not t.ndim:  # one scenario
+        t = np.array(t, dtype=float, ndmin=1)
+    t *= Z95
+    np.exp(t, out=t)
+    high = np.multiply(q, t, out=high)
+    low = np.divide(q, t, out=t if low is None else low)
+    if np.ndim(q) == 0:
+        low, high = low.reshape(()), high.reshape(())
+    if not (q.size and q.min() > 0):  # some Q ≤ 0 (or NaN): look row by row
+        negative = q <= 0
+        if negative.any():
+            low[...] = np.where(negative, q - Z95 * u_q, low)
+            high[...] = np.where(negative, q + Z95 * u_q, high)
+    return low, high
 
 
 def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays:
@@ -293,36 +357,38 @@ def _restitution(columns: Arrays, out: Arrays, critical_stokes: float) -> Arrays
         s_n = out["u_normal_stokes_number"] / st_n
         inv = -flow.LEGENDRE_BETA / st_am  # ln(e/ceiling) = −β/St
         g = np.exp(Z95 * s_am)
-        high = ceiling * np.exp(inv / g)
-        low = ceiling * np.exp(inv * g)
+        high = np.asarray(ceiling * np.exp(inv / g))  # an array also for one scenario
+        low = np.asarray(ceiling * np.exp(inv * g))
         margin = np.log(critical_stokes / st_n)  # rebound where z s_n > margin
         z_n = Z95 * s_n
-        high = np.where(z_n > margin, high, 0.0)
-        low = np.where(-z_n > margin, low, 0.0)
+        np.putmask(high, ~(z_n > margin), 0.0)
+        np.putmask(low, ~(-z_n > margin), 0.0)
     u_e = out[f"u_{RESTITUTION}"]
     p = out["probability_rebound"]
     across = (p > 0.025) & (p < 0.975) & np.isfinite(s_am)
     if across.any():
         u_e = np.array(u_e, dtype=float, copy=True)
         rows = np.flatnonzero(across.reshape(-1))
-        flat = {k: np.broadcast_to(v, across.shape).reshape(-1)[rows]
+        flat = {k: np.reshape(v if np.shape(v) == across.shape else
+                              np.broadcast_to(v, across.shape), -1)[rows]
                 for k, v in (("am", st_am), ("n", st_n), ("c", ceiling), ("sa", s_am),
                              ("sn", s_n))}  # fmt: skip
         z = _NODES[None, :]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            wet = flow.predicted_restitution(
-                flat["am"][:, None] * np.exp(z * flat["sa"][:, None]), flat["c"][:, None], 0.0
-            )
-            e = np.where(flat["n"][:, None] * np.exp(z * flat["sn"][:, None]) > critical_stokes,
-                         wet, 0.0)  # fmt: skip
+            # e = ceiling·exp(−β/St) as above (St > 0 here: St_am and its u are finite)
+            st = flat["am"][:, None] * np.exp(z * flat["sa"][:, None])
+            wet = flat["c"][:, None] * np.exp(-flow.LEGENDRE_BETA / st)
+            # 0 where St_n is not above St_c (wet is finite and ≥ 0: a product is np.where)
+            e = np.multiply(wet, flat["n"][:, None] * np.exp(z * flat["sn"][:, None])
+                            > critical_stokes, out=wet)  # fmt: skip
         mean = e @ _WEIGHTS
         sd = np.sqrt(np.maximum((e * e) @ _WEIGHTS - mean * mean, 0.0))
         u_e.reshape(-1)[rows] = sd
     # no St (dry), no u of St, or no rebound likely with no u: no interval
     missing = np.isnan(st_am + s_am) | (np.isnan(u_e) & (p <= 0.025))
     if np.ndim(missing):
-        low[missing] = np.nan
-        high[missing] = np.nan
+        np.putmask(low, missing, np.nan)
+        np.putmask(high, missing, np.nan)
     elif missing:
         low, high = np.full((), np.nan), np.full((), np.nan)
     low95, high95 = interval_columns(RESTITUTION)
@@ -497,27 +563,42 @@ def check_and_resample(
     *,
     monte_carlo: bool = True,
     budget: float = DRAW_BUDGET,
+    into: Arrays | None = None,
+    scaled: Arrays | None = None,
 ) -> Arrays:
     """``out`` (first order's ``u_<q>`` and probabilities) with, for every row: the 95 %
     intervals ``low95_<q>``/``high95_<q>`` and ``propagation_method``; rows where
     ``first_order_adequate`` fails get the Monte Carlo's u, intervals and probabilities
     for the quantities that failed (and the probabilities), as far as ``budget`` draws
     reach (rows in order; the others keep first order, and their method says why). A row
-    none of whose inputs states a u has no method (None) and no interval (NaN)."""
+    none of whose inputs states a u has no method (None) and no interval (NaN). ``into``:
+    arrays to write first order's interval ends into, where given; ``scaled``: the
+    sources' scaled u as first order took them, if kept."""
     shape = np.shape(columns[names[0]])
     stated = np.zeros(shape, dtype=bool)
     for given in u.values():
         stated |= np.isfinite(np.asarray(given, dtype=float))
+        if stated.all():
+            break
     result = dict(out)
-    relative: dict[str, Any] = {}
-    ok = first_order_adequate(x, u, columns, out, names, friction_cap, relative=relative)
-    result.update(first_order_intervals(columns, out, names, critical_stokes, relative))
-    any_bad = np.zeros(shape, dtype=bool)
+    ends: Arrays = {}
+    ok = first_order_adequate(
+        x, u, columns, out, names, friction_cap, scaled=scaled, ends=ends, into=into
+    )
+    result.update(first_order_intervals(columns, out, names, critical_stokes, ends, into))
+    all_ok = np.ones(shape, dtype=bool)
     for v in ok.values():
-        any_bad |= ~v
+        all_ok &= v
+    any_bad = np.logical_not(all_ok, out=all_ok)
     any_bad &= stated
-    method = np.full(shape, None, dtype=object)
-    method[stated] = FIRST_ORDER
+    method = (into or {}).get(PROPAGATION_METHOD)
+    if method is None:
+        method = np.empty(shape, dtype=object)
+    if stated.all():
+        method[...] = FIRST_ORDER
+    else:
+        method[...] = None
+        method[stated] = FIRST_ORDER
     if not any_bad.any():
         result[PROPAGATION_METHOD] = method
         return result
@@ -536,7 +617,7 @@ def check_and_resample(
         for index in range(rows.size):
             failed = ", ".join(k for k in labels if fail_at[k][index])
             flat_method[rows[index]] = f"{FIRST_ORDER}; the check failed for {failed}"
-        result[PROPAGATION_METHOD] = flat_method.reshape(shape)
+        result[PROPAGATION_METHOD] = method  # written through its flat view
         return result
     # the draws' statistics (and the tolerance) only for the quantities some row sends
     drawn_names = tuple(k for k in names if k in fail_at and fail_at[k].any())
@@ -590,7 +671,7 @@ def check_and_resample(
         texts.append(f"{text} for {which}; {FIRST_ORDER} for the rest")
     flat_method = method.reshape(-1)
     flat_method[rows] = np.array(texts, dtype=object)[inverse.reshape(-1)]
-    result[PROPAGATION_METHOD] = flat_method.reshape(shape)
+    result[PROPAGATION_METHOD] = method  # written through its flat view
     return result
 
 

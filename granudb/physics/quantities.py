@@ -63,6 +63,7 @@ def pair_properties(x: Arrays) -> Arrays:
         "g_star": contact.reduced_shear_modulus(g1, x["nu1"], g2, x["nu2"]),
         "v_n": v_n,
         "speed": hypot(v_n, v_t_centre),
+        "v_t_centre": v_t_centre,
         "u": u,
         # the particle's v_n_out is stored away from the target, the target's along n
         "v_n_out": x["vn_out"] + after("w_vn_out"),
@@ -78,9 +79,9 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
     a = contact.max_contact_radius(r_eff, load, e_star)
     p_max = contact.max_pressure(load, a)
     t_c = contact.contact_time_from_approach(delta, v_n)  # = contact.contact_time
-    c_wave = np.minimum(
-        contact.wave_speed(x["e1"], x["rho1"]), contact.wave_speed(x["e2"], x["rho2"])
-    )
+    c_wave_1 = contact.wave_speed(x["e1"], x["rho1"])
+    c_wave_2 = contact.wave_speed(x["e2"], x["rho2"])
+    c_wave = np.minimum(c_wave_1, c_wave_2)
     ratio = contact.quasi_static_ratio(a, c_wave, t_c)
     y_soft = np.fmin(x["y1"], x["y2"])
     state = limits.elastic_state(p_max, x["y1"], x["y2"])
@@ -94,6 +95,8 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
         "delta": delta,
         "t_c": t_c,
         "c_wave": c_wave,
+        "c_wave_1": c_wave_1,  # the particle's and the wall's (which is slower: uncertainty)
+        "c_wave_2": c_wave_2,
         "qs_ratio": ratio,
         "qs_valid": (ratio < contact.QUASI_STATIC_LIMIT) & (state != limits.YIELD_EXCEEDED),
         "yield_speed": yield_speed,

@@ -34,7 +34,14 @@ nothing); a quantity whose sensitivities are a factor times a sum of others' wit
 source in common (St = m*/R*² · V/μ, Re, Λ = x₁/σ, (5.9)'s A, e's prediction from
 St_am, ζ) takes Σ coefficient² × their variances instead, which is the same sum
 regrouped. tests/physics/test_uncertainty.py checks every column against the plain sum,
-source by source, to 1e-12.
+source by source, to 1e-12. A u_k² is computed only for a source some constant s_k
+reaches (on ``benchmarks/derive_speed.py``'s scenarios 8 of the 15 given sources are
+reached only through sensitivities that vary by row), and each input's u is looked at
+once for its scaled source and whether it is stated in part. The u columns are written
+straight into the output's rows (``into``), the verdict probabilities copied there while
+still in cache (``granudb.physics.row_chunks``). On that benchmark first order's u and
+probabilities cost about 0.9 of the plain derive's CPU, most of it the variances (about
+250 numpy passes and 33 square roots a block of rows).
 
 The first-order result is checked against Monte Carlo propagation (JCGM 101:2008) in
 tests/physics/test_uncertainty.py: within 10 % for input uncertainties up to 5 %; at
@@ -132,20 +139,28 @@ def scaled_sources(x: Arrays, u: Arrays) -> Arrays:
     >>> scaled_sources({"e1": np.array([200e9])}, {"e1": np.array([np.nan])})
     {}
     """
+    return _scaled_and_partial(x, u)[0]
+
+
+def _scaled_and_partial(x: Arrays, u: Arrays) -> tuple[Arrays, Arrays]:
+    """``scaled_sources``, and each given source stated for some rows only: 1.0 where
+    stated, 0.0 where not (one look at each u for both)."""
     out: Arrays = {}
-    for source, relative in SOURCES.items():
-        given = u.get(source)
-        if given is None:
-            continue
-        value = np.asarray(given, dtype=float)
-        stated = ~np.isnan(value)  # u ≥ 0 (``derive`` checks); NaN: not given
-        if not stated.any():
-            continue
-        if not stated.all():
-            value = np.nan_to_num(value, nan=0.0)
-        with np.errstate(divide="ignore", invalid="ignore"):
+    partial: Arrays = {}
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for source, relative in SOURCES.items():
+            given = u.get(source)
+            if given is None:
+                continue
+            value = np.asarray(given, dtype=float)
+            missing = np.isnan(value)  # u ≥ 0 (``derive`` checks); NaN: not given
+            if missing.any():
+                if missing.all():
+                    continue
+                partial[source] = (~missing).astype(float)
+                value = np.nan_to_num(value, nan=0.0)
             out[source] = value / np.abs(x[source]) if relative else value
-    return out
+    return out, partial
 
 
 def relative_uncertainty(
@@ -215,6 +230,8 @@ def _merged(sens: Sens, scaled: Arrays, correlated: Any, one_speed: Any, speed_f
     relative u). Done once on the base quantities, it holds for all that are built from
     them (the propagation is linear)."""
     out = {name: value for name, value in sens.items() if name in scaled}
+    if correlated is None and one_speed is None:
+        return out  # no two inputs are one source
     pairs = [(first, second, correlated, 1.0) for first, second in _PARTNERS.items()]
     pairs.append(("vn", "vt", one_speed, speed_factor))
     for first, second, flag, factor in pairs:
@@ -232,9 +249,12 @@ def _merged(sens: Sens, scaled: Arrays, correlated: Any, one_speed: Any, speed_f
 
 def _flag(flag: Any) -> Any:
     """A correlation flag as None (no row), True (every row) or the array (some rows)."""
-    if flag is None or not np.any(flag):
+    if flag is None:
         return None
-    return True if np.all(flag) else flag
+    flag = np.asarray(flag)
+    if not flag.any():
+        return None
+    return True if flag.all() else flag
 
 
 def _indicator(condition: np.ndarray) -> np.ndarray:
@@ -253,13 +273,14 @@ def sensitivities(
     and the steps' results (``granudb.physics.quantities``): only the given sources
     (``scaled``), with inputs that are one source merged (``_merged``)."""
     p, h, f, lub = steps
-    wall_only = not np.any(p["free"]) and bool(np.all(np.isnan(x["d2"])))
-
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # v_n's u is scaled by v_N (relative), v_t's is absolute: one speed's ratio
-        speed_factor = x["vt"] * p["v_n"] / x["vn"]
+    wall_only = not np.asarray(p["free"]).any() and bool(np.isnan(x["d2"]).all())
 
     correlated, one_speed = _flag(correlated), _flag(one_speed)  # tested once, not per base
+    speed_factor: Any = 1.0
+    if one_speed is not None:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # v_n's u is scaled by v_N (relative), v_t's is absolute: one speed's ratio
+            speed_factor = x["vt"] * p["v_n"] / x["vn"]
 
     def base(sens: Sens) -> Sens:
         return _merged(sens, scaled, correlated, one_speed, speed_factor)
@@ -273,26 +294,29 @@ def sensitivities(
         # G = E/(2(1+ν)) where not given: its E and ν enter G*
         g_sens: Sens = {}
         for side, g_name, nu in (("1", "g1", nu1), ("2", "g2", nu2)):
-            derived = _indicator(np.isnan(x[g_name]))
             weight = g_star * (2 - nu) / p[g_name]
+            missing = np.isnan(x[g_name])
+            if not missing.all():  # G given in some rows: E and ν enter only where not
+                weight = weight * _indicator(missing)
             g_sens = _lin(
                 (1.0, g_sens),
-                (1.0, {f"e{side}": weight * derived,
-                       f"nu{side}": g_star / p[g_name] - weight * derived / (1 + nu)}),
-            )  # fmt: skip
+                (1.0, {f"e{side}": weight, f"nu{side}": g_star / p[g_name] - weight / (1 + nu)}),
+            )
         s_r = {"d": 1.0} if wall_only else {"d": p["r_eff"] / p["radius"]}
         s_m1 = {"rho1": 1.0, "d": 3.0}
         # 1/m* = 1/m₁ + 1/m₂: d ln m* = (m*/m₁) d ln m₁ + (1 − m*/m₁) d ln m₂ (wall: m* = m₁)
         k1 = p["m_eff"] / p["m1"]
         s_m = s_m1 if wall_only else {"rho1": k1, "d": 3.0 * k1, "rho2": 1.0 - k1}
         v_n, speed = p["v_n"], p["speed"]
-        vt_centre = x["vt"] - np.where(np.isnan(x["w_vt"]), 0.0, x["w_vt"])
+        vt_centre = p["v_t_centre"]
         s_vn = {"vn": 1.0}  # v_n's u is relative to v_N (``propagate``)
         s_v = {"vn": (v_n / speed) ** 2, "vt": vt_centre / speed**2}
         tangential = p["u"]
-        s_u = {"vt": np.where(tangential == 0.0, 0.0, 1.0 / tangential)}
-        sigma = f["sigma"]
-        s_sigma = {"s1": x["s1"] / sigma**2, "s2": x["s2"] / sigma**2}
+        inverse = np.asarray(1.0 / tangential)
+        inverse[tangential == 0.0] = 0.0
+        s_u = {"vt": inverse}
+        sigma_squared = f["sigma"] ** 2
+        s_sigma = {"s1": x["s1"] / sigma_squared, "s2": x["s2"] / sigma_squared}
         k_am = flow.ADDED_MASS_COEFFICIENT * x["rho_f"] / x["rho1"]
         k_am = k_am / (1.0 + k_am)
     mu, rho_f, c, rho1 = (base({k: 1.0}) for k in ("mu", "rho_f", "c_barus", "rho1"))
@@ -332,7 +356,7 @@ def sensitivities(
     radius = _lin((1 / 3, s_r), (1 / 3, load), (-1 / 3, s_e))
     pressure = _lin((1, load), (-2, radius))
     time = _lin((1, delta), (-1, s_vn))
-    slower = _indicator(np.sqrt(x["e1"] / x["rho1"]) <= np.sqrt(x["e2"] / x["rho2"]))
+    slower = _indicator(h["c_wave_1"] <= h["c_wave_2"])
     wave = base({"e1": 0.5 * slower, "rho1": -0.5 * slower,
                  "e2": 0.5 * (1 - slower), "rho2": -0.5 * (1 - slower)})  # fmt: skip
     soft = _indicator(~(x["y2"] < x["y1"]))  # fmin: the particle's unless the wall's is lower
@@ -413,22 +437,29 @@ def propagate(
     critical_stokes: float,
     correlated: np.ndarray | None = None,
     one_speed: np.ndarray | None = None,
+    into: Arrays | None = None,
+    scaled: Arrays | None = None,
 ) -> Arrays:
     """``u_<column>`` of every propagated column of ``columns`` (``derive``'s, in its
     order) and the verdict probabilities, from the inputs' uncertainties ``u`` (step
     names, see ``SOURCES``); ``steps`` are the results of ``granudb.physics.quantities``'
-    pair_properties, hertz, fluid_numbers, lubricated and tangential."""
+    pair_properties, hertz, fluid_numbers, lubricated and tangential. ``into``: arrays
+    to write ``u_<column>`` into, where given (returned as the values); ``scaled``, if
+    given, receives each given source's scaled u (``scaled_sources``; v_n's relative to
+    v_N), 0 where not stated."""
     p, h, f, lub, tan = steps
-    scaled = scaled_sources(x, u)
-    if "vn" in scaled:
-        scaled["vn"] = scaled["vn"] / p["v_n"]  # relative to the approach speed v_N > 0
+    given, partial = _scaled_and_partial(x, u)
+    if "vn" in given:
+        given["vn"] = given["vn"] / p["v_n"]  # relative to the approach speed v_N > 0
+    if scaled is not None:
+        scaled.update(given)
+    scaled = given
     sens = sensitivities(x, (p, h, f, lub), scaled, correlated, one_speed)
     sums = sens.pop("_sums")
     lubricated = (tan["mu_used"] == lub["mu_lub"]) & np.isfinite(lub["mu_lub"])
     relative = _relatives(sens, sums, scaled, columns, lubricated)
     # A source stated for some rows only (a table of runs): a row none of whose reaching
     # sources is stated has no u (NaN), not the 0 its unstated rows' zeros would give.
-    partial = _partly_stated(u, scaled)
     if partial:
         stated: dict[str, np.ndarray | float] = {
             k: partial.get(k, 1.0) for k in scaled if k != E_STAR
@@ -447,29 +478,41 @@ def propagate(
                                     "friction_coefficient_used" else name], stated)  # fmt: skip
             relative[name] = np.where(reach > 0, relative[name], np.nan)
     out: Arrays = {}
+    into = into or {}
     for name in (name for name in columns if name in relative):
+        key = f"u_{name}"
         if name == "incidence_angle_rad":  # absolute already; NaN where the angle is
-            out[f"u_{name}"] = relative[name] + 0.0 * columns[name]
+            out[key] = np.add(relative[name], 0.0 * columns[name], out=into.get(key))
         else:
-            u_q = columns[name] * relative[name]
-            out[f"u_{name}"] = np.abs(u_q, out=u_q) if isinstance(u_q, np.ndarray) else abs(u_q)
+            u_q = np.multiply(columns[name], relative[name], out=into.get(key))
+            out[key] = np.abs(u_q, out=u_q) if isinstance(u_q, np.ndarray) else abs(u_q)
     # Outside an immersed rebound e is e_dry (dry) or 0 by the St_c rule: neither has a
     # propagated u (e_dry's own is not an input here), so none is stated.
     rebound = np.isfinite(f["st_am"]) & (columns["predicted_restitution"] > 0) & f["immersed"]
-    out["u_predicted_restitution"] = np.where(rebound, out["u_predicted_restitution"], np.nan)
-    out.update(
-        verdict_probabilities(
-            film=columns["film_parameter"],
-            u_film=relative["film_parameter"],
-            normal_stokes=columns["normal_stokes_number"],
-            u_normal_stokes=relative["normal_stokes_number"],
-            critical_stokes=critical_stokes,
-            yield_ratio=h["p_max"] / (1.6 * np.fmin(x["y1"], x["y2"])),
-            u_yield_ratio=relative["_yield_ratio"],
-            immersed=f["immersed"],
-        )
+    u_e = out["u_predicted_restitution"]
+    if isinstance(u_e, np.ndarray) and u_e.ndim:
+        np.putmask(u_e, ~rebound, np.nan)
+    else:
+        out["u_predicted_restitution"] = np.where(rebound, u_e, np.nan)
+    probabilities = verdict_probabilities(
+        film=columns["film_parameter"],
+        u_film=relative["film_parameter"],
+        normal_stokes=columns["normal_stokes_number"],
+        u_normal_stokes=relative["normal_stokes_number"],
+        critical_stokes=critical_stokes,
+        yield_ratio=h["p_max"] / (1.6 * np.fmin(x["y1"], x["y2"])),
+        u_yield_ratio=relative["_yield_ratio"],
+        immersed=f["immersed"],
     )
+    for name, values in probabilities.items():  # into ``into`` while still in cache
+        out[name] = values if into.get(name) is None else _copied(values, into[name])
     return out
+
+
+def _copied(values: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """``target`` with ``values`` copied in."""
+    target[...] = values
+    return target
 
 
 def ratio_uncertainty(ratio: Any, denominator: Any, u_numerator: Any, u_denominator: Any) -> Any:
@@ -602,11 +645,16 @@ def exceedance(ratio: Any, u_relative: Any) -> np.ndarray:
     """
     ratio = np.asarray(ratio, dtype=float)
     s = np.asarray(u_relative, dtype=float)
+    if np.isnan(ratio).all():  # no verdict in any row (no yield stress, dry)
+        return np.full(np.broadcast(ratio, s).shape, np.nan)
     with np.errstate(divide="ignore", invalid="ignore"):
-        z = np.log(ratio) / s
-    step = np.where(ratio > 1.0, 1.0, 0.0)
-    out = np.where(s > 0, normal_cdf(np.where(s > 0, z, 0.0)), step)
-    return np.where(np.isnan(ratio), np.nan, out)
+        z = np.log(ratio) / s  # s = 0: ±inf, whose Φ is the step 1 if q > 1 else 0
+    out = normal_cdf(z)
+    undefined = np.isnan(out)  # a NaN ratio; or no u (NaN), or s = 0 at q = 1: the step
+    if undefined.any():
+        step = undefined & ~(s > 0) & ~np.isnan(ratio)
+        out[step] = np.broadcast_to(ratio > 1.0, out.shape)[step]
+    return out
 
 
 def verdict_probabilities(
@@ -631,11 +679,15 @@ def verdict_probabilities(
     [0.5, 1.0, None]
     """
     with np.errstate(divide="ignore", invalid="ignore"):
-        contact = 1.0 - exceedance(film, u_film)
+        contact = exceedance(film, u_film)
+    np.subtract(1.0, contact, out=contact)
     rebound = exceedance(normal_stokes / critical_stokes, u_normal_stokes)
+    if not immersed.all():  # dry rows: no contact verdict, rebound certain
+        contact = np.where(immersed, contact, np.nan)
+        rebound = np.where(immersed, rebound, 1.0)
     return {
-        "probability_asperity_contact": np.where(immersed, contact, np.nan),
-        "probability_rebound": np.where(immersed, rebound, 1.0),
+        "probability_asperity_contact": contact,
+        "probability_rebound": rebound,
         "probability_yield": exceedance(yield_ratio, u_yield_ratio),
     }
 
@@ -664,17 +716,19 @@ def _any_of(masks: list[Any]) -> Any:
     return out
 
 
-def _partly_stated(u: Arrays, scaled: Arrays) -> Arrays:
-    """Each given source stated for some rows only: 1.0 where stated, 0.0 where not."""
-    out: Arrays = {}
-    for source in scaled:
-        given = u.get(source)
-        if given is None:
-            continue
-        stated = ~np.isnan(np.asarray(given, dtype=float))
-        if stated.ndim and not stated.all():
-            out[source] = stated.astype(float)
-    return out
+class _Squares(dict):  # type: ignore[type-arg]
+    """u_k² of the scaled sources, each computed when first asked for (a source whose
+    sensitivities are all arrays never needs its own)."""
+
+    def __init__(self, scaled: Arrays) -> None:
+        super().__init__()
+        self.scaled = scaled
+
+    def __missing__(self, source: str) -> np.ndarray:
+        value = self.scaled[source]
+        square: np.ndarray = value * value
+        self[source] = square
+        return square
 
 
 def _relatives(
@@ -686,7 +740,7 @@ def _relatives(
 ) -> dict[str, Any]:
     """u(Q)/|Q| of every propagated column from the sensitivities and the sources'
     scaled uncertainties (NaN where no given source reaches Q): ``propagate``'s sum."""
-    squares = {source: value * value for source, value in scaled.items()}
+    squares = _Squares(scaled)
     variances: dict[int, Any] = {}  # each set of sensitivities once (x₁ and h_m share one)
     norms: dict[int, Any] = {}
 

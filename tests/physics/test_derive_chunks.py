@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from support import STEEL_ON_ZERODUR
 
-from granudb.physics.derive import derive
+from granudb.physics.derive import UNCERTAIN_INPUTS, derive
 from granudb.physics.numeric import PhysicsInputError
 from granudb.physics.row_chunks import CHUNK_ROWS, run_in_chunks
 
@@ -131,3 +131,49 @@ def test_run_blocked_calls_compute_once_per_block_and_preserves_dtypes() -> None
     assert np.array_equal(out["twice"], 2 * values)
     assert out["odd"].dtype == bool and out["odd"].sum() == 12
     assert out["name"].dtype == object and out["name"][24] == 24.0
+
+
+def test_blocked_derive_with_uncertainties_equals_small_tables_row_for_row() -> None:
+    """With uncertainties the blocks after the first write their u, interval ends,
+    probabilities and method straight into the table (``writes_into``); every row, every
+    column, is what a one-block table of those rows gives, bit for bit."""
+    table = _mixed(ROWS, seed=8)
+    rng = np.random.default_rng(9)
+    u = {f"u_{name}": 0.02 * np.abs(table[name]) for name in UNCERTAIN_INPUTS if name in table}
+    u["u_viscosity_pa_s"] = np.where(rng.random(ROWS) < 0.1, np.nan, u["u_viscosity_pa_s"])
+    flags = {"correlated_materials": rng.random(ROWS) < 0.3, "one_speed": rng.random(ROWS) < 0.3}
+    whole = derive(**table, uncertainties=u, **flags, monte_carlo=False)
+    assert len(whole) > 150  # the u, interval and method columns are there
+    for start in (0, CHUNK_ROWS - 400, 2 * CHUNK_ROWS):
+        rows = slice(start, start + 1000)
+        part = derive(
+            **{name: values[rows] for name, values in table.items()},
+            uncertainties={name: values[rows] for name, values in u.items()},
+            **{name: values[rows] for name, values in flags.items()},
+            monte_carlo=False,
+        )
+        assert list(part) == list(whole)
+        for name, values in part.items():
+            assert whole[name].dtype == values.dtype, name
+            assert _same(whole[name][rows], values), (name, start)
+
+
+def test_a_compute_may_write_its_columns_into_the_table() -> None:
+    """``writes_into``: blocks after the first get the table's rows; a column returned as
+    that very array stays as written, any other is copied in; the first block (and a
+    one-block table) gets none."""
+    given: list[bool] = []
+
+    def compute(x: dict[str, np.ndarray], into: dict | None = None) -> dict[str, np.ndarray]:
+        given.append(into is not None)
+        twice = np.multiply(x["a"], 2.0, out=None if into is None else into["twice"])
+        return {"twice": twice, "square": x["a"] * x["a"]}
+
+    values = np.arange(25, dtype=float)
+    out = run_in_chunks(compute, {"a": values}, threads=1, block_rows=10, writes_into=True)
+    assert given == [False, True, True]
+    assert np.array_equal(out["twice"], 2 * values)
+    assert np.array_equal(out["square"], values * values)
+    given.clear()
+    run_in_chunks(compute, {"a": values[:7]}, block_rows=10, writes_into=True)
+    assert given == [False]
