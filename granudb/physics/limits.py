@@ -21,6 +21,8 @@ YIELD_SPEED_CONSTANT = np.pi**4 * YIELD_PRESSURE_FACTOR**5 / 40.0
 
 ELASTIC_STATES = ("elastic", "yield_exceeded", "unknown")
 ELASTIC, YIELD_EXCEEDED, YIELD_UNKNOWN = 0, 1, 2
+#: Which dry e applies: e_dry, or Thornton's (15.1) past yield where it is lower.
+RESTITUTION_MODELS = ("elastic", "elastic_plastic")
 
 #: Upper end of the limiting-shear slope γ in τ_L = τ_L0 + γ p, "about 0.05–0.1 for
 #: traction fluids" (Bair & Winer 1979, "A rheological model for elastohydrodynamic

@@ -88,6 +88,17 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
     yield_speed = limits.yield_speed_from_pressure(v_n, p_max, y_soft)
     a_ratio, delta_ratio = limits.hertz_strain(a, r_eff)
     plastic = state == limits.YIELD_EXCEEDED
+    # past yield Thornton's (15.1) bounds the dry e (docs/physics.md §15); which e applies:
+    # Thornton's only where it is below e_dry (above the hand-over speed,
+    # ``limits.handover_speed``); past V_y but below it, e_dry still applies. Computed on
+    # no row where none is past yield (most tables, every Monte Carlo draw of one).
+    e_dry = np.array(x["e_dry"], dtype=float)
+    model = np.zeros(np.shape(state), dtype=np.intp)
+    if plastic.any():
+        e_dry = np.where(
+            plastic, limits.elastic_plastic_restitution(x["e_dry"], yield_speed, v_n), e_dry
+        )
+        model[plastic & (limits.thornton_restitution(yield_speed, v_n) < x["e_dry"])] = 1
     return {
         "load": load,
         "a": a,
@@ -104,17 +115,8 @@ def hertz(x: Arrays, p: Arrays) -> Arrays:
         "a_ratio": a_ratio,
         "delta_ratio": delta_ratio,
         "strain_valid": a_ratio <= limits.HERTZ_STRAIN_LIMIT,
-        # past yield Thornton's (15.1) bounds the dry e (docs/physics.md §15)
-        "e_dry": np.where(
-            plastic, limits.elastic_plastic_restitution(x["e_dry"], yield_speed, v_n), x["e_dry"]
-        ),
-        # which e applies: Thornton's only where it is below e_dry (above the hand-over
-        # speed, ``limits.handover_speed``); past V_y but below it, e_dry still applies
-        "e_model": np.where(
-            plastic & (limits.thornton_restitution(yield_speed, v_n) < x["e_dry"]),
-            "elastic_plastic",
-            "elastic",
-        ).astype(object),
+        "e_dry": e_dry,
+        "e_model": limits.names(limits.RESTITUTION_MODELS, model),
     }
 
 
