@@ -13,15 +13,11 @@ that passes.
 
 from __future__ import annotations
 
-import sys
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+from dem_models import dry_model, wet_model
 
-from dem.dem_cases import dry_model, wet_model  # noqa: E402
-
-from granudb.dem import verify as dem_verify  # noqa: E402
+from granudb.dem import verify as dem_verify
 
 
 def main() -> None:

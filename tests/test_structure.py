@@ -169,3 +169,26 @@ def test_every_public_physics_relation_documents_each_argument_with_its_unit() -
                 if line is None or not re.search(r"\[[^\]]+\]", line.group(0)):
                     missing.append(f"{name}.{function_name}({argument})")
     assert missing == []
+
+
+def test_no_benchmark_imports_a_test_module() -> None:
+    """The benchmarks run without the test extras (issue 36): no benchmark puts the tests
+    on its path or imports pytest, the tests' support or a test module; shared cases live
+    in benchmarks/ and the tests import them from there."""
+    tests = {path.stem for path in (PACKAGE.parent / "tests").rglob("*.py")}
+    tests |= {path.name for path in (PACKAGE.parent / "tests").iterdir() if path.is_dir()}
+    benchmarks = {path.stem for path in (PACKAGE.parent / "benchmarks").glob("*.py")}
+    for path in sorted((PACKAGE.parent / "benchmarks").glob("*.py")):
+        text = path.read_text(encoding="utf-8")
+        assert '/ "tests"' not in text and "'tests'" not in text, path.name
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.Import):
+                names = [alias.name for alias in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                names = [node.module or ""]
+            else:
+                continue
+            for name in names:
+                top = name.split(".")[0]
+                assert top != "pytest", (path.name, name)
+                assert top not in tests - benchmarks, (path.name, name)

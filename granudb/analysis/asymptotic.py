@@ -159,6 +159,32 @@ STATED_SHIFT = (
 )
 
 
+#: What the method adds about the value itself where the interval's centre is corrected:
+#: the value stays the fit of the runs as measured (as on the bootstrap path, whose pivot
+#: corrects the interval and not the value, so a value does not jump at the switch), and
+#: b̂ is given so that the corrected estimate θ̂ − b̂ can be read off.
+UNCORRECTED_VALUE = (
+    "; the value is {value}, the fit of the runs as measured, not corrected (b̂ = {shift}), "
+    "so it may lie outside its interval"
+)
+
+
+def shift_words(shift: float | dict[str, float], value: str = "θ̂", of: str = "") -> str:
+    """``UNCORRECTED_VALUE`` with b̂ (one number, or one per parameter name; ``of``: what
+    it is a shift of, when the value is a transform) and what the ``value`` is.
+
+    >>> shift_words({"k": -0.2198}).split(", so")[0]
+    '; the value is θ̂, the fit of the runs as measured, not corrected (b̂ = k -0.2198)'
+    >>> shift_words(0.01, value="q̂^(7/2)", of=" in q").split(", the fit")[0]
+    '; the value is q̂^(7/2)'
+    """
+    if isinstance(shift, dict):
+        said = ", ".join(f"{name} {value:.4g}" for name, value in shift.items())
+    else:
+        said = f"{shift:.4g}{of}"
+    return UNCORRECTED_VALUE.format(value=value, shift=said)
+
+
 def stated_method(switch: int, of: str = "") -> str:
     """The method's words when the runs state a u (``stated_shift`` corrects the centre)."""
     return METHOD.format(switch=switch, of=of) + STATED_SHIFT.format(draws=SHIFT_DRAWS)

@@ -394,8 +394,11 @@ def _walton_group(
         errors = asymptotic.walton_errors(x, y, c, e, k)
         centre = (float(fit.beta[0]), float(fit.friction[0]), float(fit.restitution[0]))
         if stated is not None:  # the measurement error's bias, as the bootstrap's pivot
-            how["asymptotic"] = asymptotic.stated_method(switch)
             shift, spread = asymptotic.stated_shift(x, y, e, stated, centre, seed)
+            # one method for the three parameters, each one's b̂ in it
+            how["asymptotic"] = asymptotic.stated_method(switch) + asymptotic.shift_words(
+                {name: float(b) for name, b in zip(("β", "μ_f", "ē"), shift, strict=True)}
+            )
             centre = tuple(float(v) for v in np.asarray(centre) - shift)
             errors = tuple(asymptotic.stated_se(*pair) for pair in zip(errors, spread, strict=True))
         boot = core.Decision(*([np.array([])] * 9))  # no resamples: the values are unused

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import asymptotic, intervals
+from granudb.analysis import asymptotic, intervals, shared_scale
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
@@ -348,7 +348,9 @@ def _fit_group(
     asked: int | None,
     seed: int,
     switch: int = asymptotic.ASYMPTOTIC_FROM,
+    scale: tuple[float, str] | None = None,
 ) -> dict:
+    """One group's row (``gap_viscosity``); ``scale``: the catalogue's share of its g."""
     nan = math.nan
     row: dict[str, Any] = {**dict(zip(GROUP, key, strict=True))}
     row.update(gap_viscosity_pa_s=nan, gap_viscosity_low_pa_s=nan, gap_viscosity_high_pa_s=nan)
@@ -392,6 +394,8 @@ def _fit_group(
             centre = q - shift
             se = asymptotic.stated_se(se, spread)
             row["interval_method"] += STATED_SHIFT.format(draws=asymptotic.SHIFT_DRAWS)
+            if math.isfinite(shift):  # μ₀ = q̂^(7/2), not corrected
+                row["interval_method"] += asymptotic.shift_words(shift, value="q̂^(7/2)", of=" in q")
         found = asymptotic.interval(centre, se, bounds=(0.0, math.inf), level=LEVEL)
         interval_reason = found.reason
         if stated is None and not interval_reason:
@@ -449,6 +453,12 @@ def _fit_group(
         row["gap_viscosity_std_pa_s"] = 3.5 * q**2.5 * se  # the delta method from q's
     elif g is None:
         interval_reason = "interval not determined: (5.8) is not a power law of μ₀ here"
+    if scale is not None and not interval_reason:  # the catalogue's share of g
+        low, high = row["gap_viscosity_low_pa_s"], row["gap_viscosity_high_pa_s"]
+        row["gap_viscosity_low_pa_s"], row["gap_viscosity_high_pa_s"] = shared_scale.widened(
+            low, high, viscosity, 3.5 * scale[0], LEVEL
+        )
+        row["interval_method"] += shared_scale.words(scale[0], scale[1], shared_scale.GAP)
     row["interval_reason"] = interval_reason
     row["gap_temperature_c"], reason = _temperature(model, viscosity)
     if not reason and not interval_reason:
@@ -466,6 +476,7 @@ def gap_viscosity(
     resamples: int | None = None,
     seed: int = SEED,
     asymptotic_from: int = asymptotic.ASYMPTOTIC_FROM,
+    gap_scale: dict[tuple, tuple[float, str]] | None = None,
 ) -> list[dict[str, Any]]:
     """μ₀ and the gap temperature per immersed group (figure 14, table 2).
 
@@ -479,8 +490,12 @@ def gap_viscosity(
     ``reason`` (one line whenever μ₀ or the temperature is missing, else '') and ``note``
     (the same text, the older name). ``asymptotic_from``: the number of sliding runs from
     which, with no count asked for, the interval is asymptotic (``granudb.analysis.asymptotic``;
-    ``bootstrap_resamples`` 0).
+    ``bootstrap_resamples`` 0). ``gap_scale``: {(dataset, particle, wall, fluid): (u_r,
+    sources)}, the catalogue's share of each group's g of (5.8) where it states one
+    (``granudb.scenario.plug_ins.gap_scale``): an error shared by every run, which widens
+    μ₀'s interval and the gap temperature's with it (``granudb.analysis.shared_scale``).
     """
+    scales = gap_scale or {}
     if "normal_speed_m_s" not in frame:  # a table of wall impacts only: the particle's own
         frame = frame.assign(normal_speed_m_s=frame["v_n_in_m_s"])
     inputs = dict.fromkeys(
@@ -494,6 +509,14 @@ def gap_viscosity(
     )
     with resampling.one_thread():
         return [  # dry runs (no fluid) are in no group
-            _fit_group(key, group, fluids.get(key[3]), resamples, seed, asymptotic_from)
+            _fit_group(
+                key,
+                group,
+                fluids.get(key[3]),
+                resamples,
+                seed,
+                asymptotic_from,
+                scales.get(tuple(key)),
+            )  # fmt: skip
             for key, group in group_frames(frame, GROUP, [c for c in inputs if c not in GROUP])
         ]

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import asymptotic, bayesian, intervals, restitution_small_n
+from granudb.analysis import asymptotic, bayesian, intervals, restitution_small_n, shared_scale
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.errors import ValidationError
 from granudb.lazy import scipy_optimize
@@ -473,10 +473,12 @@ def asymptotic_law(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed:
 
 def asymptotic_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
                          seed: int, stated: tuple | None = None,
-                         dry: np.ndarray | None = None) -> dict:  # fmt: skip
-    """{name: intervals.Interval}: the asymptotic intervals θ̂ ± t se of the parameter and
-    (unless ``fixed``) e_dry from ``asymptotic_law``, in place of ``bootstrap_intervals``."""
+                         dry: np.ndarray | None = None) -> tuple[dict, dict]:  # fmt: skip
+    """({name: intervals.Interval}, {name: b̂}): the asymptotic intervals θ̂ ± t se of the
+    parameter and (unless ``fixed``) e_dry from ``asymptotic_law``, in place of
+    ``bootstrap_intervals``, and each one's shift b̂ = θ̂ − its centre (0 without stated u)."""
     centre, covariance, dof = asymptotic_law(model, st, e, fit, fixed, seed, stated, dry)
+    shift = {"e_dry": float(fit[0] - centre[0]), "parameter": float(fit[2] - centre[1])}
     se = np.sqrt(np.diag(covariance))
     level = intervals.LEVEL
     found = {"parameter": asymptotic.t_interval(
@@ -485,7 +487,7 @@ def asymptotic_intervals(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, 
         found["e_dry"] = asymptotic.t_interval(
             centre[0], se[0], dof[0], bounds=(0.0, E_DRY_MAX), level=level
         )
-    return found
+    return found, {name: shift[name] for name in found}
 
 
 def asymptotic_sets(model: str, st: np.ndarray, e: np.ndarray, fit: tuple, fixed: bool,
@@ -601,7 +603,12 @@ def _intervals(
         return
     fit = (row["e_dry"], row["e_dry_stderr"], row["parameter"], row["parameter_stderr"])
     if large:
-        found = asymptotic_intervals(model, st, e, fit, fixed, SEED, stated, dry)
+        found, shift = asymptotic_intervals(model, st, e, fit, fixed, SEED, stated, dry)
+        if stated is not None and all(map(math.isfinite, shift.values())):
+            names = {"parameter": PARAMETER_NAMES[model], "e_dry": "e_dry"}
+            row["interval_method"] += asymptotic.shift_words(
+                {names[name]: value for name, value in sorted(shift.items())}
+            )
     else:
         found = bootstrap_intervals(
             model, st, e, fit, fixed, row["bootstrap_resamples"], SEED, stated, dry
@@ -616,6 +623,18 @@ def _intervals(
                 f"{PARAMETER_NAMES[model] if name == 'parameter' else name}: {got.reason}"
             )
     row["interval_reason"] = "; ".join(reasons)
+
+
+def _widen_by_scale(row: dict, share: float, sources: str) -> None:
+    """The parameter's interval widened by the catalogue's share of St_n, a relative error
+    shared by every run (St_c and k scale with it, e_dry does not:
+    ``granudb.analysis.shared_scale``); the method says so."""
+    if not (share > 0) or math.isnan(row.get("parameter_low", math.nan)):
+        return
+    row["parameter_low"], row["parameter_high"] = shared_scale.widened(
+        row["parameter_low"], row["parameter_high"], row["parameter"], share, intervals.LEVEL
+    )
+    row["interval_method"] += shared_scale.words(share, sources)
 
 
 def _bayes_stated(frame: Any, runs: np.ndarray, e: np.ndarray, speeds: tuple | None):
@@ -643,6 +662,7 @@ def restitution(
     report: bool = False,
     resamples: int | None = None,
     asymptotic_from: int = asymptotic.ASYMPTOTIC_FROM,
+    stokes_scale: dict[tuple, tuple[float, str]] | None = None,
 ) -> list[dict[str, Any]]:
     """Fit e(St_n) of the immersed runs per (dataset, particle, wall), all fluids together
     (figure 5).
@@ -667,6 +687,10 @@ def restitution(
     intervals"). ``method`` "bayes": values are posterior medians with 95 % credible
     intervals (``bayesian.restitution_row``, which adds the prior, likelihood, sampler
     settings and diagnostics), each group's draws appended to ``draws`` when a list is given.
+    ``stokes_scale``: {(dataset, particle, wall): (u_r, sources)}, the catalogue's share of
+    each group's St_n where it states one (``granudb.scenario.plug_ins.stokes_scale``):
+    an error shared by every run, which widens the parameter's interval whatever the
+    method (``granudb.analysis.shared_scale``; ``interval_method`` says so).
     """
     model, why = restitution_model(model, report=report)
     bayesian.check_method(method)
@@ -679,6 +703,7 @@ def restitution(
     # frame, of its immersed or dry rows, or of the frame sorted by group.
     groups = frame.groupby([frame[k] for k in _INPUTS[:3]], sort=True).indices
     speeds = resampling.stated_speeds(frame)
+    scales = stokes_scale or {}
     results = []
     with resampling.one_thread():  # as the other fits (walton_bootstrap.one_thread)
         for key in sorted(groups):
@@ -703,5 +728,7 @@ def restitution(
                     )  # fmt: skip
                     if draws is not None and found is not None:
                         draws.append(found)
+                if key in scales:  # the catalogue's share of St_n, whatever the method
+                    _widen_by_scale(row, *scales[key])
                 results.append(row)
     return results

@@ -109,6 +109,8 @@ FACE: dict[str, str] = {
     "derived_terms": "presentation",
     "fit_people_view": "presentation",
     "qualified_value": "scenario",
+    "interval_text": "scenario",
+    "method_text": "scenario",
     "target_words": "scenario",
     "verify_table": "dem",
     "verify_passed": "dem",
@@ -292,6 +294,8 @@ if TYPE_CHECKING:
         reported_runs as reported_runs,
     )
     from granudb.api.scenario import (
+        interval_text as interval_text,
+        method_text as method_text,
         pair as pair,
         qualified_value as qualified_value,
         target_words as target_words,

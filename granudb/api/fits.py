@@ -21,6 +21,7 @@ from granudb.lazy import pandas as pd
 from granudb.output_files import write_text
 from granudb.scenario.collisions import select_collisions
 from granudb.scenario.fluid_state import fluid_model
+from granudb.scenario.plug_ins import gap_scale, stokes_scale
 from granudb.vocabulary.escaping import spreadsheet_frame
 
 #: The forms of e(St_n) ``fit_restitution`` fits.
@@ -126,7 +127,9 @@ def fit_restitution(
         db,
         filters,
         as_frame,
-        lambda _session, frame, found: fits.restitution(frame, chosen, method=how, draws=found),
+        lambda session, frame, found: fits.restitution(
+            frame, chosen, method=how, draws=found, stokes_scale=stokes_scale(session, frame)
+        ),
         draws,
     )
 
@@ -144,6 +147,7 @@ def fit_gap_viscosity(db: Any = None, *, as_frame: bool = True, **filters: Any) 
 
     def run(session: Any, frame: Any, _draws: list[Any]) -> Any:
         rows = catalog_rows.fluid_rows(session.connection())
-        return fits.gap_viscosity(frame, {f.name: fluid_model(f) for f in rows})
+        models = {f.name: fluid_model(f) for f in rows}
+        return fits.gap_viscosity(frame, models, gap_scale=gap_scale(session, frame))
 
     return _fit(db, filters, as_frame, run)

@@ -8,11 +8,11 @@ from granudb.api import inputs
 from granudb.api.database import opened
 from granudb.errors import ValidationError
 from granudb.reporting.format import display
-from granudb.reporting.values import qualified_value
+from granudb.reporting.values import interval_text, method_text, qualified_value
 from granudb.reporting.verdicts import verdicts
 from granudb.scenario.pair import TARGET_WORDS, TARGETS, derive_pair, is_dry, pair_json
 
-__all__ = ["pair", "qualified_value"]
+__all__ = ["interval_text", "method_text", "pair", "qualified_value"]
 
 
 #: The options of one collision scenario (``pair``), written once for Python and the

@@ -129,13 +129,12 @@ def print_pair(document: dict[str, Any]) -> None:
             continue
         label = f"{described.symbol} ({described.title.lower()})"
         value = api.qualified_value(document, name)
-        low, high = document.get(f"low95_{name}"), document.get(f"high95_{name}")
-        if isinstance(low, float) and isinstance(high, float) and low == low and high == high:
-            value += f"\n95 %: {api.display(low, name)} – {api.display(high, name)}"
+        interval = api.interval_text(document, name)
+        value += f"\n{interval}" if interval else ""
         derived.add_row(Text(label), Text(value), Text(described.description))
     out.print(derived)
-    if document.get("propagation_method"):
-        out.print(Text(f"u and 95 % intervals: {document['propagation_method']}"))
+    if api.method_text(document):
+        out.print(Text(api.method_text(document)))
 
     out.print("[bold]Verdicts[/bold]")
     for verdict in document["verdicts"]:

@@ -27,7 +27,9 @@ from granudb.lazy import pandas as pd
 from granudb.reporting import figures, references, sections, tables
 from granudb.reporting.groups import colours, fluid_names, labels_of
 from granudb.reporting.pinned import pinned_notes
+from granudb.reporting.values import method_text
 from granudb.reporting.verdicts import verdicts
+from granudb.scenario import plug_ins
 from granudb.scenario.collision_query import CollisionQuery
 from granudb.scenario.collisions import select_collisions
 from granudb.scenario.dry_values import dry_values, provenance_keys
@@ -49,6 +51,8 @@ REPORT_COLUMNS = [
     *("u_effective_incidence", "u_effective_rebound", "u_normal_restitution"),
     "u_normal_stokes_number",
 ]
+# and what the catalogue's share of St_n is read from (the restitution fit's plug-in)
+REPORT_COLUMNS += [c for c in plug_ins.COLUMNS if c not in REPORT_COLUMNS]
 
 #: Scenario inputs granudb assumes when ``report --pair`` is not given them.
 DEFAULT_DIAMETER_M = 12.7e-3
@@ -190,7 +194,11 @@ def _pair_sections(
     report["assumed"] = [f"{r['label']} = {r['value']}" for r in scenario if r["name"] in assumed]
     report["derived"] = [
         {"heading": "Scenario", "rows": scenario},
-        {"heading": "Derived", "rows": sections.derived_rows(result.derived)},
+        {
+            "heading": "Derived",
+            "rows": sections.derived_rows(result.derived),
+            "note": method_text(result.derived),  # how the u and intervals were obtained
+        },
     ]
     report["figures"].append(
         figures.regime_map_figure(
@@ -311,11 +319,14 @@ def _add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bo
     report["tables"].append(
         tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )
-    restitution = fits.restitution(frame, report=True)  # the form and why: its record
+    # the form and why: its record; the catalogue's share of St_n as fit_restitution has it
+    restitution = fits.restitution(
+        frame, report=True, stokes_scale=plug_ins.stokes_scale(connection, frame)
+    )
     if restitution:
         report["tables"].append(tables.restitution_table(restitution))
     models = {f.name: fluid_model(f) for f in catalog_rows.fluid_rows(connection)}
-    gap = fits.gap_viscosity(frame, models)
+    gap = fits.gap_viscosity(frame, models, gap_scale=plug_ins.gap_scale(connection, frame))
     if gap:
         report["tables"].append(tables.gap_table(gap, palette))
     fitted = {"walton": walton, "branches": branches, "restitution": restitution,

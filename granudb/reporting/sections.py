@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from granudb.reporting.format import display, engineering, is_number, unicode_math
-from granudb.reporting.values import qualified_value
+from granudb.reporting.values import interval_text, qualified_value
 from granudb.reporting.verdicts import GAP_DEFINITION, roughness_verdict
 from granudb.scenario.dry_values import material_dry_source
 from granudb.scenario.pair import TARGET_WORDS
@@ -190,7 +190,8 @@ def unit_label(name: str) -> str:
 
 
 def derived_rows(derived: dict[str, Any]) -> list[dict[str, Any]]:
-    """Every derived quantity present, as symbol, title, value with unit and relation."""
+    """Every derived quantity present, as symbol, title, value with unit, its 95 % interval
+    (``interval_text``; "" without u) and relation."""
     rows = []
     for name, term in DERIVED_TERMS.items():
         if name not in derived or name == "incidence_angle_rad":
@@ -203,6 +204,7 @@ def derived_rows(derived: dict[str, Any]) -> list[dict[str, Any]]:
                 "name": name,
                 "unit": unit_label(name),
                 "value": qualified_value(derived, name),
+                "interval": interval_text(derived, name),
                 "relation": unicode_math(term.description),
             }
         )

@@ -40,3 +40,24 @@ def qualified_value(derived: Mapping[str, Any], name: str) -> str:
     if name in _NEEDS_PRESSURE_COEFFICIENT and state == "no_pressure_coefficient":
         return "not computed (no pressure–viscosity coefficient)"
     return "not computed"
+
+
+def interval_text(derived: Mapping[str, Any], name: str) -> str:
+    """The 95 % coverage interval of a derived value as a table shows it ("95 %: 0.031 –
+    0.204"), from its ``low95_``/``high95_`` columns; "" where it has none (no u stated).
+    The method that gave it is ``method_text``'s."""
+    low, high = derived.get(f"low95_{name}"), derived.get(f"high95_{name}")
+    if not (is_number(low) and is_number(high)) or low != low or high != high:
+        return ""
+    return f"95 %: {display(low, name)} – {display(high, name)}"
+
+
+#: What the propagation method of a scenario's u and intervals is said as.
+METHOD_WORDS = "u and 95 % intervals: {method}"
+
+
+def method_text(derived: Mapping[str, Any]) -> str:
+    """How a scenario's u, 95 % intervals and verdict probabilities were obtained (its
+    ``propagation_method``), in the words every table gives it; "" where no u is stated."""
+    method = derived.get("propagation_method")
+    return METHOD_WORDS.format(method=method) if isinstance(method, str) and method else ""

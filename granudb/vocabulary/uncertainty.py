@@ -160,8 +160,10 @@ METHOD_TERMS: dict[str, Term] = {
         None,
         "Which method gave this scenario's standard uncertainties, 95 % intervals and "
         "verdict probabilities: first order (GUM) where its check shows it adequate, else "
-        "a Monte Carlo (JCGM 101) with the number of draws it took (docs/propagation.md); "
-        "empty where no input states a u.",
+        "a Monte Carlo (JCGM 101) with the number of draws it took; first order, naming "
+        "the quantities whose check failed, where a call's budget of draws "
+        "(monte_carlo_draws) was spent on earlier rows or where stored runs are read (no "
+        "draws); empty where no input states a u (docs/propagation.md).",
         role="derived",
         symbol="method of u",
     )

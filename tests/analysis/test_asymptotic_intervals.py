@@ -18,6 +18,13 @@ N, SWITCH, SETS, QUICK_BOUND = 2000, 1000, 50, 0.84  # true 0.95: P(< 42 of 50) 
 TRUTH = {"rotational_restitution": 0.34, "sliding_friction": 0.11, "normal_restitution": 0.97}
 
 
+def _said_shifts(words: str) -> dict[str, float]:
+    """b̂ of each parameter, as the method's words give them ("b̂ = β 0.001, μ_f …")."""
+    assert "the value is θ̂, the fit of the runs as measured, not corrected" in words
+    given = words.split("(b̂ = ", 1)[1].split(")", 1)[0]
+    return {part.rsplit(" ", 1)[0]: float(part.rsplit(" ", 1)[1]) for part in given.split(", ")}
+
+
 def _covered(rows: list[dict], name: str) -> float:
     hits = [row[f"{name}_low"] <= TRUTH[name] <= row[f"{name}_high"] for row in rows]
     return float(np.mean(hits))
@@ -33,10 +40,18 @@ def test_walton_asymptotic_interval_holds_its_coverage_and_says_its_method(state
     for row in rows:
         assert row["model"] == "split" and row["bootstrap_resamples"] == 0
         assert row["bootstrap_rule"] == asymptotic.rule(SWITCH)
-        assert row["interval_method"] == said  # one method for the three parameters
+        assert row["interval_method"].startswith(said)  # one method for the three parameters
         for name in TRUTH:
-            assert row[f"{name}_interval_method"] == said
+            assert row[f"{name}_interval_method"] == row["interval_method"]
             assert row[f"{name}_high"] > row[f"{name}_low"]
+        if stated:  # the words give each b̂: the interval is centred on the value − b̂
+            shifts = _said_shifts(row["interval_method"])
+            for name, symbol in zip(TRUTH, ("β", "μ_f", "ē"), strict=True):
+                centre = (row[f"{name}_low"] + row[f"{name}_high"]) / 2
+                value = row["normal_restitution_mean" if name == "normal_restitution" else name]
+                assert centre == pytest.approx(value - shifts[symbol], abs=1e-4 * abs(centre))
+        else:
+            assert "b̂" not in row["interval_method"]
     for name in TRUTH:
         assert _covered(rows, name) >= QUICK_BOUND, (name, _covered(rows, name))
 
@@ -77,6 +92,13 @@ def test_gap_viscosity_with_stated_u_is_centred_on_the_bias_corrected_value() ->
     # symmetric one, and holds the truth
     assert low < 1.6e-3 < high
     assert (high - row["gap_viscosity_pa_s"]) > (row["gap_viscosity_pa_s"] - low)
+    # the value is q̂^(7/2) as measured, and the words give b̂ in q: the interval of q is
+    # centred on q̂ − b̂
+    words = row["interval_method"]
+    assert "the value is q̂^(7/2), the fit of the runs as measured, not corrected" in words
+    shift = float(words.split("(b̂ = ", 1)[1].split(" in q)", 1)[0])
+    centre = (low ** (2 / 7) + high ** (2 / 7)) / 2
+    assert centre == pytest.approx(row["gap_viscosity_pa_s"] ** (2 / 7) - shift, rel=1e-5)
 
 
 def test_the_report_note_and_the_bands_follow_the_record() -> None:

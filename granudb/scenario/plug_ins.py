@@ -1,0 +1,137 @@
+"""The catalogue's share of what a fit's runs stand on: the plug-in error they all share.
+
+A restitution fit's runs (one dataset, particle and wall) get St_n from the catalogue's
+values — the particle's density, the fluid's viscosity at the run's temperature, the
+target's for a sphere — and the run's diameter; a gap-viscosity fit's runs (one fluid
+too) get g of (5.8), μ_f = μ₀^(2/7) g, from the pair's E*, R*, the fluid's
+pressure–viscosity coefficient and the same. Where the catalogue states their
+uncertainty (or the runs state u(d)), that error is one for every run of the fit: the
+fit must carry it (``granudb.analysis.shared_scale``). Its relative size is what
+``granudb.pair`` propagates for the group's typical run (the medians of each fluid's
+runs: diameter, temperature, impact speed and angle), with no u on the speed: the one
+record of how a u reaches St_n and μ_f. For g, the fluid viscosity's own share
+(μ_f ∝ μ^(2/7), and μ is what the fit replaces by μ₀) is taken out in quadrature: the
+sources are independent. A restitution group in several fluids gets the root mean square
+over its runs (each fluid's share weighted by its runs: the particle's share is common to
+all, the fluids' are not, and taking them as one error is the cautious side).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from granudb.errors import ValidationError
+from granudb.scenario.pair import PairResult, derive_pair
+
+#: The group of a restitution fit (``granudb.analysis.restitution_fit``) and of a
+#: gap-viscosity fit (``granudb.analysis.gap_viscosity_fit``).
+GROUP = ("dataset", "particle", "wall")
+GAP_GROUP = (*GROUP, "fluid")
+#: The columns of the runs these read (a report reads only the columns it needs).
+COLUMNS = (*GROUP, "fluid", "normal_stokes_number", "diameter_m", "u_diameter_m",
+           "temperature_c", "wall_diameter_m", "wall_v_n_in_m_s", "v_n_in_m_s",
+           "v_t_in_m_s")  # fmt: skip
+#: What each share is made of, as the fit's method says it.
+SOURCES = "ρ and d of the particle, μ(T) of the fluid, the target's for a sphere, as stored"
+GAP_SOURCES = (
+    "E and ν of both bodies, R*, the fluid's pressure–viscosity coefficient and "
+    "density, d, as stored"
+)
+
+
+def stokes_scale(reader: Any, frame: Any) -> dict[tuple, tuple[float, str]]:
+    """{(dataset, particle, wall): (u_r, sources)} of the restitution groups whose
+    immersed runs' St_n has a stated catalogue share u_r > 0 (the module docstring's
+    rule); the others are left out. ``frame``: collisions as ``select_collisions`` gives
+    them."""
+    shares: dict[tuple, tuple[float, str]] = {}
+    for key, group in _immersed_groups(frame, GROUP):
+        total = count = 0.0
+        for fluid, runs in group.groupby("fluid", sort=True):
+            found = _typical(reader, key, str(fluid), runs)
+            share = math.nan if found is None else _relative(found, "normal_stokes_number")
+            if math.isfinite(share):
+                total += share * share * len(runs)
+            count += len(runs)
+        if total > 0 and count:
+            shares[tuple(key)] = (math.sqrt(total / count), SOURCES)
+    return shares
+
+
+def gap_scale(reader: Any, frame: Any) -> dict[tuple, tuple[float, str]]:
+    """{(dataset, particle, wall, fluid): (u_r, sources)} of the gap-viscosity groups
+    whose g of (5.8) has a stated catalogue share u_r > 0: u_r(μ_f) as ``granudb.pair``
+    propagates it, less the fluid viscosity's share (2/7 u_r(μ)) in quadrature."""
+    shares: dict[tuple, tuple[float, str]] = {}
+    for key, runs in _immersed_groups(frame, GAP_GROUP):
+        found = _typical(reader, key[:3], str(key[3]), runs)
+        if found is None:
+            continue
+        share = _relative(found, "lubricated_friction")
+        state, u_mu = found.fluid_state, found.inputs.get("u_viscosity_pa_s")
+        if state is not None and u_mu is not None and state.viscosity_pa_s > 0:
+            share = math.sqrt(max(share**2 - (2 / 7 * u_mu / state.viscosity_pa_s) ** 2, 0.0))
+        if share > 1e-6:  # more than rounding left once μ's share is out (1e-10 seen)
+            shares[tuple(key)] = (share, GAP_SOURCES)
+    return shares
+
+
+def _immersed_groups(frame: Any, group: tuple[str, ...]) -> Any:
+    """(key, runs) of the immersed runs (a fluid, a finite St_n) by ``group``."""
+    needed = {*group, "fluid", "normal_stokes_number", "diameter_m"}
+    if frame.empty or not needed <= set(frame.columns):
+        return iter(())
+    immersed = frame[frame["fluid"].notna() & np.isfinite(frame["normal_stokes_number"])]
+    return iter(immersed.groupby(list(group), sort=True))
+
+
+def _median(runs: Any, column: str) -> float | None:
+    """The runs' median of ``column`` (None where the column is missing or all empty)."""
+    if column not in runs:
+        return None
+    values = runs[column].to_numpy(dtype=float)
+    values = values[np.isfinite(values)]
+    return float(np.median(values)) if values.size else None
+
+
+def _relative(found: PairResult, name: str) -> float:
+    """u(Q)/Q of one derived quantity of the typical run (NaN where no u reaches it)."""
+    value, u = found.derived.get(name), found.derived.get(f"u_{name}")
+    if value is None or u is None or not float(value) > 0:
+        return math.nan
+    return float(u) / float(value)
+
+
+def _typical(reader: Any, key: tuple, fluid: str, runs: Any) -> PairResult | None:
+    """``granudb.pair``'s derivation of the runs' typical collision (the module's rule),
+    with the catalogue's u and the runs' median u(d), none on the speed; None where the
+    runs give no diameter or the scenario is refused (the runs' own rows say why)."""
+    _dataset, particle, wall = key
+    diameter = _median(runs, "diameter_m")
+    if diameter is None:
+        return None
+    wall_diameter = _median(runs, "wall_diameter_m")
+    target = None
+    if wall_diameter is not None:  # free where the runs give the target's speed
+        free = "wall_v_n_in_m_s" in runs and runs["wall_v_n_in_m_s"].notna().any()
+        target = "free" if free else "fixed"
+    v_n, v_t = _median(runs, "v_n_in_m_s") or 1.0, _median(runs, "v_t_in_m_s") or 0.0
+    try:
+        return derive_pair(
+            reader,
+            str(particle),
+            str(wall),
+            diameter_m=diameter,
+            speed_m_s=math.hypot(v_n, v_t),
+            angle_rad=math.atan2(abs(v_t), abs(v_n)),
+            fluid=fluid,
+            temperature_c=_median(runs, "temperature_c"),
+            wall_diameter_m=wall_diameter,
+            target=target,
+            uncertainties={"u_diameter_m": _median(runs, "u_diameter_m")},
+        )
+    except ValidationError:
+        return None
