@@ -419,6 +419,22 @@ CASES = [
         BAYES_SETS,
     ),
     Case(
+        f"Bayes: restitution threshold St_c, stated u ({U_REL:.0%}), e_dry of 4 dry runs",
+        10.0,
+        _STATED_DRY_4,
+        _THRESHOLD_BAYES,
+        PARAMETER,
+        BAYES_SETS,
+    ),
+    Case(
+        f"Bayes: restitution threshold St_c, stated u ({U_REL:.0%}), e_dry of 50 dry runs",
+        10.0,
+        _STATED_DRY_50,
+        _THRESHOLD_BAYES,
+        PARAMETER,
+        BAYES_SETS,
+    ),
+    Case(
         "gap viscosity μ₀ = 1.6 mPa·s",
         1.6e-3,
         lambda n, s: sliding_runs(1.6e-3, n=n, seed=s),
