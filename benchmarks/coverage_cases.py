@@ -268,14 +268,14 @@ CASES = [
         PARAMETER,
     ),
     Case(
-        "restitution exponential k, e_dry of 4 dry runs",
+        "restitution exp. k, e_dry of 4 dry runs",
         35.0,
         _EXPONENTIAL_DRY_4,
         _EXPONENTIAL,
         PARAMETER,
     ),
     Case(
-        "restitution exponential k, e_dry of 50 dry runs",
+        "restitution exp. k, e_dry of 50 dry runs",
         35.0,
         _EXPONENTIAL_DRY_50,
         _EXPONENTIAL,

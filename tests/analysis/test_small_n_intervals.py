@@ -295,7 +295,7 @@ def test_restitution_profile_with_dry_runs_carries_e_drys_uncertainty() -> None:
         "restitution threshold St_c, e_dry of 4 dry runs",
         "restitution threshold St_c, e_dry of 50 dry runs",
         "restitution threshold St_c, stated u (4%), e_dry of 4 dry runs",
-        "restitution exponential k, e_dry of 4 dry runs",
+        "restitution exp. k, e_dry of 4 dry runs",
     ],
 )
 def test_restitution_profile_with_dry_runs_covers(name: str) -> None:
