@@ -155,6 +155,13 @@ def _threshold_dry(dry):
 
 
 _THRESHOLD_DRY_4, _THRESHOLD_DRY_50 = _threshold_dry(4), _threshold_dry(50)
+#: Threshold runs measured through speeds with U_REL noise, that u stated, and dry runs;
+#: exponential runs (scatter 0.02 on e) with dry runs (issue 36: e_dry not held fixed).
+_STATED_DRY_4, _STATED_DRY_50 = large_sets("threshold", True, 4), large_sets("threshold", True, 50)
+_EXPONENTIAL_DRY_4, _EXPONENTIAL_DRY_50 = (
+    large_sets("exponential", False, 4),
+    large_sets("exponential", False, 50),
+)
 
 
 def _stated_runs(n, seed):
@@ -244,6 +251,34 @@ CASES = [
         10.0,
         _THRESHOLD_DRY_50,
         _THRESHOLD,
+        PARAMETER,
+    ),
+    Case(
+        f"restitution threshold St_c, stated u ({U_REL:.0%}), e_dry of 4 dry runs",
+        10.0,
+        _STATED_DRY_4,
+        _THRESHOLD,
+        PARAMETER,
+    ),
+    Case(
+        f"restitution threshold St_c, stated u ({U_REL:.0%}), e_dry of 50 dry runs",
+        10.0,
+        _STATED_DRY_50,
+        _THRESHOLD,
+        PARAMETER,
+    ),
+    Case(
+        "restitution exp. k, e_dry of 4 dry runs",
+        35.0,
+        _EXPONENTIAL_DRY_4,
+        _EXPONENTIAL,
+        PARAMETER,
+    ),
+    Case(
+        "restitution exp. k, e_dry of 50 dry runs",
+        35.0,
+        _EXPONENTIAL_DRY_50,
+        _EXPONENTIAL,
         PARAMETER,
     ),
     Case(
@@ -371,6 +406,30 @@ CASES = [
         "Bayes: restitution threshold St_c, e_dry of 4 dry runs",
         10.0,
         _THRESHOLD_DRY_4,
+        _THRESHOLD_BAYES,
+        PARAMETER,
+        BAYES_SETS,
+    ),
+    Case(
+        "Bayes: restitution threshold St_c, e_dry of 50 dry runs",
+        10.0,
+        _THRESHOLD_DRY_50,
+        _THRESHOLD_BAYES,
+        PARAMETER,
+        BAYES_SETS,
+    ),
+    Case(
+        f"Bayes: restitution threshold St_c, stated u ({U_REL:.0%}), e_dry of 4 dry runs",
+        10.0,
+        _STATED_DRY_4,
+        _THRESHOLD_BAYES,
+        PARAMETER,
+        BAYES_SETS,
+    ),
+    Case(
+        f"Bayes: restitution threshold St_c, stated u ({U_REL:.0%}), e_dry of 50 dry runs",
+        10.0,
+        _STATED_DRY_50,
         _THRESHOLD_BAYES,
         PARAMETER,
         BAYES_SETS,

@@ -250,3 +250,69 @@ def test_bayes_gives_no_beta_interval_where_three_runs_cannot_test_a_split() -> 
     assert math.isfinite(row["rotational_restitution"])
     assert math.isnan(row["rotational_restitution_low"])
     assert "interval of β not determined: 3 runs cannot test a split" in row["reason"]
+
+
+def test_restitution_profile_with_dry_runs_carries_e_drys_uncertainty() -> None:
+    """Issue 36, nothing held fixed that was estimated: with e_dry the mean of 4 dry runs the
+    profile interval of St_c integrates e_dry's Student-t law. With nearly exact dry runs it
+    is the F interval at e_dry held; where e_dry's error dominates (immersed runs of tiny
+    scatter) it spans the St_c fitted at the ends of e_dry's own t-interval, which the held
+    interval does not."""
+    from granudb.analysis import restitution_fit, restitution_small_n
+    from granudb.analysis.synthetic import restitution_runs
+
+    runs = restitution_runs(0.97, "threshold", 10.0, n=10, seed=4)
+    st, e = runs["normal_stokes_number"].to_numpy(), runs["normal_restitution"].to_numpy()
+    exact = 0.97 + np.array([-1.0, 1.0, -1.0, 1.0]) * 1e-9
+    mixed = restitution_small_n.mixed_intervals("threshold", st, e, exact)["parameter"]
+    held = restitution_small_n.profile_intervals("threshold", st, e, 0.97)["parameter"]
+    assert (mixed.low, mixed.high) == pytest.approx((held.low, held.high), rel=1e-12)
+
+    rng = np.random.default_rng(11)
+    e_sharp = restitution_fit.restitution_curve("threshold", st, 0.97, 10.0)
+    e_sharp = e_sharp + rng.normal(0, 0.001, len(st))
+    dry = 0.97 + rng.normal(0, 0.01, 4)
+    half = stats.t.ppf(0.975, 3) * np.std(dry, ddof=1) / 2.0
+    ends = [
+        restitution_fit.threshold_least_squares(st, e_sharp, float(a))[2]
+        for a in (dry.mean() - 0.9 * half, dry.mean() + 0.9 * half)
+    ]
+    mixed = restitution_small_n.mixed_intervals("threshold", st, e_sharp, dry)["parameter"]
+    held = restitution_small_n.profile_intervals("threshold", st, e_sharp, dry.mean())
+    assert mixed.low < min(ends) and mixed.high > max(ends)
+    assert not (held["parameter"].low < min(ends) and held["parameter"].high > max(ends))
+    # the t law of the nodes is Student's (scipy as the independent reference)
+    q = np.array([0.001, 0.025, 0.3, 0.5, 0.975])
+    assert restitution_small_n.t_quantiles(q, 3) == pytest.approx(stats.t.ppf(q, 3), abs=1e-9)
+    grid = np.linspace(-40.0, 40.0, 81)
+    for dof in (1, 2, 3, 8):
+        assert restitution_small_n.t_cdf(grid, dof) == pytest.approx(stats.t.cdf(grid, dof))
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "restitution threshold St_c, e_dry of 4 dry runs",
+        "restitution threshold St_c, e_dry of 50 dry runs",
+        "restitution threshold St_c, stated u (4%), e_dry of 4 dry runs",
+        "restitution exp. k, e_dry of 4 dry runs",
+    ],
+)
+def test_restitution_profile_with_dry_runs_covers(name: str) -> None:
+    # the small version of the benchmark's cells (200 sets at n = 10: see docs/intervals.md)
+    from analysis import coverage
+
+    from granudb.analysis import restitution_small_n
+
+    [case] = [c for c in coverage.CASES if c.name == name]
+    got = coverage.tally(case, 10, 40, first_seed=7_000)
+    assert got.given >= 38 and got.zero_width == 0
+    assert got.coverage >= 0.85, got  # true 0.95: P(< 34 of 40) ≈ 1 %
+    assert got.method == "profile"
+    [row] = coverage.rows(case, 10, 1, None, 7_000)
+    said = restitution_small_n.MIXED.format(nodes=restitution_small_n.DRY_NODES)
+    assert row["interval_method"].endswith(said)
+    assert "its t-law integrated in the profile likelihood" in row["e_dry_source"]
+    from granudb.reporting import tables
+
+    assert row["interval_method"] in tables.bootstrap_note([row])
