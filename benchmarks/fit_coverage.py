@@ -2,8 +2,9 @@
 
 For every fit parameter (Walton β, μ_f and ē; the restitution fits' e_dry and St_c or k;
 the gap viscosity μ₀) and every n in 3, 5, 10, 30, 100: ``--sets`` synthetic sets of known
-truth (``granudb.analysis.synthetic``, noise included; with and without stated u; the
-threshold fit with e_dry from 4 and from 50 dry runs) are fitted with the fit's own
+truth (``granudb.analysis.synthetic``, noise included; with and without stated u; e_dry
+from 4 and from 50 dry runs: the threshold fit with and without stated u, the exponential
+without, the Bayesian threshold fit both ways) are fitted with the fit's own
 defaults (resample rule, seed), and the share of sets whose interval holds the truth is
 printed with the bound 0.90, the share of sets given a value and an interval, and the
 reason when the interval was refused. An n at which the fit refuses every interval (below

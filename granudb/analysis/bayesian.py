@@ -430,9 +430,10 @@ def restitution(
     def log_posterior(p: np.ndarray) -> np.ndarray:
         a, q = p[:, at["e_dry"]], p[:, at[parameter]]
         inside = (a > 0) & (a <= form.e_dry_max) & (q >= 0) & (q <= top)
-        if stated is None:
-            curve = form.curve(st[None, :], a[:, None], q[:, None])
-            value = _gaussian(e - curve, p[:, at["log_sigma"]], None)
+        if stated is None:  # walkers outside the prior (q < 0) may overflow: discarded below
+            with np.errstate(over="ignore", invalid="ignore"):
+                curve = form.curve(st[None, :], a[:, None], q[:, None])
+                value = _gaussian(e - curve, p[:, at["log_sigma"]], None)
         else:
             extra = p[:, at["sigma_extra"]]
             inside &= extra >= 0
