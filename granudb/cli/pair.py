@@ -133,8 +133,9 @@ def print_pair(document: dict[str, Any]) -> None:
         value += f"\n{interval}" if interval else ""
         derived.add_row(Text(label), Text(value), Text(described.description))
     out.print(derived)
-    if api.method_text(document):
-        out.print(Text(api.method_text(document)))
+    method = api.method_text(document)
+    if method:
+        out.print(Text(method))
 
     out.print("[bold]Verdicts[/bold]")
     for verdict in document["verdicts"]:

@@ -319,14 +319,14 @@ def _add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bo
     report["tables"].append(
         tables.walton_table(walton, lookup_rows.published_rows(connection), palette)
     )
-    # the form and why: its record; the catalogue's share of St_n as fit_restitution has it
-    restitution = fits.restitution(
-        frame, report=True, stokes_scale=plug_ins.stokes_scale(connection, frame)
-    )
+    # the catalogue's shares of St_n and of g, as fit_restitution and fit_gap_viscosity
+    # take them (each group's typical run derived once for both)
+    stokes, gap_shares = plug_ins.catalogue_shares(connection, frame)
+    restitution = fits.restitution(frame, report=True, stokes_scale=stokes)  # form and why
     if restitution:
         report["tables"].append(tables.restitution_table(restitution))
     models = {f.name: fluid_model(f) for f in catalog_rows.fluid_rows(connection)}
-    gap = fits.gap_viscosity(frame, models, gap_scale=plug_ins.gap_scale(connection, frame))
+    gap = fits.gap_viscosity(frame, models, gap_scale=gap_shares)
     if gap:
         report["tables"].append(tables.gap_table(gap, palette))
     fitted = {"walton": walton, "branches": branches, "restitution": restitution,

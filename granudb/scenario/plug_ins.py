@@ -42,16 +42,34 @@ GAP_SOURCES = (
 )
 
 
-def stokes_scale(reader: Any, frame: Any) -> dict[tuple, tuple[float, str]]:
+def catalogue_shares(reader: Any, frame: Any) -> tuple[dict, dict]:
+    """(``stokes_scale``, ``gap_scale``) of one frame, each (group, fluid)'s typical run
+    derived once for both (a report needs both)."""
+    typical = _typical_runs(reader, frame)
+    return stokes_scale(reader, frame, typical), gap_scale(reader, frame, typical)
+
+
+def _typical_runs(reader: Any, frame: Any) -> dict[tuple, PairResult | None]:
+    """{(dataset, particle, wall, fluid): the typical run's derivation} (``_typical``)."""
+    return {
+        tuple(key): _typical(reader, tuple(key[:3]), str(key[3]), runs)
+        for key, runs in _immersed_groups(frame, GAP_GROUP)
+    }
+
+
+def stokes_scale(
+    reader: Any, frame: Any, typical: dict[tuple, PairResult | None] | None = None
+) -> dict[tuple, tuple[float, str]]:
     """{(dataset, particle, wall): (u_r, sources)} of the restitution groups whose
     immersed runs' St_n has a stated catalogue share u_r > 0 (the module docstring's
     rule); the others are left out. ``frame``: collisions as ``select_collisions`` gives
-    them."""
+    them; ``typical``: ``_typical_runs`` of it, if already derived."""
+    typical = _typical_runs(reader, frame) if typical is None else typical
     shares: dict[tuple, tuple[float, str]] = {}
     for key, group in _immersed_groups(frame, GROUP):
         total = count = 0.0
         for fluid, runs in group.groupby("fluid", sort=True):
-            found = _typical(reader, key, str(fluid), runs)
+            found = typical.get((*tuple(key), str(fluid)))
             share = math.nan if found is None else _relative(found, "normal_stokes_number")
             if math.isfinite(share):
                 total += share * share * len(runs)
@@ -61,13 +79,15 @@ def stokes_scale(reader: Any, frame: Any) -> dict[tuple, tuple[float, str]]:
     return shares
 
 
-def gap_scale(reader: Any, frame: Any) -> dict[tuple, tuple[float, str]]:
+def gap_scale(
+    reader: Any, frame: Any, typical: dict[tuple, PairResult | None] | None = None
+) -> dict[tuple, tuple[float, str]]:
     """{(dataset, particle, wall, fluid): (u_r, sources)} of the gap-viscosity groups
     whose g of (5.8) has a stated catalogue share u_r > 0: u_r(μ_f) as ``granudb.pair``
     propagates it, less the fluid viscosity's share (2/7 u_r(μ)) in quadrature."""
+    typical = _typical_runs(reader, frame) if typical is None else typical
     shares: dict[tuple, tuple[float, str]] = {}
-    for key, runs in _immersed_groups(frame, GAP_GROUP):
-        found = _typical(reader, key[:3], str(key[3]), runs)
+    for key, found in typical.items():
         if found is None:
             continue
         share = _relative(found, "lubricated_friction")

@@ -131,7 +131,9 @@ def test_the_share_of_g_leaves_out_the_viscosity_the_fit_replaces(db: str, tmp_p
     def shares() -> tuple[dict, dict]:  # on the runs as the fits read them
         with opened(db) as database, database.session() as session:
             frame = select_collisions(session, CollisionQuery())
-            return plug_ins.stokes_scale(session, frame), plug_ins.gap_scale(session, frame)
+            apart = plug_ins.stokes_scale(session, frame), plug_ins.gap_scale(session, frame)
+            assert plug_ins.catalogue_shares(session, frame) == apart  # the report's way
+            return apart
 
     assert shares() == ({}, {})  # nothing stated
     granudb.update_fluid("glycerol-37", reference_viscosity="3.0 ± 0.15 mPa s", db=db)
