@@ -86,3 +86,32 @@ def test_the_call_budget_bounds_the_monte_carlo_and_says_where_it_stopped() -> N
     # a budget of 0: first order everywhere, each row saying the Monte Carlo was not run
     none = derive(**table, uncertainties=u, monte_carlo_draws=0)
     assert all("Monte Carlo not run" in m for m in none["propagation_method"])
+
+
+def test_the_restitution_u_across_the_step_is_the_exact_integral() -> None:
+    """Near St_c e = ceiling·exp(−35/St_am) above the step St_n > St_c and 0 below, St_am
+    and St_n comonotone log-normal (one viscosity): first order's u(e) is the standard
+    deviation of that law, which adaptive quadrature gives independently."""
+    from scipy import integrate, stats
+
+    critical = 10.0
+    viscosity = SCENARIO["viscosity_pa_s"]
+    # the viscosity that puts St_n at 1.03 St_c, then 3 % on it: the step is inside
+    st_n = float(derive(**SCENARIO)["normal_stokes_number"])
+    near = {**SCENARIO, "viscosity_pa_s": viscosity * st_n / (1.03 * critical)}
+    got = derive(**near, uncertainties={"u_viscosity_pa_s": 0.03 * near["viscosity_pa_s"]})
+    assert 0.025 < float(got["probability_rebound"]) < 0.975
+    s_am = float(got["u_added_mass_stokes_number"] / got["added_mass_stokes_number"])
+    s_n = float(got["u_normal_stokes_number"] / got["normal_stokes_number"])
+    st_am, ceiling = float(got["added_mass_stokes_number"]), float(got["restitution_ceiling"])
+    step = np.log(critical / float(got["normal_stokes_number"])) / s_n
+
+    def moment(k: int) -> float:
+        def f(z: float) -> float:
+            e = ceiling * np.exp(-35.0 / (st_am * np.exp(s_am * z)))
+            return float(e**k * stats.norm.pdf(z))
+
+        return integrate.quad(f, step, np.inf, epsabs=0.0, epsrel=1e-12, limit=200)[0]
+
+    exact = np.sqrt(moment(2) - moment(1) ** 2)
+    assert float(got["u_predicted_restitution"]) == pytest.approx(exact, rel=1e-9)
