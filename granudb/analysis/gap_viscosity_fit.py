@@ -23,12 +23,15 @@ Why this shape:
   and gives q* = Σ w μ_f g / Σ w g² over its smooth sliding runs with the standard error
   √(S/(n−1)/Σ w g²) of a line through the origin. The interval is found for q and mapped to
   μ₀ = q^{7/2} (monotone); the temperature interval maps the μ₀ interval through the
-  monotone μ(T).
+  monotone μ(T), widened first on μ's log scale by the curve's own relative u at the gap
+  temperature where the catalogue states one (``curves``: the curve is one error for
+  every run, which no interval of μ₀ sees; ``granudb.analysis.shared_scale``).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -349,14 +352,17 @@ def _fit_group(
     seed: int,
     switch: int = asymptotic.ASYMPTOTIC_FROM,
     scale: tuple[float, str] | None = None,
+    curve: Callable[[float], float] | None = None,
 ) -> dict:
-    """One group's row (``gap_viscosity``); ``scale``: the catalogue's share of its g."""
+    """One group's row (``gap_viscosity``); ``scale``: the catalogue's share of its g;
+    ``curve``: the relative u of the fluid's μ(T) at a temperature (°C)."""
     nan = math.nan
     row: dict[str, Any] = {**dict(zip(GROUP, key, strict=True))}
     row.update(gap_viscosity_pa_s=nan, gap_viscosity_low_pa_s=nan, gap_viscosity_high_pa_s=nan)
     row.update(gap_viscosity_std_pa_s=nan, gap_temperature_c=nan)
     row.update(gap_temperature_low_c=nan, gap_temperature_high_c=nan, n_runs=0)
     row["shared_scale_u"] = nan  # the catalogue's share of g, where stated
+    row["temperature_curve_u"] = nan  # μ(T)'s relative u at the gap temperature, where stated
     row.update(confidence_level=LEVEL, bootstrap_seed=seed, interval_reason="")
     row["interval_method"] = intervals.METHOD + ", the sliding runs re-decided in each"
     stated = resampling.stated_inputs(group, walton_arrays(group))
@@ -464,9 +470,15 @@ def _fit_group(
     row["interval_reason"] = interval_reason
     row["gap_temperature_c"], reason = _temperature(model, viscosity)
     if not reason and not interval_reason:
+        low, high = row["gap_viscosity_low_pa_s"], row["gap_viscosity_high_pa_s"]
+        share = math.nan if curve is None else curve(row["gap_temperature_c"])
+        if share > 0:  # the curve's error: one for every run, on μ's log scale
+            low, high = shared_scale.widened(low, high, viscosity, share, LEVEL)
+            row["interval_method"] += shared_scale.CURVE_WORDS.format(share=share)
+            row["temperature_curve_u"] = share
         # μ(T) falls with T: the high viscosity is the low temperature
-        row["gap_temperature_low_c"] = _temperature(model, row["gap_viscosity_high_pa_s"])[0]
-        row["gap_temperature_high_c"] = _temperature(model, row["gap_viscosity_low_pa_s"])[0]
+        row["gap_temperature_low_c"] = _temperature(model, high)[0]
+        row["gap_temperature_high_c"] = _temperature(model, low)[0]
     row["reason"] = row["note"] = reason
     return row
 
@@ -479,6 +491,7 @@ def gap_viscosity(
     seed: int = SEED,
     asymptotic_from: int = asymptotic.ASYMPTOTIC_FROM,
     gap_scale: dict[tuple, tuple[float, str]] | None = None,
+    curves: dict[str, Callable[[float], float]] | None = None,
 ) -> list[dict[str, Any]]:
     """μ₀ and the gap temperature per immersed group (figure 14, table 2).
 
@@ -497,8 +510,12 @@ def gap_viscosity(
     (``granudb.scenario.plug_ins.gap_scale``): an error shared by every run, which widens
     μ₀'s interval and the gap temperature's with it (``granudb.analysis.shared_scale``;
     ``shared_scale_u`` gives u_r: NaN where nothing is stated or no interval was given).
+    ``curves``: {fluid: the relative u of its μ(T) at a temperature} where the catalogue
+    states one (``granudb.scenario.plug_ins.fluid_curves``): the curve that turns μ₀ into
+    the gap temperature is an error shared by every run too, so the temperature's
+    interval maps μ₀'s widened by it (``temperature_curve_u``; NaN where not stated).
     """
-    scales = gap_scale or {}
+    scales, curves = gap_scale or {}, curves or {}
     if "normal_speed_m_s" not in frame:  # a table of wall impacts only: the particle's own
         frame = frame.assign(normal_speed_m_s=frame["v_n_in_m_s"])
     inputs = dict.fromkeys(
@@ -520,6 +537,7 @@ def gap_viscosity(
                 seed,
                 asymptotic_from,
                 scales.get(tuple(key)),
+                curves.get(key[3]),
             )  # fmt: skip
             for key, group in group_frames(frame, GROUP, [c for c in inputs if c not in GROUP])
         ]

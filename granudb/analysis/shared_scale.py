@@ -66,6 +66,15 @@ def widened(low: float, high: float, value: float, share: float, level: float) -
     return centre * math.exp(-below), centre * math.exp(above)
 
 
+#: What the gap-viscosity fit's method adds where the fluid's μ(T) states a u: the curve
+#: that turns μ₀ into the gap temperature is one error for every run too.
+CURVE_WORDS = (
+    "; the gap temperature's interval maps μ₀'s widened by the fluid's μ(T) at that "
+    "temperature (u_r = {share:.2%}: its stated u, the reference temperature's with it; "
+    "one error shared by every run), on the log scale √(h² + (z·u_r)²) each side"
+)
+
+
 def words(share: float, sources: str, of: dict[str, str] = STOKES) -> str:
     """The method's words for a ``share`` of ``sources`` (``WORDS``; ``of``: ``STOKES``
     or ``GAP``)."""

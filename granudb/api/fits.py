@@ -15,13 +15,11 @@ from granudb.analysis import fits
 from granudb.api import inputs
 from granudb.api.collision_listing import collision_query
 from granudb.api.database import opened
-from granudb.db import catalog_rows
 from granudb.errors import ValidationError
 from granudb.lazy import pandas as pd
 from granudb.output_files import write_text
 from granudb.scenario.collisions import select_collisions
-from granudb.scenario.fluid_state import fluid_model
-from granudb.scenario.plug_ins import gap_scale, stokes_scale
+from granudb.scenario.plug_ins import fluid_curves, gap_scale, stokes_scale
 from granudb.vocabulary.escaping import spreadsheet_frame
 
 #: The forms of e(St_n) ``fit_restitution`` fits.
@@ -146,8 +144,8 @@ def fit_gap_viscosity(db: Any = None, *, as_frame: bool = True, **filters: Any) 
     """
 
     def run(session: Any, frame: Any, _draws: list[Any]) -> Any:
-        rows = catalog_rows.fluid_rows(session.connection())
-        models = {f.name: fluid_model(f) for f in rows}
-        return fits.gap_viscosity(frame, models, gap_scale=gap_scale(session, frame))
+        models, curves = fluid_curves(session.connection())
+        return fits.gap_viscosity(frame, models, gap_scale=gap_scale(session, frame),
+                                  curves=curves)  # fmt: skip
 
     return _fit(db, filters, as_frame, run)

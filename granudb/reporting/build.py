@@ -20,8 +20,8 @@ from sqlalchemy.engine import Connection, make_url
 
 from granudb.analysis import fits
 from granudb.analysis import walton_bootstrap as resampling
-from granudb.db import catalog_rows, lookup_rows
 from granudb.db import catalog_rows as catalog
+from granudb.db import lookup_rows
 from granudb.db.catalog_differences import dataset_source, sources_read
 from granudb.lazy import pandas as pd
 from granudb.reporting import figures, references, sections, tables
@@ -33,7 +33,6 @@ from granudb.scenario import plug_ins
 from granudb.scenario.collision_query import CollisionQuery
 from granudb.scenario.collisions import select_collisions
 from granudb.scenario.dry_values import dry_values, provenance_keys
-from granudb.scenario.fluid_state import fluid_model
 from granudb.scenario.pair import derive_pair
 from granudb.version import __version__
 
@@ -325,8 +324,8 @@ def _add_collisions(reader: Any, report: dict[str, Any], query: Any, *, pair: bo
     restitution = fits.restitution(frame, report=True, stokes_scale=stokes)  # form and why
     if restitution:
         report["tables"].append(tables.restitution_table(restitution))
-    models = {f.name: fluid_model(f) for f in catalog_rows.fluid_rows(connection)}
-    gap = fits.gap_viscosity(frame, models, gap_scale=gap_shares)
+    models, curves = plug_ins.fluid_curves(connection)
+    gap = fits.gap_viscosity(frame, models, gap_scale=gap_shares, curves=curves)
     if gap:
         report["tables"].append(tables.gap_table(gap, palette))
     fitted = {"walton": walton, "branches": branches, "restitution": restitution,

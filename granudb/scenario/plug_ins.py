@@ -14,16 +14,26 @@ record of how a u reaches St_n and μ_f. For g, the fluid viscosity's own share
 sources are independent. A restitution group in several fluids gets the root mean square
 over its runs (each fluid's share weighted by its runs: the particle's share is common to
 all, the fluids' are not, and taking them as one error is the cautious side).
+
+The gap-viscosity fit turns μ₀ into a gap temperature through the fluid's μ(T): where the
+catalogue states that curve's uncertainty, its relative u at the gap temperature
+(``fluid_curves``: ``granudb.scenario.fluid_state.state_uncertainty``, the one record of
+u(μ) at a temperature, with the reference temperature's share) is an error shared by
+every run as well, and the temperature's interval carries it.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import numpy as np
 
+from granudb.db import catalog_rows
 from granudb.errors import ValidationError
+from granudb.scenario.fluid_state import fluid_model, fluid_state, state_uncertainty
 from granudb.scenario.pair import PairResult, derive_pair
 
 #: The group of a restitution fit (``granudb.analysis.restitution_fit``) and of a
@@ -40,6 +50,42 @@ GAP_SOURCES = (
     "E and ν of both bodies, R*, the fluid's pressure–viscosity coefficient and "
     "density, d, as stored"
 )
+
+
+def fluid_curves(connection: Any) -> tuple[dict[str, Any], dict[str, Callable[[float], float]]]:
+    """({fluid: its μ(T) model, or None}, {fluid: the relative u of its μ(T) at a
+    temperature in °C}) of every live fluid, the second only where the fluid has a model
+    and states a u (its reference viscosity's, or its points', or its reference
+    temperature's): what ``granudb.analysis.gap_viscosity_fit`` turns μ₀ into a gap
+    temperature with, and that curve's share."""
+    models: dict[str, Any] = {}
+    curves: dict[str, Callable[[float], float]] = {}
+    for fluid in catalog_rows.fluid_rows(connection):
+        models[fluid.name] = model = fluid_model(fluid)
+        if model is not None and _states_u(fluid):
+            curves[fluid.name] = partial(_curve_share, fluid)
+    return models, curves
+
+
+def _states_u(fluid: Any) -> bool:
+    """Whether the fluid states any u of its μ(T) (reference value, points, temperature)."""
+    if getattr(fluid, "u_reference_viscosity_pa_s", None) is not None:
+        return True
+    if (getattr(fluid, "u_reference_temperature_c", None) or 0.0) > 0:
+        return True
+    return any(getattr(p, "u_viscosity_pa_s", None) is not None for p in fluid.points)
+
+
+def _curve_share(fluid: Any, temperature_c: float) -> float:
+    """u(μ)/μ of the fluid's μ(T) at ``temperature_c`` (NaN where it cannot be had)."""
+    try:
+        state = fluid_state(fluid, temperature_c)
+        u_mu, _ = state_uncertainty(fluid, state)
+    except ValidationError:  # outside the fluid's data: no temperature to widen
+        return math.nan
+    if u_mu is None or not state.viscosity_pa_s > 0:
+        return math.nan
+    return u_mu / state.viscosity_pa_s
 
 
 def catalogue_shares(reader: Any, frame: Any) -> tuple[dict, dict]:

@@ -9,12 +9,16 @@ import math
 
 import numpy as np
 import pytest
+from paper_runs import RADIUS_MM
+from paper_runs import write_csv as write_paper_csv
 from support import write_csv
 
 import granudb
 from granudb.analysis import bands, fits, gap_viscosity_fit, shared_scale
 from granudb.analysis.synthetic import restitution_runs, sliding_runs
 from granudb.api.database import opened
+from granudb.physics.viscosity import TabulatedViscosity
+from granudb.reporting.format import interval
 from granudb.scenario import plug_ins
 from granudb.scenario.collision_query import CollisionQuery
 from granudb.scenario.collisions import select_collisions
@@ -161,3 +165,86 @@ def test_the_report_band_carries_the_share_its_interval_carries() -> None:
     (low0, high0), (low1, high1) = (bands.restitution_band(frame, r, grid) for r in (plain, wide))
     steep = grid < 100  # where e(St) moves with k
     assert np.all(high1[steep] - low1[steep] > high0[steep] - low0[steep])
+
+
+def _curve(shift: float = 1.0) -> TabulatedViscosity:
+    """A μ(T) curve, 3 mPa·s at 20 °C falling 2.5 % a kelvin, times ``shift``."""
+    temperatures = np.arange(0.0, 81.0, 5.0)
+    return TabulatedViscosity(temperatures, shift * 3.0e-3 * np.exp(-0.025 * (temperatures - 20)))
+
+
+def test_the_gap_temperature_carries_the_curve_it_is_read_from() -> None:
+    """μ₀ is turned into the gap temperature through the catalogue's μ(T): an error of that
+    curve (5 % here, one draw per set) moves the temperature of every run alike (2 K
+    here), which no interval of μ₀ sees; the temperature's interval maps μ₀'s widened by
+    the curve's share and then covers the true temperature."""
+    truth, share, sets = 1.6e-3, 0.05, 30
+    key = "glycerol-37"
+    true_temperature = float(_curve().temperature_for_viscosity(truth))
+    hits = {False: 0, True: 0}
+    for seed in range(sets):
+        frame = sliding_runs(truth, n=100, seed=seed, fluid=key)
+        error = math.exp(share * np.random.default_rng(20_000 + seed).standard_normal())
+        models = {key: _curve(error)}  # the catalogue's curve, off by one factor
+        for widen in (False, True):
+            curves = {key: lambda _t: share} if widen else None
+            [row] = fits.gap_viscosity(frame, models, curves=curves)
+            low, high = row["gap_temperature_low_c"], row["gap_temperature_high_c"]
+            hits[widen] += low <= true_temperature <= high
+            assert (row["temperature_curve_u"] == share) is widen
+            assert ("fluid's μ(T) at that temperature" in row["interval_method"]) is widen
+            if widen:  # the temperature's interval is μ₀'s widened, read through the curve
+                wide = shared_scale.widened(row["gap_viscosity_low_pa_s"],
+                                            row["gap_viscosity_high_pa_s"],
+                                            row["gap_viscosity_pa_s"], share, 0.95)  # fmt: skip
+                assert low == pytest.approx(float(models[key].temperature_for_viscosity(wide[1])))
+                assert high == pytest.approx(float(models[key].temperature_for_viscosity(wide[0])))
+    assert hits[True] >= 26 and hits[False] < hits[True] - 8, hits
+
+
+def _sliding_csv(tmp_path) -> object:
+    """40 smooth sliding runs of steel on Zerodur in glycerol-37 at 20 °C whose μ_f is
+    (5.8) at μ₀ = 1.6 mPa·s (``sliding_runs``), as a lab's CSV (mm/s; the spin after
+    impact from the tangential impulse of a solid sphere)."""
+    frame = sliding_runs(1.6e-3, n=40, seed=4)
+    v_n, v_t = frame["v_n_in_m_s"] * 1e3, frame["tangential_speed_m_s"] * 1e3
+    v_t_out = v_t + (frame["effective_rebound"] * v_n - v_t) / 3.5
+    omega_out = (frame["effective_rebound"] * v_n - v_t_out) / RADIUS_MM
+    rows = [[f"s{i}", "steel", "Zerodur", "glycerol-37", "12.7",
+             f"{math.degrees(math.atan2(v_t[i], v_n[i])):.4f}", f"{v_n[i]:.4f}",
+             f"{v_t[i]:.4f}", "0", f"{frame['normal_restitution'][i] * v_n[i]:.4f}",
+             f"{v_t_out[i]:.4f}", f"{omega_out[i]:.5f}", "20", "synthetic"]
+            for i in range(len(frame))]  # fmt: skip
+    return write_paper_csv(tmp_path / "sliding.csv", rows)
+
+
+def test_fit_and_report_give_the_gap_temperature_the_curves_share(db: str, tmp_path) -> None:
+    """Through the database: once the fluid states its viscosity's u, ``fit_gap_viscosity``
+    widens the gap temperature's interval by that u at the gap temperature (as
+    ``granudb.pair`` states u(μ) there) and says so, and the report's table gives the
+    same interval; μ₀'s own interval is not touched (μ is what the fit replaces)."""
+    granudb.import_collisions(_sliding_csv(tmp_path), dataset="s", db=db)
+    [before] = granudb.fit_gap_viscosity(db=db, as_frame=False)
+    assert math.isfinite(before["gap_temperature_low_c"]) and math.isnan(
+        before["temperature_curve_u"]
+    )
+    granudb.update_fluid("glycerol-37", reference_viscosity="3.0 ± 0.15 mPa s", db=db)
+    [after] = granudb.fit_gap_viscosity(db=db, as_frame=False)
+    at = f"{after['gap_temperature_c']} degC"
+    at_gap = granudb.pair("steel", "Zerodur", velocity="1 m/s", db=db, fluid="glycerol-37",
+                          diameter="12.7 mm", temperature=at)  # fmt: skip
+    u_mu = at_gap["inputs"]["u_viscosity_pa_s"] / at_gap["fluid"]["viscosity_pa_s"]
+    assert after["temperature_curve_u"] == pytest.approx(u_mu, rel=1e-9)
+    assert after["temperature_curve_u"] == pytest.approx(0.05, rel=1e-6)
+    for key in ("gap_viscosity_pa_s", "gap_viscosity_low_pa_s", "gap_viscosity_high_pa_s"):
+        assert after[key] == before[key]
+    assert after["gap_temperature_low_c"] < before["gap_temperature_low_c"]
+    assert after["gap_temperature_high_c"] > before["gap_temperature_high_c"]
+    assert f"u_r = {u_mu:.2%}" in after["interval_method"]
+    markdown = granudb.report(dataset="s", format="md", db=db)
+    cell = interval(after["gap_temperature_c"], after["gap_temperature_low_c"],
+                    after["gap_temperature_high_c"])  # fmt: skip
+    assert f"{cell} °C".replace("[", "\\[") in markdown  # Markdown escapes the bracket
+    assert f"u_r = {u_mu:.2%}: its stated u" in markdown
+    assert interval(before["gap_temperature_c"], before["gap_temperature_low_c"],
+                    before["gap_temperature_high_c"]) != cell  # fmt: skip
