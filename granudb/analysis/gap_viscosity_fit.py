@@ -477,8 +477,16 @@ def _fit_group(
             row["interval_method"] += shared_scale.CURVE_WORDS.format(share=share)
             row["temperature_curve_u"] = share
         # μ(T) falls with T: the high viscosity is the low temperature
-        row["gap_temperature_low_c"] = _temperature(model, high)[0]
-        row["gap_temperature_high_c"] = _temperature(model, low)[0]
+        ends = {v: _temperature(model, v)[0] for v in (high, low)}
+        row["gap_temperature_low_c"], row["gap_temperature_high_c"] = ends[high], ends[low]
+        outside = [v for v, t in ends.items() if not math.isfinite(t)]
+        if outside:  # an end beyond the fluid's data: no interval, and the reason why
+            reason = (
+                f"interval of temperature not determined: μ₀'s interval reaches "
+                f"{outside[0] * 1e3:.3g} mPa·s, outside the fluid's μ(T) data "
+                f"({model.low_c:g}–{model.high_c:g} °C)"
+            )
+            row["gap_temperature_low_c"] = row["gap_temperature_high_c"] = nan
     row["reason"] = row["note"] = reason
     return row
 

@@ -286,6 +286,9 @@ def _gap_cells(r: Mapping[str, Any]) -> tuple[str, str]:
     if not is_number(t):
         return viscosity, f"not determined: {reason}"
     low_t, high_t = r.get("gap_temperature_low_c"), r.get("gap_temperature_high_c")
+    if not (is_number(low_t) and is_number(high_t)):  # why, in the fit's words
+        why = reason.split("not determined: ", 1)[-1] if r.get("reason") else ""
+        return viscosity, f"{t:.3g} °C (interval not determined{': ' + why if why else ''})"
     return viscosity, f"{interval(t, low_t, high_t)} °C"
 
 

@@ -124,3 +124,26 @@ def test_without_stated_u_the_bootstrap_stops_where_the_bias_outgrows_it() -> No
     [stated] = fits.gap_viscosity(sliding_measured(3, n=1500), {}, resamples=200)
     assert stated["interval_reason"] == ""
     assert stated["gap_viscosity_low_pa_s"] < 1.6e-3 * 1.1
+
+
+def test_a_temperature_interval_beyond_the_fluids_data_says_so() -> None:
+    """μ₀ and its temperature inside the fluid's μ(T) data, the interval's ends not: the
+    temperature keeps its value, no interval, and the reason names the end and the data's
+    range; the report's cell and the CLI's line say the same."""
+    from granudb.physics.viscosity import TabulatedViscosity
+    from granudb.reporting.fit_view import GAP, value_line
+    from granudb.reporting.tables import gap_table
+
+    truth = 1.6e-3
+    temperatures = np.array([40.0, 42.0, 44.0, 46.0, 48.0, 50.0])  # about the gap's only
+    model = TabulatedViscosity(temperatures, 3.0e-3 * np.exp(-0.025 * (temperatures - 20)))
+    [fit] = fits.gap_viscosity(sliding_runs(truth, n=30, seed=2), {"glycerol-37": model})
+    assert math.isfinite(fit["gap_temperature_c"]) and fit["gap_viscosity_low_pa_s"] < truth
+    assert math.isnan(fit["gap_temperature_low_c"]) and math.isnan(fit["gap_temperature_high_c"])
+    words = "outside the fluid's μ(T) data (40–50 °C)"
+    assert fit["reason"].startswith("interval of temperature not determined: μ₀'s interval")
+    assert words in fit["reason"]
+    cell = gap_table([fit], {})["rows"][0][3]
+    assert cell.startswith(f"{fit['gap_temperature_c']:.3g} °C (interval not determined: μ₀'s")
+    assert words in cell
+    assert words in value_line(fit, GAP[1])
