@@ -21,11 +21,13 @@ The two are independent (the catalogue's error is one draw for the fit, the runs
 another), so on the log scale their half-widths add in quadrature, each side on its own
 (GUM, JCGM 100:2008 §5.1.2 on ln θ): h' = √(h² + (z u_r)²), z the normal quantile of the
 level, about the value θ̂ (about the interval's geometric centre where θ̂ lies outside it:
-a centre moved by the stated speeds' bias, ``granudb.analysis.asymptotic``). Measured on
-200 synthetic sets a cell with a 5 % catalogue error of St_n drawn once per set
-(docs/intervals.md, "What the catalogue states"): St_c's interval of the runs alone
-covered 0.830, 0.675, 0.590 and 0.355 at 5, 10, 30 and 100 runs, widened 0.975, 0.955,
-0.940 and 0.950; ``tests/analysis/test_shared_scale.py`` keeps a 40-set version.
+a centre moved by the stated speeds' bias, ``granudb.analysis.asymptotic``). The gap
+temperature, read from μ₀ through the fluid's μ(T), takes the curve's own u the same way
+on μ's log scale (``CURVE_WORDS``). Measured on 200 synthetic sets a cell with a 5 %
+catalogue error of St_n drawn once per set (``benchmarks/shared_scale_coverage.py``;
+docs/intervals.md, "What the catalogue states"): St_c's interval of the runs alone
+covered 0.800, 0.700, 0.535 and 0.260 at 5, 10, 30 and 100 runs, widened 0.965, 0.925,
+0.940 and 0.945; ``tests/analysis/test_shared_scale.py`` keeps a 40-set version.
 """
 
 from __future__ import annotations
