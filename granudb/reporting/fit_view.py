@@ -12,6 +12,7 @@ keep the record itself.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -110,12 +111,25 @@ def _group(fit: Mapping[str, Any]) -> str:
 
 
 def method_line(fit: Mapping[str, Any]) -> str | None:
-    """How the intervals were made, from the record."""
+    """How the intervals were made, from the record, with their level unless the method
+    says it itself (a posterior's "95 % … credible interval"; another percentage in it,
+    such as a share u_r = 5.00 %, is not a level).
+
+    >>> method_line({"interval_method": "bootstrap-t; widened (u_r = 5.00%)",
+    ...              "confidence_level": 0.95})
+    '95% bootstrap-t; widened (u_r = 5.00%)'
+    >>> method_line({"interval_method": "posterior median and 95 % credible interval",
+    ...              "confidence_level": 0.95})
+    'posterior median and 95 % credible interval'
+    """
     method = _said(fit.get("interval_method"))
     if not method:
         return None
     level = fit.get("confidence_level")
-    stated = is_number(level) and "%" not in method and "no interval" not in method
+    said_itself = is_number(level) and re.search(
+        rf"(?<![\d.]){round(float(level) * 100):d} ?%", method
+    )
+    stated = is_number(level) and not said_itself and "no interval" not in method
     said = f"{level:.0%} " if stated else ""
     count, seed = fit.get("bootstrap_resamples"), fit.get("bootstrap_seed")
     extra = ""

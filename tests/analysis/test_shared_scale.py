@@ -14,6 +14,7 @@ from paper_runs import write_csv as write_paper_csv
 from support import write_csv
 
 import granudb
+from granudb import api
 from granudb.analysis import bands, fits, gap_viscosity_fit, shared_scale
 from granudb.analysis.synthetic import restitution_runs, sliding_runs
 from granudb.api.database import opened
@@ -241,6 +242,9 @@ def test_fit_and_report_give_the_gap_temperature_the_curves_share(db: str, tmp_p
     assert after["gap_temperature_low_c"] < before["gap_temperature_low_c"]
     assert after["gap_temperature_high_c"] > before["gap_temperature_high_c"]
     assert f"u_r = {u_mu:.2%}" in after["interval_method"]
+    lines = dict(api.fit_people_view("gap_viscosity", after)[1])  # the command's lines
+    assert lines["intervals"].startswith("95% ")  # the share's "%" is not a level
+    assert after["interval_method"] in lines["intervals"]
     markdown = granudb.report(dataset="s", format="md", db=db)
     cell = interval(after["gap_temperature_c"], after["gap_temperature_low_c"],
                     after["gap_temperature_high_c"])  # fmt: skip
