@@ -18,7 +18,11 @@ or 50 dry runs) run at n = 10,000 only. Exit status 1 when any coverage is below
 the bound, or an interval has zero width. The Bayesian option's rows ("Bayes: …", posterior
 credible intervals by emcee) run at most ``coverage.BAYES_SETS`` (200) sets per cell: a
 posterior costs 1–3 s CPU a set (minutes a cell). ``--only`` and ``--skip`` take several
-substrings (any matches); cases on the same synthetic sets share their fits.
+substrings (any matches; a case's full name picks that cell alone); cases on the same
+synthetic sets share their fits. ``--behind-refusals``: the Bayesian restitution interval
+with stated u, refused from ``bayesian.STATED_REFUSED_FROM`` runs, is given and measured
+(what the refusal rests on). Each row ends with its wall time, the CPU time a set (data,
+fit and posterior) and the sets.
 
     nice -n 10 python benchmarks/fit_coverage.py [--sets 200] [--sizes 3 5 10 30 100]
         [--only "Bayes: Walton μ_f" "Bayes: Walton β"] [--skip Bayes]
@@ -46,7 +50,18 @@ def main() -> int:
     parser.add_argument(
         "--skip", nargs="+", default=["\0"], help="leave out cases whose name contains any"
     )
+    parser.add_argument(
+        "--behind-refusals",
+        action="store_true",
+        help="measure the Bayesian restitution interval with stated u where the fit refuses "
+        "it (from bayesian.STATED_REFUSED_FROM runs), to state what the refusal rests on",
+    )
     args = parser.parse_args()
+    if args.behind_refusals:
+        from granudb.analysis import bayesian
+
+        bayesian.STATED_REFUSED_FROM = sys.maxsize
+        print("behind the refusals: the Bayesian restitution interval with stated u is given")
     failed = False
     print(f"coverage of nominal 95 % intervals over {args.sets} synthetic sets; bound ≥ {BOUND}")
     print(

@@ -128,3 +128,21 @@ def test_the_restitution_fit_with_stated_u_takes_the_moments_from_large_n() -> N
         # exponential: 2.5 % of the exact log posterior's spread over these walkers measured
         tolerance = 1e-6 if model == "threshold" else 0.05 * float(np.ptp(exact))
         assert float(np.ptp(gap)) < tolerance, (model, gap, np.ptp(exact))
+
+
+def test_the_restitution_interval_with_stated_u_is_refused_from_its_size_with_why() -> None:
+    """From ``STATED_REFUSED_FROM`` runs with stated u: the least-squares values, no
+    interval, the one reason (``stated_refusal``) naming the default method, which gives
+    an interval on the same runs; without stated u the posterior is given."""
+    n = bayesian.STATED_REFUSED_FROM
+    frame = measured(0, n=n)
+    [row] = fits.restitution(frame, "exponential", method="bayes")
+    [default] = fits.restitution(frame, "exponential")
+    assert row["interval_reason"] == bayesian.stated_refusal(n) != ""
+    assert "--method bootstrap" in row["interval_reason"]
+    assert row["interval_method"] == bayesian.NO_INTERVAL and not row["converged"]
+    for key in ("e_dry", "parameter"):
+        assert np.isnan(row[f"{key}_low"]) and np.isnan(row[f"{key}_high"])
+        assert row[key] == default[key]  # least squares, as the default's value
+        assert default[f"{key}_low"] < default[key] < default[f"{key}_high"]
+    assert bayesian.stated_refusal(n - 1) == ""
