@@ -146,3 +146,21 @@ def test_the_restitution_interval_with_stated_u_is_refused_from_its_size_with_wh
         assert row[key] == default[key]  # least squares, as the default's value
         assert default[f"{key}_low"] < default[key] < default[f"{key}_high"]
     assert bayesian.stated_refusal(n - 1) == ""
+
+
+def test_walton_beta_interval_with_stated_u_is_refused_from_its_size_with_why() -> None:
+    """From ``STATED_REFUSED_FROM`` runs stating their speeds' u: β's posterior median, no
+    interval, the one reason naming the default method; μ_f and ē keep theirs."""
+    n = bayesian.STATED_REFUSED_FROM
+    [row] = fits.walton(walton_measured(n, seed=0), method="bayes")
+    assert row["model"] == "split" and row["converged"]
+    assert (
+        bayesian.walton_beta_refusal(n) in row["reason"] and "--method bootstrap" in row["reason"]
+    )
+    assert np.isfinite(row["rotational_restitution"])
+    assert np.isnan(row["rotational_restitution_low"]) and np.isnan(
+        row["rotational_restitution_high"]
+    )
+    assert row["sliding_friction_low"] < row["sliding_friction"] < row["sliding_friction_high"]
+    assert row["interval_method"] == bayesian.INTERVAL_METHOD
+    assert bayesian.walton_beta_refusal(n - 1) == ""
