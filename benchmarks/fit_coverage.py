@@ -17,7 +17,7 @@ cells named "large n: …" (both forms, with and without stated u, e_dry fitted 
 or 50 dry runs) run at n = 10,000 only. Exit status 1 when any coverage is below
 the bound, or an interval has zero width. The Bayesian option's rows ("Bayes: …", posterior
 credible intervals by emcee) run at most ``coverage.BAYES_SETS`` (200) sets per cell: a
-posterior costs 1–3 s CPU a set (minutes a cell). ``--only`` and ``--skip`` take several
+posterior costs 1–6 s CPU a set (minutes a cell). ``--only`` and ``--skip`` take several
 substrings (any matches; a case's full name picks that cell alone); cases on the same
 synthetic sets share their fits. ``--behind-refusals``: the Bayesian restitution interval
 with stated u, refused from ``bayesian.STATED_REFUSED_FROM`` runs, is given and measured

@@ -111,13 +111,14 @@ E_MAX = 1.05
 #: there could not be measured over 200 sets; the moments' is (docs/intervals.md).
 LARGE_N = 10_000
 #: From this many immersed runs stating their speeds' u, the restitution fit's Bayesian
-#: interval is refused (``stated_refusal``): measured at 10,000 runs (200 sets a cell,
-#: the moments' posterior, ``benchmarks/fit_coverage.py --behind-refusals``) its centre
-#: lies several of its own widths from the truth. The likelihood takes each run's stated
-#: u as known, though u(v_n,out) follows the measured speeds, and s ~ Normal(1, r) for
-#: the true speed's share: terms of order r² (−0.15 % in e_dry, −0.5 to −1 % in St_c or k
-#: at 4 % speed u) that are far inside the interval at 100 runs and 4–5 of its half-widths
-#: at 10,000 (the bias stays, the width falls as 1/√n).
+#: interval is refused (``stated_refusal``; and Walton β's, ``walton_beta_refusal``):
+#: measured at 10,000 runs (200 sets a cell, the moments' posterior,
+#: ``benchmarks/fit_coverage.py --behind-refusals``) its centre lies off the truth by more
+#: than its width allows. The likelihood takes each run's stated u as known, though
+#: u(v_n,out) follows the measured speeds, and s ~ Normal(1, r) for the true speed's
+#: share: terms of order r² (−0.2 to −0.4 % in e_dry, −0.4 to −1.4 % in St_c or k at 4 %
+#: speed u) that are a fifth of the interval's half-width at 100 runs and two to five
+#: half-widths at 10,000 (the offset stays, the width falls as 1/√n).
 STATED_REFUSED_FROM = LARGE_N
 #: The measured coverage behind the refusal, as the refusal states it.
 STATED_REFUSED_COVERAGE = "0 of 10 sets"
