@@ -11,6 +11,10 @@ u, errors in every measured variable (``walton``: effective variance; ``restitut
 shared v_N,in integrated out) plus a sampled σ_extra beyond the stated u (half-Cauchy
 prior, scale the median stated u). Priors: uniform on each parameter's physical range
 (``PRIORS``), stated in every result (docs/intervals.md, "The Bayesian option").
+From ``LARGE_N`` runs with stated u the restitution likelihood takes the moments of its
+integral over the true speed, and from ``STATED_REFUSED_FROM`` runs with stated u the
+restitution interval and Walton β's are refused with their reason (measured off centre
+at 10,000 runs: ``stated_refusal``, ``walton_beta_refusal``).
 
 Walton: the sticking model is Ψ_out = −βΨ_in, the sliding one Ψ_out = Ψ_in − μ_f(1+e)B and
 the split one Walton's max(−βΨ_in, Ψ_in − μ_f(1+e)B) (the folded runs of
@@ -388,7 +392,7 @@ def walton_log_posterior(
 
     Cost (issue 36): with stated u each evaluation works in buffers kept between calls
     (fresh (walkers, n) temporaries cost more in page faults than in arithmetic: 4.7 ms
-    against 1.0 ms an evaluation of 16 walkers on 10,000 runs), computes the walker-free
+    against 0.77 ms an evaluation of 16 walkers on 10,000 runs), computes the walker-free
     parts (u(Ψ_out)², u(Ψ_in)², u(e)² + r²) once, and each branch's variance only where
     the model has that branch. The arithmetic is the same, operation for operation, as the
     direct formula: the values are equal to the last bit (tests/analysis/test_bayes_speed.py
