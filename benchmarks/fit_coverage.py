@@ -17,8 +17,12 @@ cells named "large n: …" (both forms, with and without stated u, e_dry fitted 
 or 50 dry runs) run at n = 10,000 only. Exit status 1 when any coverage is below
 the bound, or an interval has zero width. The Bayesian option's rows ("Bayes: …", posterior
 credible intervals by emcee) run at most ``coverage.BAYES_SETS`` (200) sets per cell: a
-posterior costs 1–3 s CPU a set (minutes a cell). ``--only`` and ``--skip`` take several
-substrings (any matches); cases on the same synthetic sets share their fits.
+posterior costs 1–6 s CPU a set (minutes a cell). ``--only`` and ``--skip`` take several
+substrings (any matches; a case's full name picks that cell alone); cases on the same
+synthetic sets share their fits. ``--behind-refusals``: the Bayesian restitution interval
+with stated u, refused from ``bayesian.STATED_REFUSED_FROM`` runs, is given and measured
+(what the refusal rests on). Each row ends with its wall time, the CPU time a set (data,
+fit and posterior) and the sets.
 
     nice -n 10 python benchmarks/fit_coverage.py [--sets 200] [--sizes 3 5 10 30 100]
         [--only "Bayes: Walton μ_f" "Bayes: Walton β"] [--skip Bayes]
@@ -46,7 +50,18 @@ def main() -> int:
     parser.add_argument(
         "--skip", nargs="+", default=["\0"], help="leave out cases whose name contains any"
     )
+    parser.add_argument(
+        "--behind-refusals",
+        action="store_true",
+        help="measure the Bayesian restitution interval with stated u where the fit refuses "
+        "it (from bayesian.STATED_REFUSED_FROM runs), to state what the refusal rests on",
+    )
     args = parser.parse_args()
+    if args.behind_refusals:
+        from granudb.analysis import bayesian
+
+        bayesian.STATED_REFUSED_FROM = sys.maxsize
+        print("behind the refusals: the Bayesian restitution interval with stated u is given")
     failed = False
     print(f"coverage of nominal 95 % intervals over {args.sets} synthetic sets; bound ≥ {BOUND}")
     print(
@@ -57,9 +72,11 @@ def main() -> int:
         if not any(o in case.name for o in args.only) or any(s in case.name for s in args.skip):
             continue
         for n in [m for m in args.sizes if case.sizes is None or m in case.sizes]:
-            start = time.perf_counter()
+            start, cpu = time.perf_counter(), time.process_time()
             t = tally(case, n, min(args.sets, case.most_sets or args.sets))
-            took = time.perf_counter() - start
+            took, cpu = time.perf_counter() - start, time.process_time() - cpu
+            shared = cpu < 0.01 * t.sets  # every fit made for an earlier cell on the same sets
+            cost = "fits shared with a cell above" if shared else f"{cpu / t.sets:.2f} s CPU a set"
             if t.given == 0:
                 verdict = f"refused ({t.reason or 'no value'})"
             elif t.zero_width:
@@ -70,7 +87,8 @@ def main() -> int:
                 verdict, failed = "FAIL", True
             print(
                 f"{case.name:50} {n:>4} {t.coverage:>9.3f} {t.fitted / t.sets:>6.0%} "
-                f"{t.given / t.sets:>9.0%} {t.method:>12}  {verdict} [{took:.0f} s]",
+                f"{t.given / t.sets:>9.0%} {t.method:>12}  {verdict} "
+                f"[{took:.0f} s; {cost}, {t.sets} sets]",
                 flush=True,
             )
     print("FAIL" if failed else "PASS")
