@@ -20,8 +20,9 @@ credible intervals by emcee) run at most ``coverage.BAYES_SETS`` (200) sets per 
 posterior costs 1–6 s CPU a set (minutes a cell). ``--only`` and ``--skip`` take several
 substrings (any matches; a case's full name picks that cell alone); cases on the same
 synthetic sets share their fits. ``--behind-refusals``: the Bayesian restitution interval
-with stated u, refused from ``bayesian.STATED_REFUSED_FROM`` runs, is given and measured
-(what the refusal rests on). Each row ends with its wall time, the CPU time a set (data,
+with stated u, refused from ``bayesian.STATED_REFUSED_FROM`` runs, and Walton β's, refused
+from ``bayesian.WALTON_BETA_REFUSED_FROM``, are given and measured (what the refusals
+rest on). Each row ends with its wall time, the CPU time a set (data,
 fit and posterior) and the sets.
 
     nice -n 10 python benchmarks/fit_coverage.py [--sets 200] [--sizes 3 5 10 30 100]
@@ -54,13 +55,14 @@ def main() -> int:
         "--behind-refusals",
         action="store_true",
         help="measure the Bayesian restitution interval with stated u where the fit refuses "
-        "it (from bayesian.STATED_REFUSED_FROM runs), to state what the refusal rests on",
+        "it (from bayesian.STATED_REFUSED_FROM runs; Walton β's from "
+        "bayesian.WALTON_BETA_REFUSED_FROM), to state what the refusals rest on",
     )
     args = parser.parse_args()
     if args.behind_refusals:
         from granudb.analysis import bayesian
 
-        bayesian.STATED_REFUSED_FROM = sys.maxsize
+        bayesian.STATED_REFUSED_FROM = bayesian.WALTON_BETA_REFUSED_FROM = sys.maxsize
         print("behind the refusals: the Bayesian restitution interval with stated u is given")
     failed = False
     print(f"coverage of nominal 95 % intervals over {args.sets} synthetic sets; bound ≥ {BOUND}")

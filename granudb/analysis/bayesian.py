@@ -12,9 +12,10 @@ shared v_N,in integrated out) plus a sampled σ_extra beyond the stated u (half-
 prior, scale the median stated u). Priors: uniform on each parameter's physical range
 (``PRIORS``), stated in every result (docs/intervals.md, "The Bayesian option").
 From ``LARGE_N`` runs with stated u the restitution likelihood takes the moments of its
-integral over the true speed, and from ``STATED_REFUSED_FROM`` runs with stated u the
-restitution interval and Walton β's are refused with their reason (measured off centre
-at 10,000 runs: ``stated_refusal``, ``walton_beta_refusal``).
+integral over the true speed; from ``STATED_REFUSED_FROM`` runs with stated u the
+restitution interval, and from ``WALTON_BETA_REFUSED_FROM`` Walton β's, are refused with
+their reason (measured off centre at 1,000 and 10,000 runs: ``stated_refusal``,
+``walton_beta_refusal``).
 
 Walton: the sticking model is Ψ_out = −βΨ_in, the sliding one Ψ_out = Ψ_in − μ_f(1+e)B and
 the split one Walton's max(−βΨ_in, Ψ_in − μ_f(1+e)B) (the folded runs of
@@ -115,18 +116,23 @@ E_MAX = 1.05
 #: there could not be measured over 200 sets; the moments' is (docs/intervals.md).
 LARGE_N = 10_000
 #: From this many immersed runs stating their speeds' u, the restitution fit's Bayesian
-#: interval is refused (``stated_refusal``; and Walton β's, ``walton_beta_refusal``):
-#: measured at 10,000 runs (200 sets a cell, the moments' posterior,
-#: ``benchmarks/fit_coverage.py --behind-refusals``) its centre lies off the truth by more
-#: than its width allows. The likelihood takes each run's stated u as known, though
-#: u(v_n,out) follows the measured speeds, and s ~ Normal(1, r) for the true speed's
-#: share: terms of order r² (−0.2 to −0.4 % in e_dry, −0.4 to −1.4 % in St_c or k at 4 %
-#: speed u) that are a fifth of the interval's half-width at 100 runs and two to five
-#: half-widths at 10,000 (the offset stays, the width falls as 1/√n).
-STATED_REFUSED_FROM = LARGE_N
-#: The measured coverage behind the refusal (200 sets a cell: exponential k and e_dry,
-#: threshold St_c with e_dry of 4 and of 50 dry runs), as the refusal states it.
-STATED_REFUSED_COVERAGE = "0.05–0.15"
+#: interval is refused (``stated_refusal``): its centre lies off the truth by more than its
+#: width allows (``benchmarks/fit_coverage.py --behind-refusals``). The likelihood takes
+#: each run's stated u as known, though u(v_n,out) follows the measured speeds, and
+#: s ~ Normal(1, r) for the true speed's share: terms of order r² (−0.2 to −0.4 % in e_dry,
+#: −0.4 to −1.4 % in St_c or k at 4 % speed u) that stay while the width falls as 1/√n.
+#: Measured with 4 % speed u: 0.935 at 300 runs (threshold St_c, e_dry of 4 dry runs, 200
+#: sets); at 1,000 runs 0.850 (the same) and 0.867 (exponential k), 60 sets each; at
+#: 10,000 runs 0.05–0.15 (200 sets a cell).
+STATED_REFUSED_FROM = 1_000
+#: The measured coverage behind the refusal, as the refusal states it.
+STATED_REFUSED_COVERAGE = (
+    "0.850–0.867 of synthetic sets of 1,000 runs and 0.05–0.15 of sets of 10,000 (0.935 at 300)"
+)
+#: From this many runs stating their speeds' u, Walton β's Bayesian interval is refused
+#: (``walton_beta_refusal``): measured at 10,000 runs, 0.875 (200 sets); its offset, about
+#: 0.7 posterior sd there, is a third of that at 1,000 runs.
+WALTON_BETA_REFUSED_FROM = LARGE_N
 
 
 #: Walton β's Bayesian interval with the speeds' u stated, measured at 10,000 runs (200
@@ -137,10 +143,10 @@ WALTON_BETA_REFUSED_COVERAGE = 0.875
 def walton_beta_refusal(n: int) -> str:
     """Why β of ``n`` Walton runs stating their speeds' u gets no Bayesian interval ('' when
     it gets one): one line, pointing to the default method."""
-    if n < STATED_REFUSED_FROM:
+    if n < WALTON_BETA_REFUSED_FROM:
         return ""
     return (
-        f"interval of β refused from {STATED_REFUSED_FROM:,} runs with stated u: its "
+        f"interval of β refused from {WALTON_BETA_REFUSED_FROM:,} runs with stated u: its "
         f"Bayesian interval held the truth in {WALTON_BETA_REFUSED_COVERAGE:.3f} of "
         "synthetic sets of 10,000 runs (bound 0.90); the default method (--method "
         "bootstrap: the asymptotic interval, centred for the stated u) covers 0.975 there"
@@ -155,9 +161,9 @@ def stated_refusal(n: int) -> str:
     return (
         f"Bayesian interval refused from {STATED_REFUSED_FROM:,} runs with stated u: the "
         "posterior's centre is off by terms of order u² that its width no longer hides "
-        f"(its 95 % interval held the truth in {STATED_REFUSED_COVERAGE} of synthetic sets "
-        "of 10,000 runs); the default method (--method bootstrap: the asymptotic interval, "
-        "centred for the stated u) covers 0.95–0.99 there; value: least squares"
+        f"(its 95 % interval held the truth in {STATED_REFUSED_COVERAGE}); use the default "
+        "method (--method bootstrap; from 10,000 runs its asymptotic interval, centred for "
+        "the stated u, covers 0.95–0.99); value: least squares"
     )
 
 

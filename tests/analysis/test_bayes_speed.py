@@ -149,9 +149,9 @@ def test_the_restitution_interval_with_stated_u_is_refused_from_its_size_with_wh
 
 
 def test_walton_beta_interval_with_stated_u_is_refused_from_its_size_with_why() -> None:
-    """From ``STATED_REFUSED_FROM`` runs stating their speeds' u: β's posterior median, no
-    interval, the one reason naming the default method; μ_f and ē keep theirs."""
-    n = bayesian.STATED_REFUSED_FROM
+    """From ``WALTON_BETA_REFUSED_FROM`` runs stating their speeds' u: β's posterior
+    median, no interval, the one reason naming the default method; μ_f and ē keep theirs."""
+    n = bayesian.WALTON_BETA_REFUSED_FROM
     [row] = fits.walton(walton_measured(n, seed=0), method="bayes")
     assert row["model"] == "split" and row["converged"]
     assert (
