@@ -143,28 +143,33 @@ WALTON_BETA_REFUSED_COVERAGE = 0.875
 def walton_beta_refusal(n: int) -> str:
     """Why β of ``n`` Walton runs stating their speeds' u gets no Bayesian interval ('' when
     it gets one): one line, pointing to the default method."""
-    if n < WALTON_BETA_REFUSED_FROM:
-        return ""
-    return (
+    return _refused_from(
+        n,
+        WALTON_BETA_REFUSED_FROM,
         f"interval of β refused from {WALTON_BETA_REFUSED_FROM:,} runs with stated u: its "
         f"Bayesian interval held the truth in {WALTON_BETA_REFUSED_COVERAGE:.3f} of "
         "synthetic sets of 10,000 runs (bound 0.90); the default method (--method "
-        "bootstrap: the asymptotic interval, centred for the stated u) covers 0.975 there"
+        "bootstrap: the asymptotic interval, centred for the stated u) covers 0.975 there",
     )
 
 
 def stated_refusal(n: int) -> str:
     """Why ``n`` immersed runs with stated u get no Bayesian restitution interval ('' when
     they get one): one line, pointing to the default method."""
-    if n < STATED_REFUSED_FROM:
-        return ""
-    return (
+    return _refused_from(
+        n,
+        STATED_REFUSED_FROM,
         f"Bayesian interval refused from {STATED_REFUSED_FROM:,} runs with stated u: the "
         "posterior's centre is off by terms of order u² that its width no longer hides "
         f"(its 95 % interval held the truth in {STATED_REFUSED_COVERAGE}); use the default "
         "method (--method bootstrap; from 10,000 runs its asymptotic interval, centred for "
-        "the stated u, covers 0.95–0.99); value: least squares"
+        "the stated u, covers 0.95–0.99); value: least squares",
     )
+
+
+def _refused_from(n: int, start: int, reason: str) -> str:
+    """``reason`` from ``start`` runs on, '' below."""
+    return reason if n >= start else ""
 
 
 @dataclass(frozen=True)

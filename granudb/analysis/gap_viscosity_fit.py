@@ -477,16 +477,16 @@ def _fit_group(
             row["interval_method"] += shared_scale.CURVE_WORDS.format(share=share)
             row["temperature_curve_u"] = share
         # μ(T) falls with T: the high viscosity is the low temperature
-        ends = {v: _temperature(model, v)[0] for v in (high, low)}
-        row["gap_temperature_low_c"], row["gap_temperature_high_c"] = ends[high], ends[low]
-        outside = [v for v, t in ends.items() if not math.isfinite(t)]
-        if outside:  # an end beyond the fluid's data: no interval, and the reason why
+        t_low, t_high = _temperature(model, high)[0], _temperature(model, low)[0]
+        if math.isfinite(t_low) and math.isfinite(t_high):
+            row["gap_temperature_low_c"], row["gap_temperature_high_c"] = t_low, t_high
+        else:  # an end beyond the fluid's data: no interval, and the reason why
+            outside = high if not math.isfinite(t_low) else low
             reason = (
                 f"interval of temperature not determined: μ₀'s interval reaches "
-                f"{outside[0] * 1e3:.3g} mPa·s, outside the fluid's μ(T) data "
+                f"{outside * 1e3:.3g} mPa·s, outside the fluid's μ(T) data "
                 f"({model.low_c:g}–{model.high_c:g} °C)"
             )
-            row["gap_temperature_low_c"] = row["gap_temperature_high_c"] = nan
     row["reason"] = row["note"] = reason
     return row
 

@@ -17,6 +17,7 @@ from typing import Any
 from granudb.analysis.fits import CONFIDENCE_LEVEL
 from granudb.analysis.walton_bootstrap import DEFAULT_RESAMPLES
 from granudb.lazy import pyarrow, pyarrow_csv
+from granudb.reporting.fit_view import GAP, value_line
 from granudb.reporting.format import display, interval, is_number, plus_minus
 from granudb.reporting.groups import fluid_name, fluid_names, group_label
 from granudb.vocabulary import DERIVED_TERMS, TERMS
@@ -287,8 +288,7 @@ def _gap_cells(r: Mapping[str, Any]) -> tuple[str, str]:
         return viscosity, f"not determined: {reason}"
     low_t, high_t = r.get("gap_temperature_low_c"), r.get("gap_temperature_high_c")
     if not (is_number(low_t) and is_number(high_t)):  # why, in the fit's words
-        why = reason.split("not determined: ", 1)[-1] if r.get("reason") else ""
-        return viscosity, f"{t:.3g} °C (interval not determined{': ' + why if why else ''})"
+        return viscosity, value_line(r, GAP[1])  # as the command's line says it
     return viscosity, f"{interval(t, low_t, high_t)} °C"
 
 

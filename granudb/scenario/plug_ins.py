@@ -53,27 +53,17 @@ GAP_SOURCES = (
 
 
 def fluid_curves(connection: Any) -> tuple[dict[str, Any], dict[str, Callable[[float], float]]]:
-    """({fluid: its μ(T) model, or None}, {fluid: the relative u of its μ(T) at a
-    temperature in °C}) of every live fluid, the second only where the fluid has a model
-    and states a u (its reference viscosity's, or its points', or its reference
-    temperature's): what ``granudb.analysis.gap_viscosity_fit`` turns μ₀ into a gap
-    temperature with, and that curve's share."""
+    """({fluid: its μ(T) model, or None}, {fluid with a model: the relative u of its μ(T)
+    at a temperature in °C, from its reference viscosity's, its points' or its reference
+    temperature's u, NaN where it states none}): what ``granudb.analysis.gap_viscosity_fit``
+    turns μ₀ into a gap temperature with, and that curve's share."""
     models: dict[str, Any] = {}
     curves: dict[str, Callable[[float], float]] = {}
     for fluid in catalog_rows.fluid_rows(connection):
         models[fluid.name] = model = fluid_model(fluid)
-        if model is not None and _states_u(fluid):
+        if model is not None:  # NaN where the fluid states no u: nothing is widened
             curves[fluid.name] = partial(_curve_share, fluid)
     return models, curves
-
-
-def _states_u(fluid: Any) -> bool:
-    """Whether the fluid states any u of its μ(T) (reference value, points, temperature)."""
-    if getattr(fluid, "u_reference_viscosity_pa_s", None) is not None:
-        return True
-    if (getattr(fluid, "u_reference_temperature_c", None) or 0.0) > 0:
-        return True
-    return any(getattr(p, "u_viscosity_pa_s", None) is not None for p in fluid.points)
 
 
 def _curve_share(fluid: Any, temperature_c: float) -> float:

@@ -6,6 +6,8 @@ that an error of the catalogue moved."""
 from __future__ import annotations
 
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -18,11 +20,15 @@ from granudb import api
 from granudb.analysis import bands, fits, gap_viscosity_fit, shared_scale
 from granudb.analysis.synthetic import restitution_runs, sliding_runs
 from granudb.api.database import opened
-from granudb.physics.viscosity import TabulatedViscosity
 from granudb.reporting.format import interval
 from granudb.scenario import plug_ins
 from granudb.scenario.collision_query import CollisionQuery
 from granudb.scenario.collisions import select_collisions
+
+# the study's μ(T) curve (a benchmark imports no test module; the test imports the
+# benchmark's, as tests/physics/test_propagation_study.py does)
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+from shared_scale_coverage import curve  # noqa: E402
 
 SETS, SHARE, QUICK_BOUND = 40, 0.05, 0.825  # true ≥ 0.95: P(< 33 of 40) ≈ 0.3 %
 KEY = ("d", "steel", "Zerodur")
@@ -168,12 +174,6 @@ def test_the_report_band_carries_the_share_its_interval_carries() -> None:
     assert np.all(high1[steep] - low1[steep] > high0[steep] - low0[steep])
 
 
-def _curve(shift: float = 1.0) -> TabulatedViscosity:
-    """A μ(T) curve, 3 mPa·s at 20 °C falling 2.5 % a kelvin, times ``shift``."""
-    temperatures = np.arange(0.0, 81.0, 5.0)
-    return TabulatedViscosity(temperatures, shift * 3.0e-3 * np.exp(-0.025 * (temperatures - 20)))
-
-
 def test_the_gap_temperature_carries_the_curve_it_is_read_from() -> None:
     """μ₀ is turned into the gap temperature through the catalogue's μ(T): an error of that
     curve (5 % here, one draw per set) moves the temperature of every run alike (2 K
@@ -181,12 +181,12 @@ def test_the_gap_temperature_carries_the_curve_it_is_read_from() -> None:
     the curve's share and then covers the true temperature."""
     truth, share, sets = 1.6e-3, 0.05, 30
     key = "glycerol-37"
-    true_temperature = float(_curve().temperature_for_viscosity(truth))
+    true_temperature = float(curve().temperature_for_viscosity(truth))
     hits = {False: 0, True: 0}
     for seed in range(sets):
         frame = sliding_runs(truth, n=100, seed=seed, fluid=key)
         error = math.exp(share * np.random.default_rng(20_000 + seed).standard_normal())
-        models = {key: _curve(error)}  # the catalogue's curve, off by one factor
+        models = {key: curve(error)}  # the catalogue's curve, off by one factor
         for widen in (False, True):
             curves = {key: lambda _t: share} if widen else None
             [row] = fits.gap_viscosity(frame, models, curves=curves)
