@@ -24,19 +24,14 @@ from granudb.analysis import asymptotic, bayesian, intervals
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
-from granudb.analysis.groups import (
-    GROUP,
-    WALTON_INPUTS,
-    group_frames,
-    group_rows,
-    walton_arrays,
-)
+from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
 from granudb.analysis.restitution_fit import (
     RESTITUTION_MODELS,
     restitution,
     restitution_curve,
 )
 from granudb.lazy import pandas as pd
+from granudb.scenario.row_groups import group_rows
 
 __all__ = [
     "FIT_METHODS",
