@@ -299,6 +299,12 @@ def gap_runs(fit: Mapping[str, Any]) -> str:
     return _count(fit, "n_runs")
 
 
+def gap_method(fit: Mapping[str, Any]) -> str:
+    """How μ₀ was fitted, as the record says ("least squares of (5.8) …"); "" if it
+    does not."""
+    return _said(fit.get("method"))
+
+
 def ambient_viscosity(fit: Mapping[str, Any]) -> str:
     """The mean viscosity of the group's fluid at its runs' states, ``3.1 mPa·s``."""
     return display(fit.get("ambient_viscosity_pa_s"), "viscosity_pa_s")
@@ -324,8 +330,8 @@ def restitution_lines(fit: Mapping[str, Any]) -> list[tuple[str, str]]:
 def gap_lines(fit: Mapping[str, Any]) -> list[tuple[str, str]]:
     lines = [(GAP[0].label, value_line(fit, GAP[0])), ("ambient μ", ambient_viscosity(fit))]
     lines.append((GAP[1].label, value_line(fit, GAP[1])))
-    if _said(fit.get("method")):
-        lines.append(("method", _said(fit.get("method"))))
+    if gap_method(fit):
+        lines.append(("method", gap_method(fit)))
     lines.append(("sliding runs used", gap_runs(fit)))
     return lines
 

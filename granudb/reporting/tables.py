@@ -22,6 +22,7 @@ from granudb.reporting.fit_view import (
     WALTON,
     ambient_viscosity,
     e_dry_words,
+    gap_method,
     gap_runs,
     group_words,
     method_line,
@@ -179,7 +180,7 @@ def restitution_table(restitution: list[dict[str, Any]]) -> dict:
 
 def gap_table(gap: list[dict[str, Any]], colours: Mapping[str, str]) -> dict[str, Any]:
     """The gap viscosity fits, each cell in ``granudb fit gap-viscosity``'s words."""
-    method = next((r["method"] for r in gap if r.get("method")), "least squares of (5.8)")
+    method = "; ".join(sorted({gap_method(r) for r in gap} - {""})) or "least squares of (5.8)"
     return {
         "id": "gap-viscosity",
         "heading": "Gap viscosity and temperature (figure 14, table 2)",

@@ -108,15 +108,26 @@ def _text(cell) -> str:
     return cell["text"] if isinstance(cell, dict) else cell
 
 
+#: The command's lines a report table says once, in its note (the same words, checked
+#: there); "chain converged": a Bayesian fit's, which a report (bootstrap fits) never has.
+IN_NOTE = {
+    "walton": {"intervals", "chain converged"},
+    "restitution": {"model", "Stokes number", "intervals", "chain converged"},
+    "gap_viscosity": {"method", "intervals"},
+}
+
+
 def _compare(kind: str, table: dict, records: list[dict], pairs: dict[str, str]) -> list[str]:
     """Assert every paired cell equals the command's line; the group cell its heading and
-    the note holds the command's "intervals" line. Returns every line compared."""
+    the note holds the command's "intervals" line; the command has no other line. Returns
+    every line compared."""
     said = []
     for record, row in zip(records, table["rows"], strict=True):
         heading, lines = api.fit_people_view(kind, record)
         lines = dict(lines)
         cells = {c: _text(v) for c, v in zip(table["columns"], row, strict=True)}
         assert cells["group"] == heading
+        assert set(lines) - set(pairs.values()) <= IN_NOTE[kind], set(lines)
         for column, line in pairs.items():
             assert cells[column] == lines[line], (column, record.get("reason"))
             said.append(lines[line])
@@ -173,6 +184,9 @@ def test_restitution_table_says_what_fit_restitution_says(restitution_records) -
 def test_gap_table_says_what_fit_gap_viscosity_says(gap_records) -> None:
     table = tables.gap_table(gap_records, {})
     said = " | ".join(_compare("gap_viscosity", table, gap_records, GAP_PAIRS))
+    for record in gap_records:  # how μ₀ was fitted: the note says each record's method
+        method = dict(api.fit_people_view("gap_viscosity", record)[1])["method"]
+        assert method in table["note"].split("; the gap temperature")[0]
     outside = gap_records[0]
     assert np.isnan(outside["gap_temperature_low_c"]) and np.isfinite(outside["gap_temperature_c"])
     for case in (
