@@ -23,13 +23,14 @@ from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
 from granudb.physics.impact import gyration_factor
 from granudb.reporting import plots
+from granudb.reporting.fit_view import restitution_model
 from granudb.reporting.format import display, is_number
 from granudb.reporting.groups import (
     group_label,
     key_codes,
     sorted_codes,
 )
-from granudb.reporting.tables import PARAMETER_LABELS, model_said
+from granudb.reporting.tables import PARAMETER_LABELS
 
 #: Dry runs are drawn at the viscosity of air at 20 °C, so they appear on the map.
 AIR_VISCOSITY_PA_S = 1.8e-5
@@ -472,7 +473,7 @@ def fit_said(fit: Mapping[str, Any]) -> str:
     name = PARAMETER_LABELS.get(fit.get("parameter_name", ""), "fitted parameter")
     words = (
         f"{fit['model']} fit of {fit['dataset']}: {fit['particle']}/{fit['wall']}, "
-        f"{model_said(fit)[4:]}; e_dry = {fit['e_dry']:.3g} ({fit.get('e_dry_source')}); "
+        f"{restitution_model(fit)}; e_dry = {fit['e_dry']:.3g} ({fit.get('e_dry_source')}); "
         f"{name} = {fit['parameter']:.2g}"
     )
     if fit.get("parameter_name") == "fitted_critical_stokes":
