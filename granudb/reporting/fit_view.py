@@ -19,6 +19,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from granudb.analysis.defaults import CONFIDENCE_LEVEL, DEFAULT_RESAMPLES
 from granudb.reporting.format import display, interval, is_number, plus_minus
 from granudb.reporting.groups import group_label
 
@@ -106,14 +107,6 @@ def _why_not(fit: Mapping[str, Any], symbol: str) -> str:
     return words.replace("(sliding_friction_lower_bound is a bound)", "(a lower bound is shown)")
 
 
-def _analysis_defaults() -> tuple[float, int]:
-    """The fits' confidence level and default resample count, imported when a record is
-    shown (the fits' module needs numpy, which ``granudb --help`` must not load)."""
-    from granudb.analysis.fits import CONFIDENCE_LEVEL, DEFAULT_RESAMPLES
-
-    return CONFIDENCE_LEVEL, DEFAULT_RESAMPLES
-
-
 def _resampled(fit: Mapping[str, Any]) -> int:
     """The bootstrap's resample count behind the record (0: none ran, or a posterior)."""
     count = fit.get("bootstrap_resamples")
@@ -129,7 +122,7 @@ def resamples_remark(fit: Mapping[str, Any], quantity: Quantity | None = None) -
     count = _resampled(fit)
     method = _said(fit.get(quantity.method)) if quantity and quantity.method else ""
     method = method or _said(fit.get("interval_method"))
-    if not count or count == _analysis_defaults()[1] or "bootstrap" not in method:
+    if not count or count == DEFAULT_RESAMPLES or "bootstrap" not in method:
         return ""
     return f" ({count} resamples, seed {fit.get('bootstrap_seed')})"
 
@@ -217,7 +210,7 @@ def method_line(fit: Mapping[str, Any]) -> str | None:
     if not method:
         return None
     level = fit.get("confidence_level")
-    level = float(level) if is_number(level) else _analysis_defaults()[0]
+    level = float(level) if is_number(level) else CONFIDENCE_LEVEL
     said_itself = re.search(rf"(?<![\d.]){round(level * 100):d} ?%", method)
     said = "" if said_itself or "no interval" in method else f"{level:.0%} "
     extra = ""
