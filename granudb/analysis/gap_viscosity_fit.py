@@ -251,7 +251,8 @@ def noise_bias(
     at = {name: value[pick] for name, value in inputs.items()}
     q = float(mu @ gs / (gs @ gs))  # the sample's own fit: the copies shift from it
     u = np.stack([np.full(pick.size, sigma), sigma * e, sigma * np.abs(x), sigma * np.abs(y)])
-    means, variances = [], []
+    means: list[float] = []
+    variances: list[float] = []
     while True:
         batch = len(means)
         mean, variance = stated_shift(x, y, e, at, (c / (1 + e), u), q, seed + 7919 * batch,

@@ -163,7 +163,7 @@ def _immersed_groups(frame: Any) -> list[tuple[tuple, np.ndarray]]:
     return sorted(groups, key=lambda group: group[0])
 
 
-class _Columns(dict):  # type: ignore[type-arg]
+class _Columns(dict[str, "np.ndarray | None"]):
     """A frame's number columns as float arrays, each read once when first asked for
     (None for a column the frame lacks)."""
 
@@ -186,9 +186,10 @@ def _floats(column: Any) -> np.ndarray:
 def _median(columns: _Columns, rows: np.ndarray, column: str) -> float | None:
     """The median of ``column`` over ``rows`` (None where the column is missing or all
     empty there)."""
-    if columns[column] is None:
+    found = columns[column]
+    if found is None:
         return None
-    values = columns[column][rows]
+    values = found[rows]
     values = values[np.isfinite(values)]
     return float(np.median(values)) if values.size else None
 
