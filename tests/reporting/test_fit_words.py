@@ -29,7 +29,7 @@ from granudb.analysis.synthetic import (
     walton_frame,
 )
 from granudb.physics.viscosity import TabulatedViscosity
-from granudb.reporting import tables
+from granudb.reporting import figures, tables
 from granudb.vocabulary.escaping import markdown_text
 
 #: A short chain that converges on these 12 runs (autocorrelation time about 15 steps).
@@ -179,6 +179,23 @@ def test_restitution_table_says_what_fit_restitution_says(restitution_records) -
                 "posterior median and 95 % equal-tailed credible interval",
             ):
                 assert case in said_all, case
+
+
+def test_the_figure_caption_says_the_fit_as_its_table_does(restitution_records) -> None:
+    """The restitution figure's grey line is named with the words of its table's row: its
+    e_dry cell and its parameter cell, for every record with a value."""
+    for model in ("exponential", "threshold"):
+        chosen = [r for r in restitution_records if r["model"] == model]
+        table = tables.restitution_table(chosen)
+        for record, row in zip(chosen, table["rows"], strict=True):
+            if (
+                not isinstance(record.get("parameter"), float)
+                or record["parameter"] != record["parameter"]
+            ):
+                continue  # no value: the figure draws no line
+            caption = figures.fit_said(record)
+            assert f"e_dry {_text(row[1])};" in caption, (caption, row[1])
+            assert f"; {table['columns'][2]} {_text(row[2])}" in caption, (caption, row[2])
 
 
 def test_gap_table_says_what_fit_gap_viscosity_says(gap_records) -> None:
