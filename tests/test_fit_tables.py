@@ -72,7 +72,9 @@ def test_the_words_are_the_records(cli, fitted_db: str) -> None:
     assert beta.startswith("0.3399") and "± 0.00003 (standard error" in beta  # its se
     assert beta.endswith(f"; interval not determined: {why})")
     assert beta.count("not determined") == 1
-    assert lines["μ_f (sliding friction)"] == "not determined: 2 sliding runs (< 3): no μ_f"
+    assert lines["μ_f (sliding friction)"] == (
+        "not determined by these runs: 2 sliding runs (< 3): no μ_f"
+    )
     assert steel["model_reason"] in lines["model"]
     if "bootstrap" in steel["interval_method"]:
         assert f"{steel['bootstrap_resamples']} resamples" in lines["intervals"]

@@ -260,6 +260,6 @@ def test_report_takes_the_query_filters_of_collisions_list(cli, db, tmp_path) ->
     assert result.exit_code == 0, result.stderr
     html = out.read_text(encoding="utf-8")
     # dry runs at 25°, 40° and 60° only: too few for two lines of ≥ 2 runs, so all slide
-    assert "--angle-range" in html and re.search(r"<td[^>]*>0 / 3</td>", html)
+    assert "--angle-range" in html and re.search(r"<td[^>]*>0 / 3 \(of 3\)</td>", html)
     bad = cli("report", "--dataset", "example", "--angle-range", "20 deg", db=db)
     assert bad.exit_code == 1 and "--angle-range: 20 deg must be LOW..HIGH" in bad.stderr

@@ -19,12 +19,12 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import asymptotic, restitution_fit, restitution_small_n
+from granudb.analysis import asymptotic, defaults, restitution_fit, restitution_small_n
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
 
-LEVEL = 0.95
+LEVEL = defaults.CONFIDENCE_LEVEL
 #: A band needs the curve determined in at least this share of the sets.
 MIN_DETERMINED = 0.5
 

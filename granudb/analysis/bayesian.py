@@ -45,6 +45,7 @@ from typing import Any
 
 import numpy as np
 
+from granudb.analysis import defaults
 from granudb.analysis import walton as core
 from granudb.errors import ValidationError
 from granudb.lazy import emcee
@@ -69,7 +70,7 @@ def check_method(method: str) -> None:
 INTERVAL_METHOD = "posterior median and 95 % equal-tailed credible interval (emcee draws)"
 #: A row's ``interval_method`` when its Bayesian interval is refused.
 NO_INTERVAL = "no interval given (interval_reason says why)"
-LEVEL = 0.95
+LEVEL = defaults.CONFIDENCE_LEVEL
 #: Mean acceptance fraction outside this range: the chain did not converge.
 ACCEPTANCE = (0.1, 0.9)
 #: Draws after burn-in per walker must be at least this many autocorrelation times.

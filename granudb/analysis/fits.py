@@ -20,23 +20,18 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import asymptotic, bayesian, intervals
+from granudb.analysis import asymptotic, bayesian, defaults, intervals
 from granudb.analysis import walton as core
 from granudb.analysis import walton_bootstrap as resampling
 from granudb.analysis.gap_viscosity_fit import gap_viscosity
-from granudb.analysis.groups import (
-    GROUP,
-    WALTON_INPUTS,
-    group_frames,
-    group_rows,
-    walton_arrays,
-)
+from granudb.analysis.groups import GROUP, WALTON_INPUTS, group_frames, walton_arrays
 from granudb.analysis.restitution_fit import (
     RESTITUTION_MODELS,
     restitution,
     restitution_curve,
 )
 from granudb.lazy import pandas as pd
+from granudb.scenario.row_groups import group_rows
 
 __all__ = [
     "FIT_METHODS",
@@ -57,7 +52,7 @@ FIT_METHODS = bayesian.METHODS
 DEFAULT_METHOD = "bootstrap"
 DEFAULT_RESAMPLES = resampling.DEFAULT_RESAMPLES
 DEFAULT_SEED = 0
-CONFIDENCE_LEVEL = 0.95
+CONFIDENCE_LEVEL = defaults.CONFIDENCE_LEVEL
 
 #: Every key of a ``walton`` result and what it means.
 WALTON_KEYS = {

@@ -29,7 +29,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-LEVEL = 0.95
+from granudb.analysis import defaults
+
+LEVEL = defaults.CONFIDENCE_LEVEL
 #: A parameter determined in fewer resamples than this share gets no interval.
 MIN_DETERMINED = 0.5
 METHOD = "studentized bootstrap (bootstrap-t) over runs"

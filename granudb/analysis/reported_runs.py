@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from granudb.analysis import fits
+from granudb.analysis import defaults, fits
 from granudb.analysis.intervals import t_interval
 from granudb.lazy import pandas as pd
 from granudb.physics import reported
@@ -24,7 +24,7 @@ RELATION = (
     "spin (granudb.physics.reported)"
 )
 GROUP = ("collection", "particle", "wall", "fluid")
-CONFIDENCE_LEVEL = 0.95
+CONFIDENCE_LEVEL = defaults.CONFIDENCE_LEVEL
 
 
 def derived(record: dict[str, Any]) -> dict[str, Any]:

@@ -47,12 +47,13 @@ from typing import Any
 
 import numpy as np
 
+from granudb.analysis import defaults
 from granudb.analysis import walton as core
 from granudb.lazy import threadpoolctl
 from granudb.vocabulary.terms import uncertainty_column
 
 #: Resamples of the Walton and gap-viscosity bootstraps for groups up to RULE_RUNS runs.
-DEFAULT_RESAMPLES = 1000
+DEFAULT_RESAMPLES = defaults.DEFAULT_RESAMPLES
 #: Above this many runs a group gets CELL_BUDGET // n resamples (but ≥ MIN_RESAMPLES).
 RULE_RUNS = 10_000
 CELL_BUDGET = 10_000_000

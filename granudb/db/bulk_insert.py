@@ -42,6 +42,7 @@ from granudb.db.engine import BULK_CACHE_KEY
 from granudb.lazy import pyarrow as pa
 from granudb.lazy import pyarrow_csv as pacsv
 from granudb.vocabulary import COLLISION_MEASURED
+from granudb.vocabulary.text import in_nfc
 
 # Page cache for the length of a bulk load (KiB, negative = size rather than pages), so
 # the unique (dataset, run) index is not re-read from the WAL page by page. 16 MB loads a
@@ -128,6 +129,12 @@ class CollisionChunk:
     #: The file had problems in or before these rows: the block is checked against the
     #: catalogue (so every problem is listed at once) but never written.
     faulty: bool = False
+
+    def __post_init__(self) -> None:
+        # run labels and notes in NFC, as every other door stores them (vocabulary.text)
+        self.runs = in_nfc(self.runs)
+        if self.notes is not None:
+            self.notes = in_nfc(self.notes)
 
     def __len__(self) -> int:
         return len(self.runs)

@@ -23,13 +23,19 @@ from granudb.physics import flow
 from granudb.physics.derive import DRY_RESTITUTION, derive
 from granudb.physics.impact import gyration_factor
 from granudb.reporting import plots
+from granudb.reporting.fit_view import (
+    e_dry_words,
+    restitution_model,
+    restitution_parameter,
+    value_line,
+)
 from granudb.reporting.format import display, is_number
 from granudb.reporting.groups import (
     group_label,
     key_codes,
     sorted_codes,
 )
-from granudb.reporting.tables import PARAMETER_LABELS, model_said
+from granudb.reporting.tables import PARAMETER_LABELS
 
 #: Dry runs are drawn at the viscosity of air at 20 °C, so they appear on the map.
 AIR_VISCOSITY_PA_S = 1.8e-5
@@ -466,14 +472,16 @@ def _restitution_curve(
 
 
 def fit_said(fit: Mapping[str, Any]) -> str:
-    """The restitution fit a figure draws, from its record: its group, form, why, e_dry
-    and its parameter ("threshold fit of d: glass/Zerodur, e = … (…), the report's
-    choice …; e_dry = 0.968, mean e of …; fitted St_c = 33, not the verdict's St_c")."""
+    """The restitution fit a figure draws, from its record, in the words of its table and
+    of ``granudb fit restitution`` (``fit_view``): its group, form, why, e_dry and its
+    parameter ("threshold fit of d: glass/Zerodur, threshold form e = … (…), the report's
+    choice …; e_dry 0.968 (interval not determined: not fitted); source: mean e of …;
+    fitted St_c 33 [29, 38], fitted, not the verdict's St_c")."""
     name = PARAMETER_LABELS.get(fit.get("parameter_name", ""), "fitted parameter")
     words = (
         f"{fit['model']} fit of {fit['dataset']}: {fit['particle']}/{fit['wall']}, "
-        f"{model_said(fit)[4:]}; e_dry = {fit['e_dry']:.3g} ({fit.get('e_dry_source')}); "
-        f"{name} = {fit['parameter']:.2g}"
+        f"{restitution_model(fit)}; e_dry {e_dry_words(fit)}; "
+        f"{name} {value_line(fit, restitution_parameter(fit))}"
     )
     if fit.get("parameter_name") == "fitted_critical_stokes":
         words += ", fitted, not the verdict's St_c"

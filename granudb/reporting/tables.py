@@ -1,11 +1,13 @@
 """The fit tables of a dataset report, with published values on the right group.
 
 A cell is a string, or a dict ``{"text", "colour"}`` for a group name shown with the
-colour its points have in every figure. The fits say what their data determine
-(docs/physics.md §14): a parameter that is not determined is shown as "not determined by these
-runs" with the reason, never as a number; a μ_f lower bound is labelled as a bound;
-intervals are granudb's bootstrap intervals (how they were made is said once, in the
-table's note), and the paper's ± is shown as printed beside them.
+colour its points have in every figure. Every cell of a fit says its quantity in the words
+``granudb fit walton|restitution|gap-viscosity`` print for it (``granudb.reporting.fit_view``,
+one function per quantity): the fits say what their data determine (docs/physics.md §14),
+a parameter that is not determined is shown as "not determined by these runs" with the
+reason, never as a number; a μ_f lower bound is labelled as a bound; how the intervals were
+made is said once, in the table's note, as the command's "intervals" line says it; and the
+paper's ± is shown as printed beside them.
 """
 
 from __future__ import annotations
@@ -14,11 +16,26 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from granudb.analysis.fits import CONFIDENCE_LEVEL
-from granudb.analysis.walton_bootstrap import DEFAULT_RESAMPLES
 from granudb.lazy import pyarrow, pyarrow_csv
-from granudb.reporting.fit_view import GAP, value_line
-from granudb.reporting.format import display, interval, is_number, plus_minus
+from granudb.reporting.fit_view import (
+    GAP,
+    WALTON,
+    ambient_viscosity,
+    e_dry_words,
+    gap_method,
+    gap_runs,
+    group_words,
+    method_line,
+    resamples_remark,
+    restitution_model,
+    restitution_parameter,
+    restitution_runs,
+    stokes_number,
+    value_line,
+    walton_model,
+    walton_runs,
+)
+from granudb.reporting.format import display
 from granudb.reporting.groups import fluid_name, fluid_names, group_label
 from granudb.vocabulary import DERIVED_TERMS, TERMS
 from granudb.vocabulary.escaping import spreadsheet_frame
@@ -27,29 +44,10 @@ from granudb.vocabulary.listings import REPORT_RUN_COLUMNS
 WALTON_PUBLISHED = ("rotational_restitution", "sliding_friction", "normal_restitution_mean")
 
 
-def _interval_of(fit: Mapping[str, Any], name: str) -> tuple[Any, Any] | None:
-    """An interval the fit carries for ``name``, under any of the spellings in use."""
-    pair = fit.get(f"{name}_interval") or fit.get(f"{name}_ci")
-    if isinstance(pair, list | tuple) and len(pair) == 2:
-        return pair[0], pair[1]
-    for low, high in (("_low", "_high"), ("_ci_low", "_ci_high"), ("_lower", "_upper")):
-        if f"{name}{low}" in fit and f"{name}{high}" in fit:
-            return fit[f"{name}{low}"], fit[f"{name}{high}"]
-    return None
-
-
-def fit_cell(fit: Mapping[str, Any], name: str, error: str | None = None) -> str:
-    """A fitted value: with its interval when the fit has one, else ± its standard error."""
-    bounds = _interval_of(fit, name)
-    if bounds is not None:
-        return interval(fit.get(name), *bounds)
-    return plus_minus(fit.get(name), fit.get(error or f"{name}_stderr"))
-
-
 def group_cell(fit: Mapping[str, Any], colours: Mapping[str, str]) -> dict[str, str]:
+    """The group's name as ``granudb fit`` heads it, in the colour of its points."""
     label = group_label(fit["particle"], fit["wall"], fit.get("fluid"))
-    prefix = f"{fit['dataset']}: " if fit.get("dataset") else ""
-    return {"text": prefix + label, "colour": colours.get(label, ""), "group": label}
+    return {"text": group_words(fit), "colour": colours.get(label, ""), "group": label}
 
 
 def published_for(published: list[dict[str, Any]], fit: Mapping[str, Any]) -> str:
@@ -79,94 +77,17 @@ def published_for(published: list[dict[str, Any]], fit: Mapping[str, Any]) -> st
     )
 
 
-NOT_DETERMINED = "not determined by these runs"
-
-
-def _reason_for(reason: str, symbol: str) -> str:
-    """The part of a fit's reason about ``symbol`` (β or μ_f); all of it if none is."""
-    reason = reason.replace("(sliding_friction_lower_bound is a bound)", "(a lower bound is shown)")
-    parts = [p for p in reason.split("; ") if p]
-    mine = [p for p in parts if symbol in p]
-    return "; ".join(mine or parts)
-
-
-def parameter_cell(fit: Mapping[str, Any], name: str, symbol: str) -> str:
-    """β or μ_f with its bootstrap interval, or "not determined by these runs" and why."""
-    value = fit.get(name)
-    if is_number(value):
-        text = interval(value, fit.get(f"{name}_low"), fit.get(f"{name}_high"))
-        share = fit.get(f"{name}_determined")
-        if is_number(share) and share < 0.995:
-            text += f" (determined in {share:.0%} of resamples)"
-        return text + resamples_said(fit)
-    text = NOT_DETERMINED
-    why = _reason_for(str(fit.get("reason") or ""), symbol)
-    if why:
-        text += f": {why}"
-    bound = fit.get("sliding_friction_lower_bound")
-    if name == "sliding_friction" and is_number(bound):
-        text += (
-            f". Lower bound (2.10) at the largest Ψ_in: μ_f ≥ {bound:.2g} (a bound, not a value)"
-        )
-    return text
-
-
-def model_cell(fit: Mapping[str, Any]) -> str:
-    """The Walton model chosen and why (BIC), with its bootstrap support."""
-    model = fit.get("model")
-    if not model:
-        return f"none: {fit.get('reason') or 'too few runs'}"
-    bic = {m: fit.get(f"bic_{m}") for m in ("sticking", "sliding", "split")}
-    others = [f"{m} {bic[m]:.4g}" for m in bic if m != model and is_number(bic[m])]
-    text = f"{model}: smallest BIC, {bic[model]:.4g}" if is_number(bic[model]) else str(model)
-    if others:
-        text += f" (vs {', '.join(others)})"
-    support = fit.get(f"model_support_{model}")
-    if is_number(support):
-        text += f"; chosen in {support:.0%} of resamples"
-    return text
-
-
-def resamples_said(fit: Mapping[str, Any]) -> str:
-    """Beside an interval made with other than the default count (a large group under the
-    resample rule, or a count asked for): that count and the seed."""
-    count = fit.get("bootstrap_resamples")
-    if not count or count == DEFAULT_RESAMPLES:
-        return ""
-    return f" ({count} resamples, seed {fit.get('bootstrap_seed')})"
-
-
-def interval_method(fit: Mapping[str, Any]) -> str:
-    """How a fit's intervals were made, as its own record says (``interval_method``)."""
-    return str(fit.get("interval_method") or "method not recorded")
-
-
 def bootstrap_note(fits: list[dict[str, Any]]) -> str:
-    """How the intervals were made, said once: level, resamples and seed, and the resample
-    rule when a large group was resampled fewer times."""
-    made = sorted(
-        {(f.get("confidence_level") or CONFIDENCE_LEVEL, interval_method(f),
-          f.get("bootstrap_resamples"), f.get("bootstrap_seed"))
-         for f in fits if f.get("bootstrap_resamples") and f.get("fit_method") != "bayes"}
-    )  # fmt: skip
-    words = [
-        f"{level:.0%} intervals, {method}, {resamples} resamples, seed {seed}"
-        for level, method, resamples, seed in made
-    ]
-    # a posterior's interval says its own level and sampler (its record's interval_method)
-    words += sorted({interval_method(f) for f in fits if f.get("fit_method") == "bayes"})
-    # an asymptotic interval (no resamples, bootstrap_resamples 0) says its own method
-    words += sorted(
-        {f"{f.get('confidence_level') or CONFIDENCE_LEVEL:.0%} intervals, {interval_method(f)}"
-         for f in fits if f.get("bootstrap_resamples") == 0 and f.get("fit_method") != "bayes"
-         and "no interval" not in interval_method(f)}
-    )  # fmt: skip
+    """How the intervals were made, said once: each distinct method as ``granudb fit``'s
+    "intervals" line says it (``fit_view.method_line``: level, method, resamples and
+    seed), and the resample rule when a large group was resampled fewer times."""
+    words = sorted({w for w in map(method_line, fits) if w and "no interval" not in w})
     if not words:
         return ""
     rules = sorted(
         {f["bootstrap_rule"] for f in fits if f.get("bootstrap_rule") not in (None, "as asked")}
     )
-    ruled = any(resamples_said(f) for f in fits)
+    ruled = any(resamples_remark(f) for f in fits)
     return f"Intervals in brackets: {'; '.join(words)}." + (
         f" Resamples per group: {'; '.join(rules)}." if ruled and rules else ""
     )
@@ -175,6 +96,8 @@ def bootstrap_note(fits: list[dict[str, Any]]) -> str:
 def walton_table(
     walton: list[dict[str, Any]], published: list[dict[str, Any]], colours: Mapping[str, str]
 ) -> dict[str, Any]:
+    """The Walton fits, each cell in ``granudb fit walton``'s words (``fit_view``)."""
+    beta, friction, mean_e = WALTON
     return {
         "id": "walton-fits",
         "heading": "Walton fits (figures 4, 6, 9)",
@@ -199,15 +122,11 @@ def walton_table(
         "rows": [
             [
                 group_cell(r, colours),
-                model_cell(r),
-                parameter_cell(r, "rotational_restitution", "β"),
-                parameter_cell(r, "sliding_friction", "μ_f"),
-                interval(
-                    r.get("normal_restitution_mean"),
-                    r.get("normal_restitution_low"),
-                    r.get("normal_restitution_high"),
-                ),
-                f"{r.get('n_sticking', '—')} / {r.get('n_sliding', '—')}",
+                walton_model(r),
+                value_line(r, beta),
+                value_line(r, friction),
+                value_line(r, mean_e),
+                walton_runs(r),
                 published_for(published, r),
             ]
             for r in walton
@@ -215,38 +134,21 @@ def walton_table(
     }
 
 
-def _restitution_cells(r: Mapping[str, Any]) -> tuple[str, str]:
-    if not is_number(r.get("e_dry")):
-        why = r.get("reason") or "the fit gave no value"
-        return f"{NOT_DETERMINED}: {why}", NOT_DETERMINED
-    source = r.get("e_dry_source") or "fitted"
-    if is_number(r.get("e_dry_stderr")):
-        e_dry = f"{plus_minus(r['e_dry'], r['e_dry_stderr'])}: {source}"
-    else:
-        e_dry = f"{r['e_dry']:.3g}: {source}"
-    return e_dry, fit_cell(r, "parameter")
-
-
 #: What a restitution form's parameter is called in a table.
 PARAMETER_LABELS = {"fitted_critical_stokes": "fitted St_c", "k": "fitted k"}
 
 
 def model_said(fit: Mapping[str, Any]) -> str:
-    """A restitution fit's form in words, from its record: name, formula, citation and
-    why it was chosen ("The threshold form e = … (…), the report's choice, …")."""
-    words = f"The {fit.get('model', 'fitted')} form {fit.get('formula', '')}"
-    if fit.get("citation"):
-        words += f" ({fit['citation']})"
-    if fit.get("model_reason"):
-        words += f", {fit['model_reason']}"
-    return words
+    """A restitution fit's form in words, from its record, as a sentence ("The threshold
+    form e = … (…), the report's choice"): ``granudb fit restitution``'s model line."""
+    return f"The {restitution_model(fit)}"
 
 
 def restitution_table(restitution: list[dict[str, Any]]) -> dict:
     """The restitution fits, with the form, its parameter and how the intervals were made
-    said from the fits' own records."""
+    said from the fits' own records, each cell in ``granudb fit restitution``'s words."""
     first = restitution[0] if restitution else {}
-    stokes = first.get("stokes_number") or "the normal Stokes number St_n"
+    stokes = stokes_number(first) or "the normal Stokes number St_n"
     parameter = PARAMETER_LABELS.get(first.get("parameter_name", ""), "fitted parameter")
     threshold = (
         " The fitted St_c is the no-rebound threshold of these runs, not the St_c of the "
@@ -266,34 +168,19 @@ def restitution_table(restitution: list[dict[str, Any]]) -> dict:
         "columns": ["group", "e_dry (source)", parameter, "runs"],
         "rows": [
             [
-                f"{r['dataset']}: {r['particle']}/{r['wall']}",
-                *_restitution_cells(r),
-                str(r.get("n_runs", "—")),
+                group_words(r),
+                e_dry_words(r),
+                value_line(r, restitution_parameter(r)),
+                restitution_runs(r),
             ]
             for r in restitution
         ],  # fmt: skip
     }
 
 
-def _gap_cells(r: Mapping[str, Any]) -> tuple[str, str]:
-    reason = r.get("reason") or r.get("note") or "not computed"
-    mu0 = r.get("gap_viscosity_pa_s")
-    if not is_number(mu0):
-        return f"{NOT_DETERMINED}: {reason}", "not determined"
-    low, high = r.get("gap_viscosity_low_pa_s"), r.get("gap_viscosity_high_pa_s")
-    scaled = [v * 1e3 if is_number(v) else v for v in (mu0, low, high)]
-    viscosity = f"{interval(*scaled)} mPa·s" + resamples_said(r)
-    t = r.get("gap_temperature_c")
-    if not is_number(t):
-        return viscosity, f"not determined: {reason}"
-    low_t, high_t = r.get("gap_temperature_low_c"), r.get("gap_temperature_high_c")
-    if not (is_number(low_t) and is_number(high_t)):  # why, in the fit's words
-        return viscosity, value_line(r, GAP[1])  # as the command's line says it
-    return viscosity, f"{interval(t, low_t, high_t)} °C"
-
-
 def gap_table(gap: list[dict[str, Any]], colours: Mapping[str, str]) -> dict[str, Any]:
-    method = next((r["method"] for r in gap if r.get("method")), "least squares of (5.8)")
+    """The gap viscosity fits, each cell in ``granudb fit gap-viscosity``'s words."""
+    method = "; ".join(sorted({gap_method(r) for r in gap} - {""})) or "least squares of (5.8)"
     return {
         "id": "gap-viscosity",
         "heading": "Gap viscosity and temperature (figure 14, table 2)",
@@ -303,10 +190,10 @@ def gap_table(gap: list[dict[str, Any]], colours: Mapping[str, str]) -> dict[str
         "rows": [
             [
                 group_cell(r, colours),
-                _gap_cells(r)[0],
-                display(r.get("ambient_viscosity_pa_s"), "viscosity_pa_s"),
-                _gap_cells(r)[1],
-                str(r.get("n_runs", "—")),
+                value_line(r, GAP[0]),
+                ambient_viscosity(r),
+                value_line(r, GAP[1]),
+                gap_runs(r),
             ]
             for r in gap
         ],

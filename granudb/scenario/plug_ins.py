@@ -33,8 +33,10 @@ import numpy as np
 
 from granudb.db import catalog_rows
 from granudb.errors import ValidationError
+from granudb.lazy import pandas as pd
 from granudb.scenario.fluid_state import fluid_model, fluid_state, state_uncertainty
 from granudb.scenario.pair import PairResult, derive_pair
+from granudb.scenario.row_groups import group_rows
 
 #: The group of a restitution fit (``granudb.analysis.restitution_fit``) and of a
 #: gap-viscosity fit (``granudb.analysis.gap_viscosity_fit``).
@@ -85,45 +87,53 @@ def catalogue_shares(reader: Any, frame: Any) -> tuple[dict, dict]:
     return stokes_scale(reader, frame, typical), gap_scale(reader, frame, typical)
 
 
-def _typical_runs(reader: Any, frame: Any) -> dict[tuple, PairResult | None]:
-    """{(dataset, particle, wall, fluid): the typical run's derivation} (``_typical``)."""
+#: One (group, fluid)'s typical run: its derivation (``_typical``), None where it has
+#: none, and how many immersed runs it stands for.
+Typical = tuple[PairResult | None, int]
+
+
+def _typical_runs(reader: Any, frame: Any) -> dict[tuple, Typical]:
+    """{(dataset, particle, wall, fluid): its typical run, in key order} (``Typical``)."""
+    columns = _Columns(frame)
     return {
-        tuple(key): _typical(reader, tuple(key[:3]), str(key[3]), runs)
-        for key, runs in _immersed_groups(frame, GAP_GROUP)
+        key: (_typical(reader, key[:3], str(key[3]), columns, rows), len(rows))
+        for key, rows in _immersed_groups(frame)
     }
 
 
 def stokes_scale(
-    reader: Any, frame: Any, typical: dict[tuple, PairResult | None] | None = None
+    reader: Any, frame: Any, typical: dict[tuple, Typical] | None = None
 ) -> dict[tuple, tuple[float, str]]:
     """{(dataset, particle, wall): (u_r, sources)} of the restitution groups whose
     immersed runs' St_n has a stated catalogue share u_r > 0 (the module docstring's
     rule); the others are left out. ``frame``: collisions as ``select_collisions`` gives
     them; ``typical``: ``_typical_runs`` of it, if already derived."""
     typical = _typical_runs(reader, frame) if typical is None else typical
+    fluids: dict[tuple, list[Typical]] = {}  # each group's fluids, in key order
+    for key, one in typical.items():
+        fluids.setdefault(key[:3], []).append(one)
     shares: dict[tuple, tuple[float, str]] = {}
-    for key, group in _immersed_groups(frame, GROUP):
+    for key, group in fluids.items():
         total = count = 0.0
-        for fluid, runs in group.groupby("fluid", sort=True):
-            found = typical.get((*tuple(key), str(fluid)))
+        for found, runs in group:
             share = math.nan if found is None else _relative(found, "normal_stokes_number")
             if math.isfinite(share):
-                total += share * share * len(runs)
-            count += len(runs)
+                total += share * share * runs
+            count += runs
         if total > 0 and count:
-            shares[tuple(key)] = (math.sqrt(total / count), SOURCES)
+            shares[key] = (math.sqrt(total / count), SOURCES)
     return shares
 
 
 def gap_scale(
-    reader: Any, frame: Any, typical: dict[tuple, PairResult | None] | None = None
+    reader: Any, frame: Any, typical: dict[tuple, Typical] | None = None
 ) -> dict[tuple, tuple[float, str]]:
     """{(dataset, particle, wall, fluid): (u_r, sources)} of the gap-viscosity groups
     whose g of (5.8) has a stated catalogue share u_r > 0: u_r(μ_f) as ``granudb.pair``
     propagates it, less the fluid viscosity's share (2/7 u_r(μ)) in quadrature."""
     typical = _typical_runs(reader, frame) if typical is None else typical
     shares: dict[tuple, tuple[float, str]] = {}
-    for key, found in typical.items():
+    for key, (found, _runs) in typical.items():
         if found is None:
             continue
         share = _relative(found, "lubricated_friction")
@@ -131,24 +141,55 @@ def gap_scale(
         if state is not None and u_mu is not None and state.viscosity_pa_s > 0:
             share = math.sqrt(max(share**2 - (2 / 7 * u_mu / state.viscosity_pa_s) ** 2, 0.0))
         if share > 1e-6:  # more than rounding left once μ's share is out (1e-10 seen)
-            shares[tuple(key)] = (share, GAP_SOURCES)
+            shares[key] = (share, GAP_SOURCES)
     return shares
 
 
-def _immersed_groups(frame: Any, group: tuple[str, ...]) -> Any:
-    """(key, runs) of the immersed runs (a fluid, a finite St_n) by ``group``."""
-    needed = {*group, "fluid", "normal_stokes_number", "diameter_m"}
+def _immersed_groups(frame: Any) -> list[tuple[tuple, np.ndarray]]:
+    """[(key, rows)] of the immersed runs (a fluid, a finite St_n) by ``GAP_GROUP``, in
+    key order; a run missing a key part is in none. Found from the key columns alone
+    (``row_groups.group_rows``): no copy of the frame, no groupby of text columns."""
+    needed = {*GAP_GROUP, "normal_stokes_number", "diameter_m"}
     if frame.empty or not needed <= set(frame.columns):
-        return iter(())
-    immersed = frame[frame["fluid"].notna() & np.isfinite(frame["normal_stokes_number"])]
-    return iter(immersed.groupby(list(group), sort=True))
+        return []
+    immersed = frame["fluid"].notna().to_numpy() & np.isfinite(
+        _floats(frame["normal_stokes_number"])
+    )
+    groups = []
+    for key, rows in group_rows(frame, list(GAP_GROUP)).items():
+        kept = rows[immersed[rows]]
+        if kept.size and all(part is not None for part in key):
+            groups.append((key, kept))
+    return sorted(groups, key=lambda group: group[0])
 
 
-def _median(runs: Any, column: str) -> float | None:
-    """The runs' median of ``column`` (None where the column is missing or all empty)."""
-    if column not in runs:
+class _Columns(dict[str, "np.ndarray | None"]):
+    """A frame's number columns as float arrays, each read once when first asked for
+    (None for a column the frame lacks)."""
+
+    def __init__(self, frame: Any) -> None:
+        super().__init__()
+        self.frame = frame
+
+    def __missing__(self, column: str) -> np.ndarray | None:
+        found = _floats(self.frame[column]) if column in self.frame else None
+        self[column] = found
+        return found
+
+
+def _floats(column: Any) -> np.ndarray:
+    """A column as floats, NaN where empty (a nullable column's NA, or text)."""
+    numbers = pd.to_numeric(column, errors="coerce")
+    return np.asarray(numbers.to_numpy(dtype=float, na_value=np.nan))
+
+
+def _median(columns: _Columns, rows: np.ndarray, column: str) -> float | None:
+    """The median of ``column`` over ``rows`` (None where the column is missing or all
+    empty there)."""
+    found = columns[column]
+    if found is None:
         return None
-    values = runs[column].to_numpy(dtype=float)
+    values = found[rows]
     values = values[np.isfinite(values)]
     return float(np.median(values)) if values.size else None
 
@@ -161,20 +202,27 @@ def _relative(found: PairResult, name: str) -> float:
     return float(u) / float(value)
 
 
-def _typical(reader: Any, key: tuple, fluid: str, runs: Any) -> PairResult | None:
+def _typical(
+    reader: Any, key: tuple, fluid: str, columns: _Columns, rows: np.ndarray
+) -> PairResult | None:
     """``granudb.pair``'s derivation of the runs' typical collision (the module's rule),
     with the catalogue's u and the runs' median u(d), none on the speed; None where the
     runs give no diameter or the scenario is refused (the runs' own rows say why)."""
     _dataset, particle, wall = key
-    diameter = _median(runs, "diameter_m")
+
+    def median(column: str) -> float | None:
+        return _median(columns, rows, column)
+
+    diameter = median("diameter_m")
     if diameter is None:
         return None
-    wall_diameter = _median(runs, "wall_diameter_m")
+    wall_diameter = median("wall_diameter_m")
     target = None
     if wall_diameter is not None:  # free where the runs give the target's speed
-        free = "wall_v_n_in_m_s" in runs and runs["wall_v_n_in_m_s"].notna().any()
+        speeds = columns["wall_v_n_in_m_s"]
+        free = speeds is not None and bool((~np.isnan(speeds[rows])).any())
         target = "free" if free else "fixed"
-    v_n, v_t = _median(runs, "v_n_in_m_s") or 1.0, _median(runs, "v_t_in_m_s") or 0.0
+    v_n, v_t = median("v_n_in_m_s") or 1.0, median("v_t_in_m_s") or 0.0
     try:
         return derive_pair(
             reader,
@@ -184,10 +232,10 @@ def _typical(reader: Any, key: tuple, fluid: str, runs: Any) -> PairResult | Non
             speed_m_s=math.hypot(v_n, v_t),
             angle_rad=math.atan2(abs(v_t), abs(v_n)),
             fluid=fluid,
-            temperature_c=_median(runs, "temperature_c"),
+            temperature_c=median("temperature_c"),
             wall_diameter_m=wall_diameter,
             target=target,
-            uncertainties={"u_diameter_m": _median(runs, "u_diameter_m")},
+            uncertainties={"u_diameter_m": median("u_diameter_m")},
         )
     except ValidationError:
         return None

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import re
 import unicodedata
-from typing import overload
+from typing import Any, overload
 
 from granudb.errors import ValidationError
 
@@ -84,6 +84,21 @@ def check_text(field: str, value: str | None, *, max_length: int = MAX_TEXT) -> 
     if value is None:
         return None
     return _within(field, value, max_length, _TEXT_FORBIDDEN, "; line breaks are \\n")
+
+
+def in_nfc(values: list[Any]) -> list[Any]:
+    """Each text of ``values`` in NFC (None and other values stay), as every door stores
+    it: ``values`` itself where every text is already, checked at once (joined by a line
+    feed, a starter that composes with nothing, the whole is NFC exactly when every part
+    is), so a file's labels cost one pass of C, not one call each.
+
+    >>> in_nfc(["Cafe\u0301-1", None, "run 2"]) == ["Caf\u00e9-1", None, "run 2"]
+    True
+    """
+    texts = [v for v in values if isinstance(v, str)]
+    if unicodedata.is_normalized("NFC", "\n".join(texts)):
+        return values
+    return [unicodedata.normalize("NFC", v) if isinstance(v, str) else v for v in values]
 
 
 def _within(field: str, value: str, max_length: int, forbidden: re.Pattern[str], note: str) -> str:

@@ -3,7 +3,7 @@
 import numpy as np
 import pandas as pd
 
-from granudb.analysis.groups import group_rows
+from granudb.scenario.row_groups import group_rows
 
 
 def test_group_rows_match_pandas_groupby_with_missing_keys() -> None:

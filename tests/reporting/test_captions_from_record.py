@@ -51,7 +51,7 @@ def test_the_note_and_caption_follow_the_fit_s_form_and_resamples() -> None:
             assert f"{name} " in text and row["formula"] in text and row["model_reason"] in text
         assert f"{row['bootstrap_resamples']} resamples, seed {row['bootstrap_seed']}" in note
         assert row["interval_method"] in note and "percentile" not in note
-        assert f"e_dry = {row['e_dry']:.3g}" in caption
+        assert f"e_dry {row['e_dry']:.3g}" in caption  # the table's e_dry words
     assert "200 resamples" in said["threshold"][0] and "300 resamples" in said["exponential"][0]
     assert "fitted St_c" in tables.restitution_table(threshold)["columns"]
     assert "fitted k" in tables.restitution_table(exponential)["columns"]

@@ -218,11 +218,14 @@ def _walton_row(**changes):
         "wall": "Zerodur",
         "fluid": "dry",
         "model": "sticking",
+        "model_reason": "sticking: smallest BIC -50 (next sliding -10; BIC = n ln(S/n) + p ln n, "
+        "p = 2 sticking, 2 sliding, 4 split)",
         "bic_sticking": -50.0,
         "bic_sliding": -10.0,
         "bic_split": math.inf,
         "model_support_sticking": 0.97,
         "interval_method": "studentized bootstrap (bootstrap-t) over runs",
+        "rotational_restitution_interval_method": "studentized bootstrap (bootstrap-t) over runs",
         "rotational_restitution": 0.34,
         "rotational_restitution_low": 0.31,
         "rotational_restitution_high": 0.37,
@@ -259,7 +262,7 @@ def test_walton_table_says_not_determined_and_labels_the_bound() -> None:
     assert "μ_f ≥ 0.091 (a bound, not a value)" in row[3]
     assert "0.091" not in row[3].split("Lower bound")[0]
     assert "μ_f = 0.11 ± 0.003" in row[6]  # the paper's ± as printed, beside ours
-    assert "95% intervals, studentized bootstrap (bootstrap-t) over runs" in table["note"]
+    assert "95% studentized bootstrap (bootstrap-t) over runs" in table["note"]
     assert "1000 resamples, seed 0" in table["note"]
     assert table["note"].count("1000 resamples") == 1
 
@@ -270,12 +273,13 @@ def test_gap_table_shows_interval_and_reason() -> None:
               "gap_viscosity_high_pa_s": 1.7e-3, "gap_temperature_c": 45.0,
               "gap_temperature_low_c": 43.0, "gap_temperature_high_c": 47.0,
               "ambient_viscosity_pa_s": 3.1e-3, "n_runs": 5, "bootstrap_resamples": 1000,
-              "bootstrap_seed": 0, "confidence_level": 0.95, "reason": ""}  # fmt: skip
+              "bootstrap_seed": 0, "confidence_level": 0.95, "reason": "",
+              "interval_method": "studentized bootstrap (bootstrap-t) over runs"}  # fmt: skip
     reason = "the fluid has no pressure–viscosity coefficient: (5.8) needs η̂ = C/16"
     empty = {**fitted, "fluid": "water", "gap_viscosity_pa_s": math.nan, "n_runs": 0,
              "reason": reason}  # fmt: skip
     table = tables.gap_table([fitted, empty], {})
-    assert table["rows"][0][1] == "1.60 [1.50, 1.70] mPa·s"
+    assert table["rows"][0][1] == "1.60 [1.50, 1.70] mPa·s"  # the unit after the interval
     assert table["rows"][0][3] == "45.0 [43.0, 47.0] °C"
     assert table["rows"][1][1].startswith("not determined by these runs: the fluid has no")
     assert "1000 resamples, seed 0" in table["note"]

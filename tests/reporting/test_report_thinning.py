@@ -62,24 +62,31 @@ def test_group_keys_and_labels_treat_missing_fluids_as_dry() -> None:
 
 
 def test_a_large_group_states_its_resample_count_beside_the_interval() -> None:
+    """A count other than the default is said beside the interval, in the report's cell
+    and the command's line alike (``fit_view.value_line``), and the rule in the note."""
     from granudb.analysis.walton_bootstrap import RESAMPLE_RULE
     from granudb.reporting import tables
+    from granudb.reporting.fit_view import WALTON, value_line
 
+    method = "studentized bootstrap (bootstrap-t) over runs"
     fit = {
+        "dataset": "d", "particle": "steel", "wall": "Zerodur", "fluid": "dry",
         "rotational_restitution": 0.34,
         "rotational_restitution_low": 0.339,
         "rotational_restitution_high": 0.341,
         "rotational_restitution_determined": 1.0,
+        "rotational_restitution_interval_method": method,
+        "interval_method": method,
         "confidence_level": 0.95,
         "bootstrap_resamples": 303,
         "bootstrap_seed": 0,
         "bootstrap_rule": RESAMPLE_RULE,
-    }
-    cell = tables.parameter_cell(fit, "rotational_restitution", "β")
-    assert cell.endswith("(303 resamples, seed 0)")
+    }  # fmt: skip
+    cell = tables.walton_table([fit], [], {})["rows"][0][2]
+    assert cell == value_line(fit, WALTON[0]) and cell.endswith("(303 resamples, seed 0)")
     note = tables.bootstrap_note([fit, {**fit, "bootstrap_resamples": 1000}])
     assert "303 resamples, seed 0" in note and "1000 resamples" in note
     assert RESAMPLE_RULE in note
     usual = {**fit, "bootstrap_resamples": 1000}
-    assert "resamples" not in tables.parameter_cell(usual, "rotational_restitution", "β")
+    assert "resamples" not in value_line(usual, WALTON[0])
     assert RESAMPLE_RULE not in tables.bootstrap_note([usual])

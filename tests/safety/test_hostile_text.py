@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import sqlite3
 import unicodedata
+from pathlib import Path
 
 import pytest
 from support import dump_hash
@@ -15,6 +16,7 @@ from granudb.vocabulary.text import name_key
 
 MATERIAL = {"density": "1 g/cm^3", "youngs_modulus": "1 GPa", "poisson_ratio": 0.3,
             "roughness": "1 nm"}  # fmt: skip
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "collisions_example.csv"
 
 
 @pytest.mark.parametrize(
@@ -89,3 +91,53 @@ def test_text_stored_before_the_rules_is_shown_escaped(cli, db: str) -> None:
         "\x1b" not in shown.stdout and "\u202e" not in shown.stdout and "\x07" not in shown.stdout
     )
     assert "\\x1b]0;owned" in shown.stdout.replace("\n", "").replace("│", "").replace(" ", "")
+
+
+def _runs_file(path: Path, labels: list[str], notes: list[str]) -> Path:
+    """The example's first run under each label, with each note (a CSV file)."""
+    header, first = EXAMPLE.read_text(encoding="utf-8").splitlines()[:2]
+    cells = first.split(",")
+    rows = [
+        ",".join([label, *cells[1:-1], note]) for label, note in zip(labels, notes, strict=True)
+    ]
+    path.write_text("\n".join([header, *rows]) + "\n", encoding="utf-8")
+    return path
+
+
+def test_imported_run_labels_and_notes_are_stored_in_nfc(db: str, tmp_path: Path) -> None:
+    """A file's labels and notes in decomposed form (as a Mac's keyboard may give them) are
+    stored composed, as every other door stores text."""
+    labels, notes = ["Cafe\u0301-1", "run-2"], ["tre\u0300s lent", ""]
+    granudb.import_collisions(_runs_file(tmp_path / "nfd.csv", labels, notes), dataset="nfd", db=db)
+    stored = granudb.collisions(db=db, dataset="nfd", columns=["run", "notes"], as_frame=False)
+    assert sorted(r["run"] for r in stored) == ["Caf\u00e9-1", "run-2"]
+    assert [r["notes"] for r in stored if r["run"] == "Caf\u00e9-1"] == ["tr\u00e8s lent"]
+
+
+@pytest.mark.sqlite_only
+def test_a_package_keeps_its_labels_as_stored(db: str, tmp_path: Path) -> None:
+    """A Data Package is a copy of stored runs, checked against its content hash: labels
+    stored in decomposed form before the rule reached imports come back byte for byte
+    (composing them would change the rows the hash vouches for)."""
+    granudb.import_collisions(
+        _runs_file(tmp_path / "a.csv", ["Caf\u00e9-1"], ["tr\u00e8s"]), dataset="old", db=db
+    )
+    with sqlite3.connect(db) as connection:  # stored before the rule reached imports
+        connection.execute(
+            "UPDATE collisions SET run = ?, notes = ?", ("Cafe\u0301-1", "tre\u0300s")
+        )
+    exported = granudb.export_dataset("old", tmp_path / "old.zip", db=db)
+    granudb.import_dataset(exported.path, as_name="new", db=db)
+    [row] = granudb.collisions(db=db, dataset="new", columns=["run", "notes"], as_frame=False)
+    assert (row["run"], row["notes"]) == ("Cafe\u0301-1", "tre\u0300s")
+
+
+def test_a_file_with_both_forms_of_one_label_is_refused_in_one_line(
+    db: str, tmp_path: Path
+) -> None:
+    twins = _runs_file(tmp_path / "twins.csv", ["Caf\u00e9-1", "Cafe\u0301-1"], ["", ""])
+    before = dump_hash(db)
+    with pytest.raises(granudb.ValidationError, match="run") as refused:
+        granudb.import_collisions(twins, dataset="twins", db=db)
+    assert "Caf\u00e9-1" in str(refused.value) and "\n" not in str(refused.value)
+    assert dump_hash(db) == before
