@@ -85,7 +85,8 @@ def restitution_records() -> list[dict]:
     )
     records += fits.restitution(restitution_runs(0.95, "exponential", 35.0, n=12),
                                 method="bayes", settings=SHORT_CHAIN)  # fmt: skip
-    records += fits.restitution(measured(0, n=1000), method="bayes")  # interval refused
+    refused = measured(0, n=bayesian.STATED_REFUSED_FROM)  # its Bayesian interval refused
+    records += fits.restitution(refused, method="bayes")
     return records
 
 
@@ -174,7 +175,8 @@ def test_restitution_table_says_what_fit_restitution_says(restitution_records) -
                 "(fixed)",
                 "redrawn in the bootstrap",
                 "not determined by these runs: St_n must take ≥ 3 distinct values",
-                "interval not determined: Bayesian interval refused from 1,000 runs",
+                "interval not determined: Bayesian interval refused from "
+                f"{bayesian.STATED_REFUSED_FROM:,} runs",
                 "profile likelihood",
                 "posterior median and 95 % equal-tailed credible interval",
             ):
