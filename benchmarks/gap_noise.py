@@ -63,8 +63,9 @@ def main() -> int:
         verdict = "refused" if not hits else ("PASS" if coverage >= BOUND else "FAIL")
         failed |= verdict == "FAIL"
         print(
-            f"noise {noise:4.0%} n={n:5d}: σ̂ {np.nanmean(sigmas):.2%}  given {given:3d}/{args.sets}  "
-            f"coverage {coverage:.3f}  {verdict}  ({time.process_time() - start:.0f} s CPU)",
+            f"noise {noise:4.0%} n={n:5d}: σ̂ {np.nanmean(sigmas):.2%}  "
+            f"given {given:3d}/{args.sets}  coverage {coverage:.3f}  {verdict}  "
+            f"({time.process_time() - start:.0f} s CPU)",
             flush=True,
         )
     return 1 if failed else 0
