@@ -210,12 +210,13 @@ def scatter_noise(
     fit = q * g
     h2 = (x / c - fit * slopes[0]) ** 2 + (y / c) ** 2 + (measured * e / (1 + e)) ** 2
     h2 += (measured / (1 + e) + fit * slopes[1]) ** 2
-    n = len(measured)
     residual = measured - fit
-    total = float(np.sum(h2))
+    ok = np.isfinite(h2) & np.isfinite(residual)  # a run (5.8) cannot take says nothing
+    n = int(np.count_nonzero(ok))
+    total = float(np.sum(h2[ok]))
     if n < 2 or not total > 0:
         return math.nan
-    return math.sqrt(float(np.sum(residual * residual)) / total * n / (n - 1))
+    return math.sqrt(float(np.sum(residual[ok] ** 2)) / total * n / (n - 1))
 
 
 def implied_noise(group: Any) -> float:
