@@ -25,6 +25,7 @@ from granudb.physics.impact import gyration_factor
 from granudb.reporting import plots
 from granudb.reporting.fit_view import (
     e_dry_words,
+    parameter_label,
     restitution_model,
     restitution_parameter,
     value_line,
@@ -35,7 +36,6 @@ from granudb.reporting.groups import (
     key_codes,
     sorted_codes,
 )
-from granudb.reporting.tables import PARAMETER_LABELS
 
 #: Dry runs are drawn at the viscosity of air at 20 °C, so they appear on the map.
 AIR_VISCOSITY_PA_S = 1.8e-5
@@ -467,7 +467,7 @@ def _restitution_curve(
     r = fitted[0]
     grid = np.geomspace(max(1.0, float(np.nanmin(st_n)) * 0.5), float(np.nanmax(st_n)) * 2, 200)
     curve = fits.restitution_curve(r["model"], grid, r["e_dry"], r["parameter"])
-    name = PARAMETER_LABELS.get(r.get("parameter_name", ""), "fitted parameter")
+    name = parameter_label(r)
     return grid, curve, f"{r['model']} fit, {name} = {r['parameter']:.2g}", r
 
 
@@ -477,7 +477,7 @@ def fit_said(fit: Mapping[str, Any]) -> str:
     parameter ("threshold fit of d: glass/Zerodur, threshold form e = … (…), the report's
     choice …; e_dry 0.968 (interval not determined: not fitted); source: mean e of …;
     fitted St_c 33 [29, 38], fitted, not the verdict's St_c")."""
-    name = PARAMETER_LABELS.get(fit.get("parameter_name", ""), "fitted parameter")
+    name = parameter_label(fit)
     words = (
         f"{fit['model']} fit of {fit['dataset']}: {fit['particle']}/{fit['wall']}, "
         f"{restitution_model(fit)}; e_dry {e_dry_words(fit)}; "

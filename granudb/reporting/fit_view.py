@@ -261,6 +261,16 @@ def restitution_parameter(fit: Mapping[str, Any]) -> Quantity:
     return Quantity(symbol, "parameter", "parameter_low", "parameter_high", symbol)
 
 
+def parameter_label(fit: Mapping[str, Any]) -> str:
+    """``fitted St_c``, ``fitted k``: the restitution form's parameter as a table's column,
+    a legend and a caption name it (its symbol, ``restitution_parameter``).
+
+    >>> parameter_label({"parameter_name": "fitted_critical_stokes"}), parameter_label({})
+    ('fitted St_c', 'fitted parameter')
+    """
+    return f"fitted {restitution_parameter(fit).symbol}"
+
+
 def e_dry_words(fit: Mapping[str, Any]) -> str:
     """e_dry with its interval or why none, and where it comes from: ``0.948 [0.936,
     0.959]; source: fitted, bounded 0 ≤ e_dry ≤ 1``; a value fixed to the dry runs' mean

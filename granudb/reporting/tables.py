@@ -26,6 +26,7 @@ from granudb.reporting.fit_view import (
     gap_runs,
     group_words,
     method_line,
+    parameter_label,
     resamples_remark,
     restitution_model,
     restitution_parameter,
@@ -134,22 +135,12 @@ def walton_table(
     }
 
 
-#: What a restitution form's parameter is called in a table.
-PARAMETER_LABELS = {"fitted_critical_stokes": "fitted St_c", "k": "fitted k"}
-
-
-def model_said(fit: Mapping[str, Any]) -> str:
-    """A restitution fit's form in words, from its record, as a sentence ("The threshold
-    form e = … (…), the report's choice"): ``granudb fit restitution``'s model line."""
-    return f"The {restitution_model(fit)}"
-
-
 def restitution_table(restitution: list[dict[str, Any]]) -> dict:
     """The restitution fits, with the form, its parameter and how the intervals were made
     said from the fits' own records, each cell in ``granudb fit restitution``'s words."""
     first = restitution[0] if restitution else {}
     stokes = stokes_number(first) or "the normal Stokes number St_n"
-    parameter = PARAMETER_LABELS.get(first.get("parameter_name", ""), "fitted parameter")
+    parameter = parameter_label(first)
     threshold = (
         " The fitted St_c is the no-rebound threshold of these runs, not the St_c of the "
         "rebound verdict."
@@ -157,9 +148,9 @@ def restitution_table(restitution: list[dict[str, Any]]) -> dict:
         else ""
     )
     note = (
-        f"{model_said(first)}; Stokes number: {stokes}.{threshold} e_dry ≤ 1, fixed to the "
-        "mean e of the group's dry runs where it has any. Without an interval, ± is the "
-        "asymptotic standard error of the least squares. " + bootstrap_note(restitution)
+        f"The {restitution_model(first)}; Stokes number: {stokes}.{threshold} e_dry ≤ 1, "
+        "fixed to the mean e of the group's dry runs where it has any. Without an interval, "
+        "± is the asymptotic standard error of the least squares. " + bootstrap_note(restitution)
     )
     return {
         "id": "restitution-fit",
